@@ -1,0 +1,30 @@
+# Helpers that apply the project's standard, warnings and layout to every target.
+
+# msb_set_options(<target>): C++20, -Wall -Wextra, no -march=native / -ffast-math.
+function(msb_set_options target)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+  set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF POSITION_INDEPENDENT_CODE ON)
+  target_compile_options(${target} PRIVATE -Wall -Wextra)
+endfunction()
+
+# msb_add_library(<name> ALIAS <alias> SOURCES ... DEPS ...): a static module library whose
+# headers are included as "core/..." or "sim/..." from the project root.
+function(msb_add_library name)
+  cmake_parse_arguments(ARG "" "ALIAS" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  add_library(msb::${ARG_ALIAS} ALIAS ${name})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  msb_set_options(${name})
+endfunction()
+
+# msb_add_test(<name> SOURCES ... DEPS ...): one GoogleTest binary, discovered by ctest.
+function(msb_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    MSB_SOURCE_DIR="${PROJECT_SOURCE_DIR}" MSB_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  msb_set_options(${name})
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+endfunction()

@@ -1,0 +1,160 @@
+#include "sim/physics/quadrotor_sim.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace msb {
+
+void PhysicsConfig::validate(ConfigChecker& c) const {
+  c.inRange("physics_hz", physics_hz, 100, 5000);
+  c.nested("vehicle", vehicle);
+  c.nonNegative("takeoff_clearance_m", takeoff_clearance_m);
+}
+
+namespace {
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open world file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// MuJoCo reports errors through a global handler; route them to exceptions while loading.
+// (Only the compile step uses it; it is restored right after.)
+thread_local std::string g_mj_warning;
+void recordWarning(const char* msg) { g_mj_warning = msg; }
+
+}  // namespace
+
+QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world_xml_path,
+                           const Pose& start_T_W_B)
+    : config_(checkValid(config)) {
+  namespace fs = std::filesystem;
+  const std::string world = readFile(world_xml_path);
+  std::string xml;
+  try {
+    xml = composeModelXml(world, config_.vehicle, start_T_W_B, 1.0 / config_.physics_hz);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(world_xml_path + ": " + e.what());
+  }
+
+  // Compile from a virtual file that sits in the world's directory, so relative texture and
+  // mesh paths of the world resolve against the world file, not the working directory.
+  const fs::path dir = fs::absolute(world_xml_path).parent_path();
+  const std::string vfs_name = (dir / "msbench_composed_model.xml").string();
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), vfs_name.c_str(), static_cast<int>(xml.size())) != 0)
+    throw std::runtime_error(world_xml_path + ": cannot create MuJoCo virtual file");
+  const int idx = mj_findFileVFS(vfs.get(), vfs_name.c_str());
+  std::copy(xml.begin(), xml.end(), static_cast<char*>(vfs->filedata[idx]));
+
+  char error[1024] = "";
+  auto* prev_warning = mju_user_warning;
+  mju_user_warning = recordWarning;
+  g_mj_warning.clear();
+  m_ = mj_loadXML(vfs_name.c_str(), vfs.get(), error, sizeof(error));
+  mju_user_warning = prev_warning;
+  mj_deleteVFS(vfs.get());
+  if (!m_) throw std::runtime_error(world_xml_path + ": MuJoCo could not compile: " + error);
+  if (error[0] != '\0' || !g_mj_warning.empty()) {
+    mj_deleteModel(m_);
+    throw std::runtime_error(world_xml_path + ": MuJoCo warning: " +
+                             (error[0] ? std::string(error) : g_mj_warning));
+  }
+  d_ = mj_makeData(m_);
+
+  // Cache addresses of the vehicle's state and IMU sensors.
+  body_id_ = mj_name2id(m_, mjOBJ_BODY, mjcf_names::kVehicleBody);
+  const int jnt = m_->body_jntadr[body_id_];
+  qpos_adr_ = m_->jnt_qposadr[jnt];
+  qvel_adr_ = m_->jnt_dofadr[jnt];
+  accel_adr_ = m_->sensor_adr[mj_name2id(m_, mjOBJ_SENSOR, mjcf_names::kAccelSensor)];
+  gyro_adr_ = m_->sensor_adr[mj_name2id(m_, mjOBJ_SENSOR, mjcf_names::kGyroSensor)];
+  start_z_ = start_T_W_B.translation().z();
+  mj_forward(m_, d_);
+}
+
+QuadrotorSim::~QuadrotorSim() {
+  if (d_) mj_deleteData(d_);
+  if (m_) mj_deleteModel(m_);
+}
+
+std::optional<CollisionEvent> QuadrotorSim::beginTick() {
+  mj_step1(m_, d_);
+  if (!airborne_ && d_->qpos[qpos_adr_ + 2] > start_z_ + config_.takeoff_clearance_m)
+    airborne_ = true;
+  auto hit = checkContacts();
+  if (hit && !collision_) collision_ = hit;
+  return hit;
+}
+
+std::optional<CollisionEvent> QuadrotorSim::checkContacts() {
+  for (int i = 0; i < d_->ncon; ++i) {
+    const mjContact& c = d_->contact[i];
+    if (c.dist > 0.0) continue;
+    const bool v1 = m_->geom_bodyid[c.geom1] == body_id_;
+    const bool v2 = m_->geom_bodyid[c.geom2] == body_id_;
+    if (v1 == v2) continue;  // not a vehicle–world pair
+    const int vg = v1 ? c.geom1 : c.geom2;
+    const int wg = v1 ? c.geom2 : c.geom1;
+    // Resting on the ground before take-off is not a collision.
+    if (!airborne_ && m_->geom_type[wg] == mjGEOM_PLANE) continue;
+    CollisionEvent ev;
+    ev.tick = tick_;
+    ev.t_s = timeSeconds();
+    ev.vehicle_position_m = Vec3(d_->qpos[qpos_adr_], d_->qpos[qpos_adr_ + 1],
+                                 d_->qpos[qpos_adr_ + 2]);
+    ev.contact_position_m = Vec3(c.pos[0], c.pos[1], c.pos[2]);
+    const char* vn = mj_id2name(m_, mjOBJ_GEOM, vg);
+    const char* wn = mj_id2name(m_, mjOBJ_GEOM, wg);
+    ev.vehicle_geom = vn ? vn : "geom#" + std::to_string(vg);
+    ev.world_geom = wn ? wn : "geom#" + std::to_string(wg);
+    return ev;
+  }
+  return std::nullopt;
+}
+
+void QuadrotorSim::endTick(const Vec4& cmd) {
+  for (int i = 0; i < 4; ++i)
+    d_->ctrl[i] = std::clamp(cmd[i], 0.0, config_.vehicle.max_thrust_n);
+  mj_step2(m_, d_);
+  // Sensors of mj_step2 describe the state before integration (x_n).
+  const mjtNum* s = d_->sensordata;
+  imu_truth_.specific_force_mps2 = Vec3(s[accel_adr_], s[accel_adr_ + 1], s[accel_adr_ + 2]);
+  imu_truth_.angular_rate_radps = Vec3(s[gyro_adr_], s[gyro_adr_ + 1], s[gyro_adr_ + 2]);
+  ++tick_;
+}
+
+Odometry QuadrotorSim::groundTruth() const {
+  Odometry o;
+  o.tick = tick_;
+  o.t_s = timeSeconds();
+  const mjtNum* q = d_->qpos + qpos_adr_;
+  o.T_W_B.translation() = Vec3(q[0], q[1], q[2]);
+  o.T_W_B.linear() = Quat(q[3], q[4], q[5], q[6]).normalized().toRotationMatrix();
+  // Free joint: linear velocity in world frame, angular velocity in body frame.
+  const mjtNum* v = d_->qvel + qvel_adr_;
+  o.v_W_mps = Vec3(v[0], v[1], v[2]);
+  o.omega_B_radps = Vec3(v[3], v[4], v[5]);
+  return o;
+}
+
+Vec4 QuadrotorSim::motorThrusts() const {
+  return Vec4(d_->act[0], d_->act[1], d_->act[2], d_->act[3]);
+}
+
+bool QuadrotorSim::diverged() const {
+  for (int i = 0; i < m_->nq; ++i)
+    if (!std::isfinite(d_->qpos[i])) return true;
+  for (int i = 0; i < m_->nv; ++i)
+    if (!std::isfinite(d_->qvel[i])) return true;
+  return d_->warning[mjWARN_BADQACC].number > 0;
+}
+
+}  // namespace msb

@@ -1,0 +1,106 @@
+// The physical simulation: MuJoCo model (world + quadrotor), one tick = one physics step.
+// A tick is split as MuJoCo's mj_step1 / mj_step2 so that everything in between (contacts,
+// sensors, rendering, perception, planning, control) sees the same state x_n:
+//   beginTick(): kinematics + collision detection of x_n, contact check
+//   ... caller reads state, renders, computes motor commands ...
+//   endTick(thrusts): dynamics with the new commands, IMU truth of x_n, integrate to x_{n+1}
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/common/config_check.h"
+#include "core/common/messages.h"
+#include "sim/physics/quadrotor_model.h"
+
+namespace msb {
+
+/// Configuration of the physical simulation.
+struct PhysicsConfig {
+  int physics_hz = 500;              ///< physics rate (one tick = one step)
+  QuadrotorConfig vehicle;           ///< vehicle parameters
+  double takeoff_clearance_m = 0.15; ///< ground contact is allowed until first this high
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Details of the contact that ended a run.
+struct CollisionEvent {
+  int64_t tick = 0;                 ///< tick of detection
+  double t_s = 0.0;                 ///< simulated time
+  Vec3 vehicle_position_m;          ///< body origin at detection
+  Vec3 contact_position_m;          ///< contact point
+  std::string vehicle_geom;         ///< name of the vehicle's geom
+  std::string world_geom;           ///< name (or "geom#id") of the world's geom
+};
+
+/// Noise-free IMU quantities at the last completed tick (body frame).
+struct ImuTruth {
+  Vec3 specific_force_mps2 = Vec3::Zero();  ///< accelerometer truth
+  Vec3 angular_rate_radps = Vec3::Zero();   ///< gyroscope truth
+};
+
+/// MuJoCo quadrotor in a world. Owns mjModel and mjData; single-threaded.
+class QuadrotorSim {
+ public:
+  /// Loads the world MJCF file, adds the vehicle at `start_T_W_B` and compiles. Throws
+  /// std::runtime_error naming the file and MuJoCo's message on failure.
+  QuadrotorSim(const PhysicsConfig& config, const std::string& world_xml_path,
+               const Pose& start_T_W_B);
+  ~QuadrotorSim();
+  QuadrotorSim(const QuadrotorSim&) = delete;
+  QuadrotorSim& operator=(const QuadrotorSim&) = delete;
+
+  /// Step 1 of a tick: kinematics and collision detection of the current state. Returns the
+  /// collision, if the vehicle touches the world (also kept in `collision()`).
+  std::optional<CollisionEvent> beginTick();
+  /// Step 2 of a tick: applies motor thrust commands (N, FL FR BR BL), computes dynamics and
+  /// IMU truth for the current state, integrates to the next tick.
+  void endTick(const Vec4& motor_thrust_cmd_n);
+
+  /// Current tick (number of completed steps).
+  int64_t tick() const { return tick_; }
+  /// Current simulated time.
+  double timeSeconds() const { return static_cast<double>(tick_) / config_.physics_hz; }
+  /// Ground-truth odometry of the current state.
+  Odometry groundTruth() const;
+  /// IMU truth computed in the last endTick().
+  const ImuTruth& imuTruth() const { return imu_truth_; }
+  /// Current (lagged) motor thrusts in N.
+  Vec4 motorThrusts() const;
+  /// First collision seen, if any.
+  const std::optional<CollisionEvent>& collision() const { return collision_; }
+  /// True if a non-finite state was detected (status `diverged`).
+  bool diverged() const;
+
+  /// MuJoCo model (the renderer may adjust visual settings only).
+  mjModel* model() { return m_; }
+  const mjModel* model() const { return m_; }
+  /// MuJoCo data.
+  const mjData* data() const { return d_; }
+  /// The validated configuration.
+  const PhysicsConfig& config() const { return config_; }
+  /// Number of geoms in the compiled model.
+  int geomCount() const { return m_->ngeom; }
+
+ private:
+  std::optional<CollisionEvent> checkContacts();
+
+  PhysicsConfig config_;
+  mjModel* m_ = nullptr;
+  mjData* d_ = nullptr;
+  int body_id_ = -1;
+  int qpos_adr_ = 0, qvel_adr_ = 0;
+  int accel_adr_ = 0, gyro_adr_ = 0;
+  int64_t tick_ = 0;
+  bool airborne_ = false;
+  double start_z_ = 0.0;
+  ImuTruth imu_truth_;
+  std::optional<CollisionEvent> collision_;
+};
+
+}  // namespace msb

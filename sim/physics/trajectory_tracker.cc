@@ -1,0 +1,161 @@
+#include "sim/physics/trajectory_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace msb {
+
+TrajectoryLimits TrajectoryLimits::preset(const std::string& name) {
+  if (name == "medium") return {4.0, 2.0, 10.0, 1.0};
+  if (name == "fast") return {8.0, 4.0, 20.0, 2.0};
+  throw ConfigError("limits", "unknown preset '" + name + "' (expected medium or fast)");
+}
+
+void TrajectoryLimits::validate(ConfigChecker& c) const {
+  c.inRange("max_speed_mps", max_speed_mps, 0.1, 30.0);
+  c.inRange("max_accel_mps2", max_accel_mps2, 0.1, 20.0);
+  c.inRange("max_jerk_mps3", max_jerk_mps3, 0.5, 200.0);
+  c.inRange("max_yaw_rate_radps", max_yaw_rate_radps, 0.05, 10.0);
+}
+
+void TrajectoryTrackerConfig::validate(ConfigChecker& c) const {
+  c.nested("limits", limits);
+  c.positive("corner_cut_m", corner_cut_m);
+  c.positive("lookahead_base_m", lookahead_base_m);
+  c.nonNegative("lookahead_per_speed_s", lookahead_per_speed_s);
+  c.positive("velocity_gain_per_s", velocity_gain_per_s);
+  c.positive("yaw_gain_per_s", yaw_gain_per_s);
+  c.nonNegative("heading_min_speed_mps", heading_min_speed_mps);
+  c.positive("arrive_tolerance_m", arrive_tolerance_m);
+}
+
+TrajectoryTracker::TrajectoryTracker(const TrajectoryTrackerConfig& config, const Vec3& start_m,
+                                     double yaw_rad)
+    : config_(checkValid(config)) {
+  ref_.position_m = start_m;
+  ref_.yaw_rad = wrapAngle(yaw_rad);
+}
+
+void TrajectoryTracker::setPath(const std::vector<Waypoint>& waypoints) {
+  points_ = {ref_.position_m};
+  headings_ = {std::nullopt};
+  for (const auto& w : waypoints) {
+    // Merge coincident waypoints, keeping the later heading.
+    if ((w.position_m - points_.back()).norm() < 1e-6) {
+      if (w.heading_rad) headings_.back() = w.heading_rad;
+      continue;
+    }
+    points_.push_back(w.position_m);
+    headings_.push_back(w.heading_rad);
+  }
+  cumulative_.assign(points_.size(), 0.0);
+  for (size_t i = 1; i < points_.size(); ++i)
+    cumulative_[i] = cumulative_[i - 1] + (points_[i] - points_[i - 1]).norm();
+
+  // Corner speeds: rounding radius from the turn angle and the available cut length.
+  const auto& lim = config_.limits;
+  corner_speed_.assign(points_.size(), lim.max_speed_mps);
+  for (size_t i = 1; i + 1 < points_.size(); ++i) {
+    const Vec3 a = (points_[i] - points_[i - 1]).normalized();
+    const Vec3 b = (points_[i + 1] - points_[i]).normalized();
+    const double theta = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+    if (theta < 1e-4) continue;
+    const double cut = std::min({config_.corner_cut_m, 0.5 * (cumulative_[i] - cumulative_[i - 1]),
+                                 0.5 * (cumulative_[i + 1] - cumulative_[i])});
+    const double radius = cut / (2.0 * std::tan(0.5 * std::min(theta, 3.0)));
+    corner_speed_[i] = std::min(lim.max_speed_mps, std::sqrt(lim.max_accel_mps2 * radius));
+  }
+  corner_speed_.back() = 0.0;
+  segment_ = 0;
+  s_proj_ = 0.0;
+  finished_ = points_.size() < 2 && !headings_.back();
+}
+
+Vec3 TrajectoryTracker::pointAt(double s) const {
+  if (points_.size() < 2) return points_.front();
+  const auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), s);
+  const size_t i = std::clamp<size_t>(it - cumulative_.begin(), 1, points_.size() - 1);
+  const double len = cumulative_[i] - cumulative_[i - 1];
+  const double t = std::clamp((s - cumulative_[i - 1]) / len, 0.0, 1.0);
+  return points_[i - 1] + t * (points_[i] - points_[i - 1]);
+}
+
+double TrajectoryTracker::speedLimit(double s) const {
+  // Braking uses 60 % of the acceleration limit: margin for the jerk limit and lag.
+  const double a_brake = 0.6 * config_.limits.max_accel_mps2;
+  double v = config_.limits.max_speed_mps;
+  for (size_t i = segment_ + 1; i < points_.size(); ++i) {
+    const double d = std::max(0.0, cumulative_[i] - s);
+    if (2.0 * a_brake * d > v * v) break;  // this and later corners cannot bind
+    v = std::min(v, std::sqrt(corner_speed_[i] * corner_speed_[i] + 2.0 * a_brake * d));
+  }
+  return v;
+}
+
+const TrajectoryReference& TrajectoryTracker::update(double dt) {
+  const auto& lim = config_.limits;
+  Vec3& p = ref_.position_m;
+  Vec3& v = ref_.velocity_mps;
+  Vec3& a = ref_.accel_mps2;
+  if (points_.empty()) points_ = {p}, headings_ = {std::nullopt}, cumulative_ = {0.0};
+
+  // Advance the projection of the reference onto the path (monotonic along the path).
+  const size_t nseg = points_.size() - 1;
+  while (nseg > 0) {
+    const Vec3& A = points_[segment_];
+    const Vec3 AB = points_[segment_ + 1] - A;
+    const double t = std::clamp((p - A).dot(AB) / AB.squaredNorm(), 0.0, 1.0);
+    s_proj_ = std::max(s_proj_, cumulative_[segment_] + t * AB.norm());
+    if (t >= 1.0 && segment_ + 1 < nseg) {
+      ++segment_;
+      continue;
+    }
+    break;
+  }
+
+  // Desired velocity: towards the look-ahead point, at the speed that can still brake for
+  // every corner and the end; a proportional approach once the look-ahead reaches the end.
+  const double total = cumulative_.back();
+  const double lookahead = config_.lookahead_base_m + config_.lookahead_per_speed_s * v.norm();
+  const double s_carrot = std::min(s_proj_ + lookahead, total);
+  const Vec3 to_carrot = pointAt(s_carrot) - p;
+  const double dist = to_carrot.norm();
+  double speed = nseg > 0 ? speedLimit(s_proj_) : lim.max_speed_mps;
+  if (s_carrot >= total) speed = std::min(speed, 1.2 * dist);
+  const Vec3 v_des = dist > 1e-9 ? Vec3(to_carrot / dist * speed) : Vec3::Zero();
+
+  // Jerk- and acceleration-limited double integrator towards v_des.
+  Vec3 a_des = config_.velocity_gain_per_s * (v_des - v);
+  if (a_des.norm() > lim.max_accel_mps2) a_des *= lim.max_accel_mps2 / a_des.norm();
+  Vec3 da = a_des - a;
+  const double max_da = lim.max_jerk_mps3 * dt;
+  if (da.norm() > max_da) da *= max_da / da.norm();
+  a += da;
+  v += a * dt;
+  if (v.norm() > lim.max_speed_mps) v *= lim.max_speed_mps / v.norm();
+  p += v * dt;
+
+  // Heading: the next waypoint's goal heading, else the direction of travel, else hold.
+  const size_t next = std::min(segment_ + 1, points_.size() - 1);
+  double target = ref_.yaw_rad;
+  const bool at_end = s_carrot >= total && dist < 0.5;
+  if (headings_[next]) {
+    target = *headings_[next];
+  } else if (Vec2(v.x(), v.y()).norm() > config_.heading_min_speed_mps) {
+    target = std::atan2(v.y(), v.x());
+  }
+  const double yaw_err = wrapAngle(target - ref_.yaw_rad);
+  double rate = std::clamp(config_.yaw_gain_per_s * yaw_err, -lim.max_yaw_rate_radps,
+                           lim.max_yaw_rate_radps);
+  // Limit yaw acceleration to 4x the rate limit per second for a smooth heading.
+  const double max_dr = 4.0 * lim.max_yaw_rate_radps * dt;
+  rate = std::clamp(rate, ref_.yaw_rate_radps - max_dr, ref_.yaw_rate_radps + max_dr);
+  ref_.yaw_rate_radps = rate;
+  ref_.yaw_rad = wrapAngle(ref_.yaw_rad + rate * dt);
+
+  finished_ = at_end && dist < config_.arrive_tolerance_m && v.norm() < 0.05 &&
+              std::abs(yaw_err) < 0.02;
+  return ref_;
+}
+
+}  // namespace msb

@@ -1,0 +1,78 @@
+// Trajectory tracker: turns a path of waypoints (with optional headings) into a smooth
+// position/velocity/acceleration/yaw reference under speed, acceleration, jerk and yaw-rate
+// limits. The reference is a jerk-limited double integrator that pursues a look-ahead point on
+// the path; its speed is capped so it can brake for every upcoming corner and for the end.
+// Corner speed: a turn of angle θ is rounded with radius R = L_c / (2 tan(θ/2)), where L_c is the
+// corner-cut length (or half the shorter adjacent segment), and taken at v = sqrt(a_max R).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/common/config_check.h"
+#include "core/common/messages.h"
+
+namespace msb {
+
+/// Motion limits of the reference (presets "medium" and "fast" of the reference code).
+struct TrajectoryLimits {
+  double max_speed_mps = 4.0;       ///< speed along the path
+  double max_accel_mps2 = 2.0;      ///< norm of the reference acceleration
+  double max_jerk_mps3 = 10.0;      ///< norm of the acceleration change rate
+  double max_yaw_rate_radps = 1.0;  ///< heading rate
+
+  /// The named preset ("medium": 4 m/s, 2 m/s², 1 rad/s; "fast": 8 m/s, 4 m/s², 2 rad/s).
+  /// Throws ConfigError for an unknown name.
+  static TrajectoryLimits preset(const std::string& name);
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Tracker configuration.
+struct TrajectoryTrackerConfig {
+  TrajectoryLimits limits;             ///< motion limits
+  double corner_cut_m = 2.0;           ///< length over which a sharp corner is rounded
+  double lookahead_base_m = 0.8;       ///< pursuit look-ahead at rest
+  double lookahead_per_speed_s = 0.25; ///< extra look-ahead per m/s of speed
+  double velocity_gain_per_s = 2.5;    ///< how fast the reference velocity converges
+  double yaw_gain_per_s = 2.0;         ///< heading error to yaw rate
+  double heading_min_speed_mps = 0.5;  ///< below this speed the heading is held
+  double arrive_tolerance_m = 0.05;    ///< path is finished within this distance at rest
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Smooth reference generator following the last PathCommand.
+class TrajectoryTracker {
+ public:
+  /// Starts at rest at `start` position and yaw. Throws ConfigError if invalid.
+  TrajectoryTracker(const TrajectoryTrackerConfig& config, const Vec3& start_m, double yaw_rad);
+
+  /// Replaces the path; the reference continues smoothly from its current state.
+  void setPath(const std::vector<Waypoint>& waypoints);
+  /// Advances the reference by dt seconds and returns it.
+  const TrajectoryReference& update(double dt_s);
+  /// The current reference.
+  const TrajectoryReference& reference() const { return ref_; }
+  /// True when the last waypoint is reached at rest with its heading (or no path given).
+  bool finished() const { return finished_; }
+  /// Number of waypoints of the current path already passed.
+  size_t waypointsPassed() const { return segment_; }
+
+ private:
+  double speedLimit(double s_along) const;
+  Vec3 pointAt(double s) const;
+
+  TrajectoryTrackerConfig config_;
+  TrajectoryReference ref_;
+  std::vector<Vec3> points_;        // path polyline: start point then waypoints
+  std::vector<std::optional<double>> headings_;
+  std::vector<double> cumulative_;  // arc length at each polyline vertex
+  std::vector<double> corner_speed_;
+  size_t segment_ = 0;              // index of the segment holding the projection
+  double s_proj_ = 0.0;             // arc length of the reference's projection on the path
+  bool finished_ = true;
+};
+
+}  // namespace msb

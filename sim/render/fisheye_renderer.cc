@@ -1,0 +1,250 @@
+#include "sim/render/fisheye_renderer.h"
+
+#include <GL/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+namespace msb {
+
+void FisheyeRendererConfig::validate(ConfigChecker& c) const {
+  c.inRange("face_focal_ratio", face_focal_ratio, 0.25, 2.0);
+  c.inRange("ambient", ambient, 0.05, 1.0);
+  c.inRange("tessellation_slices", tessellation_slices, 4, 100);
+  c.inRange("tessellation_stacks", tessellation_stacks, 4, 100);
+  c.nonNegative("plane_grid_m", plane_grid_m);
+  c.positive("near_clip_m", near_clip_m);
+  c.require(far_clip_m > near_clip_m, "far_clip_m", "must exceed near_clip_m");
+  c.inRange("hidden_geom_group", hidden_geom_group, -1, mjNGROUP - 1);
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Face frames (columns: face x right, face y down, face z normal) in the camera optical frame.
+std::vector<CubeFace> nominalFaces() {
+  auto face = [](const char* name, Vec3 x, Vec3 y, Vec3 z) {
+    CubeFace f;
+    f.name = name;
+    f.R_C_F.col(0) = x;
+    f.R_C_F.col(1) = y;
+    f.R_C_F.col(2) = z;
+    return f;
+  };
+  return {face("front", {1, 0, 0}, {0, 1, 0}, {0, 0, 1}),
+          face("right", {0, 0, -1}, {0, 1, 0}, {1, 0, 0}),
+          face("left", {0, 0, 1}, {0, 1, 0}, {-1, 0, 0}),
+          face("down", {1, 0, 0}, {0, 0, -1}, {0, 1, 0}),
+          face("up", {1, 0, 0}, {0, 0, 1}, {0, -1, 0})};
+}
+
+// Index of the cube face whose normal is closest to the direction.
+int faceOf(const std::vector<CubeFace>& faces, const Vec3& d) {
+  int best = 0;
+  double best_z = -2.0;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const double z = faces[i].R_C_F.col(2).dot(d);
+    if (z > best_z) best_z = z, best = static_cast<int>(i);
+  }
+  return best;
+}
+
+}  // namespace
+
+FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
+                                 const FisheyeCamera& camera, mjModel* model)
+    : config_(checkValid(config)), camera_(camera), model_(model) {
+  face_focal_px_ = config_.face_focal_ratio * camera_.fx();
+  buildFacesAndLut();
+
+  // Benchmark visual settings: no MSAA, coarse tessellation, ambient-only headlight.
+  model_->vis.global.offwidth = atlas_width_;
+  model_->vis.global.offheight = atlas_height_;
+  model_->vis.quality.offsamples = 0;
+  model_->vis.quality.numslices = config_.tessellation_slices;
+  model_->vis.quality.numstacks = config_.tessellation_stacks;
+  model_->vis.headlight.active = 1;
+  for (int i = 0; i < 3; ++i) {
+    model_->vis.headlight.ambient[i] = static_cast<float>(config_.ambient);
+    model_->vis.headlight.diffuse[i] = 0.0f;
+    model_->vis.headlight.specular[i] = 0.0f;
+  }
+  // Coarse plane grid: for planes the third size is only the rendering grid spacing.
+  for (int g = 0; g < model_->ngeom; ++g)
+    if (model_->geom_type[g] == mjGEOM_PLANE)
+      model_->geom_size[3 * g + 2] = std::max(model_->geom_size[3 * g + 2], config_.plane_grid_m);
+
+  // GL context (tiny default framebuffer: MuJoCo renders into its off-screen FBO).
+  context_ = makeOsMesaContext(64, 64);
+  mjv_defaultScene(&scene_);
+  mjv_makeScene(model_, &scene_, std::max(1000, 2 * model_->ngeom));
+  mjr_defaultContext(&mjr_context_);
+  mjr_makeContext(model_, &mjr_context_, mjFONTSCALE_50);
+  if (mjr_context_.offWidth < atlas_width_ || mjr_context_.offHeight < atlas_height_)
+    throw std::runtime_error("MuJoCo off-screen buffer smaller than the face atlas");
+  mjr_setBuffer(mjFB_OFFSCREEN, &mjr_context_);
+
+  mjv_defaultOption(&options_);
+  if (config_.hidden_geom_group >= 0) options_.geomgroup[config_.hidden_geom_group] = 0;
+  mjv_defaultFreeCamera(model_, &free_camera_);
+  for (int f = 0; f < mjNRNDFLAG; ++f) scene_.flags[f] = 0;
+  scene_.flags[mjRND_CULL_FACE] = 1;
+}
+
+FisheyeRenderer::~FisheyeRenderer() {
+  mjr_freeContext(&mjr_context_);
+  mjv_freeScene(&scene_);
+}
+
+long FisheyeRenderer::renderedPixels() const {
+  long n = 0;
+  for (const auto& f : faces_) n += static_cast<long>(f.width) * f.height;
+  return n;
+}
+
+void FisheyeRenderer::buildFacesAndLut() {
+  const int W = camera_.width(), H = camera_.height();
+  const double ff = face_focal_px_;
+  std::vector<CubeFace> all = nominalFaces();
+
+  // Pass 1: which face each in-FoV pixel samples, and the tangent bounds used per face.
+  std::vector<int> pixel_face(static_cast<size_t>(W) * H, -1);
+  std::vector<Vec2> pixel_tan(static_cast<size_t>(W) * H);
+  std::vector<std::array<double, 4>> bounds(all.size(), {1e9, -1e9, 1e9, -1e9});
+  for (int v = 0; v < H; ++v) {
+    for (int u = 0; u < W; ++u) {
+      const Vec2 px(u, v);
+      if (!camera_.pixelInFov(px)) continue;
+      const Vec3 d = camera_.unproject(px);
+      const int f = faceOf(all, d);
+      const Vec3 dF = all[f].R_C_F.transpose() * d;
+      const Vec2 t(dF.x() / dF.z(), dF.y() / dF.z());
+      const size_t i = static_cast<size_t>(v) * W + u;
+      pixel_face[i] = f;
+      pixel_tan[i] = t;
+      auto& b = bounds[f];
+      b = {std::min(b[0], t.x()), std::max(b[1], t.x()), std::min(b[2], t.y()),
+           std::max(b[3], t.y())};
+    }
+  }
+
+  // Rendered rectangle per used face: the bounds plus a 2-pixel bilinear margin.
+  const double margin = 2.0 / ff;
+  std::vector<int> face_index(all.size(), -1);
+  for (size_t f = 0; f < all.size(); ++f) {
+    if (bounds[f][0] > bounds[f][1]) continue;
+    CubeFace face = all[f];
+    face.tan_x0 = bounds[f][0] - margin;
+    face.tan_y0 = bounds[f][2] - margin;
+    face.width = static_cast<int>(std::ceil((bounds[f][1] + margin - face.tan_x0) * ff));
+    face.height = static_cast<int>(std::ceil((bounds[f][3] + margin - face.tan_y0) * ff));
+    face_index[f] = static_cast<int>(faces_.size());
+    faces_.push_back(face);
+  }
+
+  // Shelf packing of the rectangles into one atlas (tallest first, 2-pixel gaps).
+  std::vector<size_t> order(faces_.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return faces_[a].height > faces_[b].height; });
+  int max_w = 0;
+  long area = 0;
+  for (const auto& f : faces_) max_w = std::max(max_w, f.width), area += long{f.width} * f.height;
+  const int shelf_limit = std::max(max_w, static_cast<int>(std::sqrt(double(area)) * 1.3));
+  int x = 0, y = 0, shelf_h = 0;
+  for (size_t i : order) {
+    auto& f = faces_[i];
+    if (x > 0 && x + f.width > shelf_limit) y += shelf_h + 2, x = 0, shelf_h = 0;
+    f.atlas_x = x;
+    f.atlas_y = y;
+    x += f.width + 2;
+    shelf_h = std::max(shelf_h, f.height);
+    atlas_width_ = std::max(atlas_width_, x);
+  }
+  atlas_height_ = y + shelf_h;
+
+  // Pass 2: lookup table from fisheye pixels to atlas pixels (GL rows, bottom first).
+  cv::Mat map_x(H, W, CV_32F, cv::Scalar(-100.0f)), map_y(H, W, CV_32F, cv::Scalar(-100.0f));
+  for (int v = 0; v < H; ++v) {
+    for (int u = 0; u < W; ++u) {
+      const size_t i = static_cast<size_t>(v) * W + u;
+      if (pixel_face[i] < 0) continue;
+      const CubeFace& f = faces_[face_index[pixel_face[i]]];
+      const double tan_y1 = f.tan_y0 + f.height / ff;
+      map_x.at<float>(v, u) = static_cast<float>(f.atlas_x + (pixel_tan[i].x() - f.tan_x0) * ff - 0.5);
+      map_y.at<float>(v, u) = static_cast<float>(f.atlas_y + (tan_y1 - pixel_tan[i].y()) * ff - 0.5);
+    }
+  }
+  cv::convertMaps(map_x, map_y, map_xy_, map_interp_, CV_16SC2);
+}
+
+void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame* frame,
+                             RenderTiming* timing) {
+  RenderTiming t;
+  auto t0 = Clock::now();
+  context_->makeCurrent();
+  mjv_updateScene(model_, const_cast<mjData*>(data), &options_, nullptr, &free_camera_,
+                  mjCAT_ALL, &scene_);
+  t.scene_ms = msSince(t0);
+
+  // Render every face rectangle into its atlas viewport with an off-centre frustum.
+  t0 = Clock::now();
+  const float n = static_cast<float>(config_.near_clip_m);
+  const Mat3 R_W_C = T_W_C.linear();
+  const Vec3 pos = T_W_C.translation();
+  for (const auto& f : faces_) {
+    const Mat3 R_W_F = R_W_C * f.R_C_F;
+    const Vec3 fwd = R_W_F.col(2), up = -R_W_F.col(1);
+    const double x1 = f.tan_x0 + f.width / face_focal_px_;
+    const double y1 = f.tan_y0 + f.height / face_focal_px_;
+    for (int c = 0; c < 2; ++c) {
+      mjvGLCamera& cam = scene_.camera[c];
+      for (int k = 0; k < 3; ++k) {
+        cam.pos[k] = static_cast<float>(pos[k]);
+        cam.forward[k] = static_cast<float>(fwd[k]);
+        cam.up[k] = static_cast<float>(up[k]);
+      }
+      cam.frustum_center = static_cast<float>(n * 0.5 * (f.tan_x0 + x1));
+      cam.frustum_bottom = static_cast<float>(-n * y1);
+      cam.frustum_top = static_cast<float>(-n * f.tan_y0);
+      cam.frustum_near = n;
+      cam.frustum_far = static_cast<float>(config_.far_clip_m);
+    }
+    mjr_render(mjrRect{f.atlas_x, f.atlas_y, f.width, f.height}, &scene_, &mjr_context_);
+  }
+  glFinish();
+  t.render_ms = msSince(t0);
+
+  // One read-back of the whole atlas.
+  t0 = Clock::now();
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (config_.read_red_channel_only) {
+    atlas_grey_.create(atlas_height_, atlas_width_, CV_8UC1);
+    glReadPixels(0, 0, atlas_width_, atlas_height_, GL_RED, GL_UNSIGNED_BYTE, atlas_grey_.data);
+  } else {
+    atlas_raw_.create(atlas_height_, atlas_width_, CV_8UC4);
+    glReadPixels(0, 0, atlas_width_, atlas_height_, GL_RGBA, GL_UNSIGNED_BYTE, atlas_raw_.data);
+  }
+  t.readback_ms = msSince(t0);
+
+  // Grey conversion and fisheye remap.
+  t0 = Clock::now();
+  if (!config_.read_red_channel_only) cv::cvtColor(atlas_raw_, atlas_grey_, cv::COLOR_RGBA2GRAY);
+  cv::remap(atlas_grey_, fisheye_, map_xy_, map_interp_, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+            cv::Scalar(0));
+  frame->width = fisheye_.cols;
+  frame->height = fisheye_.rows;
+  frame->pixels.assign(fisheye_.datastart, fisheye_.dataend);
+  t.remap_ms = msSince(t0);
+  if (timing) *timing = t;
+}
+
+}  // namespace msb

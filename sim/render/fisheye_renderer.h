@@ -1,0 +1,114 @@
+// Fisheye rendering with MuJoCo's mjr_* renderer in an off-screen context.
+//
+// MuJoCo renders pinhole views only, so the fisheye image is assembled from the faces of a cube
+// map around the camera (front, right, left, down, up in the optical frame). Each face is a
+// 90° pinhole view with focal length f_face = face_focal_ratio · fx (pixels per unit tangent),
+// but only the part of the face the fisheye actually sees is rendered: its rectangle is taken
+// from the lookup table itself, plus a 2-pixel margin for bilinear sampling. All face
+// rectangles are packed into one atlas, rendered into one framebuffer and read back once; a
+// lookup table built once maps every fisheye pixel to atlas coordinates (cv::remap with
+// fixed-point maps). Each fisheye pixel samples exactly one face, so there are no blending
+// seams; with ambient-only lighting, shading does not depend on the face either.
+//
+// Resolution: at the image centre the fisheye needs fx pixels per radian; a face gives f_face at
+// its centre and 2·f_face at its edges. face_focal_ratio = 1 never undersamples; smaller ratios
+// trade sharpness near the image centre for speed (see bench-sim).
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "core/camera/fisheye_camera.h"
+#include "core/common/config_check.h"
+#include "core/common/messages.h"
+#include "sim/render/gl_context.h"
+
+namespace msb {
+
+/// Benchmark render settings (DESIGN §5).
+struct FisheyeRendererConfig {
+  double face_focal_ratio = 1.0;   ///< cube-face focal length / fisheye fx
+  double ambient = 0.9;            ///< headlight ambient intensity (no diffuse/specular)
+  int tessellation_slices = 12;    ///< MuJoCo quality.numslices (coarse)
+  int tessellation_stacks = 8;     ///< MuJoCo quality.numstacks (coarse)
+  double plane_grid_m = 20.0;      ///< minimum rendering grid spacing of planes
+  double near_clip_m = 0.03;       ///< near clipping distance
+  double far_clip_m = 600.0;       ///< far clipping distance
+  bool read_red_channel_only = false;  ///< read one channel (exact for grey-scale worlds)
+  int hidden_geom_group = 3;       ///< geom group not drawn (the vehicle's own geoms)
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Wall time of the parts of one rendered frame (recorded, never used for decisions).
+struct RenderTiming {
+  double scene_ms = 0.0;     ///< mjv_updateScene
+  double render_ms = 0.0;    ///< mjr_render of all faces + glFinish
+  double readback_ms = 0.0;  ///< glReadPixels of the atlas
+  double remap_ms = 0.0;     ///< grey conversion + lookup-table remap
+  double totalMs() const { return scene_ms + render_ms + readback_ms + remap_ms; }
+};
+
+/// One cube face as rendered: orientation and its rectangle in face and atlas pixels.
+struct CubeFace {
+  std::string name;          ///< front, right, left, down, up
+  Mat3 R_C_F;                ///< face frame (z = face normal, x right, y down) in camera frame
+  double tan_x0 = 0, tan_y0 = 0;  ///< top-left corner of the rendered rectangle, tangent units
+  int width = 0, height = 0; ///< rendered rectangle in pixels
+  int atlas_x = 0, atlas_y = 0;   ///< bottom-left corner in the atlas (GL coordinates)
+};
+
+/// Renders grey-scale fisheye images of a MuJoCo model from a camera pose.
+class FisheyeRenderer {
+ public:
+  /// Creates the GL context and MuJoCo render context for `model`, whose visual settings
+  /// (off-screen size, samples, headlight, tessellation, plane grid) it adjusts for benchmark
+  /// rendering. Throws ConfigError or std::runtime_error.
+  FisheyeRenderer(const FisheyeRendererConfig& config, const FisheyeCamera& camera,
+                  mjModel* model);
+  ~FisheyeRenderer();
+  FisheyeRenderer(const FisheyeRenderer&) = delete;
+  FisheyeRenderer& operator=(const FisheyeRenderer&) = delete;
+
+  /// Renders the image seen from the camera pose T_W_C (optical frame) for the state in
+  /// `data` into `frame` (pixels, size; tick/time/pose are left to the caller).
+  void render(const mjData* data, const Pose& T_W_C, CameraFrame* frame,
+              RenderTiming* timing = nullptr);
+
+  /// The camera model.
+  const FisheyeCamera& camera() const { return camera_; }
+  /// The rendered cube faces and their atlas placement.
+  const std::vector<CubeFace>& faces() const { return faces_; }
+  /// Atlas size in pixels.
+  cv::Size atlasSize() const { return {atlas_width_, atlas_height_}; }
+  /// Total rendered face pixels per frame.
+  long renderedPixels() const;
+  /// GL renderer description.
+  std::string glDescription() const { return context_->description(); }
+
+ private:
+  void buildFacesAndLut();
+
+  FisheyeRendererConfig config_;
+  FisheyeCamera camera_;
+  mjModel* model_;
+  std::unique_ptr<GlContext> context_;
+  mjvScene scene_;
+  mjrContext mjr_context_;
+  mjvOption options_;
+  mjvCamera free_camera_;
+  double face_focal_px_ = 0;
+  std::vector<CubeFace> faces_;
+  int atlas_width_ = 0, atlas_height_ = 0;
+  cv::Mat map_xy_, map_interp_;   // fixed-point lookup table (CV_16SC2 + CV_16UC1)
+  cv::Mat atlas_raw_, atlas_grey_, fisheye_;
+};
+
+}  // namespace msb

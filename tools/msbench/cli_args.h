@@ -1,0 +1,58 @@
+// A small command-line parser: declared options with defaults and help text, positional
+// arguments, unknown flags rejected with a usage error (exit code 2).
+#pragma once
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace msb {
+
+/// Wrong command-line usage (exit code 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Exit codes of every msbench command.
+enum ExitCode { kExitOk = 0, kExitRuntime = 1, kExitUsage = 2 };
+
+/// Declares options, parses argv, prints a help table.
+class ArgParser {
+ public:
+  /// `command` and `summary` head the help text.
+  ArgParser(std::string command, std::string summary);
+  /// A value option "--name VALUE" with a default ("" = required when `required`).
+  ArgParser& option(const std::string& name, const std::string& def, const std::string& help,
+                    bool required = false);
+  /// A boolean flag "--name".
+  ArgParser& flag(const std::string& name, const std::string& help);
+  /// A positional argument (all declared positionals are required).
+  ArgParser& positional(const std::string& name, const std::string& help);
+  /// Parses; returns false if --help was given (help printed). Throws UsageError.
+  bool parse(int argc, char** argv);
+
+  /// Value of an option or positional.
+  const std::string& get(const std::string& name) const;
+  /// Numeric value; throws UsageError naming the option if not a number.
+  double getDouble(const std::string& name) const;
+  /// Integer value; throws UsageError naming the option if not an integer.
+  long getInt(const std::string& name) const;
+  /// True if the flag was given.
+  bool has(const std::string& name) const;
+  /// The help text.
+  std::string help() const;
+
+ private:
+  struct Opt {
+    std::string name, def, help;
+    bool is_flag = false, required = false;
+  };
+  std::string command_, summary_;
+  std::vector<Opt> options_;
+  std::vector<std::pair<std::string, std::string>> positionals_;
+  std::map<std::string, std::string> values_;
+};
+
+}  // namespace msb

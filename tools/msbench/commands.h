@@ -1,0 +1,14 @@
+// The msbench sub-commands. Each parses its own arguments and returns an exit code
+// (0 ok, 1 runtime failure, 2 usage or configuration error).
+#pragma once
+
+namespace msb {
+
+/// `msbench fly FILE.yaml --out DIR`: a scripted waypoint flight with outputs.
+int runFlyCommand(int argc, char** argv);
+/// `msbench render-probe --world W --pose x,y,z,yaw --out F.png`: one fisheye frame.
+int runRenderProbeCommand(int argc, char** argv);
+/// `msbench bench-sim`: physics and rendering throughput figures.
+int runBenchSimCommand(int argc, char** argv);
+
+}  // namespace msb

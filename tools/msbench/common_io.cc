@@ -1,0 +1,88 @@
+#include "tools/msbench/common_io.h"
+
+#include <mujoco/mujoco.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+namespace msb {
+
+namespace fs = std::filesystem;
+
+std::string resolveWorld(const std::string& arg) {
+  if (fs::is_regular_file(arg)) return fs::absolute(arg).string();
+  const char* env = std::getenv("MSBENCH_WORLDS_DIR");
+  const fs::path dir = env && *env ? fs::path(env) : fs::path(MSB_WORLDS_DIR);
+  const fs::path named = dir / arg / "world.xml";
+  if (fs::is_regular_file(named)) return named.string();
+  std::string names;
+  if (fs::is_directory(dir)) {
+    std::vector<std::string> found;
+    for (const auto& e : fs::directory_iterator(dir))
+      if (fs::is_regular_file(e.path() / "world.xml")) found.push_back(e.path().filename());
+    std::sort(found.begin(), found.end());
+    for (const auto& n : found) names += (names.empty() ? "" : ", ") + n;
+  }
+  throw std::runtime_error("world '" + arg + "': no such file and no world of that name in " +
+                           dir.string() + " (available: " + (names.empty() ? "none" : names) +
+                           ")");
+}
+
+nlohmann::json versionInfo() {
+  return {{"msbench", MSB_VERSION},
+          {"git_revision", MSB_GIT_REVISION},
+          {"mujoco", mj_versionString()},
+          {"opencv", CV_VERSION},
+          {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." +
+                        std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                        std::to_string(EIGEN_MINOR_VERSION)}};
+}
+
+std::string encodePng(const CameraFrame& frame) {
+  const cv::Mat img(frame.height, frame.width, CV_8UC1,
+                    const_cast<uint8_t*>(frame.pixels.data()));
+  std::vector<uchar> buf;
+  if (!cv::imencode(".png", img, buf)) throw std::runtime_error("PNG encoding failed");
+  return std::string(buf.begin(), buf.end());
+}
+
+std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {
+  std::string s = "t,x,y,z,qw,qx,qy,qz,vx,vy,vz,ref_x,ref_y,ref_z,ref_yaw\n";
+  char line[512];
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof(line),
+                  "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+                  r.t_s, r.position_m.x(), r.position_m.y(), r.position_m.z(),
+                  r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z(),
+                  r.velocity_mps.x(), r.velocity_mps.y(), r.velocity_mps.z(),
+                  r.ref_position_m.x(), r.ref_position_m.y(), r.ref_position_m.z(),
+                  r.ref_yaw_rad);
+    s += line;
+  }
+  return s;
+}
+
+std::string imuCsv(const std::vector<ImuSample>& samples) {
+  std::string s = "t,ax,ay,az,gx,gy,gz\n";
+  char line[256];
+  for (const auto& m : samples) {
+    std::snprintf(line, sizeof(line), "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", m.t_s,
+                  m.accel_mps2.x(), m.accel_mps2.y(), m.accel_mps2.z(), m.gyro_radps.x(),
+                  m.gyro_radps.y(), m.gyro_radps.z());
+    s += line;
+  }
+  return s;
+}
+
+std::string hexHash(uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof(buf), "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+}  // namespace msb

@@ -1,0 +1,33 @@
+// Shared helpers of the msbench commands: world lookup, version strings, CSV/PNG/JSON output.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/common/messages.h"
+#include "tools/msbench/flight_runner.h"
+
+namespace msb {
+
+/// Resolves a world argument: an existing MJCF file path, or a world name NAME meaning
+/// <worlds dir>/NAME/world.xml (worlds dir: $MSBENCH_WORLDS_DIR or the source tree's worlds/).
+/// Throws std::runtime_error listing the available names if neither exists.
+std::string resolveWorld(const std::string& arg);
+
+/// Versions of the libraries a result depends on (MuJoCo, OpenCV, Eigen, msbench git revision).
+nlohmann::json versionInfo();
+
+/// PNG bytes of a grey-scale frame.
+std::string encodePng(const CameraFrame& frame);
+
+/// trajectory.csv text.
+std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);
+
+/// imu.csv text.
+std::string imuCsv(const std::vector<ImuSample>& samples);
+
+/// 16-digit hexadecimal form of a hash.
+std::string hexHash(uint64_t h);
+
+}  // namespace msb

@@ -1,0 +1,57 @@
+// Runs one scripted flight: MuJoCo quadrotor, controller, trajectory tracker, IMU and fisheye
+// camera stepped by the integer tick clock in the fixed order of DESIGN §2. Until the VIO
+// model exists the controller flies on ground truth.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tools/msbench/flight_spec.h"
+
+namespace msb {
+
+/// One row of trajectory.csv.
+struct TrajectoryRow {
+  double t_s;
+  Vec3 position_m;
+  Quat orientation;
+  Vec3 velocity_mps;
+  Vec3 ref_position_m;
+  double ref_yaw_rad;
+};
+
+/// Outcome and records of a flight.
+struct FlightResult {
+  std::string status = "completed";     ///< completed | collided | diverged
+  std::optional<CollisionEvent> collision;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+  int64_t ticks = 0;
+  std::vector<TrajectoryRow> trajectory;  ///< at trajectory_rate_hz
+  std::vector<ImuSample> imu;             ///< every IMU sample
+  int frames_rendered = 0;
+  RenderTiming render_time_sum;           ///< summed over frames
+  double tracking_rms_m = 0.0;            ///< RMS |GT − reference| over controller ticks
+  double tracking_max_m = 0.0;            ///< max |GT − reference|
+  double distance_flown_m = 0.0;
+  bool path_finished = false;
+  std::string gl_description;
+  uint64_t trajectory_hash = 0;           ///< FNV-1a over the trajectory rows' bytes
+
+  /// Simulated seconds per wall-clock second.
+  double realTimeFactor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
+};
+
+/// Called for every rendered frame (index counts rendered frames from 0).
+using FrameCallback = std::function<void(const CameraFrame&, int index)>;
+
+/// Runs the flight to its end. Throws std::runtime_error if the world cannot be loaded.
+FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame = {},
+                       double trajectory_rate_hz = 50.0);
+
+/// Hash of trajectory rows (positions, orientations, velocities, time).
+uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows);
+
+}  // namespace msb

@@ -1,0 +1,35 @@
+#include "tools/msbench/flight_spec.h"
+
+#include <filesystem>
+
+namespace msb {
+
+void CameraStreamConfig::validate(ConfigChecker& c) const {
+  c.inRange("rate_hz", rate_hz, 0.1, 500.0);
+  c.require(save_every_n >= 0, "save_every_n", "must be >= 0");
+}
+
+void FlightSpec::validate(ConfigChecker& c) const {
+  c.require(!world_path.empty(), "world", "is required");
+  c.require(world_path.empty() || std::filesystem::is_regular_file(world_path), "world",
+            "file not found: " + world_path);
+  c.inRange("duration_s", duration_s, 0.01, 36000.0);
+  c.nonNegative("hold_after_s", hold_after_s);
+  c.require(!waypoints.empty(), "trajectory.waypoints", "needs at least one waypoint");
+  c.inRange("controller_hz", controller_hz, 50.0, physics.physics_hz);
+  c.require(std::abs(physics.physics_hz / controller_hz -
+                     std::round(physics.physics_hz / controller_hz)) < 1e-9,
+            "controller_hz", "must divide physics.physics_hz");
+  c.require(std::abs(physics.physics_hz / camera_stream.rate_hz -
+                     std::round(physics.physics_hz / camera_stream.rate_hz)) < 1e-9,
+            "camera_stream.rate_hz", "must divide physics.physics_hz");
+  c.nested("physics", physics);
+  c.nested("controller", controller);
+  c.nested("trajectory", trajectory);
+  c.nested("imu", imu);
+  c.nested("camera", camera);
+  c.nested("render", render);
+  c.nested("camera_stream", camera_stream);
+}
+
+}  // namespace msb

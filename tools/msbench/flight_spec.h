@@ -1,0 +1,52 @@
+// A scripted flight (`msbench fly`): world, start pose, waypoints, sensor and render settings.
+// Plain struct with defaults and validation; YAML is converted in yaml_config.cc only.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/camera/fisheye_camera.h"
+#include "core/common/config_check.h"
+#include "core/common/messages.h"
+#include "sim/physics/quadrotor_sim.h"
+#include "sim/physics/se3_controller.h"
+#include "sim/physics/trajectory_tracker.h"
+#include "sim/render/fisheye_renderer.h"
+#include "sim/sensors/imu_model.h"
+
+namespace msb {
+
+/// Camera stream settings of a flight.
+struct CameraStreamConfig {
+  bool enabled = true;            ///< render fisheye frames at all
+  double rate_hz = 15.0;          ///< render rate (must divide the physics rate)
+  int save_every_n = 15;          ///< write every N-th rendered frame as PNG (0 = none)
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Everything `msbench fly` needs.
+struct FlightSpec {
+  std::string world_path;             ///< MJCF world file (absolute after loading)
+  uint64_t seed = 1;                  ///< scenario seed for all RNG streams
+  double duration_s = 60.0;           ///< hard limit on simulated time
+  double hold_after_s = 2.0;          ///< keep flying this long after the path is finished
+  Vec3 start_position_m = Vec3(0, 0, 0.05);  ///< body origin at start (0.05 m = on the ground)
+  double start_yaw_rad = 0.0;         ///< heading at start
+  std::vector<Waypoint> waypoints;    ///< the scripted path
+  double controller_hz = 500.0;       ///< controller rate (divides physics_hz)
+  PhysicsConfig physics;              ///< physics and vehicle
+  Se3ControllerConfig controller;     ///< controller gains
+  TrajectoryTrackerConfig trajectory; ///< tracker and limits
+  ImuConfig imu;                      ///< IMU noise and rate
+  FisheyeCameraConfig camera;         ///< camera model
+  FisheyeRendererConfig render;       ///< render settings
+  CameraStreamConfig camera_stream;   ///< render rate and frame saving
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+}  // namespace msb

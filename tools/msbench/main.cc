@@ -1,0 +1,67 @@
+// msbench: the command-line entry point. Dispatches to sub-commands; maps errors to exit codes
+// (1 runtime failure, 2 usage or configuration error).
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "core/common/config_check.h"
+#include "tools/msbench/cli_args.h"
+#include "tools/msbench/commands.h"
+#include "tools/msbench/yaml_config.h"
+
+namespace {
+
+struct Command {
+  const char* name;
+  int (*run)(int, char**);
+  const char* summary;
+};
+
+constexpr Command kCommands[] = {
+    {"fly", msb::runFlyCommand, "fly a scripted waypoint list in a world; write results"},
+    {"render-probe", msb::runRenderProbeCommand, "render one fisheye frame from a pose"},
+    {"bench-sim", msb::runBenchSimCommand, "physics steps/s and fisheye frame cost"},
+};
+
+void printUsage() {
+  std::printf("usage: msbench COMMAND [options]   (msbench COMMAND --help for details)\n\n"
+              "msbench - deterministic headless closed-loop benchmark for monocular UAV "
+              "exploration\n\ncommands:\n");
+  for (const auto& c : kCommands) std::printf("  %-14s %s\n", c.name, c.summary);
+  std::printf("\nexit codes: 0 ok, 1 runtime failure, 2 usage or configuration error\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Single-threaded OpenCV inside a run (determinism; parallelism comes from processes).
+  cv::setNumThreads(0);
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    printUsage();
+    return argc < 2 ? msb::kExitUsage : msb::kExitOk;
+  }
+  for (const auto& c : kCommands) {
+    if (std::strcmp(argv[1], c.name) != 0) continue;
+    try {
+      return c.run(argc - 2, argv + 2);
+    } catch (const msb::UsageError& e) {
+      std::fprintf(stderr, "msbench %s: %s\n", c.name, e.what());
+      return msb::kExitUsage;
+    } catch (const msb::FileConfigError& e) {
+      std::fprintf(stderr, "msbench %s: %s\n", c.name, e.what());
+      return msb::kExitUsage;
+    } catch (const msb::ConfigError& e) {
+      std::fprintf(stderr, "msbench %s: configuration error: %s\n", c.name, e.what());
+      return msb::kExitUsage;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "msbench %s: error: %s\n", c.name, e.what());
+      return msb::kExitRuntime;
+    }
+  }
+  std::fprintf(stderr, "msbench: unknown command '%s'\n\n", argv[1]);
+  printUsage();
+  return msb::kExitUsage;
+}

@@ -1,0 +1,276 @@
+#include "tools/msbench/yaml_config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+namespace msb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Strict reader of one YAML map: reads optional keys into typed fields and rejects unknown ones.
+class MapReader {
+ public:
+  MapReader(const YAML::Node& node, std::string prefix) : node_(node), prefix_(std::move(prefix)) {
+    if (!node_.IsMap()) throw ConfigError(keyName(""), "expected a map of keys");
+  }
+
+  bool has(const std::string& key) const { return bool(node_[key]); }
+
+  // Reads `key` into `out` if present (marks it used); type errors name the key.
+  template <class T>
+  bool read(const std::string& key, T& out) {
+    const YAML::Node n = node_[key];
+    if (!n) return false;
+    used_.insert(key);
+    convert(n, key, out);
+    return true;
+  }
+
+  // Reader for the nested map at `key` (the map must exist: call has() first).
+  MapReader sub(const std::string& key) {
+    used_.insert(key);
+    return MapReader(node_[key], keyName(key) + ".");
+  }
+
+  // The raw node of `key` (marked used).
+  YAML::Node raw(const std::string& key) {
+    used_.insert(key);
+    return node_[key];
+  }
+
+  // Rejects keys that were never read.
+  void finish() const {
+    std::vector<ConfigIssue> issues;
+    for (const auto& kv : node_) {
+      const auto k = kv.first.as<std::string>();
+      if (!used_.count(k)) issues.push_back({keyName(k), "unknown key"});
+    }
+    if (!issues.empty()) throw ConfigError(issues);
+  }
+
+  std::string keyName(const std::string& key) const {
+    return key.empty() ? (prefix_.empty() ? "<root>" : prefix_.substr(0, prefix_.size() - 1))
+                       : prefix_ + key;
+  }
+
+ private:
+  [[noreturn]] void typeError(const YAML::Node& n, const std::string& key, const char* want) const {
+    std::string got = n.IsScalar() ? "'" + n.Scalar() + "'" : n.IsSequence() ? "a list" : "a map";
+    throw ConfigError(keyName(key), std::string("expected ") + want + ", got " + got);
+  }
+  void convert(const YAML::Node& n, const std::string& key, double& out) const {
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, out) || !std::isfinite(out))
+      typeError(n, key, "a number");
+  }
+  void convert(const YAML::Node& n, const std::string& key, int& out) const {
+    if (!n.IsScalar() || !YAML::convert<int>::decode(n, out)) typeError(n, key, "an integer");
+  }
+  void convert(const YAML::Node& n, const std::string& key, uint64_t& out) const {
+    long long v;
+    if (!n.IsScalar() || !YAML::convert<long long>::decode(n, v) || v < 0)
+      typeError(n, key, "a non-negative integer");
+    out = static_cast<uint64_t>(v);
+  }
+  void convert(const YAML::Node& n, const std::string& key, bool& out) const {
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, out)) typeError(n, key, "true or false");
+  }
+  void convert(const YAML::Node& n, const std::string& key, std::string& out) const {
+    if (!n.IsScalar()) typeError(n, key, "a string");
+    out = n.Scalar();
+  }
+  void convert(const YAML::Node& n, const std::string& key, Vec3& out) const {
+    if (!n.IsSequence() || n.size() != 3) typeError(n, key, "a list of 3 numbers");
+    for (int i = 0; i < 3; ++i)
+      if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], out[i]))
+        typeError(n, key, "a list of 3 numbers");
+  }
+  void convert(const YAML::Node& n, const std::string& key, std::array<double, 4>& out) const {
+    if (!n.IsSequence() || n.size() != 4) typeError(n, key, "a list of 4 numbers");
+    for (int i = 0; i < 4; ++i)
+      if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], out[i]))
+        typeError(n, key, "a list of 4 numbers");
+  }
+
+  YAML::Node node_;
+  std::string prefix_;
+  std::set<std::string> used_;
+};
+
+constexpr double kDeg = M_PI / 180.0;
+
+void readVehicle(MapReader r, QuadrotorConfig& q) {
+  r.read("mass_kg", q.mass_kg);
+  r.read("inertia_kgm2", q.inertia_kgm2);
+  r.read("arm_length_m", q.arm_length_m);
+  r.read("rotor_radius_m", q.rotor_radius_m);
+  r.read("max_thrust_n", q.max_thrust_n);
+  r.read("yaw_torque_per_thrust_m", q.yaw_torque_per_thrust_m);
+  r.read("motor_time_constant_s", q.motor_time_constant_s);
+  r.finish();
+}
+
+void readPhysics(MapReader r, PhysicsConfig& p) {
+  r.read("physics_hz", p.physics_hz);
+  r.read("takeoff_clearance_m", p.takeoff_clearance_m);
+  if (r.has("vehicle")) readVehicle(r.sub("vehicle"), p.vehicle);
+  r.finish();
+}
+
+void readController(MapReader r, Se3ControllerConfig& c) {
+  r.read("k_position", c.k_position);
+  r.read("k_velocity", c.k_velocity);
+  r.read("k_attitude", c.k_attitude);
+  r.read("k_rate", c.k_rate);
+  r.read("max_tilt_deg", c.max_tilt_deg);
+  r.finish();
+}
+
+void readLimits(MapReader r, TrajectoryLimits& l) {
+  r.read("max_speed_mps", l.max_speed_mps);
+  r.read("max_accel_mps2", l.max_accel_mps2);
+  r.read("max_jerk_mps3", l.max_jerk_mps3);
+  r.read("max_yaw_rate_radps", l.max_yaw_rate_radps);
+  r.finish();
+}
+
+// Waypoints: each either [x, y, z] or {position: [x, y, z], heading_deg: h}.
+std::vector<Waypoint> readWaypoints(const YAML::Node& n, const std::string& key) {
+  if (!n.IsSequence()) throw ConfigError(key, "expected a list of waypoints");
+  std::vector<Waypoint> out;
+  for (size_t i = 0; i < n.size(); ++i) {
+    const std::string k = key + "[" + std::to_string(i) + "]";
+    Waypoint w;
+    if (n[i].IsSequence()) {
+      YAML::Node wrap;
+      wrap["position"] = n[i];
+      MapReader r(wrap, k + ".");
+      r.read("position", w.position_m);
+    } else {
+      MapReader r(n[i], k + ".");
+      if (!r.read("position", w.position_m)) throw ConfigError(k + ".position", "is required");
+      double h;
+      if (r.read("heading_deg", h)) w.heading_rad = h * kDeg;
+      r.finish();
+    }
+    out.push_back(w);
+  }
+  return out;
+}
+
+void readTrajectory(MapReader r, FlightSpec& s) {
+  auto& t = s.trajectory;
+  if (r.has("limits")) {
+    const YAML::Node n = r.raw("limits");
+    if (n.IsScalar()) {
+      try {
+        t.limits = TrajectoryLimits::preset(n.Scalar());
+      } catch (const ConfigError& e) {
+        throw ConfigError(r.keyName("limits"), e.issues().front().reason);
+      }
+    } else {
+      readLimits(MapReader(n, r.keyName("limits") + "."), t.limits);
+    }
+  }
+  if (r.has("waypoints")) s.waypoints = readWaypoints(r.raw("waypoints"), r.keyName("waypoints"));
+  r.read("corner_cut_m", t.corner_cut_m);
+  r.read("lookahead_base_m", t.lookahead_base_m);
+  r.read("lookahead_per_speed_s", t.lookahead_per_speed_s);
+  r.read("velocity_gain_per_s", t.velocity_gain_per_s);
+  r.read("yaw_gain_per_s", t.yaw_gain_per_s);
+  r.finish();
+}
+
+void readImu(MapReader r, ImuConfig& c) {
+  r.read("rate_hz", c.rate_hz);
+  r.read("accel_noise_density", c.accel_noise_density);
+  r.read("accel_random_walk", c.accel_random_walk);
+  r.read("gyro_noise_density", c.gyro_noise_density);
+  r.read("gyro_random_walk", c.gyro_random_walk);
+  r.finish();
+}
+
+void readCamera(MapReader r, FisheyeCameraConfig& c) {
+  r.read("width_px", c.width_px);
+  r.read("height_px", c.height_px);
+  r.read("fx_px", c.fx_px);
+  r.read("fy_px", c.fy_px);
+  r.read("cx_px", c.cx_px);
+  r.read("cy_px", c.cy_px);
+  r.read("k", c.k);
+  r.read("fov_deg", c.fov_deg);
+  r.read("scale", c.scale);
+  r.read("mount_position_B_m", c.mount_position_B_m);
+  r.read("mount_pitch_down_deg", c.mount_pitch_down_deg);
+  r.finish();
+}
+
+void readRender(MapReader r, FisheyeRendererConfig& c) {
+  r.read("face_focal_ratio", c.face_focal_ratio);
+  r.read("ambient", c.ambient);
+  r.read("tessellation_slices", c.tessellation_slices);
+  r.read("tessellation_stacks", c.tessellation_stacks);
+  r.read("plane_grid_m", c.plane_grid_m);
+  r.read("near_clip_m", c.near_clip_m);
+  r.read("far_clip_m", c.far_clip_m);
+  r.read("read_red_channel_only", c.read_red_channel_only);
+  r.finish();
+}
+
+void readCameraStream(MapReader r, CameraStreamConfig& c) {
+  r.read("enabled", c.enabled);
+  r.read("rate_hz", c.rate_hz);
+  r.read("save_every_n", c.save_every_n);
+  r.finish();
+}
+
+void readFlight(MapReader r, const fs::path& dir, FlightSpec& s) {
+  std::string world;
+  if (r.read("world", world)) s.world_path = (dir / world).lexically_normal().string();
+  r.read("seed", s.seed);
+  r.read("duration_s", s.duration_s);
+  r.read("hold_after_s", s.hold_after_s);
+  r.read("controller_hz", s.controller_hz);
+  if (r.has("start")) {
+    MapReader st = r.sub("start");
+    st.read("position", s.start_position_m);
+    double yaw_deg;
+    if (st.read("yaw_deg", yaw_deg)) s.start_yaw_rad = yaw_deg * kDeg;
+    st.finish();
+  }
+  if (r.has("trajectory")) readTrajectory(r.sub("trajectory"), s);
+  if (r.has("physics")) readPhysics(r.sub("physics"), s.physics);
+  if (r.has("controller")) readController(r.sub("controller"), s.controller);
+  if (r.has("imu")) readImu(r.sub("imu"), s.imu);
+  if (r.has("camera")) readCamera(r.sub("camera"), s.camera);
+  if (r.has("render")) readRender(r.sub("render"), s.render);
+  if (r.has("camera_stream")) readCameraStream(r.sub("camera_stream"), s.camera_stream);
+  r.finish();
+}
+
+}  // namespace
+
+FlightSpec loadFlightSpec(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw FileConfigError(path + ": file not found");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw FileConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
+                          ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
+  }
+  FlightSpec spec;
+  try {
+    readFlight(MapReader(root, ""), fs::absolute(path).parent_path(), spec);
+    checkValid(spec);
+  } catch (const ConfigError& e) {
+    throw FileConfigError(path + ": " + e.what());
+  }
+  return spec;
+}
+
+}  // namespace msb
