@@ -41,11 +41,9 @@ RateSchedule::RateSchedule(int physics_hz, double rate_hz, const std::string& st
 }
 
 bool RateSchedule::due(int64_t tick) const {
-  // Fires when floor(tick · rate / physics) steps up (the first tick at or after k·period).
+  // Fires when floor(tick · rate / physics) steps up: the first tick at or after k·period.
   if (tick == 0) return true;
-  const int64_t num = (tick * rate_mhz_ + physics_mhz_ - 1) / physics_mhz_;
-  const int64_t prev = ((tick - 1) * rate_mhz_ + physics_mhz_ - 1) / physics_mhz_;
-  return num != prev;
+  return (tick * rate_mhz_) / physics_mhz_ != ((tick - 1) * rate_mhz_) / physics_mhz_;
 }
 
 }  // namespace msb

@@ -80,12 +80,13 @@ Vec3 TrajectoryTracker::pointAt(double s) const {
   return points_[i - 1] + t * (points_[i] - points_[i - 1]);
 }
 
-double TrajectoryTracker::speedLimit(double s) const {
+double TrajectoryTracker::speedLimit(double s, double end_dist) const {
   // Braking uses 60 % of the acceleration limit: margin for the jerk limit and lag.
   const double a_brake = 0.6 * config_.limits.max_accel_mps2;
   double v = config_.limits.max_speed_mps;
   for (size_t i = segment_ + 1; i < points_.size(); ++i) {
-    const double d = std::max(0.0, cumulative_[i] - s);
+    double d = std::max(0.0, cumulative_[i] - s);
+    if (i + 1 == points_.size()) d = std::max(d, end_dist);  // overshoot: brake towards the end
     if (2.0 * a_brake * d > v * v) break;  // this and later corners cannot bind
     v = std::min(v, std::sqrt(corner_speed_[i] * corner_speed_[i] + 2.0 * a_brake * d));
   }
@@ -120,7 +121,7 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   const double s_carrot = std::min(s_proj_ + lookahead, total);
   const Vec3 to_carrot = pointAt(s_carrot) - p;
   const double dist = to_carrot.norm();
-  double speed = nseg > 0 ? speedLimit(s_proj_) : lim.max_speed_mps;
+  double speed = speedLimit(s_proj_, (points_.back() - p).norm());
   if (s_carrot >= total) speed = std::min(speed, 1.2 * dist);
   const Vec3 v_des = dist > 1e-9 ? Vec3(to_carrot / dist * speed) : Vec3::Zero();
 

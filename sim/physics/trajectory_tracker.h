@@ -61,7 +61,9 @@ class TrajectoryTracker {
   size_t waypointsPassed() const { return segment_; }
 
  private:
-  double speedLimit(double s_along) const;
+  // Speed that can still brake for every upcoming corner and for the end (`end_dist` is the
+  // straight-line distance to the last point, used once the reference has overshot it).
+  double speedLimit(double s_along, double end_dist) const;
   Vec3 pointAt(double s) const;
 
   TrajectoryTrackerConfig config_;

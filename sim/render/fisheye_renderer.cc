@@ -94,6 +94,11 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
 
   mjv_defaultOption(&options_);
   if (config_.hidden_geom_group >= 0) options_.geomgroup[config_.hidden_geom_group] = 0;
+  // Only geoms: no sites, joints, tendons or other decorations.
+  for (int g = 0; g < mjNGROUP; ++g) options_.sitegroup[g] = 0;
+  for (int f = 0; f < mjNVISFLAG; ++f) options_.flags[f] = 0;
+  options_.flags[mjVIS_STATIC] = 1;
+  options_.flags[mjVIS_TEXTURE] = 1;
   mjv_defaultFreeCamera(model_, &free_camera_);
   for (int f = 0; f < mjNRNDFLAG; ++f) scene_.flags[f] = 0;
   scene_.flags[mjRND_CULL_FACE] = 1;

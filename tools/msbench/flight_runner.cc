@@ -50,7 +50,8 @@ FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
   // Integer schedules of every stage.
   const TickClock clock(spec.physics.physics_hz);
   const int64_t ctrl_div = clock.divisorFor(spec.controller_hz, "controller_hz");
-  const int64_t cam_div = clock.divisorFor(spec.camera_stream.rate_hz, "camera_stream.rate_hz");
+  const RateSchedule cam_schedule(spec.physics.physics_hz, spec.camera_stream.rate_hz,
+                                  "camera_stream.rate_hz");
   const RateSchedule imu_schedule(spec.physics.physics_hz, spec.imu.rate_hz, "imu.rate_hz");
   const RateSchedule traj_schedule(spec.physics.physics_hz, trajectory_rate_hz, "trajectory");
   const int64_t max_ticks = clock.ticksFor(spec.duration_s);
@@ -79,7 +80,7 @@ FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
     const Odometry gt = sim.groundTruth();
 
     // Camera render.
-    if (renderer && tick % cam_div == 0) {
+    if (renderer && cam_schedule.due(tick)) {
       RenderTiming rt;
       renderer->render(sim.data(), gt.T_W_B * camera.T_B_C(), &frame, &rt);
       frame.tick = tick;

@@ -20,9 +20,8 @@ void FlightSpec::validate(ConfigChecker& c) const {
   c.require(std::abs(physics.physics_hz / controller_hz -
                      std::round(physics.physics_hz / controller_hz)) < 1e-9,
             "controller_hz", "must divide physics.physics_hz");
-  c.require(std::abs(physics.physics_hz / camera_stream.rate_hz -
-                     std::round(physics.physics_hz / camera_stream.rate_hz)) < 1e-9,
-            "camera_stream.rate_hz", "must divide physics.physics_hz");
+  c.require(camera_stream.rate_hz <= physics.physics_hz, "camera_stream.rate_hz",
+            "must not exceed physics.physics_hz");
   c.nested("physics", physics);
   c.nested("controller", controller);
   c.nested("trajectory", trajectory);

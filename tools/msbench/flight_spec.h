@@ -20,7 +20,7 @@ namespace msb {
 /// Camera stream settings of a flight.
 struct CameraStreamConfig {
   bool enabled = true;            ///< render fisheye frames at all
-  double rate_hz = 15.0;          ///< render rate (must divide the physics rate)
+  double rate_hz = 15.0;          ///< render rate (first tick at or after each period)
   int save_every_n = 15;          ///< write every N-th rendered frame as PNG (0 = none)
 
   /// Records invalid fields.
