@@ -63,7 +63,8 @@ void TrajectoryTracker::setPath(const std::vector<Waypoint>& waypoints) {
     const double cut = std::min({config_.corner_cut_m, 0.5 * (cumulative_[i] - cumulative_[i - 1]),
                                  0.5 * (cumulative_[i + 1] - cumulative_[i])});
     const double radius = cut / (2.0 * std::tan(0.5 * std::min(theta, 3.0)));
-    corner_speed_[i] = std::min(lim.max_speed_mps, std::sqrt(lim.max_accel_mps2 * radius));
+    // Half the acceleration limit: the other half absorbs the reference's velocity lag.
+    corner_speed_[i] = std::min(lim.max_speed_mps, std::sqrt(0.5 * lim.max_accel_mps2 * radius));
   }
   corner_speed_.back() = 0.0;
   segment_ = 0;
@@ -121,7 +122,10 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   const double s_carrot = std::min(s_proj_ + lookahead, total);
   const Vec3 to_carrot = pointAt(s_carrot) - p;
   const double dist = to_carrot.norm();
-  double speed = speedLimit(s_proj_, (points_.back() - p).norm());
+  // The limit is taken where the reference will be once its velocity has caught up
+  // (first-order velocity lag plus acceleration build-up under the jerk limit).
+  const double lag_s = 1.0 / config_.velocity_gain_per_s + lim.max_accel_mps2 / lim.max_jerk_mps3;
+  double speed = speedLimit(s_proj_ + v.norm() * lag_s, (points_.back() - p).norm());
   if (s_carrot >= total) speed = std::min(speed, 1.2 * dist);
   const Vec3 v_des = dist > 1e-9 ? Vec3(to_carrot / dist * speed) : Vec3::Zero();
 

@@ -34,7 +34,7 @@ struct TrajectoryTrackerConfig {
   double corner_cut_m = 2.0;           ///< length over which a sharp corner is rounded
   double lookahead_base_m = 0.8;       ///< pursuit look-ahead at rest
   double lookahead_per_speed_s = 0.25; ///< extra look-ahead per m/s of speed
-  double velocity_gain_per_s = 2.5;    ///< how fast the reference velocity converges
+  double velocity_gain_per_s = 4.0;    ///< how fast the reference velocity converges
   double yaw_gain_per_s = 2.0;         ///< heading error to yaw rate
   double heading_min_speed_mps = 0.5;  ///< below this speed the heading is held
   double arrive_tolerance_m = 0.05;    ///< path is finished within this distance at rest

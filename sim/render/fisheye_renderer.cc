@@ -105,6 +105,7 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
 }
 
 FisheyeRenderer::~FisheyeRenderer() {
+  context_->makeCurrent();  // GL objects belong to this renderer's context
   mjr_freeContext(&mjr_context_);
   mjv_freeScene(&scene_);
 }

@@ -1,0 +1,74 @@
+#include "sim/physics/trajectory_tracker.h"
+
+#include <gtest/gtest.h>
+
+namespace msb {
+namespace {
+
+// Runs the reference alone until finished or timeout; returns max speed/accel seen.
+struct RefStats {
+  double max_v = 0, max_a = 0, max_yaw_rate = 0, t = 0;
+  bool finished = false;
+  TrajectoryReference last;
+};
+
+RefStats run(TrajectoryTracker& tr, double max_s) {
+  RefStats st;
+  for (double t = 0; t < max_s; t += 0.002) {
+    const auto& r = tr.update(0.002);
+    st.max_v = std::max(st.max_v, r.velocity_mps.norm());
+    st.max_a = std::max(st.max_a, r.accel_mps2.norm());
+    st.max_yaw_rate = std::max(st.max_yaw_rate, std::abs(r.yaw_rate_radps));
+    st.t = t;
+    st.last = r;
+    if (tr.finished()) {
+      st.finished = true;
+      break;
+    }
+  }
+  return st;
+}
+
+TEST(TrajectoryTracker, PresetsMatchTheReferenceCode) {
+  const auto m = TrajectoryLimits::preset("medium"), f = TrajectoryLimits::preset("fast");
+  EXPECT_EQ(m.max_speed_mps, 4.0);
+  EXPECT_EQ(m.max_accel_mps2, 2.0);
+  EXPECT_EQ(m.max_yaw_rate_radps, 1.0);
+  EXPECT_EQ(f.max_speed_mps, 8.0);
+  EXPECT_EQ(f.max_accel_mps2, 4.0);
+  EXPECT_EQ(f.max_yaw_rate_radps, 2.0);
+  EXPECT_THROW(TrajectoryLimits::preset("ludicrous"), ConfigError);
+}
+
+TEST(TrajectoryTracker, RespectsLimitsAndArrivesWithTheGoalHeading) {
+  TrajectoryTracker tr(TrajectoryTrackerConfig{}, Vec3(0, 0, 1), 0.0);
+  tr.setPath({{Vec3(30, 0, 1), {}}, {Vec3(30, 20, 3), 2.0}});
+  const RefStats st = run(tr, 60.0);
+  ASSERT_TRUE(st.finished);
+  EXPECT_LE(st.max_v, 4.0 + 1e-9);
+  EXPECT_LE(st.max_a, 2.0 + 1e-9);
+  EXPECT_LE(st.max_yaw_rate, 1.0 + 1e-9);
+  EXPECT_GT(st.max_v, 3.95);
+  EXPECT_LT((st.last.position_m - Vec3(30, 20, 3)).norm(), 0.05);
+  EXPECT_NEAR(st.last.yaw_rad, 2.0, 0.02);
+}
+
+TEST(TrajectoryTracker, HeadingFollowsTheDirectionOfTravel) {
+  TrajectoryTracker tr(TrajectoryTrackerConfig{}, Vec3(0, 0, 1), 0.0);
+  tr.setPath({{Vec3(0, 30, 1), {}}});
+  for (int i = 0; i < 5000; ++i) tr.update(0.002);  // 10 s: cruising along +y
+  EXPECT_NEAR(tr.reference().yaw_rad, M_PI / 2, 0.02);
+}
+
+TEST(TrajectoryTracker, NewPathContinuesSmoothly) {
+  TrajectoryTracker tr(TrajectoryTrackerConfig{}, Vec3(0, 0, 1), 0.0);
+  tr.setPath({{Vec3(30, 0, 1), {}}});
+  for (int i = 0; i < 3000; ++i) tr.update(0.002);
+  const Vec3 v_before = tr.reference().velocity_mps;
+  tr.setPath({{Vec3(10, 30, 1), {}}});
+  tr.update(0.002);
+  EXPECT_LT((tr.reference().velocity_mps - v_before).norm(), 0.05);
+}
+
+}  // namespace
+}  // namespace msb

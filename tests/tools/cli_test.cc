@@ -1,0 +1,111 @@
+// The msbench executable end to end: exit codes, nothing written on bad input, determinism.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kExe = std::string(MSB_BINARY_DIR) + "/bin/msbench";
+
+fs::path tempDir(const std::string& name) {
+  const fs::path d = fs::path(::testing::TempDir()) / ("msb_cli_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Runs msbench with arguments; returns its exit code (stdout/stderr to `log`).
+int run(const std::string& args, const fs::path& log) {
+  const std::string cmd = "'" + kExe + "' " + args + " > '" + log.string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(Cli, HelpAndUsageErrors) {
+  const fs::path d = tempDir("help");
+  EXPECT_EQ(run("--help", d / "log"), 0);
+  EXPECT_NE(readText(d / "log").find("render-probe"), std::string::npos);
+  for (const char* c : {"fly --help", "render-probe --help", "bench-sim --help"}) {
+    EXPECT_EQ(run(c, d / "log"), 0) << c;
+    EXPECT_NE(readText(d / "log").find("usage: msbench"), std::string::npos) << c;
+  }
+  EXPECT_EQ(run("", d / "log"), 2);
+  EXPECT_EQ(run("teleport", d / "log"), 2);
+  EXPECT_EQ(run("render-probe --out x.png --bogus 1", d / "log"), 2);
+  EXPECT_NE(readText(d / "log").find("unknown option --bogus"), std::string::npos);
+  EXPECT_EQ(run("render-probe --out x.png --pose 1,2", d / "log"), 2);
+  EXPECT_EQ(run("render-probe --out x.png --world nowhere", d / "log"), 1);
+  EXPECT_NE(readText(d / "log").find("available: test"), std::string::npos);
+}
+
+TEST(Cli, BadFlightFileExitsWith2AndWritesNothing) {
+  const fs::path d = tempDir("bad");
+  std::ofstream(d / "bad.yaml") << "world: ../../nowhere.xml\nwaypointz: []\n";
+  EXPECT_EQ(run("fly '" + (d / "bad.yaml").string() + "' --out '" + (d / "out").string() + "'",
+                d / "log"),
+            2);
+  const std::string log = readText(d / "log");
+  EXPECT_NE(log.find("bad.yaml"), std::string::npos) << log;
+  EXPECT_NE(log.find("waypointz"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(d / "out"));
+  EXPECT_FALSE(fs::exists(d / "out.partial"));
+}
+
+TEST(Cli, ExistingResultsAreNotOverwritten) {
+  const fs::path d = tempDir("exists");
+  fs::create_directories(d / "out");
+  std::ofstream(d / "out" / "metrics.json") << "{}";
+  std::ofstream(d / "f.yaml") << "world: " << MSB_SOURCE_DIR
+                              << "/worlds/test/world.xml\nduration_s: 0.1\n"
+                                 "trajectory: {waypoints: [[0,0,1]]}\n";
+  EXPECT_EQ(run("fly '" + (d / "f.yaml").string() + "' --out '" + (d / "out").string() + "'",
+                d / "log"),
+            1);
+  EXPECT_EQ(readText(d / "out" / "metrics.json"), "{}");
+}
+
+TEST(Cli, FlyTwiceGivesIdenticalTrajectoriesAndAllOutputs) {
+  const fs::path d = tempDir("fly");
+  std::ofstream(d / "f.yaml") << "world: " << MSB_SOURCE_DIR << "/worlds/test/world.xml\n"
+                              << "duration_s: 8\nseed: 3\n"
+                                 "trajectory:\n  waypoints: [[0,0,1.5], [5,0,1.5], [5,4,2]]\n"
+                                 "camera: {scale: 0.5}\n"
+                                 "camera_stream: {rate_hz: 10, save_every_n: 20}\n";
+  std::string hashes[2];
+  for (int i = 0; i < 2; ++i) {
+    const fs::path out = d / ("run" + std::to_string(i));
+    ASSERT_EQ(run("fly '" + (d / "f.yaml").string() + "' --out '" + out.string() + "'",
+                  d / "log"),
+              0)
+        << readText(d / "log");
+    for (const char* f : {"metrics.json", "trajectory.csv", "imu.csv", "config.yaml"})
+      EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+    EXPECT_TRUE(fs::is_regular_file(out / "frames" / "frame_000000_t0000.00.png"));
+    const auto m = nlohmann::json::parse(readText(out / "metrics.json"));
+    EXPECT_EQ(m["status"], "completed");
+    EXPECT_EQ(m["frames_rendered"], 80);  // t = 0, 0.1, ..., 7.9 s
+    EXPECT_GT(m["real_time_factor"].get<double>(), 0.0);
+    hashes[i] = m["trajectory_hash"];
+  }
+  EXPECT_EQ(hashes[0], hashes[1]);
+  EXPECT_EQ(readText(d / "run0" / "trajectory.csv"), readText(d / "run1" / "trajectory.csv"));
+  EXPECT_EQ(readText(d / "run0" / "imu.csv"), readText(d / "run1" / "imu.csv"));
+  EXPECT_EQ(readText(d / "run0" / "frames" / "frame_000060_t0006.00.png"),
+            readText(d / "run1" / "frames" / "frame_000060_t0006.00.png"));
+}
+
+}  // namespace
