@@ -156,6 +156,19 @@ TEST(Flight, FlyingIntoAWallEndsWithCollidedAtTheRightTimeAndPlace) {
   EXPECT_GT(c.t_s, 5.0);
 }
 
+TEST(Collision, StaticWorldGeomsAreNeverTestedAgainstEachOther) {
+  // The test world's walls and blocks intersect the ground plane; were world–world pairs
+  // tested, MuJoCo would report contacts every step.
+  QuadrotorSim sim(PhysicsConfig{}, std::string(MSB_SOURCE_DIR) + "/worlds/test/world.xml",
+                   poseFromXyzYaw(Vec3(0, 0, 2), 0));
+  ASSERT_GT(sim.geomCount(), 40);
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_FALSE(sim.beginTick());
+    EXPECT_EQ(sim.data()->ncon, 0);
+    sim.endTick(Vec4::Constant(1.325 * 9.81 / 4));
+  }
+}
+
 TEST(Flight, MotorLagIsFirstOrderWithTheConfiguredTimeConstant) {
   QuadrotorSim sim(PhysicsConfig{}, kWorlds + "open_field.xml", poseFromXyzYaw(Vec3(0, 0, 5), 0));
   // Step all motors from 0 to 4 N: after one time constant (30 ms = 15 ticks) ≈ 63 %.
