@@ -1,4 +1,5 @@
 // msbench fly: flies a scripted waypoint list and writes trajectory, IMU, frames and metrics.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,12 @@ int runFlyCommand(int argc, char** argv) {
     std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", index, f.t_s);
     writeFileAtomic(out.staging() / "frames" / name, encodePng(f));
     ++saved;
+  }, [&](double sim_s, double wall_s) {
+    // Progress every 10 simulated seconds (stderr; never part of the results).
+    if (static_cast<long>(sim_s) % 10 != 0) return;
+    const double rtf = sim_s / std::max(wall_s, 1e-9);
+    std::fprintf(stderr, "fly: t = %.0f / %.0f s simulated, real-time factor %.1f, ETA %.0f s\n",
+                 sim_s, spec.duration_s, rtf, (spec.duration_s - sim_s) / rtf);
   });
 
   std::ifstream in(file, std::ios::binary);

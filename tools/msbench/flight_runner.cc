@@ -29,7 +29,7 @@ uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows) {
 }
 
 FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
-                       double trajectory_rate_hz) {
+                       const ProgressCallback& on_progress, double trajectory_rate_hz) {
   checkValid(spec);
   const auto wall_start = std::chrono::steady_clock::now();
   FlightResult result;
@@ -123,6 +123,9 @@ FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
                                       sim.imuTruth().angular_rate_radps));
       last_imu_tick = tick;
     }
+    if (on_progress && tick > 0 && tick % spec.physics.physics_hz == 0)
+      on_progress(gt.t_s, std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                        wall_start).count());
     if (finished_tick >= 0 && tick >= finished_tick + hold_ticks) break;
   }
 

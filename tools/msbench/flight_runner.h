@@ -47,9 +47,12 @@ struct FlightResult {
 /// Called for every rendered frame (index counts rendered frames from 0).
 using FrameCallback = std::function<void(const CameraFrame&, int index)>;
 
+/// Called once per simulated second with the simulated time and the wall time so far.
+using ProgressCallback = std::function<void(double sim_s, double wall_s)>;
+
 /// Runs the flight to its end. Throws std::runtime_error if the world cannot be loaded.
 FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame = {},
-                       double trajectory_rate_hz = 50.0);
+                       const ProgressCallback& on_progress = {}, double trajectory_rate_hz = 50.0);
 
 /// Hash of trajectory rows (positions, orientations, velocities, time).
 uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows);
