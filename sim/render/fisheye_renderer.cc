@@ -19,7 +19,7 @@ void FisheyeRendererConfig::validate(ConfigChecker& c) const {
   c.nonNegative("plane_grid_m", plane_grid_m);
   c.positive("near_clip_m", near_clip_m);
   c.require(far_clip_m > near_clip_m, "far_clip_m", "must exceed near_clip_m");
-  c.inRange("hidden_geom_group", hidden_geom_group, -1, mjNGROUP - 1);
+  c.inRange("max_visible_geom_group", max_visible_geom_group, 0, mjNGROUP - 1);
 }
 
 namespace {
@@ -93,7 +93,8 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   mjr_setBuffer(mjFB_OFFSCREEN, &mjr_context_);
 
   mjv_defaultOption(&options_);
-  if (config_.hidden_geom_group >= 0) options_.geomgroup[config_.hidden_geom_group] = 0;
+  // Geom groups 0-2 are the visible world; 3 is the vehicle, 4 collision-only geoms.
+  for (int g = 0; g < mjNGROUP; ++g) options_.geomgroup[g] = g <= config_.max_visible_geom_group;
   // Only geoms: no sites, joints, tendons or other decorations.
   for (int g = 0; g < mjNGROUP; ++g) options_.sitegroup[g] = 0;
   for (int f = 0; f < mjNVISFLAG; ++f) options_.flags[f] = 0;

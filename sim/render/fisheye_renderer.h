@@ -41,7 +41,7 @@ struct FisheyeRendererConfig {
   double near_clip_m = 0.03;       ///< near clipping distance
   double far_clip_m = 600.0;       ///< far clipping distance
   bool read_red_channel_only = false;  ///< read one channel (exact for grey-scale worlds)
-  int hidden_geom_group = 3;       ///< geom group not drawn (the vehicle's own geoms)
+  int max_visible_geom_group = 2;  ///< groups above are not drawn (3: vehicle, 4: collision-only)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

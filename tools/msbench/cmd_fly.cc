@@ -10,6 +10,7 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
+#include "tools/msbench/world_registry.h"
 #include "tools/msbench/yaml_config.h"
 
 namespace msb {
@@ -73,7 +74,14 @@ int runFlyCommand(int argc, char** argv) {
 
   // Load and validate everything before anything is written.
   const std::string file = args.get("FILE.yaml");
-  const FlightSpec spec = loadFlightSpec(file);
+  FlightSpec spec = loadFlightSpec(file);
+  if (!spec.world_name.empty()) {
+    try {
+      spec.world_path = resolveWorld(spec.world_name).world_xml;
+    } catch (const std::runtime_error& e) {
+      throw FileConfigError(file + ": key 'world': " + e.what());
+    }
+  }
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   fs::create_directories(out.staging() / "frames");
 

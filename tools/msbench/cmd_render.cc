@@ -13,6 +13,7 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
+#include "tools/msbench/world_registry.h"
 
 namespace msb {
 
@@ -60,7 +61,7 @@ int runRenderProbeCommand(int argc, char** argv) {
   cam_cfg.scale = parseScale(args);
   FisheyeRendererConfig render_cfg;
   render_cfg.face_focal_ratio = args.getDouble("face-focal-ratio");
-  const std::string world = resolveWorld(args.get("world"));
+  const std::string world = resolveWorld(args.get("world")).world_xml;
 
   const Pose T_W_B = poseFromXyzYaw(pose.head<3>(), pose[3] * M_PI / 180.0);
   QuadrotorSim sim(PhysicsConfig{}, world, T_W_B);
@@ -87,7 +88,7 @@ int runBenchSimCommand(int argc, char** argv) {
       .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length")
       .flag("red-only", "read back the red channel only (grey-scale worlds)");
   if (!args.parse(argc, argv)) return kExitOk;
-  const std::string world = resolveWorld(args.get("world"));
+  const std::string world = resolveWorld(args.get("world")).world_xml;
   const long steps = args.getInt("steps"), frames = args.getInt("frames");
   if (steps < 1 || frames < 1) throw UsageError("--steps and --frames must be >= 1");
 

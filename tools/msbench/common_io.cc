@@ -14,25 +14,6 @@ namespace msb {
 
 namespace fs = std::filesystem;
 
-std::string resolveWorld(const std::string& arg) {
-  if (fs::is_regular_file(arg)) return fs::absolute(arg).string();
-  const char* env = std::getenv("MSBENCH_WORLDS_DIR");
-  const fs::path dir = env && *env ? fs::path(env) : fs::path(MSB_WORLDS_DIR);
-  const fs::path named = dir / arg / "world.xml";
-  if (fs::is_regular_file(named)) return named.string();
-  std::string names;
-  if (fs::is_directory(dir)) {
-    std::vector<std::string> found;
-    for (const auto& e : fs::directory_iterator(dir))
-      if (fs::is_regular_file(e.path() / "world.xml")) found.push_back(e.path().filename());
-    std::sort(found.begin(), found.end());
-    for (const auto& n : found) names += (names.empty() ? "" : ", ") + n;
-  }
-  throw std::runtime_error("world '" + arg + "': no such file and no world of that name in " +
-                           dir.string() + " (available: " + (names.empty() ? "none" : names) +
-                           ")");
-}
-
 nlohmann::json versionInfo() {
   return {{"msbench", MSB_VERSION},
           {"git_revision", MSB_GIT_REVISION},

@@ -10,11 +10,6 @@
 
 namespace msb {
 
-/// Resolves a world argument: an existing MJCF file path, or a world name NAME meaning
-/// <worlds dir>/NAME/world.xml (worlds dir: $MSBENCH_WORLDS_DIR or the source tree's worlds/).
-/// Throws std::runtime_error listing the available names if neither exists.
-std::string resolveWorld(const std::string& arg);
-
 /// Versions of the libraries a result depends on (MuJoCo, OpenCV, Eigen, msbench git revision).
 nlohmann::json versionInfo();
 

@@ -10,7 +10,7 @@ void CameraStreamConfig::validate(ConfigChecker& c) const {
 }
 
 void FlightSpec::validate(ConfigChecker& c) const {
-  c.require(!world_path.empty(), "world", "is required");
+  c.require(!world_path.empty() || !world_name.empty(), "world", "is required");
   c.require(world_path.empty() || std::filesystem::is_regular_file(world_path), "world",
             "file not found: " + world_path);
   c.inRange("duration_s", duration_s, 0.01, 36000.0);

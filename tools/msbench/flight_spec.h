@@ -29,7 +29,8 @@ struct CameraStreamConfig {
 
 /// Everything `msbench fly` needs.
 struct FlightSpec {
-  std::string world_path;             ///< MJCF world file (absolute after loading)
+  std::string world_path;             ///< MJCF world file (absolute after loading), or
+  std::string world_name;             ///< a world name (worlds/<name>/), resolved when flying
   uint64_t seed = 1;                  ///< scenario seed for all RNG streams
   double duration_s = 60.0;           ///< hard limit on simulated time
   double hold_after_s = 2.0;          ///< keep flying this long after the path is finished

@@ -24,6 +24,7 @@ constexpr Command kCommands[] = {
     {"fly", msb::runFlyCommand, "fly a scripted waypoint list in a world; write results"},
     {"render-probe", msb::runRenderProbeCommand, "render one fisheye frame from a pose"},
     {"bench-sim", msb::runBenchSimCommand, "physics steps/s and fisheye frame cost"},
+    {"world", msb::runWorldCommand, "list, build (into the cache) and show the worlds"},
 };
 
 void printUsage() {

@@ -1,0 +1,209 @@
+#include "sim/world/mjcf_world_builder.h"
+
+#include <array>
+#include <cmath>
+
+#include "sim/world/procedural_textures.h"
+
+namespace msb {
+
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6g", std::abs(v) < 1e-12 ? 0.0 : v);
+  return buf;
+}
+std::string vec(const Vec3& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
+std::string quat(const Mat3& R) {
+  Quat q(R);
+  q.normalize();
+  if (q.w() < 0) q.coeffs() *= -1;
+  return num(q.w()) + " " + num(q.x()) + " " + num(q.y()) + " " + num(q.z());
+}
+
+}  // namespace
+
+std::string MjcfWorldBuilder::material(const Look& look) {
+  switch (look.type) {
+    case Look::kTextured:
+      textures_.insert(look.texture);
+      return "mat_" + look.texture;
+    case Look::kCube:
+      textures_.insert(look.texture);
+      cube_textures_.insert(look.texture);
+      return "matcube_" + look.texture;
+    case Look::kFlat: {
+      const int g = std::clamp(int(std::lround(look.grey * 255)), 0, 255);
+      auto it = flat_materials_.find(g);
+      if (it == flat_materials_.end()) it = flat_materials_.emplace(g, "flat_" + std::to_string(g)).first;
+      return it->second;
+    }
+  }
+  return "";
+}
+
+std::string MjcfWorldBuilder::collisionGeom(const Shape& s, const Look& look,
+                                            const std::string& mat) {
+  std::ostringstream g;
+  const char* type = s.type == ShapeType::kBox ? "box" : s.type == ShapeType::kCylinder ? "cylinder" : "sphere";
+  g << "    <geom name=\"" << s.name << "\" type=\"" << type << "\" pos=\""
+    << vec(s.pose.translation()) << "\"";
+  if (s.type != ShapeType::kSphere) g << " quat=\"" << quat(s.pose.linear()) << "\"";
+  g << " size=\"";
+  if (s.type == ShapeType::kBox) g << vec(s.size);
+  else if (s.type == ShapeType::kCylinder) g << num(s.size.x()) << " " << num(s.size.z());
+  else g << num(s.size.x());
+  g << "\"";
+  if (look.type == Look::kTextured) g << " group=\"" << geom_groups::kCollisionOnly << "\" rgba=\"0.5 0.5 0.5 1\"";
+  else g << " group=\"" << geom_groups::kRendered << "\" material=\"" << mat << "\"";
+  g << "/>\n";
+  return g.str();
+}
+
+void MjcfWorldBuilder::addMesh(const std::string& name, const std::vector<Vec3>& v,
+                               const std::vector<Vec2>& uv,
+                               const std::vector<std::array<int, 3>>& faces,
+                               const std::string& mat) {
+  assets_ << "    <mesh name=\"" << name << "\" vertex=\"";
+  for (size_t i = 0; i < v.size(); ++i) assets_ << (i ? " " : "") << vec(v[i]);
+  assets_ << "\" texcoord=\"";
+  for (size_t i = 0; i < uv.size(); ++i) assets_ << (i ? " " : "") << num(uv[i].x()) << " " << num(uv[i].y());
+  assets_ << "\" face=\"";
+  for (size_t i = 0; i < faces.size(); ++i)
+    assets_ << (i ? " " : "") << faces[i][0] << " " << faces[i][1] << " " << faces[i][2];
+  assets_ << "\"/>\n";
+  bodies_ << "    <geom name=\"" << name << "\" type=\"mesh\" mesh=\"" << name << "\" material=\""
+          << mat << "\" contype=\"0\" conaffinity=\"0\" group=\"" << geom_groups::kVisualMesh
+          << "\"/>\n";
+  ++visual_geoms_;
+}
+
+void MjcfWorldBuilder::addBox(const std::string& name, const std::string& object, const Pose& T,
+                              const Vec3& half, ObstacleKind kind, const Look& look) {
+  Shape s{ShapeType::kBox, T, half, kind, name, object};
+  const std::string mat = material(look);
+  bodies_ << collisionGeom(s, look, mat);
+  shapes_.push_back(s);
+  if (look.type != Look::kTextured) return;
+
+  // Visual mesh: 6 quads with texture coordinates in tiles, counter-clockwise from outside.
+  const double tile = textureTileMeters(look.texture);
+  std::vector<Vec3> v;
+  std::vector<Vec2> uv;
+  std::vector<std::array<int, 3>> f;
+  const std::array<std::array<int, 2>, 4> corners = {{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (int sign : {1, -1}) {
+      const int base = int(v.size());
+      std::array<int, 4> order = {0, 1, 2, 3};
+      if (sign < 0) order = {3, 2, 1, 0};
+      for (int k : order) {
+        Vec3 local = Vec3::Zero();
+        local[axis] = sign * half[axis];
+        local[a] = corners[k][0] * half[a];
+        local[b] = corners[k][1] * half[b];
+        v.push_back(T * local);
+        // Texture coordinates: world-scale metres along the face, in tiles.
+        uv.emplace_back((corners[k][0] + 1) * half[a] / tile, (corners[k][1] + 1) * half[b] / tile);
+      }
+      f.push_back({base, base + 1, base + 2});
+      f.push_back({base, base + 2, base + 3});
+    }
+  }
+  addMesh(name + "_vis", v, uv, f, mat);
+}
+
+void MjcfWorldBuilder::addCylinder(const std::string& name, const std::string& object,
+                                   const Pose& T, double radius, double half_height,
+                                   ObstacleKind kind, const Look& look) {
+  Shape s{ShapeType::kCylinder, T, Vec3(radius, radius, half_height), kind, name, object};
+  const std::string mat = material(look);
+  bodies_ << collisionGeom(s, look, mat);
+  shapes_.push_back(s);
+  if (look.type != Look::kTextured) return;
+
+  // Visual prism with N sides (texture wraps around the circumference) and two cap fans.
+  const double tile = textureTileMeters(look.texture);
+  const int n = radius > 0.5 ? 24 : 12;
+  std::vector<Vec3> v;
+  std::vector<Vec2> uv;
+  std::vector<std::array<int, 3>> f;
+  const double arc = 2 * M_PI * radius / n;
+  for (int k = 0; k <= n; ++k) {
+    const double ang = 2 * M_PI * k / n;
+    for (double z : {-half_height, half_height}) {
+      v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
+      uv.emplace_back(k * arc / tile, (z + half_height) / tile);
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    const int a = 2 * k, b = 2 * (k + 1);  // bottom vertices; +1 = top
+    f.push_back({a, b, b + 1});
+    f.push_back({a, b + 1, a + 1});
+  }
+  for (double z : {-half_height, half_height}) {
+    const int centre = int(v.size());
+    v.push_back(T * Vec3(0, 0, z));
+    uv.emplace_back(0, 0);
+    const int ring = int(v.size());
+    for (int k = 0; k < n; ++k) {
+      const double ang = 2 * M_PI * k / n;
+      v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
+      uv.emplace_back(radius * std::cos(ang) / tile, radius * std::sin(ang) / tile);
+    }
+    for (int k = 0; k < n; ++k) {
+      const int a = ring + k, b = ring + (k + 1) % n;
+      if (z > 0) f.push_back({centre, a, b});
+      else f.push_back({centre, b, a});
+    }
+  }
+  addMesh(name + "_vis", v, uv, f, mat);
+}
+
+void MjcfWorldBuilder::addSphere(const std::string& name, const std::string& object,
+                                 const Vec3& centre, double radius, ObstacleKind kind,
+                                 const Look& look) {
+  Pose T = Pose::Identity();
+  T.translation() = centre;
+  Shape s{ShapeType::kSphere, T, Vec3::Constant(radius), kind, name, object};
+  // Spheres are drawn as primitives: a textured look becomes a cube-mapped texture.
+  const Look l = look.type == Look::kTextured ? Look::cube(look.texture) : look;
+  bodies_ << collisionGeom(s, l, material(l));
+  shapes_.push_back(s);
+}
+
+void MjcfWorldBuilder::setGround(const Vec2& size_m, const std::string& texture) {
+  textures_.insert(texture);
+  Pose T = Pose::Identity();
+  shapes_.push_back({ShapeType::kHalfSpace, T, Vec3::Zero(), ObstacleKind::kGround, "ground", "ground"});
+  const double rep = 1.0 / textureTileMeters(texture);
+  assets_ << "    <material name=\"mat_ground\" texture=\"tex_" << texture << "\" texrepeat=\""
+          << num(rep) << " " << num(rep) << "\" texuniform=\"true\"/>\n";
+  bodies_ << "    <geom name=\"ground\" type=\"plane\" size=\"" << num(size_m.x() / 2) << " "
+          << num(size_m.y() / 2) << " 20\" material=\"mat_ground\" group=\""
+          << geom_groups::kRendered << "\"/>\n";
+}
+
+std::string MjcfWorldBuilder::mjcf() const {
+  std::ostringstream os;
+  os << "<!-- Generated by msbench world build: do not edit; edit the spec instead. -->\n"
+     << "<mujoco model=\"" << model_name_ << "\">\n  <asset>\n";
+  for (const auto& t : textures_) {
+    os << "    <texture name=\"tex_" << t << "\" type=\"2d\" file=\"textures/" << t << ".png\"/>\n"
+       << "    <material name=\"mat_" << t << "\" texture=\"tex_" << t << "\"/>\n";
+  }
+  for (const auto& t : cube_textures_) {
+    os << "    <texture name=\"texcube_" << t << "\" type=\"cube\" file=\"textures/" << t
+       << ".png\"/>\n    <material name=\"matcube_" << t << "\" texture=\"texcube_" << t << "\"/>\n";
+  }
+  for (const auto& [g, name] : flat_materials_) {
+    const std::string c = num(g / 255.0);
+    os << "    <material name=\"" << name << "\" rgba=\"" << c << " " << c << " " << c << " 1\"/>\n";
+  }
+  os << assets_.str() << "  </asset>\n  <worldbody>\n" << bodies_.str() << "  </worldbody>\n</mujoco>\n";
+  return os.str();
+}
+
+}  // namespace msb

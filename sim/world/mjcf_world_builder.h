@@ -1,0 +1,83 @@
+// Emits a static MJCF world and its ground-truth shapes from solid primitives, one call per
+// solid. Every solid has one collision geom (a MuJoCo primitive: faithful collisions) whose
+// shape is recorded for the ground truth. Its look is one of:
+//  - textured: a visual mesh of the same solid with texture coordinates in metres / tile size,
+//    so every surface shows the pattern at its real scale (MuJoCo maps 2D textures onto boxes
+//    only along x/y, and cube textures once per face whatever its size); the collision geom is
+//    then hidden (geom group 4) and the mesh (group 1) never collides;
+//  - flat: the collision geom itself rendered in a uniform grey (textureless surfaces);
+//  - cube: the collision geom rendered with a cube-mapped texture (spheres, e.g. canopies).
+#pragma once
+
+#include <array>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/geometry/shapes.h"
+
+namespace msb {
+
+/// Geom groups of generated worlds.
+namespace geom_groups {
+inline constexpr int kRendered = 0;      ///< collision geoms drawn as they are
+inline constexpr int kVisualMesh = 1;    ///< textured visual meshes (no collision)
+inline constexpr int kCollisionOnly = 4; ///< collision geoms hidden from the camera
+}  // namespace geom_groups
+
+/// How a solid looks.
+struct Look {
+  enum Type { kTextured, kFlat, kCube } type = kFlat;
+  std::string texture;  ///< pattern name (textured, cube)
+  double grey = 0.5;    ///< intensity in [0, 1] (flat)
+
+  static Look textured(std::string t) { return {kTextured, std::move(t), 0.5}; }
+  static Look flat(double g) { return {kFlat, "", g}; }
+  static Look cube(std::string t) { return {kCube, std::move(t), 0.5}; }
+};
+
+/// Accumulates solids; produces MJCF text and shapes.
+class MjcfWorldBuilder {
+ public:
+  /// `texture_tile_m` gives the tile size in metres of each pattern.
+  explicit MjcfWorldBuilder(std::string model_name) : model_name_(std::move(model_name)) {}
+
+  /// A box with half extents `half` at pose T (world frame).
+  void addBox(const std::string& name, const std::string& object, const Pose& T, const Vec3& half,
+              ObstacleKind kind, const Look& look);
+  /// A cylinder (radius, half height) along T's z axis.
+  void addCylinder(const std::string& name, const std::string& object, const Pose& T,
+                   double radius, double half_height, ObstacleKind kind, const Look& look);
+  /// A sphere.
+  void addSphere(const std::string& name, const std::string& object, const Vec3& centre,
+                 double radius, ObstacleKind kind, const Look& look);
+  /// The ground: plane z = 0 of the given extent with a texture repeating every tile.
+  void setGround(const Vec2& size_m, const std::string& texture);
+
+  /// The MJCF document (textures referenced as textures/<name>.png).
+  std::string mjcf() const;
+  /// The ground-truth shapes, in insertion order.
+  const std::vector<Shape>& shapes() const { return shapes_; }
+  /// Texture patterns referenced.
+  const std::set<std::string>& texturesUsed() const { return textures_; }
+  /// Number of collision and visual-only geoms.
+  int collisionGeoms() const { return int(shapes_.size()); }
+  int visualGeoms() const { return visual_geoms_; }
+
+ private:
+  std::string material(const Look& look);
+  void addMesh(const std::string& name, const std::vector<Vec3>& v, const std::vector<Vec2>& uv,
+               const std::vector<std::array<int, 3>>& faces, const std::string& material);
+  std::string collisionGeom(const Shape& s, const Look& look, const std::string& material);
+
+  std::string model_name_;
+  std::vector<Shape> shapes_;
+  std::set<std::string> textures_, cube_textures_;
+  std::map<int, std::string> flat_materials_;  // grey level (0..255) -> material
+  std::ostringstream assets_, bodies_;
+  int visual_geoms_ = 0;
+};
+
+}  // namespace msb

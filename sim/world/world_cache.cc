@@ -1,0 +1,84 @@
+#include "sim/world/world_cache.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "core/common/rng.h"
+#include "sim/world/procedural_textures.h"
+
+namespace msb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void writeBytes(const fs::path& p, const std::string& bytes) {
+  std::ofstream out(p, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error(p.string() + ": write failed");
+}
+
+std::string shapesCsv(const std::vector<Shape>& shapes) {
+  std::string s = "name,object,kind,type,x,y,z,qw,qx,qy,qz,sx,sy,sz\n";
+  char line[512];
+  for (const auto& sh : shapes) {
+    const Quat q(sh.pose.linear());
+    const char* type = sh.type == ShapeType::kBox ? "box" : sh.type == ShapeType::kCylinder ? "cylinder"
+                       : sh.type == ShapeType::kSphere ? "sphere" : "halfspace";
+    std::snprintf(line, sizeof(line), "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                  sh.name.c_str(), sh.object.c_str(), obstacleKindName(sh.kind), type,
+                  sh.pose.translation().x(), sh.pose.translation().y(), sh.pose.translation().z(),
+                  q.w(), q.x(), q.y(), q.z(), sh.size.x(), sh.size.y(), sh.size.z());
+    s += line;
+  }
+  return s;
+}
+
+}  // namespace
+
+BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
+  const auto t0 = std::chrono::steady_clock::now();
+  BuiltWorld out;
+  out.generated = generateWorld(spec);
+
+  // Cache key: generator version, texture size and the generated MJCF text.
+  const std::string key_text = std::to_string(kWorldGeneratorVersion) + "|" +
+                               std::to_string(spec.texture_px) + "|" + out.generated.mjcf;
+  char key[17];
+  std::snprintf(key, sizeof(key), "%016llx",
+                static_cast<unsigned long long>(fnv1a64(key_text.data(), key_text.size())));
+  const fs::path dir = fs::path(cache_root) / (spec.name + "-s" + std::to_string(spec.seed) + "-" + key);
+  out.directory = dir.string();
+  out.world_xml = (dir / "world.xml").string();
+
+  if (!fs::is_regular_file(dir / "world.xml")) {
+    const fs::path tmp = fs::path(cache_root) / (".tmp-" + spec.name + "-" + std::to_string(::getpid()));
+    fs::remove_all(tmp);
+    fs::create_directories(tmp / "textures");
+    for (const auto& t : out.generated.textures) {
+      std::vector<uchar> png;
+      cv::imencode(".png", makeTexture(t, spec.texture_px, 0), png);
+      writeBytes(tmp / "textures" / (t + ".png"), std::string(png.begin(), png.end()));
+    }
+    writeBytes(tmp / "shapes.csv", shapesCsv(out.generated.shapes));
+    writeBytes(tmp / "world.xml", out.generated.mjcf);
+    std::error_code ec;
+    fs::rename(tmp, dir, ec);
+    if (ec) fs::remove_all(tmp);  // another process built it first
+    if (!fs::is_regular_file(dir / "world.xml"))
+      throw std::runtime_error(dir.string() + ": could not write the world cache");
+  } else {
+    out.reused = true;
+  }
+  out.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace msb

@@ -1,0 +1,272 @@
+#include "sim/world/world_generator.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/common/rng.h"
+#include "sim/world/mjcf_world_builder.h"
+
+namespace msb {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// Pose from a ground position, base height, yaw and optional roll/pitch tilt.
+Pose placed(const Vec2& xy, double z, double yaw, double roll = 0, double pitch = 0) {
+  Pose T = Pose::Identity();
+  T.linear() = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
+                Eigen::AngleAxisd(roll, Vec3::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = Vec3(xy.x(), xy.y(), z);
+  return T;
+}
+
+// A point of an object's local frame (x along its length) in the world.
+Pose local(const Pose& base, const Vec3& offset, const Mat3& R = Mat3::Identity()) {
+  Pose T = base;
+  T.translation() = base * offset;
+  T.linear() = base.linear() * R;
+  return T;
+}
+
+std::string pick(const std::string& override_texture, const char* def) {
+  return override_texture.empty() ? def : override_texture;
+}
+
+// Horizontal radius that an object of this kind and size occupies (for placement).
+double footprintRadius(const ObjectGroupSpec& g, const Vec3& s) {
+  const std::string& k = g.kind;
+  if (k == "tree") return std::max(0.5 * s.x(), 0.3);
+  if (k == "rod" || k == "pole" || k == "pillar")
+    return s.x() + s.z() * std::sin(g.tilt_max_deg * kDeg);
+  if (k == "building" && g.variant == "collapsed") return 0.5 * std::hypot(s.x(), s.y()) + 0.4 * s.z();
+  if (k == "gazebo" || k == "house") return 0.5 * std::hypot(s.x(), s.y()) + 0.5;
+  return 0.5 * std::hypot(s.x(), s.y());
+}
+
+// Emits the solids of one object. `detail` draws spec-only randomness (rubble, tilt).
+void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy, double yaw,
+                 const Vec3& s, RngStream& detail, MjcfWorldBuilder& b) {
+  const std::string& k = g.kind;
+  const auto T = ObstacleKind::kTextured;
+  const Pose base = placed(xy, g.base_z_m, yaw);
+  if (k == "building" || k == "tower") {
+    const Look look = Look::textured(pick(g.texture, k == "tower" ? "concrete" : "facade"));
+    if (g.variant == "burned") {
+      // A textured part and a burned, textureless part along the building's length.
+      const double lb = g.burned_fraction * s.x(), lt = s.x() - lb;
+      b.addBox(id + "_intact", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lt, 0, 0.5 * s.z())),
+               Vec3(0.5 * lt, 0.5 * s.y(), 0.5 * s.z()), T, look);
+      b.addBox(id + "_burned", id, local(base, Vec3(0.5 * s.x() - 0.5 * lb, 0, 0.45 * s.z())),
+               Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), ObstacleKind::kTextureless,
+               Look::flat(0.12));
+    } else if (g.variant == "collapsed") {
+      // A lower remaining block, a slab leaning against it, and rubble.
+      b.addBox(id + "_block", id, local(base, Vec3(-0.15 * s.x(), 0, 0.3 * s.z())),
+               Vec3(0.35 * s.x(), 0.5 * s.y(), 0.3 * s.z()), T, look);
+      const double pitch = detail.uniform(25, 40) * kDeg;
+      const Mat3 R = Eigen::AngleAxisd(-pitch, Vec3::UnitY()).toRotationMatrix();
+      b.addBox(id + "_slab", id,
+               local(base, Vec3(0.2 * s.x() + 0.25 * s.z() * std::cos(pitch), 0,
+                                0.25 * s.z() * std::sin(pitch) + 0.2),
+                     R),
+               Vec3(0.25 * s.z(), 0.45 * s.y(), 0.2), T, Look::textured("concrete"));
+      for (int r = 0; r < 4; ++r) {
+        const Vec3 half(detail.uniform(0.4, 1.2), detail.uniform(0.4, 1.0), detail.uniform(0.3, 0.7));
+        const Vec3 off(detail.uniform(0.25, 0.5) * s.x(), detail.uniform(-0.4, 0.4) * s.y(), 0.5 * half.z());
+        const Mat3 Rr = Eigen::AngleAxisd(detail.uniform(0, M_PI), Vec3::UnitZ()).toRotationMatrix();
+        b.addBox(id + "_rubble" + std::to_string(r), id, local(base, off, Rr), half, T,
+                 Look::textured("concrete"));
+      }
+    } else {
+      b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T, look);
+    }
+  } else if (k == "house") {
+    // Brick walls and a gable roof of two slabs (30° pitch) meeting at the ridge.
+    b.addBox(id + "_walls", id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T,
+             Look::textured(pick(g.texture, "bricks")));
+    const double pitch = 30 * kDeg, half_w = 0.5 * s.y() + 0.4;
+    const double slab = half_w / std::cos(pitch);
+    for (int side : {1, -1}) {
+      const Mat3 R = Eigen::AngleAxisd(side * pitch, Vec3::UnitX()).toRotationMatrix();
+      const Vec3 c(0, -side * 0.5 * half_w, s.z() + 0.5 * half_w * std::tan(pitch));
+      b.addBox(id + (side > 0 ? "_roof_a" : "_roof_b"), id, local(base, c, R),
+               Vec3(0.5 * s.x() + 0.3, 0.5 * slab, 0.12), T, Look::textured("wood"));
+    }
+  } else if (k == "car") {
+    // Textureless paint: a lower body and a cabin.
+    const double grey = detail.uniform(0.15, 0.85);
+    b.addBox(id + "_body", id, local(base, Vec3(0, 0, 0.3 * s.z())),
+             Vec3(0.5 * s.x(), 0.5 * s.y(), 0.3 * s.z()), ObstacleKind::kTextureless, Look::flat(grey));
+    b.addBox(id + "_cabin", id, local(base, Vec3(-0.05 * s.x(), 0, 0.8 * s.z())),
+             Vec3(0.28 * s.x(), 0.45 * s.y(), 0.2 * s.z()), ObstacleKind::kTextureless,
+             Look::flat(std::clamp(grey * 0.6, 0.0, 1.0)));
+  } else if (k == "bus") {
+    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, ObstacleKind::kTextureless,
+             Look::flat(detail.uniform(0.3, 0.8)));
+  } else if (k == "tree") {
+    // Bark trunk up into a foliage canopy (sphere of diameter size.x, top at size.z).
+    const double r = 0.5 * s.x(), trunk_r = std::max(0.12, 0.05 * s.x());
+    const double trunk_h = s.z() - r;
+    b.addCylinder(id + "_trunk", id, local(base, Vec3(0, 0, 0.5 * trunk_h)), trunk_r, 0.5 * trunk_h,
+                  T, Look::textured("bark"));
+    b.addSphere(id + "_canopy", id, base * Vec3(0, 0, s.z() - r), r, T,
+                Look::textured(pick(g.texture, "foliage")));
+  } else if (k == "rod" || k == "pole" || k == "pillar") {
+    const double tilt = detail.uniform(0, g.tilt_max_deg) * kDeg, dir = detail.uniform(-M_PI, M_PI);
+    const Mat3 R = (Eigen::AngleAxisd(dir, Vec3::UnitZ()) * Eigen::AngleAxisd(tilt, Vec3::UnitY())).toRotationMatrix();
+    Pose T_axis = base;
+    T_axis.linear() = R;
+    T_axis.translation() = base.translation() + R * Vec3(0, 0, 0.5 * s.z());
+    const bool thin = k == "rod";
+    b.addCylinder(id, id, T_axis, s.x(), 0.5 * s.z(), thin ? ObstacleKind::kThin : T,
+                  thin ? Look::flat(0.55) : Look::textured(pick(g.texture, k == "pillar" ? "rock" : "concrete")));
+  } else if (k == "wall") {
+    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T,
+             Look::textured(pick(g.texture, "bricks")));
+  } else if (k == "rock") {
+    const Mat3 R = (Eigen::AngleAxisd(detail.uniform(-1, 1) * g.tilt_max_deg * kDeg, Vec3::UnitX()) *
+                    Eigen::AngleAxisd(detail.uniform(-1, 1) * g.tilt_max_deg * kDeg, Vec3::UnitY()))
+                       .toRotationMatrix();
+    b.addBox(id, id, local(base, Vec3(0, 0, 0.3 * s.z()), R), 0.5 * s, T,
+             Look::textured(pick(g.texture, "rock")));
+  } else if (k == "gazebo") {
+    // Four posts and a roof slab.
+    const std::string tex = pick(g.texture, "wood");
+    int p = 0;
+    for (double sx : {-0.5, 0.5})
+      for (double sy : {-0.5, 0.5})
+        b.addCylinder(id + "_post" + std::to_string(p++), id,
+                      local(base, Vec3(sx * s.x(), sy * s.y(), 0.5 * s.z())), 0.1, 0.5 * s.z(), T,
+                      Look::textured(tex));
+    b.addBox(id + "_roof", id, local(base, Vec3(0, 0, s.z() + 0.15)),
+             Vec3(0.5 * s.x() + 0.4, 0.5 * s.y() + 0.4, 0.15), T, Look::textured(tex));
+  }
+}
+
+// Carves the cave: solid rock everywhere in the footprint except chambers and tunnels, and a
+// ceiling over each carved cell at its height. Rectangles of equal cells are merged into boxes.
+void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
+  const int nx = int(std::ceil((cave.max.x() - cave.min.x()) / cave.cell_m));
+  const int ny = int(std::ceil((cave.max.y() - cave.min.y()) / cave.cell_m));
+  std::vector<double> height(size_t(nx) * ny, 0.0);  // 0 = solid, else ceiling height
+  auto centre = [&](int i, int j) {
+    return Vec2(cave.min.x() + (i + 0.5) * cave.cell_m, cave.min.y() + (j + 0.5) * cave.cell_m);
+  };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const Vec2 c = centre(i, j);
+      double& h = height[size_t(j) * nx + i];
+      for (const auto& ch : cave.chambers)
+        if ((c.array() >= ch.min.array()).all() && (c.array() <= ch.max.array()).all())
+          h = std::max(h, ch.ceiling_m);
+      for (const auto& t : cave.tunnels) {
+        const Vec2 ab = t.to - t.from;
+        const double u = std::clamp((c - t.from).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        if ((t.from + u * ab - c).norm() <= 0.5 * t.width_m) h = std::max(h, t.ceiling_m);
+      }
+    }
+  // Greedy rectangle merging of cells with equal height (rows first, then extend downwards).
+  std::vector<bool> used(height.size(), false);
+  int rock = 0, ceiling = 0;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const size_t idx = size_t(j) * nx + i;
+      if (used[idx]) continue;
+      const double h = height[idx];
+      int w = 1;
+      while (i + w < nx && !used[size_t(j) * nx + i + w] && height[size_t(j) * nx + i + w] == h) ++w;
+      int d = 1;
+      for (bool ok = true; ok && j + d < ny; ) {
+        for (int k = 0; k < w; ++k) {
+          const size_t q = size_t(j + d) * nx + i + k;
+          if (used[q] || height[q] != h) { ok = false; break; }
+        }
+        if (ok) ++d;
+      }
+      for (int dj = 0; dj < d; ++dj)
+        for (int k = 0; k < w; ++k) used[size_t(j + dj) * nx + i + k] = true;
+      const Vec2 lo(cave.min.x() + i * cave.cell_m, cave.min.y() + j * cave.cell_m);
+      const Vec2 hi = lo + Vec2(w * cave.cell_m, d * cave.cell_m);
+      const double z0 = h;  // rock from the floor (solid) or from the ceiling height up
+      Pose T = Pose::Identity();
+      T.translation() = Vec3(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), 0.5 * (z0 + cave.rock_top_m));
+      const Vec3 half(0.5 * (hi.x() - lo.x()), 0.5 * (hi.y() - lo.y()), 0.5 * (cave.rock_top_m - z0));
+      const std::string name = h == 0.0 ? "cave_rock_" + std::to_string(rock++)
+                                        : "cave_ceiling_" + std::to_string(ceiling++);
+      b.addBox(name, h == 0.0 ? "cave_rock" : "cave_ceiling", T, half,
+               h == 0.0 ? ObstacleKind::kTextured : ObstacleKind::kGround, Look::textured(cave.texture));
+    }
+}
+
+}  // namespace
+
+GeneratedWorld generateWorld(const WorldSpec& spec) {
+  checkValid(spec);
+  MjcfWorldBuilder b(spec.name);
+  b.setGround(spec.ground_size_m, spec.ground_texture);
+  GeneratedWorld out;
+  out.name = spec.name;
+  if (spec.cave) {
+    buildCave(*spec.cave, b);
+    out.object_counts["cave_box"] = b.collisionGeoms() - 1;
+  }
+  // Obstacles placed so far (rock of the cave) for placement checks.
+  std::vector<Shape> fixed(b.shapes().begin() + 1, b.shapes().end());
+  const WorldTruth fixed_truth(fixed);
+  struct Disc { Vec2 c; double r; };
+  std::vector<Disc> placed;
+  const Vec2 start_xy = spec.start_position_m.head<2>();
+  const Vec2 half_ground = 0.5 * spec.ground_size_m;
+
+  RngStream placement(spec.seed, "world_gen_" + spec.name);
+  for (size_t gi = 0; gi < spec.objects.size(); ++gi) {
+    const auto& g = spec.objects[gi];
+    // Sizes and details depend on the spec only (not on the seed).
+    RngStream sizes(0, "world_sizes_" + spec.name + "_" + std::to_string(gi));
+    for (int n = 0; n < g.count; ++n) {
+      Vec3 size;
+      for (int k = 0; k < 3; ++k) size[k] = sizes.uniform(g.size_min[k], g.size_max[k] + 1e-12);
+      RngStream detail(n, "world_detail_" + spec.name + "_" + std::to_string(gi));
+      const double r = footprintRadius(g, size);
+      const std::string id = g.kind + "_" + std::to_string(out.object_counts[g.kind]++);
+      Vec2 xy;
+      double yaw;
+      if (g.at) {
+        xy = *g.at;
+        yaw = g.yaw_deg.value_or(0.0) * kDeg;
+      } else {
+        // Rejection sampling: inside the region and the ground, clear of the start and of
+        // other objects (1 m gap), and for caves clear of the rock.
+        bool ok = false;
+        for (int attempt = 0; attempt < 500 && !ok; ++attempt) {
+          xy = Vec2(placement.uniform(g.region_min->x(), g.region_max->x()),
+                    placement.uniform(g.region_min->y(), g.region_max->y()));
+          yaw = g.yaw_deg ? *g.yaw_deg * kDeg : placement.uniform(-M_PI, M_PI);
+          ok = (xy - start_xy).norm() >= spec.start_clearance_m + r &&
+               (xy.cwiseAbs().array() <= (half_ground.array() - r)).all();
+          for (const auto& d : placed) ok = ok && (xy - d.c).norm() >= d.r + r + 1.0;
+          if (ok && spec.cave)
+            ok = fixed_truth.distance(Vec3(xy.x(), xy.y(), 1.0), r + 2.0) >= r + 0.5;
+        }
+        if (!ok)
+          throw std::runtime_error("world '" + spec.name + "': could not place " + id +
+                                   " (objects[" + std::to_string(gi) + "]) in its region");
+      }
+      placed.push_back({xy, r});
+      buildObject(g, id, xy, yaw, size, detail, b);
+    }
+  }
+
+  out.mjcf = b.mjcf();
+  out.textures.assign(b.texturesUsed().begin(), b.texturesUsed().end());
+  out.shapes = b.shapes();
+  out.start = poseFromXyzYaw(spec.start_position_m, spec.start_yaw_deg * kDeg);
+  out.exploration_box = spec.exploration_box;
+  out.collision_geoms = b.collisionGeoms();
+  out.visual_geoms = b.visualGeoms();
+  return out;
+}
+
+}  // namespace msb

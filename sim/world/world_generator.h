@@ -1,0 +1,34 @@
+// World generation: WorldSpec (+ seed) → MJCF text, texture list and ground-truth shapes.
+// Deterministic: the same spec and seed give the same bytes.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/geometry/world_truth.h"
+#include "sim/world/world_spec.h"
+
+namespace msb {
+
+/// A generated world, before its files are written.
+struct GeneratedWorld {
+  std::string name;
+  std::string mjcf;                       ///< world.xml text
+  std::vector<std::string> textures;      ///< pattern names to write as textures/<name>.png
+  std::vector<Shape> shapes;              ///< ground truth, same names as the collision geoms
+  Pose start = Pose::Identity();          ///< vehicle start pose
+  Aabb exploration_box;
+  std::map<std::string, int> object_counts;  ///< objects per kind
+  int collision_geoms = 0, visual_geoms = 0;
+};
+
+/// Generates the world. Throws ConfigError for an invalid spec and std::runtime_error if
+/// random placement cannot fit the requested objects.
+GeneratedWorld generateWorld(const WorldSpec& spec);
+
+/// Version of the generator; part of the cache key so cached worlds rebuild when it changes.
+inline constexpr int kWorldGeneratorVersion = 1;
+
+}  // namespace msb

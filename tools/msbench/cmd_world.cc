@@ -1,0 +1,188 @@
+// msbench world list | build | show: the benchmark worlds, their cache and previews.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "sim/physics/quadrotor_sim.h"
+#include "sim/render/fisheye_renderer.h"
+#include "tools/msbench/cli_args.h"
+#include "tools/msbench/commands.h"
+#include "tools/msbench/common_io.h"
+#include "tools/msbench/output_files.h"
+#include "tools/msbench/world_registry.h"
+
+namespace msb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::optional<uint64_t> seedArg(const ArgParser& args) {
+  if (args.get("seed").empty()) return std::nullopt;
+  const long s = args.getInt("seed");
+  if (s < 0) throw UsageError("--seed must be >= 0");
+  return static_cast<uint64_t>(s);
+}
+
+const BuiltWorld& requireGenerated(const ResolvedWorld& w, const std::string& name) {
+  if (!w.built) throw UsageError("world '" + name + "' is a hand-written MJCF world, not generated");
+  return *w.built;
+}
+
+// BGR colour of an obstacle kind in the top-down map.
+cv::Vec3b kindColour(ObstacleKind k) {
+  switch (k) {
+    case ObstacleKind::kTextured: return {90, 150, 60};      // green-ish: textured
+    case ObstacleKind::kTextureless: return {40, 40, 220};   // red: textureless
+    case ObstacleKind::kThin: return {220, 40, 220};         // magenta: thin
+    case ObstacleKind::kGround: return {120, 120, 120};      // grey: cave rock/ceiling
+  }
+  return {0, 0, 0};
+}
+
+// Top-down map: a downward ray per pixel from the top of the exploration box; obstacles coloured
+// by kind and shaded by height; exploration box, 2.5 m grid and start pose on top.
+cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
+  const auto& g = w.generated;
+  const WorldTruth truth(g.shapes);
+  Vec2 lo = g.exploration_box.min.head<2>(), hi = g.exploration_box.max.head<2>();
+  for (const auto& s : g.shapes) {
+    if (s.type == ShapeType::kHalfSpace) continue;
+    const auto [mn, mx] = s.bounds();
+    lo = lo.cwiseMin(mn.head<2>()), hi = hi.cwiseMax(mx.head<2>());
+  }
+  lo.array() -= 5, hi.array() += 5;
+  const int W = int((hi.x() - lo.x()) / m_per_px), H = int((hi.y() - lo.y()) / m_per_px);
+  cv::Mat img(H, W, CV_8UC3, cv::Scalar(235, 235, 235));
+  const double z_top = g.exploration_box.max.z() - 0.01;
+  auto px = [&](const Vec2& p) {
+    return cv::Point(int((p.x() - lo.x()) / m_per_px), int((hi.y() - p.y()) / m_per_px));
+  };
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      const Vec3 o(lo.x() + (u + 0.5) * m_per_px, hi.y() - (v + 0.5) * m_per_px, z_top);
+      const auto hit = truth.raycast(o, Vec3(0, 0, -1), z_top + 1.0);
+      if (!hit || g.shapes[hit->shape].type == ShapeType::kHalfSpace) continue;  // open ground
+      const double height = z_top - hit->distance_m;
+      const double shade = 0.55 + 0.45 * std::clamp(height / z_top, 0.0, 1.0);
+      const cv::Vec3b c = kindColour(g.shapes[hit->shape].kind);
+      img.at<cv::Vec3b>(v, u) = cv::Vec3b(uchar(c[0] * shade), uchar(c[1] * shade), uchar(c[2] * shade));
+    }
+  // 2.5 m grid and exploration box.
+  const Aabb& box = g.exploration_box;
+  for (double x = box.min.x(); x <= box.max.x() + 1e-9; x += 2.5)
+    cv::line(img, px({x, box.min.y()}), px({x, box.max.y()}), cv::Scalar(200, 200, 200), 1);
+  for (double y = box.min.y(); y <= box.max.y() + 1e-9; y += 2.5)
+    cv::line(img, px({box.min.x(), y}), px({box.max.x(), y}), cv::Scalar(200, 200, 200), 1);
+  cv::rectangle(img, px(box.min.head<2>()), px(box.max.head<2>()), cv::Scalar(200, 120, 0), 2);
+  // Start pose.
+  const Vec2 s = g.start.translation().head<2>();
+  const Vec2 f = s + 4.0 * g.start.linear().col(0).head<2>().normalized();
+  cv::circle(img, px(s), int(1.0 / m_per_px) + 2, cv::Scalar(0, 140, 255), -1);
+  cv::arrowedLine(img, px(s), px(f), cv::Scalar(0, 140, 255), 2);
+  // Legend.
+  const char* labels[] = {"textured", "textureless", "thin", "rock/ceiling"};
+  const ObstacleKind kinds[] = {ObstacleKind::kTextured, ObstacleKind::kTextureless,
+                                ObstacleKind::kThin, ObstacleKind::kGround};
+  for (int i = 0; i < 4; ++i) {
+    const cv::Vec3b c = kindColour(kinds[i]);
+    cv::rectangle(img, cv::Rect(8, 8 + 18 * i, 14, 14), cv::Scalar(c[0], c[1], c[2]), -1);
+    cv::putText(img, labels[i], cv::Point(28, 20 + 18 * i), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                cv::Scalar(30, 30, 30), 1);
+  }
+  cv::putText(img, g.name + "  (orange: start, blue: exploration box, grid 2.5 m)",
+              cv::Point(8, H - 10), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(30, 30, 30), 1);
+  return img;
+}
+
+}  // namespace
+
+int runWorldCommand(int argc, char** argv) {
+  const std::string sub = argc > 0 ? argv[0] : "";
+  if (sub.empty() || sub == "--help" || sub == "-h") {
+    std::printf("usage: msbench world list | build NAME [--seed S] | show NAME --out DIR [--seed S]\n\n"
+                "  list   worlds under %s\n  build  generate into the cache (%s)\n"
+                "  show   top-down map and fisheye views from the start pose\n",
+                worldsDir().c_str(), worldCacheDir().c_str());
+    return sub.empty() ? kExitUsage : kExitOk;
+  }
+  if (sub == "list") {
+    ArgParser args("msbench world list", "List the worlds.");
+    if (!args.parse(argc - 1, argv + 1)) return kExitOk;
+    for (const auto& w : listWorlds())
+      std::printf("%-10s %-9s %s\n", w.name.c_str(), w.generated ? "generated" : "mjcf",
+                  w.description.c_str());
+    return kExitOk;
+  }
+  if (sub == "build") {
+    ArgParser args("msbench world build", "Generate a world (MJCF, textures, shapes) into the cache.");
+    args.positional("NAME", "world name").option("seed", "", "placement seed (default: the spec's)");
+    if (!args.parse(argc - 1, argv + 1)) return kExitOk;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
+    const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
+    // Compile once in MuJoCo (fails loudly on any MuJoCo error or warning).
+    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, w.generated.start);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("world %s: %s (%s) in %.2f s; %d collision + %d visual geoms (MuJoCo model: %d geoms)\n",
+                w.generated.name.c_str(), w.directory.c_str(), w.reused ? "cached" : "built", secs,
+                w.generated.collision_geoms, w.generated.visual_geoms, sim.geomCount());
+    for (const auto& [kind, n] : w.generated.object_counts) std::printf("  %-10s %d\n", kind.c_str(), n);
+    return kExitOk;
+  }
+  if (sub == "show") {
+    ArgParser args("msbench world show", "Write a top-down map and fisheye views of a world.");
+    args.positional("NAME", "world name")
+        .option("out", "", "output directory", true)
+        .option("seed", "", "placement seed (default: the spec's)")
+        .option("m-per-px", "0.2", "top-down map resolution")
+        .flag("overwrite", "replace an existing output directory");
+    if (!args.parse(argc - 1, argv + 1)) return kExitOk;
+    const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
+    const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
+    StagedOutputDir out(args.get("out"), args.has("overwrite"));
+    cv::imwrite((out.staging() / "topdown.png").string(), renderTopDown(w, args.getDouble("m-per-px")));
+
+    // Fisheye views from 1.5 m above the start at four headings, in a 2x2 mosaic.
+    const Pose start = w.generated.start * poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
+    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, start);
+    sim.beginTick();
+    const FisheyeCamera cam{FisheyeCameraConfig{}};
+    FisheyeRenderer renderer(FisheyeRendererConfig{}, cam, sim.model());
+    cv::Mat mosaic(2 * cam.height(), 2 * cam.width(), CV_8UC1);
+    for (int k = 0; k < 4; ++k) {
+      CameraFrame f;
+      renderer.render(sim.data(), start * poseFromXyzYaw(Vec3::Zero(), k * M_PI / 2) * cam.T_B_C(), &f);
+      cv::Mat(f.height, f.width, CV_8UC1, f.pixels.data())
+          .copyTo(mosaic(cv::Rect((k % 2) * cam.width(), (k / 2) * cam.height(), cam.width(), cam.height())));
+    }
+    cv::imwrite((out.staging() / "views.png").string(), mosaic);
+
+    const WorldTruth truth(w.generated.shapes);
+    const auto columns = truth.explorableColumns(w.generated.exploration_box);
+    const Aabb& b = w.generated.exploration_box;
+    const int total = int(std::floor((b.max.x() - b.min.x()) / 2.5 + 1e-9)) *
+                      int(std::floor((b.max.y() - b.min.y()) / 2.5 + 1e-9));
+    nlohmann::json j = {{"world", w.generated.name},
+                        {"directory", w.directory},
+                        {"collision_geoms", w.generated.collision_geoms},
+                        {"visual_geoms", w.generated.visual_geoms},
+                        {"objects", w.generated.object_counts},
+                        {"box_columns", total},
+                        {"explorable_columns", columns.size()},
+                        {"explorable_area_m2", 6.25 * columns.size()}};
+    writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
+    out.commit();
+    std::printf("world %s: %zu of %d columns of the exploration box explorable (%.0f m2) -> %s\n",
+                w.generated.name.c_str(), columns.size(), total, 6.25 * columns.size(),
+                out.finalDir().c_str());
+    return kExitOk;
+  }
+  throw UsageError("unknown world sub-command '" + sub + "' (list, build, show)");
+}
+
+}  // namespace msb

@@ -1,0 +1,42 @@
+// Finding, loading and building worlds by name for the CLI: worlds/<name>/spec.yaml (generated,
+// cached) or worlds/<name>/world.xml (hand-written MJCF), or any MJCF file path.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/world/world_cache.h"
+
+namespace msb {
+
+/// The worlds directory: $MSBENCH_WORLDS_DIR or the source tree's worlds/.
+std::string worldsDir();
+/// The generated-world cache: $MSBENCH_CACHE_DIR or <worlds dir>/.cache.
+std::string worldCacheDir();
+
+/// A world known by name.
+struct WorldEntry {
+  std::string name;
+  std::string description;
+  std::string path;     ///< spec.yaml or world.xml
+  bool generated;       ///< true for spec.yaml worlds
+};
+
+/// All worlds in the worlds directory, sorted by name.
+std::vector<WorldEntry> listWorlds();
+
+/// Loads and validates a world spec file (the YAML layer). Throws FileConfigError.
+WorldSpec loadWorldSpec(const std::string& path);
+
+/// A world ready to load into the simulator.
+struct ResolvedWorld {
+  std::string world_xml;             ///< MJCF path
+  std::optional<BuiltWorld> built;   ///< generated worlds: shapes, start, box, counts
+};
+
+/// Resolves a world argument (name or MJCF path); generated worlds are built into the cache
+/// with the spec's seed or `seed` if given. Throws std::runtime_error naming what exists.
+ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed = std::nullopt);
+
+}  // namespace msb
