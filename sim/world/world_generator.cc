@@ -212,13 +212,18 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
     buildCave(*spec.cave, b);
     out.object_counts["cave_box"] = b.collisionGeoms() - 1;
   }
-  // Obstacles placed so far (rock of the cave) for placement checks.
-  std::vector<Shape> fixed(b.shapes().begin() + 1, b.shapes().end());
-  const WorldTruth fixed_truth(fixed);
-  struct Disc { Vec2 c; double r; };
-  std::vector<Disc> placed;
   const Vec2 start_xy = spec.start_position_m.head<2>();
   const Vec2 half_ground = 0.5 * spec.ground_size_m;
+  // Clearance of a candidate footprint disc from everything built so far (exact distance to
+  // the existing shapes, probed at several heights; ground, floor and cave ceilings skipped).
+  auto clearance = [&](const Vec2& xy) {
+    double d = 1e9;
+    for (const auto& s : b.shapes()) {
+      if (s.kind == ObstacleKind::kGround) continue;
+      for (double z : {0.5, 2.0, 4.0, 7.0, 12.0}) d = std::min(d, s.signedDistance(Vec3(xy.x(), xy.y(), z)));
+    }
+    return d;
+  };
 
   RngStream placement(spec.seed, "world_gen_" + spec.name);
   for (size_t gi = 0; gi < spec.objects.size(); ++gi) {
@@ -240,21 +245,18 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
         // Rejection sampling: inside the region and the ground, clear of the start and of
         // other objects (1 m gap), and for caves clear of the rock.
         bool ok = false;
-        for (int attempt = 0; attempt < 500 && !ok; ++attempt) {
+        for (int attempt = 0; attempt < 3000 && !ok; ++attempt) {
           xy = Vec2(placement.uniform(g.region_min->x(), g.region_max->x()),
                     placement.uniform(g.region_min->y(), g.region_max->y()));
           yaw = g.yaw_deg ? *g.yaw_deg * kDeg : placement.uniform(-M_PI, M_PI);
           ok = (xy - start_xy).norm() >= spec.start_clearance_m + r &&
-               (xy.cwiseAbs().array() <= (half_ground.array() - r)).all();
-          for (const auto& d : placed) ok = ok && (xy - d.c).norm() >= d.r + r + 1.0;
-          if (ok && spec.cave)
-            ok = fixed_truth.distance(Vec3(xy.x(), xy.y(), 1.0), r + 2.0) >= r + 0.5;
+               (xy.cwiseAbs().array() <= (half_ground.array() - r)).all() &&
+               clearance(xy) >= r + 1.0;
         }
         if (!ok)
           throw std::runtime_error("world '" + spec.name + "': could not place " + id +
                                    " (objects[" + std::to_string(gi) + "]) in its region");
       }
-      placed.push_back({xy, r});
       buildObject(g, id, xy, yaw, size, detail, b);
     }
   }

@@ -1,0 +1,136 @@
+// Texture realism on rendered images: trackable corners on textured surfaces at 5 m, none inside
+// textureless ones, thin rods at most 2 px wide at 10 m.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "sim/physics/quadrotor_sim.h"
+#include "sim/render/fisheye_renderer.h"
+#include "sim/world/world_cache.h"
+
+namespace msb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A one-object world in front of a camera at (0, 0, 1.5) looking along +x.
+struct OneObject {
+  BuiltWorld world;
+  FisheyeCamera camera;
+  CameraFrame frame;
+  Pose T_W_C;
+
+  explicit OneObject(const ObjectGroupSpec& object, const std::string& tag) {
+    WorldSpec s;
+    s.name = "probe_" + tag;
+    s.ground_size_m = Vec2(100, 100);
+    s.exploration_box = {Vec3(-10, -10, 0), Vec3(10, 10, 5)};
+    s.start_clearance_m = 0;
+    s.objects = {object};
+    const fs::path cache = fs::path(::testing::TempDir()) / "msb_world_render";
+    world = buildWorld(s, cache.string());
+    const Pose T_W_B = poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
+    QuadrotorSim sim(PhysicsConfig{}, world.world_xml, T_W_B);
+    sim.beginTick();
+    FisheyeRenderer renderer(FisheyeRendererConfig{}, camera, sim.model());
+    T_W_C = T_W_B * camera.T_B_C();
+    renderer.render(sim.data(), T_W_C, &frame);
+  }
+
+  cv::Mat image() const {
+    return cv::Mat(frame.height, frame.width, CV_8UC1, const_cast<uint8_t*>(frame.pixels.data())).clone();
+  }
+
+  // Pixels whose ray first hits a shape of `object` (or the shape of that name), eroded by
+  // `margin` px (silhouettes excluded).
+  cv::Mat mask(const std::string& object, int margin) const {
+    const WorldTruth truth(world.generated.shapes);
+    cv::Mat m(frame.height, frame.width, CV_8UC1, cv::Scalar(0));
+    for (int v = 0; v < frame.height; ++v)
+      for (int u = 0; u < frame.width; ++u) {
+        if (!camera.pixelInFov(Vec2(u, v))) continue;
+        const Vec3 d = T_W_C.linear() * camera.unproject(Vec2(u, v));
+        const auto hit = truth.raycast(T_W_C.translation(), d, 200.0);
+        if (hit && (world.generated.shapes[hit->shape].object == object ||
+                    world.generated.shapes[hit->shape].name == object))
+          m.at<uint8_t>(v, u) = 255;
+      }
+    cv::erode(m, m, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * margin + 1, 2 * margin + 1)));
+    return m;
+  }
+
+  // FAST corners (threshold 15, as the tracker) inside the mask.
+  int fastCornersIn(const cv::Mat& m) const {
+    std::vector<cv::KeyPoint> kps;
+    cv::FAST(image(), kps, 15, true);
+    int n = 0;
+    for (const auto& k : kps) n += m.at<uint8_t>(int(k.pt.y), int(k.pt.x)) > 0;
+    return n;
+  }
+};
+
+ObjectGroupSpec wallAhead(const std::string& kind, const std::string& variant = "",
+                          const std::string& texture = "") {
+  ObjectGroupSpec o;
+  o.kind = kind;
+  o.at = Vec2(5.0 + 2.0, 0.0);  // near face at x = 5 m
+  o.yaw_deg = 90;  // length (20 m) across the view, depth 4 m
+  o.size_min = o.size_max = Vec3(20.0, 4.0, 10.0);
+  o.variant = variant;
+  o.burned_fraction = 0.95;
+  o.texture = texture;
+  return o;
+}
+
+TEST(WorldTextures, TexturedWallsAt5mGiveManyFastCorners) {
+  for (const std::string tex : {"facade", "bricks", "concrete", "rock"}) {
+    OneObject w(wallAhead("building", "", tex), "wall_" + tex);
+    const cv::Mat m = w.mask("building_0", 6);
+    ASSERT_GT(cv::countNonZero(m), 20000) << tex;
+    EXPECT_GE(w.fastCornersIn(m), 50) << tex;
+  }
+}
+
+TEST(WorldTextures, TexturelessSurfacesGiveNoCornersInside) {
+  // A burned (textureless) building face: corners only at its silhouette, none inside.
+  OneObject w(wallAhead("building", "burned"), "burned");
+  const cv::Mat m = w.mask("building_0_burned", 6);
+  ASSERT_GT(cv::countNonZero(m), 20000);
+  EXPECT_LE(w.fastCornersIn(m), 2);
+  // A car at 5 m.
+  ObjectGroupSpec car;
+  car.kind = "car";
+  car.at = Vec2(7.0, 0.0);
+  car.yaw_deg = 90;
+  car.size_min = car.size_max = Vec3(4.5, 1.9, 1.5);
+  OneObject c(car, "car");
+  const cv::Mat cm = c.mask("car_0", 6);
+  ASSERT_GT(cv::countNonZero(cm), 2000);
+  EXPECT_LE(c.fastCornersIn(cm), 2);
+}
+
+TEST(WorldTextures, ThinRodsAreAtMost2PixelsWideAt10m) {
+  ObjectGroupSpec rod;
+  rod.kind = "rod";
+  rod.at = Vec2(10.0, 0.0);
+  rod.size_min = rod.size_max = Vec3(0.03, 0.0, 6.0);
+  OneObject w(rod, "rod");
+  // Above the horizon the rod stands against the black sky: measure its width on rows there.
+  const Vec2 top = w.camera.project(w.T_W_C.inverse() * Vec3(10.0, 0, 4.5));
+  const cv::Mat img = w.image();
+  int widest = 0, seen_rows = 0;
+  for (int v = int(top.y()); v < int(top.y()) + 20; ++v) {
+    int width = 0;
+    for (int u = int(top.x()) - 8; u <= int(top.x()) + 8; ++u) width += img.at<uint8_t>(v, u) > 40;
+    widest = std::max(widest, width);
+    seen_rows += width > 0;
+  }
+  EXPECT_GT(seen_rows, 15);  // the rod is visible
+  EXPECT_LE(widest, 2);
+}
+
+}  // namespace
+}  // namespace msb

@@ -1,0 +1,159 @@
+// The benchmark worlds: compile cleanly, deterministic, seed moves objects only, ground truth
+// agrees with MuJoCo's own ray casts, start poses have clearance.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/common/rng.h"
+#include "sim/physics/quadrotor_sim.h"
+#include "sim/world/world_cache.h"
+#include "tools/msbench/world_registry.h"
+
+namespace msb {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kWorlds = {"urban", "cave", "rooftops", "sparse"};
+
+WorldSpec spec(const std::string& name) {
+  return loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/" + name + "/spec.yaml");
+}
+
+fs::path tempCache(const std::string& tag) {
+  const fs::path d = fs::path(::testing::TempDir()) /
+                     ("msb_world_" + tag + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(d);
+  return d;
+}
+
+std::string readBytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(Worlds, EveryWorldCompilesInMuJoCoWithoutWarningsAndStartsCollisionFree) {
+  const fs::path cache = tempCache("compile");
+  for (const auto& name : kWorlds) {
+    const BuiltWorld w = buildWorld(spec(name), cache.string());
+    // QuadrotorSim throws on any MuJoCo error or warning.
+    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, poseFromXyzYaw(w.generated.start.translation() + Vec3(0, 0, 0.05), 0));
+    EXPECT_EQ(sim.geomCount(), w.generated.collision_geoms + w.generated.visual_geoms + 5) << name;
+    for (int i = 0; i < 20; ++i) {
+      EXPECT_FALSE(sim.beginTick()) << name;
+      sim.endTick(Vec4::Zero());
+    }
+  }
+}
+
+TEST(Worlds, GenerationIsByteIdenticalForTheSameSpecAndSeed) {
+  for (const auto& name : kWorlds) {
+    const BuiltWorld a = buildWorld(spec(name), tempCache("a_" + name).string());
+    const BuiltWorld b = buildWorld(spec(name), tempCache("b_" + name).string());
+    EXPECT_EQ(readBytes(a.world_xml), readBytes(b.world_xml)) << name;
+    EXPECT_EQ(readBytes(fs::path(a.directory) / "shapes.csv"), readBytes(fs::path(b.directory) / "shapes.csv"));
+    for (const auto& t : a.generated.textures)
+      EXPECT_EQ(readBytes(fs::path(a.directory) / "textures" / (t + ".png")),
+                readBytes(fs::path(b.directory) / "textures" / (t + ".png")))
+          << name << " " << t;
+  }
+}
+
+TEST(Worlds, ADifferentSeedMovesObjectsButKeepsCountsAndSizes) {
+  for (const auto& name : kWorlds)
+   for (uint64_t seed = 2; seed <= 6; ++seed) {
+    WorldSpec s1 = spec(name), s2 = spec(name);
+    s2.seed = seed;
+    GeneratedWorld a, b;
+    try {
+      a = generateWorld(s1);
+      b = generateWorld(s2);
+    } catch (const std::exception& e) {
+      FAIL() << name << ": " << e.what();
+    }
+    ASSERT_EQ(a.shapes.size(), b.shapes.size()) << name;
+    EXPECT_EQ(a.object_counts, b.object_counts);
+    int moved = 0;
+    for (size_t i = 0; i < a.shapes.size(); ++i) {
+      ASSERT_EQ(a.shapes[i].name, b.shapes[i].name);
+      EXPECT_TRUE(a.shapes[i].size.isApprox(b.shapes[i].size, 1e-12)) << a.shapes[i].name;
+      moved += (a.shapes[i].pose.translation() - b.shapes[i].pose.translation()).norm() > 0.1;
+    }
+    EXPECT_GT(moved, 10) << name;
+  }
+}
+
+TEST(Worlds, GroundTruthRayCastsAgreeWithMuJoCoWithin1cm) {
+  const fs::path cache = tempCache("rays");
+  for (const auto& name : kWorlds) {
+    const BuiltWorld w = buildWorld(spec(name), cache.string());
+    const WorldTruth truth(w.generated.shapes);
+    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, poseFromXyzYaw(Vec3(0, 0, -50), 0));  // vehicle out of the way
+    const mjtByte collision_groups[mjNGROUP] = {1, 0, 0, 0, 1, 0};
+    RngStream rng(11, "rays_" + name);
+    const Aabb& box = w.generated.exploration_box;
+    int compared = 0;
+    for (int i = 0; i < 1000; ++i) {
+      const Vec3 o(rng.uniform(box.min.x(), box.max.x()), rng.uniform(box.min.y(), box.max.y()),
+                   rng.uniform(0.3, box.max.z()));
+      if (truth.distance(o) < 0.2) continue;
+      const Vec3 d = Vec3(rng.normal(), rng.normal(), rng.normal()).normalized();
+      const auto hit = truth.raycast(o, d, 300.0);
+      int geom = -1;
+      const double t = mj_ray(sim.model(), sim.data(), o.data(), d.data(), collision_groups, 1, -1, &geom);
+      // MuJoCo's ground plane ends at the ground extent; the truth's half-space does not.
+      if (hit && w.generated.shapes[hit->shape].type == ShapeType::kHalfSpace) {
+        const Vec3 p = o + hit->distance_m * d;
+        const Vec2 half = 0.5 * spec(name).ground_size_m;
+        if (std::abs(p.x()) > half.x() - 0.01 || std::abs(p.y()) > half.y() - 0.01) continue;
+      }
+      if (!hit || hit->distance_m > 150.0) {
+        EXPECT_TRUE(t < 0 || t > 149.0) << name << " mj_ray hit " << t << " where the truth has none";
+        continue;
+      }
+      ASSERT_GE(t, 0.0) << name << ": truth hit " << w.generated.shapes[hit->shape].name << " at "
+                        << hit->distance_m << ", MuJoCo nothing";
+      EXPECT_NEAR(t, hit->distance_m, 0.01)
+          << name << ": truth " << w.generated.shapes[hit->shape].name << ", MuJoCo "
+          << mj_id2name(sim.model(), mjOBJ_GEOM, geom);
+      ++compared;
+    }
+    EXPECT_GT(compared, 300) << name;  // of ~1000 rays; the rest leave the world
+  }
+}
+
+TEST(Worlds, StartPosesKeepAtLeast6mClearance) {
+  for (const auto& name : kWorlds) {
+    const GeneratedWorld g = generateWorld(spec(name));
+    std::vector<Shape> obstacles;
+    for (const auto& s : g.shapes)
+      if (s.type != ShapeType::kHalfSpace) obstacles.push_back(s);
+    const WorldTruth truth(obstacles);
+    for (double z = 0.3; z <= 3.0; z += 0.1) {
+      const Vec3 p = g.start.translation() + Vec3(0, 0, z);
+      EXPECT_GE(truth.distance(p, 100.0), 6.0) << name << " at height " << z;
+    }
+    EXPECT_TRUE(g.exploration_box.contains(g.start.translation() + Vec3(0, 0, 1)));
+  }
+}
+
+TEST(Worlds, ListingShowsTheFourBenchmarkWorldsAndTheTestWorld) {
+  std::vector<std::string> names;
+  for (const auto& w : listWorlds()) names.push_back(w.name);
+  for (const auto& n : {"cave", "rooftops", "sparse", "test", "urban"})
+    EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
+}
+
+TEST(Worlds, UnknownObjectKindIsAConfigError) {
+  WorldSpec s = spec("sparse");
+  s.objects[0].kind = "dragon";
+  EXPECT_THROW(generateWorld(s), ConfigError);
+}
+
+}  // namespace
+}  // namespace msb
