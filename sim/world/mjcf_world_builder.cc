@@ -33,6 +33,7 @@ std::string MjcfWorldBuilder::material(const Look& look) {
       textures_.insert(look.texture);
       cube_textures_.insert(look.texture);
       return "matcube_" + look.texture;
+    case Look::kHidden: return "";
     case Look::kFlat: {
       const int g = std::clamp(int(std::lround(look.grey * 255)), 0, 255);
       auto it = flat_materials_.find(g);
@@ -55,7 +56,8 @@ std::string MjcfWorldBuilder::collisionGeom(const Shape& s, const Look& look,
   else if (s.type == ShapeType::kCylinder) g << num(s.size.x()) << " " << num(s.size.z());
   else g << num(s.size.x());
   g << "\"";
-  if (look.type == Look::kTextured) g << " group=\"" << geom_groups::kCollisionOnly << "\" rgba=\"0.5 0.5 0.5 1\"";
+  if (look.type == Look::kTextured || look.type == Look::kHidden)
+    g << " group=\"" << geom_groups::kCollisionOnly << "\" rgba=\"0.5 0.5 0.5 1\"";
   else g << " group=\"" << geom_groups::kRendered << "\" material=\"" << mat << "\"";
   g << "/>\n";
   return g.str();
@@ -85,10 +87,19 @@ void MjcfWorldBuilder::addBox(const std::string& name, const std::string& object
   const std::string mat = material(look);
   bodies_ << collisionGeom(s, look, mat);
   shapes_.push_back(s);
-  if (look.type != Look::kTextured) return;
+  if (look.type == Look::kTextured) addBoxMesh(name + "_vis", T, half, look.texture);
+}
 
+void MjcfWorldBuilder::addVisualSlab(const std::string& name, const Pose& T, const Vec3& half,
+                                     const std::string& texture) {
+  textures_.insert(texture);
+  addBoxMesh(name, T, half, texture);
+}
+
+void MjcfWorldBuilder::addBoxMesh(const std::string& name, const Pose& T, const Vec3& half,
+                                  const std::string& texture) {
   // Visual mesh: 6 quads with texture coordinates in tiles, counter-clockwise from outside.
-  const double tile = textureTileMeters(look.texture);
+  const double tile = textureTileMeters(texture);
   std::vector<Vec3> v;
   std::vector<Vec2> uv;
   std::vector<std::array<int, 3>> f;
@@ -112,7 +123,7 @@ void MjcfWorldBuilder::addBox(const std::string& name, const std::string& object
       f.push_back({base, base + 2, base + 3});
     }
   }
-  addMesh(name + "_vis", v, uv, f, mat);
+  addMesh(name, v, uv, f, "mat_" + texture);
 }
 
 void MjcfWorldBuilder::addCylinder(const std::string& name, const std::string& object,

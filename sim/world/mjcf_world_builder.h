@@ -29,13 +29,15 @@ inline constexpr int kCollisionOnly = 4; ///< collision geoms hidden from the ca
 
 /// How a solid looks.
 struct Look {
-  enum Type { kTextured, kFlat, kCube } type = kFlat;
+  enum Type { kTextured, kFlat, kCube, kHidden } type = kFlat;
   std::string texture;  ///< pattern name (textured, cube)
   double grey = 0.5;    ///< intensity in [0, 1] (flat)
 
   static Look textured(std::string t) { return {kTextured, std::move(t), 0.5}; }
   static Look flat(double g) { return {kFlat, "", g}; }
   static Look cube(std::string t) { return {kCube, std::move(t), 0.5}; }
+  /// Collision only; the look comes from separate visual slabs (e.g. cave rock skins).
+  static Look hidden() { return {kHidden, "", 0.5}; }
 };
 
 /// Accumulates solids; produces MJCF text and shapes.
@@ -53,6 +55,10 @@ class MjcfWorldBuilder {
   /// A sphere.
   void addSphere(const std::string& name, const std::string& object, const Vec3& centre,
                  double radius, ObstacleKind kind, const Look& look);
+  /// A visual-only textured box (no collision, no ground-truth shape), e.g. the skin of a
+  /// larger collision solid whose hidden faces need not be drawn.
+  void addVisualSlab(const std::string& name, const Pose& T, const Vec3& half,
+                     const std::string& texture);
   /// The ground: plane z = 0 of the given extent with a texture repeating every tile.
   void setGround(const Vec2& size_m, const std::string& texture);
 
@@ -71,6 +77,7 @@ class MjcfWorldBuilder {
   void addMesh(const std::string& name, const std::vector<Vec3>& v, const std::vector<Vec2>& uv,
                const std::vector<std::array<int, 3>>& faces, const std::string& material);
   std::string collisionGeom(const Shape& s, const Look& look, const std::string& material);
+  void addBoxMesh(const std::string& name, const Pose& T, const Vec3& half, const std::string& texture);
 
   std::string model_name_;
   std::vector<Shape> shapes_;

@@ -1,7 +1,10 @@
 #include "sim/world/world_generator.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/common/rng.h"
 #include "sim/world/mjcf_world_builder.h"
@@ -148,6 +151,7 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
 // Carves the cave: solid rock everywhere in the footprint except chambers and tunnels, and a
 // ceiling over each carved cell at its height. Rectangles of equal cells are merged into boxes.
 void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
+  constexpr double kSkin = 0.02;  // thickness of the visual skins
   const int nx = int(std::ceil((cave.max.x() - cave.min.x()) / cave.cell_m));
   const int ny = int(std::ceil((cave.max.y() - cave.min.y()) / cave.cell_m));
   std::vector<double> height(size_t(nx) * ny, 0.0);  // 0 = solid, else ceiling height
@@ -196,8 +200,59 @@ void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
       const std::string name = h == 0.0 ? "cave_rock_" + std::to_string(rock++)
                                         : "cave_ceiling_" + std::to_string(ceiling++);
       b.addBox(name, h == 0.0 ? "cave_rock" : "cave_ceiling", T, half,
-               h == 0.0 ? ObstacleKind::kTextured : ObstacleKind::kGround, Look::textured(cave.texture));
+               h == 0.0 ? ObstacleKind::kTextured : ObstacleKind::kGround, Look::hidden());
+      if (h > 0.0) {  // visible skin: the ceiling's underside
+        Pose S = Pose::Identity();
+        S.translation() = Vec3(T.translation().x(), T.translation().y(), h + 0.5 * kSkin);
+        b.addVisualSlab("cave_ceiling_skin_" + std::to_string(ceiling - 1), S,
+                        Vec3(half.x(), half.y(), 0.5 * kSkin), cave.texture);
+      }
     }
+
+  // Wall skins: wherever a carved cell borders rock (or a lower ceiling), a thin textured slab
+  // just inside the rock. Drawing only these faces, not the rock boxes, avoids rendering hidden
+  // faces and overdraw. Faces along one boundary line with equal heights are merged.
+  struct Face { int axis, sign, line; double zlo, zhi; };
+  std::map<std::tuple<int, int, int, double, double>, std::vector<int>> runs;
+  auto heightAt = [&](int i, int j) {
+    return (i < 0 || j < 0 || i >= nx || j >= ny) ? 0.0 : height[size_t(j) * nx + i];
+  };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double h = heightAt(i, j);
+      if (h == 0.0) continue;
+      const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+      for (int k = 0; k < 4; ++k) {
+        const double hn = heightAt(i + di[k], j + dj[k]);
+        if (hn >= h) continue;
+        const int axis = k < 2 ? 0 : 1, sign = k % 2 == 0 ? 1 : -1;  // towards the rock
+        const int line = axis == 0 ? i + (sign > 0 ? 1 : 0) : j + (sign > 0 ? 1 : 0);
+        runs[{axis, sign, line, hn, h}].push_back(axis == 0 ? j : i);
+      }
+    }
+  int skin = 0;
+  for (auto& [key, cells] : runs) {
+    const auto [axis, sign, line, zlo, zhi] = key;
+    std::sort(cells.begin(), cells.end());
+    for (size_t a = 0; a < cells.size();) {
+      size_t e = a;
+      while (e + 1 < cells.size() && cells[e + 1] == cells[e] + 1) ++e;
+      const double along0 = (axis == 0 ? cave.min.y() : cave.min.x()) + cells[a] * cave.cell_m;
+      const double along1 = (axis == 0 ? cave.min.y() : cave.min.x()) + (cells[e] + 1) * cave.cell_m;
+      const double across = (axis == 0 ? cave.min.x() : cave.min.y()) + line * cave.cell_m + sign * 0.5 * kSkin;
+      Pose S = Pose::Identity();
+      Vec3 half;
+      if (axis == 0) {
+        S.translation() = Vec3(across, 0.5 * (along0 + along1), 0.5 * (zlo + zhi));
+        half = Vec3(0.5 * kSkin, 0.5 * (along1 - along0), 0.5 * (zhi - zlo));
+      } else {
+        S.translation() = Vec3(0.5 * (along0 + along1), across, 0.5 * (zlo + zhi));
+        half = Vec3(0.5 * (along1 - along0), 0.5 * kSkin, 0.5 * (zhi - zlo));
+      }
+      b.addVisualSlab("cave_wall_skin_" + std::to_string(skin++), S, half, cave.texture);
+      a = e + 1;
+    }
+  }
 }
 
 }  // namespace

@@ -79,6 +79,12 @@ cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
   for (double y = box.min.y(); y <= box.max.y() + 1e-9; y += 2.5)
     cv::line(img, px({box.min.x(), y}), px({box.max.x(), y}), cv::Scalar(200, 200, 200), 1);
   cv::rectangle(img, px(box.min.head<2>()), px(box.max.head<2>()), cv::Scalar(200, 120, 0), 2);
+  // Thin obstacles are narrower than a pixel: mark each with a small disc.
+  for (const auto& sh : g.shapes)
+    if (sh.kind == ObstacleKind::kThin) {
+      const cv::Vec3b c = kindColour(ObstacleKind::kThin);
+      cv::circle(img, px(sh.pose.translation().head<2>()), 3, cv::Scalar(c[0], c[1], c[2]), -1);
+    }
   // Start pose.
   const Vec2 s = g.start.translation().head<2>();
   const Vec2 f = s + 4.0 * g.start.linear().col(0).head<2>().normalized();
