@@ -87,7 +87,10 @@ void MjcfWorldBuilder::addBox(const std::string& name, const std::string& object
   const std::string mat = material(look);
   bodies_ << collisionGeom(s, look, mat);
   shapes_.push_back(s);
-  if (look.type == Look::kTextured) addBoxMesh(name + "_vis", T, half, look.texture);
+  if (look.type == Look::kTextured) {
+    if (!look.top_texture.empty()) textures_.insert(look.top_texture);
+    addBoxMesh(name + "_vis", T, half, look.texture, look.top_texture);
+  }
 }
 
 void MjcfWorldBuilder::addVisualSlab(const std::string& name, const Pose& T, const Vec3& half,
@@ -97,7 +100,7 @@ void MjcfWorldBuilder::addVisualSlab(const std::string& name, const Pose& T, con
 }
 
 void MjcfWorldBuilder::addBoxMesh(const std::string& name, const Pose& T, const Vec3& half,
-                                  const std::string& texture) {
+                                  const std::string& texture, const std::string& top_texture) {
   // Visual mesh: 6 quads with texture coordinates in tiles, counter-clockwise from outside.
   const double tile = textureTileMeters(texture);
   std::vector<Vec3> v;
@@ -107,6 +110,7 @@ void MjcfWorldBuilder::addBoxMesh(const std::string& name, const Pose& T, const 
   for (int axis = 0; axis < 3; ++axis) {
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;
     for (int sign : {1, -1}) {
+      if (axis == 2 && sign > 0 && !top_texture.empty()) continue;  // separate roof mesh below
       const int base = int(v.size());
       std::array<int, 4> order = {0, 1, 2, 3};
       if (sign < 0) order = {3, 2, 1, 0};
@@ -124,6 +128,12 @@ void MjcfWorldBuilder::addBoxMesh(const std::string& name, const Pose& T, const 
     }
   }
   addMesh(name, v, uv, f, "mat_" + texture);
+  if (!top_texture.empty()) {
+    // The top face alone, as a thin slab of the roof pattern flush with the box's top.
+    Pose top = T;
+    top.translation() = T * Vec3(0, 0, half.z() - 0.005);
+    addBoxMesh(name + "_top", top, Vec3(half.x(), half.y(), 0.005), top_texture);
+  }
 }
 
 void MjcfWorldBuilder::addCylinder(const std::string& name, const std::string& object,

@@ -32,12 +32,15 @@ struct Look {
   enum Type { kTextured, kFlat, kCube, kHidden } type = kFlat;
   std::string texture;  ///< pattern name (textured, cube)
   double grey = 0.5;    ///< intensity in [0, 1] (flat)
+  std::string top_texture;  ///< textured boxes: a different pattern on the top face (roofs)
 
-  static Look textured(std::string t) { return {kTextured, std::move(t), 0.5}; }
-  static Look flat(double g) { return {kFlat, "", g}; }
-  static Look cube(std::string t) { return {kCube, std::move(t), 0.5}; }
+  static Look textured(std::string t, std::string top = "") {
+    return {kTextured, std::move(t), 0.5, std::move(top)};
+  }
+  static Look flat(double g) { return {kFlat, "", g, ""}; }
+  static Look cube(std::string t) { return {kCube, std::move(t), 0.5, ""}; }
   /// Collision only; the look comes from separate visual slabs (e.g. cave rock skins).
-  static Look hidden() { return {kHidden, "", 0.5}; }
+  static Look hidden() { return {kHidden, "", 0.5, ""}; }
 };
 
 /// Accumulates solids; produces MJCF text and shapes.
@@ -77,7 +80,8 @@ class MjcfWorldBuilder {
   void addMesh(const std::string& name, const std::vector<Vec3>& v, const std::vector<Vec2>& uv,
                const std::vector<std::array<int, 3>>& faces, const std::string& material);
   std::string collisionGeom(const Shape& s, const Look& look, const std::string& material);
-  void addBoxMesh(const std::string& name, const Pose& T, const Vec3& half, const std::string& texture);
+  void addBoxMesh(const std::string& name, const Pose& T, const Vec3& half, const std::string& texture,
+                  const std::string& top_texture = "");
 
   std::string model_name_;
   std::vector<Shape> shapes_;

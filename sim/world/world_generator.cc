@@ -55,7 +55,7 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
   const auto T = ObstacleKind::kTextured;
   const Pose base = placed(xy, g.base_z_m, yaw);
   if (k == "building" || k == "tower") {
-    const Look look = Look::textured(pick(g.texture, k == "tower" ? "concrete" : "facade"));
+    const Look look = Look::textured(pick(g.texture, k == "tower" ? "concrete" : "facade"), "gravel");
     if (g.variant == "burned") {
       // A textured part and a burned, textureless part along the building's length.
       const double lb = g.burned_fraction * s.x(), lt = s.x() - lb;

@@ -48,9 +48,31 @@ TEST(Cli, HelpAndUsageErrors) {
   EXPECT_EQ(run("render-probe --out x.png --bogus 1", d / "log"), 2);
   EXPECT_NE(readText(d / "log").find("unknown option --bogus"), std::string::npos);
   EXPECT_EQ(run("render-probe --out x.png --pose 1,2", d / "log"), 2);
-  EXPECT_EQ(run("render-probe --out x.png --world nowhere", d / "log"), 1);
+  EXPECT_EQ(run("render-probe --out x.png --world nowhere", d / "log"), 2);
   EXPECT_NE(readText(d / "log").find("available: cave, rooftops, sparse, test, urban"), std::string::npos)
       << readText(d / "log");
+}
+
+TEST(Cli, WorldListBuildAndShow) {
+  const fs::path d = tempDir("world");
+  const std::string env = "MSBENCH_CACHE_DIR='" + (d / "cache").string() + "' ";
+  EXPECT_EQ(run("world list", d / "log"), 0);
+  for (const char* w : {"urban", "cave", "rooftops", "sparse", "test"})
+    EXPECT_NE(readText(d / "log").find(w), std::string::npos) << w;
+  // build: prints where and what; a second build reuses the cache.
+  ASSERT_EQ(std::system((env + "'" + kExe + "' world build sparse > '" + (d / "b1").string() + "'").c_str()), 0);
+  EXPECT_NE(readText(d / "b1").find("(built)"), std::string::npos) << readText(d / "b1");
+  ASSERT_EQ(std::system((env + "'" + kExe + "' world build sparse > '" + (d / "b2").string() + "'").c_str()), 0);
+  EXPECT_NE(readText(d / "b2").find("(cached)"), std::string::npos);
+  // show: top-down map, views and a summary with the explorable columns.
+  ASSERT_EQ(std::system((env + "'" + kExe + "' world show sparse --out '" + (d / "show").string() +
+                         "' > '" + (d / "b3").string() + "'").c_str()), 0);
+  for (const char* f : {"topdown.png", "views.png", "summary.json"})
+    EXPECT_TRUE(fs::is_regular_file(d / "show" / f)) << f;
+  const auto j = nlohmann::json::parse(readText(d / "show" / "summary.json"));
+  EXPECT_GT(j["explorable_columns"].get<int>(), 100);
+  EXPECT_EQ(run("world build nowhere", d / "log"), 2);
+  EXPECT_EQ(run("world build test", d / "log"), 2);  // hand-written, not generated
 }
 
 TEST(Cli, BadFlightFileExitsWith2AndWritesNothing) {

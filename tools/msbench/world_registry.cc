@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "tools/msbench/cli_args.h"
 #include "tools/msbench/yaml_config.h"
 #include "tools/msbench/yaml_reader.h"
 
@@ -195,7 +196,7 @@ ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed)
   }
   std::string names;
   for (const auto& w : worlds) names += (names.empty() ? "" : ", ") + w.name;
-  throw std::runtime_error("world '" + arg + "': no such file and no world of that name in " +
+  throw UsageError("world '" + arg + "': no such file and no world of that name in " +
                            worldsDir() + " (available: " + (names.empty() ? "none" : names) + ")");
 }
 

@@ -36,7 +36,8 @@ struct ResolvedWorld {
 };
 
 /// Resolves a world argument (name or MJCF path); generated worlds are built into the cache
-/// with the spec's seed or `seed` if given. Throws std::runtime_error naming what exists.
+/// with the spec's seed or `seed` if given. Throws UsageError (listing the names that exist)
+/// for an unknown world.
 ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed = std::nullopt);
 
 }  // namespace msb
