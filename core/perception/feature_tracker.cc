@@ -1,0 +1,147 @@
+#include "core/perception/feature_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+
+namespace msb {
+
+void FeatureTrackerConfig::validate(ConfigChecker& c) const {
+  c.inRange("max_tracks", max_tracks, 1, 5000);
+  c.inRange("grid_cols", grid_cols, 1, 50);
+  c.inRange("grid_rows", grid_rows, 1, 50);
+  c.inRange("fast_threshold", fast_threshold, 1, 255);
+  c.nonNegative("min_distance_px", min_distance_px);
+  c.require(klt_window_px >= 5 && klt_window_px % 2 == 1, "klt_window_px", "must be odd and >= 5");
+  c.inRange("klt_pyramid_levels", klt_pyramid_levels, 0, 6);
+  c.inRange("klt_max_iterations", klt_max_iterations, 1, 200);
+  c.positive("fb_max_error_px", fb_max_error_px);
+  c.inRange("border_px", border_px, 0, 100);
+}
+
+KltFeatureTracker::KltFeatureTracker(const FeatureTrackerConfig& config, const FisheyeCamera& camera)
+    : config_(checkValid(config)), camera_(camera) {
+  // Valid pixels: inside the FoV cone, eroded by the border margin.
+  valid_mask_ = cv::Mat(camera.height(), camera.width(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < camera.height(); ++v)
+    for (int u = 0; u < camera.width(); ++u)
+      if (camera.pixelInFov(Vec2(u, v))) valid_mask_.at<uint8_t>(v, u) = 255;
+  if (config_.border_px > 0) {
+    cv::Mat padded;
+    cv::copyMakeBorder(valid_mask_, padded, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
+    cv::erode(padded, padded,
+              cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * config_.border_px + 1, 2 * config_.border_px + 1)));
+    valid_mask_ = padded(cv::Rect(1, 1, camera.width(), camera.height())).clone();
+  }
+}
+
+TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
+  TrackFrame out;
+  out.tick = frame.tick;
+  out.t_s = frame.t_s;
+  cv::Mat img(frame.height, frame.width, CV_8UC1, const_cast<uint8_t*>(frame.pixels.data()));
+  if (config_.equalize_histogram) {
+    cv::Mat eq;
+    cv::equalizeHist(img, eq);
+    img = eq;
+  } else {
+    img = img.clone();
+  }
+  std::vector<cv::Mat> pyramid;
+  const cv::Size win(config_.klt_window_px, config_.klt_window_px);
+  cv::buildOpticalFlowPyramid(img, pyramid, win, config_.klt_pyramid_levels);
+
+  // Track the previous features forward, then backward; keep consistent ones in the mask.
+  std::vector<Track> tracks;
+  if (!prev_tracks_.empty() && !prev_pyramid_.empty()) {
+    std::vector<cv::Point2f> p0, p1, p0_back;
+    for (const auto& t : prev_tracks_) p0.emplace_back(float(t.pixel.x()), float(t.pixel.y()));
+    std::vector<uchar> st_f, st_b;
+    std::vector<float> err;
+    const cv::TermCriteria crit(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations, 0.01);
+    cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, err, win, config_.klt_pyramid_levels, crit);
+    cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1, p0_back, st_b, err, win, config_.klt_pyramid_levels, crit);
+    for (size_t i = 0; i < p0.size(); ++i) {
+      if (!st_f[i] || !st_b[i]) continue;
+      const double fb = std::hypot(p0[i].x - p0_back[i].x, p0[i].y - p0_back[i].y);
+      const int u = int(std::lround(p1[i].x)), v = int(std::lround(p1[i].y));
+      if (fb > config_.fb_max_error_px || u < 0 || v < 0 || u >= img.cols || v >= img.rows ||
+          !valid_mask_.at<uint8_t>(v, u))
+        continue;
+      Track t = prev_tracks_[i];
+      t.pixel = Vec2(p1[i].x, p1[i].y);
+      ++t.age;
+      tracks.push_back(t);
+    }
+  }
+  // Tracks that converged onto each other: keep the older (lower id) one.
+  std::vector<Track> kept;
+  for (const auto& t : tracks) {
+    bool clash = false;
+    for (const auto& k : kept) clash = clash || (k.pixel - t.pixel).norm() < 0.5 * config_.min_distance_px;
+    if (!clash) kept.push_back(t);
+  }
+  out.lost_tracks = int(prev_tracks_.size() - kept.size());
+
+  detect(img, kept, &out.new_tracks);
+  std::sort(kept.begin(), kept.end(), [](const Track& a, const Track& b) { return a.id < b.id; });
+  out.tracks = kept;
+  prev_tracks_ = kept;
+  prev_pyramid_ = std::move(pyramid);
+  return out;
+}
+
+void KltFeatureTracker::detect(const cv::Mat& img, std::vector<Track>& tracks, int* added) {
+  *added = 0;
+  const int free_slots = config_.max_tracks - int(tracks.size());
+  if (free_slots <= 0) return;
+  // Mask: valid pixels not within min_distance of an existing track.
+  cv::Mat mask = valid_mask_.clone();
+  const int r = int(std::ceil(config_.min_distance_px));
+  for (const auto& t : tracks) cv::circle(mask, cv::Point(int(t.pixel.x()), int(t.pixel.y())), r, 0, -1);
+
+  // FAST per grid cell, strongest first; each cell may fill up to its share of max_tracks.
+  const int cells = config_.grid_cols * config_.grid_rows;
+  const int per_cell = std::max(1, config_.max_tracks / cells);
+  std::vector<int> cell_count(cells, 0);
+  for (const auto& t : tracks) {
+    const int cx = std::min(config_.grid_cols - 1, int(t.pixel.x() * config_.grid_cols / img.cols));
+    const int cy = std::min(config_.grid_rows - 1, int(t.pixel.y() * config_.grid_rows / img.rows));
+    ++cell_count[cy * config_.grid_cols + cx];
+  }
+  struct Candidate { cv::KeyPoint kp; int cell; };
+  std::vector<Candidate> candidates;
+  for (int cy = 0; cy < config_.grid_rows; ++cy)
+    for (int cx = 0; cx < config_.grid_cols; ++cx) {
+      const int x0 = cx * img.cols / config_.grid_cols, x1 = (cx + 1) * img.cols / config_.grid_cols;
+      const int y0 = cy * img.rows / config_.grid_rows, y1 = (cy + 1) * img.rows / config_.grid_rows;
+      const cv::Rect roi(x0, y0, x1 - x0, y1 - y0);
+      std::vector<cv::KeyPoint> kps;
+      cv::FAST(img(roi), kps, config_.fast_threshold, true);
+      for (auto& k : kps) {
+        k.pt.x += float(x0), k.pt.y += float(y0);
+        if (mask.at<uint8_t>(int(k.pt.y), int(k.pt.x))) candidates.push_back({k, cy * config_.grid_cols + cx});
+      }
+    }
+  // Deterministic order: response, then position.
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.kp.response != b.kp.response) return a.kp.response > b.kp.response;
+    if (a.kp.pt.y != b.kp.pt.y) return a.kp.pt.y < b.kp.pt.y;
+    return a.kp.pt.x < b.kp.pt.x;
+  });
+  for (const auto& c : candidates) {
+    if (*added >= free_slots) break;
+    if (cell_count[c.cell] >= per_cell) continue;
+    const int u = int(c.kp.pt.x), v = int(c.kp.pt.y);
+    if (!mask.at<uint8_t>(v, u)) continue;  // taken by a feature added just before
+    tracks.push_back({next_id_++, Vec2(c.kp.pt.x, c.kp.pt.y), 0});
+    ++cell_count[c.cell];
+    ++*added;
+    cv::circle(mask, cv::Point(u, v), r, 0, -1);
+  }
+}
+
+}  // namespace msb

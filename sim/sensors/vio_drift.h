@@ -1,0 +1,62 @@
+// The simulated VIO pose estimate: ground truth composed with a slowly drifting world-frame
+// transform T_drift = [Rz(δψ), δt] (roll and pitch stay gravity-aligned, as in real VIO):
+//   T_W_B_est = T_drift · T_W_B_gt.
+// Drift grows with distance travelled s (metres along the ground-truth path):
+//   position: δt' = b · ds + σ_w √ds · n, with a drift-rate vector b whose size is about
+//             `position_drift_fraction` (default 1 % of distance) and whose direction wanders
+//             (b ← b + σ_b √ds · n);
+//   yaw:      δψ' = σ_ψ √ds · n  (random walk; σ_ψ = yaw_random_walk_deg_per_sqrt_m).
+// A yaw increment rotates the drift frame about the vehicle's current position, so the
+// estimated trajectory stays continuous. The estimate starts equal to ground truth (VIO world
+// frame = world frame at t = 0). Per camera frame a small white noise is added to the pose
+// handed to perception (not to the controller's state).
+#pragma once
+
+#include "core/common/config_check.h"
+#include "core/common/messages.h"
+#include "core/common/rng.h"
+
+namespace msb {
+
+/// Drift process parameters (DESIGN §6 defaults).
+struct VioDriftConfig {
+  bool enabled = true;                        ///< false: estimate = ground truth
+  double position_drift_fraction = 0.01;      ///< drift-rate size, metres per metre travelled
+  double drift_rate_wander_per_sqrt_m = 0.001;///< how fast the drift direction changes
+  double position_random_walk_m_per_sqrt_m = 0.002;  ///< extra random walk of the position
+  double yaw_random_walk_deg_per_sqrt_m = 0.1;///< yaw random walk
+  double frame_position_noise_m = 0.005;      ///< white noise per camera-frame pose
+  double frame_yaw_noise_deg = 0.02;          ///< white noise per camera-frame yaw
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Drifting pose estimate; owns the "vio_drift" RNG stream.
+class VioDriftModel {
+ public:
+  /// Seeds the stream from the scenario seed. Throws ConfigError.
+  VioDriftModel(const VioDriftConfig& config, uint64_t seed);
+
+  /// Advances the drift by the ground-truth motion since the last call and returns the
+  /// estimate of `gt` (pose, world velocity; body rates unchanged).
+  Odometry update(const Odometry& gt);
+  /// A camera-frame pose estimate: the estimate of T_W_C with per-frame white noise.
+  Pose noisyCameraPose(const Pose& T_W_C_gt);
+  /// The current drift transform (estimate frame ← world frame).
+  const Pose& drift() const { return T_drift_; }
+  /// Distance travelled so far (m).
+  double distance() const { return distance_; }
+
+ private:
+  VioDriftConfig config_;
+  RngStream rng_;
+  Pose T_drift_ = Pose::Identity();
+  double yaw_ = 0.0;
+  Vec3 rate_ = Vec3::Zero();
+  Vec3 last_position_ = Vec3::Zero();
+  bool started_ = false;
+  double distance_ = 0.0;
+};
+
+}  // namespace msb
