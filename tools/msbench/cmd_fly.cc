@@ -32,6 +32,9 @@ nlohmann::json flightMetrics(const FlightSpec& spec, const FlightResult& r) {
   j["distance_flown_m"] = r.distance_flown_m;
   j["tracking_rms_m"] = r.tracking_rms_m;
   j["tracking_max_m"] = r.tracking_max_m;
+  j["final_drift_m"] = r.final_drift_m;
+  j["drift_percent_of_distance"] = r.distance_flown_m > 0 ? 100.0 * r.final_drift_m / r.distance_flown_m : 0.0;
+  j["vio_lost_at_s"] = r.vio_lost_at_s >= 0 ? nlohmann::json(r.vio_lost_at_s) : nlohmann::json(nullptr);
   j["frames_rendered"] = r.frames_rendered;
   j["trajectory_hash"] = hexHash(r.trajectory_hash);
   if (r.collision) {
@@ -87,19 +90,22 @@ int runFlyCommand(int argc, char** argv) {
 
   int saved = 0;
   const int every = spec.camera_stream.save_every_n;
-  const FlightResult r = runFlight(spec, [&](const CameraFrame& f, int index) {
+  FlightObservers obs;
+  obs.on_frame = [&](const CameraFrame& f, int index) {
     if (every <= 0 || index % every != 0) return;
     char name[64];
     std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", index, f.t_s);
     writeFileAtomic(out.staging() / "frames" / name, encodePng(f));
     ++saved;
-  }, [&](double sim_s, double wall_s) {
+  };
+  obs.on_progress = [&](double sim_s, double wall_s) {
     // Progress every 10 simulated seconds (stderr; never part of the results).
     if (static_cast<long>(sim_s) % 10 != 0) return;
     const double rtf = sim_s / std::max(wall_s, 1e-9);
     std::fprintf(stderr, "fly: t = %.0f / %.0f s simulated, real-time factor %.1f, ETA %.0f s\n",
                  sim_s, spec.duration_s, rtf, (spec.duration_s - sim_s) / rtf);
-  });
+  };
+  const FlightResult r = runFlight(spec, obs);
 
   std::ifstream in(file, std::ios::binary);
   std::ostringstream cfg;

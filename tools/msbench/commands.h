@@ -8,6 +8,8 @@ namespace msb {
 int runFlyCommand(int argc, char** argv);
 /// `msbench render-probe --world W --pose x,y,z,yaw --out F.png`: one fisheye frame.
 int runRenderProbeCommand(int argc, char** argv);
+/// `msbench vio-eval FILE.yaml --out DIR`: perception evaluated against ground truth.
+int runVioEvalCommand(int argc, char** argv);
 /// `msbench world list|build|show`: the benchmark worlds.
 int runWorldCommand(int argc, char** argv);
 /// `msbench bench-sim`: physics and rendering throughput figures.

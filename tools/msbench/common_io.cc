@@ -33,14 +33,15 @@ std::string encodePng(const CameraFrame& frame) {
 }
 
 std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {
-  std::string s = "t,x,y,z,qw,qx,qy,qz,vx,vy,vz,ref_x,ref_y,ref_z,ref_yaw\n";
-  char line[512];
+  std::string s = "t,x,y,z,qw,qx,qy,qz,vx,vy,vz,est_x,est_y,est_z,est_yaw,ref_x,ref_y,ref_z,ref_yaw\n";
+  char line[768];
   for (const auto& r : rows) {
     std::snprintf(line, sizeof(line),
-                  "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+                  "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
                   r.t_s, r.position_m.x(), r.position_m.y(), r.position_m.z(),
                   r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z(),
                   r.velocity_mps.x(), r.velocity_mps.y(), r.velocity_mps.z(),
+                  r.est_position_m.x(), r.est_position_m.y(), r.est_position_m.z(), r.est_yaw_rad,
                   r.ref_position_m.x(), r.ref_position_m.y(), r.ref_position_m.z(),
                   r.ref_yaw_rad);
     s += line;

@@ -9,10 +9,20 @@
 
 namespace msb {
 
+namespace {
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
 uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows) {
   uint64_t h = fnv1a64(nullptr, 0);
   for (const auto& r : rows) {
-    const double v[11] = {r.t_s,
+    const double v[15] = {r.t_s,
+                          r.est_position_m.x(),
+                          r.est_position_m.y(),
+                          r.est_position_m.z(),
+                          r.est_yaw_rad,
                           r.position_m.x(),
                           r.position_m.y(),
                           r.position_m.z(),
@@ -28,8 +38,9 @@ uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows) {
   return h;
 }
 
-FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
-                       const ProgressCallback& on_progress, double trajectory_rate_hz) {
+FlightResult runFlight(const FlightSpec& spec, const FlightObservers& observers) {
+  const auto& on_frame = observers.on_frame;
+  const auto& on_progress = observers.on_progress;
   checkValid(spec);
   const auto wall_start = std::chrono::steady_clock::now();
   FlightResult result;
@@ -43,9 +54,16 @@ FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
     renderer = std::make_unique<FisheyeRenderer>(spec.render, camera, sim.model());
   if (renderer) result.gl_description = renderer->glDescription();
   const Se3Controller controller(spec.controller, spec.physics.vehicle);
-  TrajectoryTracker tracker(spec.trajectory, spec.start_position_m, spec.start_yaw_rad);
-  tracker.setPath(spec.waypoints);
+  TrajectoryTracker trajectory(spec.trajectory, spec.start_position_m, spec.start_yaw_rad);
+  trajectory.setPath(spec.waypoints);
   ImuModel imu(spec.imu, spec.seed);
+  VioDriftModel vio(spec.vio_drift, spec.seed);
+  std::unique_ptr<KltFeatureTracker> tracker;
+  std::unique_ptr<SlamPointEstimator> slam;
+  if (spec.perception.enabled) {
+    tracker = std::make_unique<KltFeatureTracker>(spec.tracker, camera);
+    slam = std::make_unique<SlamPointEstimator>(spec.slam_points, camera);
+  }
 
   // Integer schedules of every stage.
   const TickClock clock(spec.physics.physics_hz);
@@ -53,7 +71,9 @@ FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
   const RateSchedule cam_schedule(spec.physics.physics_hz, spec.camera_stream.rate_hz,
                                   "camera_stream.rate_hz");
   const RateSchedule imu_schedule(spec.physics.physics_hz, spec.imu.rate_hz, "imu.rate_hz");
-  const RateSchedule traj_schedule(spec.physics.physics_hz, trajectory_rate_hz, "trajectory");
+  const RateSchedule traj_schedule(spec.physics.physics_hz, observers.trajectory_rate_hz, "trajectory");
+  const int64_t lost_ticks = clock.ticksFor(spec.perception.lost_after_s);
+  int64_t few_tracks_since = -1;
   const int64_t max_ticks = clock.ticksFor(spec.duration_s);
   const int64_t hold_ticks = clock.ticksFor(spec.hold_after_s);
   const double ctrl_dt = ctrl_div * clock.tickSeconds();
@@ -78,6 +98,7 @@ FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
       break;
     }
     const Odometry gt = sim.groundTruth();
+    const Odometry est = vio.update(gt);
 
     // Camera render.
     if (renderer && cam_schedule.due(tick)) {
@@ -93,24 +114,49 @@ FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame,
       sum.remap_ms += rt.remap_ms;
       if (on_frame) on_frame(frame, result.frames_rendered);
       ++result.frames_rendered;
+
+      // Perception: tracks, SLAM points from the estimated camera pose, tracking loss.
+      if (tracker) {
+        auto t0 = std::chrono::steady_clock::now();
+        const TrackFrame tracks = tracker->process(frame);
+        const double tracker_ms = msSince(t0);
+        t0 = std::chrono::steady_clock::now();
+        const SlamPointsFrame points = slam->update(tracks, vio.noisyCameraPose(frame.T_W_C));
+        const double tri_ms = msSince(t0);
+        if (observers.on_perception)
+          observers.on_perception({frame, tracks, points, tracker_ms, tri_ms, rt.totalMs()});
+        if (int(tracks.tracks.size()) < spec.perception.lost_min_tracks) {
+          if (few_tracks_since < 0) few_tracks_since = tick;
+        } else {
+          few_tracks_since = -1;
+        }
+        if (few_tracks_since >= 0 && tick - few_tracks_since >= lost_ticks) {
+          result.status = "vio_lost";
+          result.vio_lost_at_s = gt.t_s;
+          break;
+        }
+      }
     }
 
     // Trajectory reference and controller.
     if (tick % ctrl_div == 0) {
-      const TrajectoryReference& ref = tracker.update(ctrl_dt);
-      cmd = controller.compute(gt, ref);
-      const double err = (gt.T_W_B.translation() - ref.position_m).norm();
+      // The controller flies on the VIO estimate; the reference lives in the estimate frame.
+      const TrajectoryReference& ref = trajectory.update(ctrl_dt);
+      cmd = controller.compute(est, ref);
+      const double err = (est.T_W_B.translation() - ref.position_m).norm();
       err_sq_sum += err * err;
       ++err_count;
       result.tracking_max_m = std::max(result.tracking_max_m, err);
-      if (tracker.finished() && finished_tick < 0) finished_tick = tick;
+      if (trajectory.finished() && finished_tick < 0) finished_tick = tick;
     }
 
     // Records.
     if (traj_schedule.due(tick)) {
-      const auto& ref = tracker.reference();
+      const auto& ref = trajectory.reference();
       result.trajectory.push_back({gt.t_s, gt.T_W_B.translation(), Quat(gt.T_W_B.linear()),
-                                   gt.v_W_mps, ref.position_m, ref.yaw_rad});
+                                   gt.v_W_mps, est.T_W_B.translation(), yawOf(est.T_W_B.linear()),
+                                   ref.position_m, ref.yaw_rad});
+      result.final_drift_m = (est.T_W_B.translation() - gt.T_W_B.translation()).norm();
     }
     result.distance_flown_m += (gt.T_W_B.translation() - last_pos).norm();
     last_pos = gt.T_W_B.translation();

@@ -15,16 +15,28 @@ namespace msb {
 /// One row of trajectory.csv.
 struct TrajectoryRow {
   double t_s;
-  Vec3 position_m;
-  Quat orientation;
-  Vec3 velocity_mps;
-  Vec3 ref_position_m;
+  Vec3 position_m;       ///< ground truth
+  Quat orientation;      ///< ground truth
+  Vec3 velocity_mps;     ///< ground truth
+  Vec3 est_position_m;   ///< VIO estimate
+  double est_yaw_rad;    ///< VIO estimate
+  Vec3 ref_position_m;   ///< trajectory reference (estimate frame)
   double ref_yaw_rad;
+};
+
+/// What perception produced for one camera frame (with the truth needed to evaluate it).
+struct PerceptionSample {
+  const CameraFrame& frame;       ///< the rendered image (pose = ground truth)
+  const TrackFrame& tracks;       ///< tracker output
+  const SlamPointsFrame& points;  ///< SLAM points (estimate frame)
+  double tracker_ms;              ///< wall time of the tracker (recorded only)
+  double triangulation_ms;        ///< wall time of the SLAM-point update (recorded only)
+  double render_ms;               ///< wall time of rendering the frame
 };
 
 /// Outcome and records of a flight.
 struct FlightResult {
-  std::string status = "completed";     ///< completed | collided | diverged
+  std::string status = "completed";     ///< completed | collided | vio_lost | diverged
   std::optional<CollisionEvent> collision;
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
@@ -36,6 +48,8 @@ struct FlightResult {
   double tracking_rms_m = 0.0;            ///< RMS |GT − reference| over controller ticks
   double tracking_max_m = 0.0;            ///< max |GT − reference|
   double distance_flown_m = 0.0;
+  double final_drift_m = 0.0;             ///< |estimated − true position| at the end
+  double vio_lost_at_s = -1.0;            ///< when tracking was declared lost
   bool path_finished = false;
   std::string gl_description;
   uint64_t trajectory_hash = 0;           ///< FNV-1a over the trajectory rows' bytes
@@ -50,9 +64,19 @@ using FrameCallback = std::function<void(const CameraFrame&, int index)>;
 /// Called once per simulated second with the simulated time and the wall time so far.
 using ProgressCallback = std::function<void(double sim_s, double wall_s)>;
 
+/// Called for every frame processed by perception (when spec.perception.enabled).
+using PerceptionCallback = std::function<void(const PerceptionSample&)>;
+
+/// Optional observers of a flight.
+struct FlightObservers {
+  FrameCallback on_frame;
+  ProgressCallback on_progress;
+  PerceptionCallback on_perception;
+  double trajectory_rate_hz = 50.0;
+};
+
 /// Runs the flight to its end. Throws std::runtime_error if the world cannot be loaded.
-FlightResult runFlight(const FlightSpec& spec, const FrameCallback& on_frame = {},
-                       const ProgressCallback& on_progress = {}, double trajectory_rate_hz = 50.0);
+FlightResult runFlight(const FlightSpec& spec, const FlightObservers& observers = {});
 
 /// Hash of trajectory rows (positions, orientations, velocities, time).
 uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows);

@@ -9,6 +9,11 @@ void CameraStreamConfig::validate(ConfigChecker& c) const {
   c.require(save_every_n >= 0, "save_every_n", "must be >= 0");
 }
 
+void PerceptionConfig::validate(ConfigChecker& c) const {
+  c.inRange("lost_min_tracks", lost_min_tracks, 0, 10000);
+  c.positive("lost_after_s", lost_after_s);
+}
+
 void FlightSpec::validate(ConfigChecker& c) const {
   c.require(!world_path.empty() || !world_name.empty(), "world", "is required");
   c.require(world_path.empty() || std::filesystem::is_regular_file(world_path), "world",
@@ -29,6 +34,12 @@ void FlightSpec::validate(ConfigChecker& c) const {
   c.nested("camera", camera);
   c.nested("render", render);
   c.nested("camera_stream", camera_stream);
+  c.nested("vio_drift", vio_drift);
+  c.nested("perception", perception);
+  c.nested("tracker", tracker);
+  c.nested("slam_points", slam_points);
+  c.require(!perception.enabled || camera_stream.enabled, "perception.enabled",
+            "needs camera_stream.enabled");
 }
 
 }  // namespace msb

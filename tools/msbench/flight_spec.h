@@ -13,7 +13,10 @@
 #include "sim/physics/se3_controller.h"
 #include "sim/physics/trajectory_tracker.h"
 #include "sim/render/fisheye_renderer.h"
+#include "core/perception/feature_tracker.h"
+#include "core/perception/slam_points.h"
 #include "sim/sensors/imu_model.h"
+#include "sim/sensors/vio_drift.h"
 
 namespace msb {
 
@@ -22,6 +25,16 @@ struct CameraStreamConfig {
   bool enabled = true;            ///< render fisheye frames at all
   double rate_hz = 15.0;          ///< render rate (first tick at or after each period)
   int save_every_n = 15;          ///< write every N-th rendered frame as PNG (0 = none)
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Perception in the loop: tracker + SLAM points on every rendered frame, tracking loss.
+struct PerceptionConfig {
+  bool enabled = false;              ///< run the tracker and triangulation (vio-eval, missions)
+  int lost_min_tracks = 15;          ///< fewer tracks than this ...
+  double lost_after_s = 2.0;         ///< ... for this long ends the run as vio_lost
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -45,6 +58,10 @@ struct FlightSpec {
   FisheyeCameraConfig camera;         ///< camera model
   FisheyeRendererConfig render;       ///< render settings
   CameraStreamConfig camera_stream;   ///< render rate and frame saving
+  VioDriftConfig vio_drift;           ///< the drifting pose estimate the controller flies on
+  PerceptionConfig perception;        ///< tracker, SLAM points, tracking loss
+  FeatureTrackerConfig tracker;       ///< feature tracker
+  SlamPointsConfig slam_points;       ///< triangulation
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -139,6 +139,52 @@ void readCameraStream(MapReader r, CameraStreamConfig& c) {
   r.finish();
 }
 
+void readVioDrift(MapReader r, VioDriftConfig& c) {
+  r.read("enabled", c.enabled);
+  r.read("position_drift_fraction", c.position_drift_fraction);
+  r.read("drift_rate_wander_per_sqrt_m", c.drift_rate_wander_per_sqrt_m);
+  r.read("position_random_walk_m_per_sqrt_m", c.position_random_walk_m_per_sqrt_m);
+  r.read("yaw_random_walk_deg_per_sqrt_m", c.yaw_random_walk_deg_per_sqrt_m);
+  r.read("frame_position_noise_m", c.frame_position_noise_m);
+  r.read("frame_yaw_noise_deg", c.frame_yaw_noise_deg);
+  r.finish();
+}
+
+void readPerception(MapReader r, PerceptionConfig& c) {
+  r.read("enabled", c.enabled);
+  r.read("lost_min_tracks", c.lost_min_tracks);
+  r.read("lost_after_s", c.lost_after_s);
+  r.finish();
+}
+
+void readTracker(MapReader r, FeatureTrackerConfig& c) {
+  r.read("max_tracks", c.max_tracks);
+  r.read("grid_cols", c.grid_cols);
+  r.read("grid_rows", c.grid_rows);
+  r.read("fast_threshold", c.fast_threshold);
+  r.read("min_distance_px", c.min_distance_px);
+  r.read("klt_window_px", c.klt_window_px);
+  r.read("klt_pyramid_levels", c.klt_pyramid_levels);
+  r.read("klt_max_iterations", c.klt_max_iterations);
+  r.read("fb_max_error_px", c.fb_max_error_px);
+  r.read("border_px", c.border_px);
+  r.read("equalize_histogram", c.equalize_histogram);
+  r.finish();
+}
+
+void readSlamPoints(MapReader r, SlamPointsConfig& c) {
+  r.read("min_parallax_deg", c.min_parallax_deg);
+  r.read("pixel_sigma_px", c.pixel_sigma_px);
+  r.read("max_reprojection_rms_px", c.max_reprojection_rms_px);
+  r.read("max_relative_depth_std", c.max_relative_depth_std);
+  r.read("max_depth_m", c.max_depth_m);
+  r.read("min_depth_m", c.min_depth_m);
+  r.read("max_points", c.max_points);
+  r.read("max_observations", c.max_observations);
+  r.read("max_iterations", c.max_iterations);
+  r.finish();
+}
+
 void readFlight(MapReader r, const fs::path& dir, FlightSpec& s) {
   std::string world;
   // A value ending in .xml is an MJCF file relative to this file; anything else a world name.
@@ -164,6 +210,10 @@ void readFlight(MapReader r, const fs::path& dir, FlightSpec& s) {
   if (r.has("camera")) readCamera(r.sub("camera"), s.camera);
   if (r.has("render")) readRender(r.sub("render"), s.render);
   if (r.has("camera_stream")) readCameraStream(r.sub("camera_stream"), s.camera_stream);
+  if (r.has("vio_drift")) readVioDrift(r.sub("vio_drift"), s.vio_drift);
+  if (r.has("perception")) readPerception(r.sub("perception"), s.perception);
+  if (r.has("tracker")) readTracker(r.sub("tracker"), s.tracker);
+  if (r.has("slam_points")) readSlamPoints(r.sub("slam_points"), s.slam_points);
   r.finish();
 }
 

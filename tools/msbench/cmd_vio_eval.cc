@@ -1,0 +1,220 @@
+// msbench vio-eval: a scripted flight with the full perception running, evaluated against the
+// world's ground truth: tracks and SLAM points per frame, point error by distance, points on
+// textureless or thin surfaces, drift, and the cost of tracking and triangulation.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "tools/msbench/cli_args.h"
+#include "tools/msbench/commands.h"
+#include "tools/msbench/common_io.h"
+#include "tools/msbench/output_files.h"
+#include "tools/msbench/perception_eval.h"
+#include "tools/msbench/world_registry.h"
+#include "tools/msbench/yaml_config.h"
+
+namespace msb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Distance bins for the point-error statistics (metres, by ground-truth depth).
+constexpr double kBinEdges[] = {0, 5, 10, 20, 40, 1e9};
+constexpr int kBins = 5;
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const size_t k = std::min(v.size() - 1, size_t(q * (v.size() - 1) + 0.5));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+// Running statistics of the evaluation.
+struct VioStats {
+  std::vector<double> errors[kBins], depth_std[kBins];
+  long point_samples = 0, textureless = 0, textureless_interior = 0, thin = 0, no_surface = 0;
+  double tracks_sum = 0, points_sum = 0, tracker_ms = 0, tri_ms = 0, render_ms = 0;
+  int frames = 0, min_tracks = 1 << 30;
+  std::string csv = "t,tracks,new_tracks,lost_tracks,slam_points,median_error_m,tracker_ms,triangulation_ms,render_ms\n";
+};
+
+// Annotated frame: tracks in grey, SLAM points coloured by depth (red near, blue far at 40 m).
+cv::Mat annotate(const PerceptionSample& s) {
+  const cv::Mat grey(s.frame.height, s.frame.width, CV_8UC1, const_cast<uint8_t*>(s.frame.pixels.data()));
+  cv::Mat img;
+  cv::cvtColor(grey, img, cv::COLOR_GRAY2BGR);
+  std::map<uint64_t, double> depth;
+  for (const auto& p : s.points.points) depth[p.track_id] = (p.p_W - s.points.T_W_C.translation()).norm();
+  for (const auto& t : s.tracks.tracks) {
+    const cv::Point c(int(t.pixel.x()), int(t.pixel.y()));
+    const auto it = depth.find(t.id);
+    if (it == depth.end()) {
+      cv::circle(img, c, 2, cv::Scalar(160, 160, 160), 1);
+      continue;
+    }
+    cv::Mat v(1, 1, CV_8UC1, cv::Scalar(255 - int(std::clamp(it->second / 40.0, 0.0, 1.0) * 255)));
+    cv::Mat col;
+    cv::applyColorMap(v, col, cv::COLORMAP_JET);
+    const cv::Vec3b b = col.at<cv::Vec3b>(0, 0);
+    cv::circle(img, c, 3, cv::Scalar(b[0], b[1], b[2]), -1);
+  }
+  char text[128];
+  std::snprintf(text, sizeof(text), "t=%.2fs tracks=%zu slam=%zu (colour: depth 0-40 m)", s.frame.t_s,
+                s.tracks.tracks.size(), s.points.points.size());
+  cv::putText(img, text, cv::Point(8, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 255, 255), 1);
+  return img;
+}
+
+}  // namespace
+
+int runVioEvalCommand(int argc, char** argv) {
+  ArgParser args("msbench vio-eval",
+                 "Fly a scripted path with the feature tracker and SLAM points running and evaluate\n"
+                 "them against the world's ground truth (generated worlds). Writes frames.csv,\n"
+                 "summary.json, trajectory.csv, metrics.json and annotated/*.png into DIR.");
+  args.positional("FILE.yaml", "flight description (as for fly)")
+      .option("out", "", "output directory", true)
+      .option("annotate-every", "30", "write every N-th processed frame annotated (0 = none)")
+      .flag("overwrite", "replace an existing output directory");
+  if (!args.parse(argc, argv)) return kExitOk;
+  const std::string file = args.get("FILE.yaml");
+  FlightSpec spec = loadFlightSpec(file);
+  spec.perception.enabled = true;
+  std::optional<BuiltWorld> built;
+  if (!spec.world_name.empty()) {
+    try {
+      const ResolvedWorld w = resolveWorld(spec.world_name);
+      spec.world_path = w.world_xml;
+      built = w.built;
+    } catch (const std::runtime_error& e) {
+      throw FileConfigError(file + ": key 'world': " + e.what());
+    }
+  }
+  const long annotate_every = args.getInt("annotate-every");
+  StagedOutputDir out(args.get("out"), args.has("overwrite"));
+  fs::create_directories(out.staging() / "annotated");
+
+  std::optional<WorldTruth> truth;
+  if (built) truth.emplace(built->generated.shapes);
+  const FisheyeCamera camera(spec.camera);
+  std::map<int64_t, Pose> gt_camera;  // ground-truth camera pose per rendered tick
+  VioStats st;
+
+  FlightObservers obs;
+  obs.on_perception = [&](const PerceptionSample& s) {
+    gt_camera[s.frame.tick] = s.frame.T_W_C;
+    std::vector<double> frame_errors;
+    if (truth) {
+      for (const auto& p : s.points.points) {
+        const PointTruth t = evaluatePoint(p, gt_camera.at(p.anchor_tick), *truth, camera);
+        ++st.point_samples;
+        if (!t.has_surface) {
+          ++st.no_surface;
+          continue;
+        }
+        st.textureless += t.kind == ObstacleKind::kTextureless;
+        st.textureless_interior += t.textureless_interior;
+        st.thin += t.kind == ObstacleKind::kThin;
+        int bin = 0;
+        while (bin + 1 < kBins && t.true_depth_m >= kBinEdges[bin + 1]) ++bin;
+        st.errors[bin].push_back(t.error_m);
+        st.depth_std[bin].push_back(p.depth_std_m);
+        frame_errors.push_back(t.error_m);
+      }
+    }
+    ++st.frames;
+    st.tracks_sum += s.tracks.tracks.size();
+    st.points_sum += s.points.points.size();
+    st.min_tracks = std::min(st.min_tracks, int(s.tracks.tracks.size()));
+    st.tracker_ms += s.tracker_ms;
+    st.tri_ms += s.triangulation_ms;
+    st.render_ms += s.render_ms;
+    char line[256];
+    std::snprintf(line, sizeof(line), "%.3f,%zu,%d,%d,%zu,%.4f,%.3f,%.3f,%.3f\n", s.frame.t_s,
+                  s.tracks.tracks.size(), s.tracks.new_tracks, s.tracks.lost_tracks,
+                  s.points.points.size(), percentile(frame_errors, 0.5), s.tracker_ms,
+                  s.triangulation_ms, s.render_ms);
+    st.csv += line;
+    if (annotate_every > 0 && (st.frames - 1) % annotate_every == 0) {
+      char name[64];
+      std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", st.frames - 1, s.frame.t_s);
+      cv::imwrite((out.staging() / "annotated" / name).string(), annotate(s));
+    }
+  };
+  const FlightResult r = runFlight(spec, obs);
+
+  // Summary.
+  const double n = std::max(1, st.frames);
+  nlohmann::json bins = nlohmann::json::array();
+  for (int b = 0; b < kBins; ++b) {
+    char label[32];
+    std::snprintf(label, sizeof(label), b + 1 < kBins ? "%g-%g m" : ">%g m", kBinEdges[b], kBinEdges[b + 1]);
+    bins.push_back({{"bin", label},
+                    {"samples", st.errors[b].size()},
+                    {"median_error_m", percentile(st.errors[b], 0.5)},
+                    {"p90_error_m", percentile(st.errors[b], 0.9)},
+                    {"median_predicted_depth_std_m", percentile(st.depth_std[b], 0.5)}});
+  }
+  const double ps = std::max<long>(1, st.point_samples);
+  nlohmann::json j = {
+      {"status", r.status},
+      {"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
+      {"sim_time_s", r.sim_time_s},
+      {"frames", st.frames},
+      {"mean_tracks_per_frame", st.tracks_sum / n},
+      {"min_tracks_per_frame", st.frames ? st.min_tracks : 0},
+      {"mean_slam_points_per_frame", st.points_sum / n},
+      {"point_error_by_distance", bins},
+      {"ground_truth", bool(truth)},
+      {"textureless_point_share", truth ? nlohmann::json(st.textureless_interior / ps) : nlohmann::json(nullptr)},
+      {"textureless_incl_silhouette_point_share", truth ? nlohmann::json(st.textureless / ps) : nlohmann::json(nullptr)},
+      {"thin_point_share", truth ? nlohmann::json(st.thin / ps) : nlohmann::json(nullptr)},
+      {"no_surface_point_share", truth ? nlohmann::json(st.no_surface / ps) : nlohmann::json(nullptr)},
+      {"distance_flown_m", r.distance_flown_m},
+      {"final_drift_m", r.final_drift_m},
+      {"drift_percent_of_distance", r.distance_flown_m > 0 ? 100 * r.final_drift_m / r.distance_flown_m : 0.0},
+      {"tracker_ms_per_frame", st.tracker_ms / n},
+      {"triangulation_ms_per_frame", st.tri_ms / n},
+      {"render_ms_per_frame", st.render_ms / n},
+      {"wall_time_s", r.wall_time_s},
+      {"trajectory_hash", hexHash(r.trajectory_hash)},
+      {"versions", versionInfo()}};
+  if (r.collision)
+    j["collision"] = {{"t_s", r.collision->t_s}, {"vehicle_geom", r.collision->vehicle_geom},
+                      {"world_geom", r.collision->world_geom},
+                      {"vehicle_position_m", {r.collision->vehicle_position_m.x(), r.collision->vehicle_position_m.y(),
+                                              r.collision->vehicle_position_m.z()}}};
+  writeFileAtomic(out.staging() / "frames.csv", st.csv);
+  writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
+  writeFileAtomic(out.staging() / "trajectory.csv", trajectoryCsv(r.trajectory));
+  out.commit();
+
+  std::printf("vio-eval %s: %s after %.1f s, %d frames%s\n", j["world"].get<std::string>().c_str(),
+              r.status.c_str(), r.sim_time_s, st.frames,
+              r.collision ? (" (hit " + r.collision->world_geom + ")").c_str() : "");
+  std::printf("  tracks/frame %.0f (min %d), SLAM points/frame %.0f, drift %.2f %% of %.0f m\n",
+              st.tracks_sum / n, st.frames ? st.min_tracks : 0, st.points_sum / n,
+              j["drift_percent_of_distance"].get<double>(), r.distance_flown_m);
+  if (truth) {
+    std::printf("  points on textureless surfaces %.2f %% (%.2f %% incl. their silhouettes), thin %.2f %%, "
+                "no surface %.2f %%\n", 100 * st.textureless_interior / ps, 100 * st.textureless / ps,
+                100 * st.thin / ps, 100 * st.no_surface / ps);
+    std::printf("  %-9s %8s %10s %10s %14s\n", "depth", "samples", "median m", "p90 m", "pred. std m");
+    for (const auto& b : bins)
+      std::printf("  %-9s %8zu %10.3f %10.3f %14.3f\n", b["bin"].get<std::string>().c_str(),
+                  b["samples"].get<size_t>(), b["median_error_m"].get<double>(),
+                  b["p90_error_m"].get<double>(), b["median_predicted_depth_std_m"].get<double>());
+  }
+  std::printf("  ms/frame: tracker %.2f, triangulation %.2f, render %.2f -> %s\n", st.tracker_ms / n,
+              st.tri_ms / n, st.render_ms / n, out.finalDir().c_str());
+  return kExitOk;
+}
+
+}  // namespace msb

@@ -1,0 +1,28 @@
+#include "tools/msbench/perception_eval.h"
+
+namespace msb {
+
+PointTruth evaluatePoint(const SlamPoint& p, const Pose& T, const WorldTruth& truth,
+                         const FisheyeCamera& camera) {
+  PointTruth out;
+  const Vec3 ray = T.linear() * camera.unproject(p.anchor_pixel);
+  const auto hit = truth.raycast(T.translation(), ray, 400.0);
+  if (!hit) return out;
+  out.has_surface = true;
+  out.true_depth_m = hit->distance_m;
+  const Shape& shape = truth.shapes()[hit->shape];
+  out.kind = shape.kind;
+  const Vec3 p_true = T.translation() + hit->distance_m * ray;
+  out.error_m = (p.p_W - p.T_W_anchor * (T.inverse() * p_true)).norm();
+  // Corners on a textureless object's silhouette are real features; only points whose
+  // neighbourhood is all that object's surface count as "on" it.
+  out.textureless_interior = shape.kind == ObstacleKind::kTextureless;
+  for (const Vec2& d : {Vec2(3, 0), Vec2(-3, 0), Vec2(0, 3), Vec2(0, -3)}) {
+    if (!out.textureless_interior) break;
+    const auto h = truth.raycast(T.translation(), T.linear() * camera.unproject(p.anchor_pixel + d), 400.0);
+    out.textureless_interior = h && truth.shapes()[h->shape].object == shape.object;
+  }
+  return out;
+}
+
+}  // namespace msb

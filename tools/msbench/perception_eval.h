@@ -1,0 +1,24 @@
+// Ground truth for SLAM points: where the anchor pixel really looks, what surface that is, and
+// how far the estimate is from it (in the estimate frame of the anchor, so drift is excluded).
+#pragma once
+
+#include "core/camera/fisheye_camera.h"
+#include "core/geometry/world_truth.h"
+#include "core/perception/slam_points.h"
+
+namespace msb {
+
+/// Ground-truth evaluation of one SLAM point.
+struct PointTruth {
+  bool has_surface = false;          ///< the anchor ray hits something within 400 m
+  double true_depth_m = 0.0;         ///< distance from the anchor camera to the true surface
+  double error_m = 0.0;              ///< |estimate − truth| in the anchor's estimate frame
+  ObstacleKind kind = ObstacleKind::kTextured;  ///< kind of the surface hit
+  bool textureless_interior = false; ///< textureless, and the 3-px neighbours see the same object
+};
+
+/// Evaluates `p` given the true camera pose of its anchor observation.
+PointTruth evaluatePoint(const SlamPoint& p, const Pose& T_W_C_true_anchor, const WorldTruth& truth,
+                         const FisheyeCamera& camera);
+
+}  // namespace msb
