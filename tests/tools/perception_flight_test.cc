@@ -13,7 +13,7 @@
 namespace msb {
 namespace {
 
-// A 3 m-radius circle around the urban start at 2.5 m, always facing west (towards the town):
+// A 3 m-radius circle centred on the urban start at 2.5 m, always facing west (the town):
 // inside the world's guaranteed 6 m start clearance, with parallax for the tracked points.
 FlightSpec urbanCircle(BuiltWorld* world) {
   WorldSpec ws = loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban/spec.yaml");
@@ -28,7 +28,7 @@ FlightSpec urbanCircle(BuiltWorld* world) {
   s.waypoints.push_back({c + Vec3(0, 0, 2.5), M_PI});
   for (int k = 0; k <= 16; ++k) {
     const double a = 2 * M_PI * k / 16;
-    s.waypoints.push_back({c + Vec3(3 * std::cos(a) - 3, 3 * std::sin(a), 2.5), M_PI});
+    s.waypoints.push_back({c + Vec3(3 * std::cos(a), 3 * std::sin(a), 2.5), M_PI});
   }
   s.camera_stream.save_every_n = 0;
   s.perception.enabled = true;
