@@ -101,16 +101,27 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   Vec3& a = ref_.accel_mps2;
   if (points_.empty()) points_ = {p}, headings_ = {std::nullopt}, cumulative_ = {0.0};
 
-  // Advance the projection of the reference onto the path (monotonic along the path).
+  // Advance the projection of the reference onto the path (monotonic along the path). A rounded
+  // corner never reaches the end of its segment, so the next segment takes over as soon as
+  // the reference projects onto it at least as closely as onto the current one.
   const size_t nseg = points_.size() - 1;
+  auto project = [&](size_t seg, double* t, double* dist) {
+    const Vec3& A = points_[seg];
+    const Vec3 AB = points_[seg + 1] - A;
+    *t = std::clamp((p - A).dot(AB) / AB.squaredNorm(), 0.0, 1.0);
+    *dist = (A + *t * AB - p).norm();
+  };
   while (nseg > 0) {
-    const Vec3& A = points_[segment_];
-    const Vec3 AB = points_[segment_ + 1] - A;
-    const double t = std::clamp((p - A).dot(AB) / AB.squaredNorm(), 0.0, 1.0);
-    s_proj_ = std::max(s_proj_, cumulative_[segment_] + t * AB.norm());
-    if (t >= 1.0 && segment_ + 1 < nseg) {
-      ++segment_;
-      continue;
+    double t, dist;
+    project(segment_, &t, &dist);
+    s_proj_ = std::max(s_proj_, cumulative_[segment_] + t * (cumulative_[segment_ + 1] - cumulative_[segment_]));
+    if (segment_ + 1 < nseg) {
+      double t2, dist2;
+      project(segment_ + 1, &t2, &dist2);
+      if (t >= 1.0 || (t2 > 0.0 && dist2 <= dist)) {
+        ++segment_;
+        continue;
+      }
     }
     break;
   }

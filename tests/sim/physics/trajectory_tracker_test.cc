@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace msb {
 namespace {
 
@@ -51,6 +53,24 @@ TEST(TrajectoryTracker, RespectsLimitsAndArrivesWithTheGoalHeading) {
   EXPECT_GT(st.max_v, 3.95);
   EXPECT_LT((st.last.position_m - Vec3(30, 20, 3)).norm(), 0.05);
   EXPECT_NEAR(st.last.yaw_rad, 2.0, 0.02);
+}
+
+TEST(TrajectoryTracker, FinishesPathsWithShortSegmentsAfterARoundedCorner) {
+  // Out 3.5 m, then two laps of a 16-gon of radius 3.5 m: every corner is rounded, so the
+  // reference never reaches a segment's end; it must still move on (regression: it stalled
+  // and oscillated at the first corner).
+  TrajectoryTracker tr(TrajectoryTrackerConfig{}, Vec3(0, 0, 0.05), 0.0);
+  std::vector<Waypoint> path = {{Vec3(0, 0, 2.5), {}}};
+  for (int k = 0; k <= 32; ++k) {
+    const double a = 2 * M_PI * k / 16;
+    path.push_back({Vec3(3.5 * std::cos(a), 3.5 * std::sin(a), 2.5), {}});
+  }
+  path.push_back({Vec3(0, 0, 2.5), 0.0});
+  tr.setPath(path);
+  const RefStats st = run(tr, 120.0);
+  EXPECT_TRUE(st.finished);
+  EXPECT_LT(st.t, 60.0);
+  EXPECT_EQ(tr.waypointsPassed(), path.size() - 1);  // all but the last, which it reached
 }
 
 TEST(TrajectoryTracker, HeadingFollowsTheDirectionOfTravel) {
