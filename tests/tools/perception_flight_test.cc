@@ -61,6 +61,7 @@ Evaluation evaluate(const FlightSpec& spec, const BuiltWorld& world) {
       if (!t.has_surface) continue;
       ++ev.samples;
       ev.textureless += t.textureless_interior;
+      if (!t.interior) continue;  // silhouette corners have no single true surface
       ev.errors[t.true_depth_m < 8 ? 0 : t.true_depth_m < 20 ? 1 : 2].push_back(t.error_m);
     }
   };

@@ -14,7 +14,8 @@ struct PointTruth {
   double true_depth_m = 0.0;         ///< distance from the anchor camera to the true surface
   double error_m = 0.0;              ///< |estimate − truth| in the anchor's estimate frame
   ObstacleKind kind = ObstacleKind::kTextured;  ///< kind of the surface hit
-  bool textureless_interior = false; ///< textureless, and the 3-px neighbours see the same object
+  bool interior = false;             ///< the anchor pixel's 3-px neighbours see the same object
+  bool textureless_interior = false; ///< interior and textureless
 };
 
 /// Evaluates `p` given the true camera pose of its anchor observation.
