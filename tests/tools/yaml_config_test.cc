@@ -1,4 +1,5 @@
 // The YAML layer: every error class names the file and the key, and valid files load fully.
+#include "tools/msbench/world_registry.h"
 #include "tools/msbench/yaml_config.h"
 
 #include <gtest/gtest.h>
@@ -116,6 +117,29 @@ TEST(YamlConfig, BadValuesAreErrors) {
 
 TEST(YamlConfig, SyntaxErrorNamesTheLine) {
   expectError("world: world.xml\ntrajectory: {waypoints: [[0,0,1]]\n", {"YAML syntax error", "line"});
+}
+
+TEST(YamlConfig, WorldSpecErrorsNameFileAndKey) {
+  const fs::path dir = tempDir();
+  auto expect = [&](const std::string& text, const std::string& fragment) {
+    std::ofstream(dir / "spec.yaml") << text;
+    try {
+      loadWorldSpec((dir / "spec.yaml").string());
+      FAIL() << text;
+    } catch (const FileConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find((dir / "spec.yaml").string()), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  const std::string base = "name: w\nexploration_box: {min: [0, 0, 0], max: [10, 10, 5]}\n";
+  expect(base + "objects: [{kind: tree, at: [1, 1], size: [3, 0, 6], colour: red}]\n", "objects[0].colour");
+  expect(base + "objects: [{kind: dragon, at: [1, 1], size: [3, 0, 6]}]\n", "unknown object kind");
+  expect(base + "ground: {texture: marble}\n", "ground.texture");
+  expect(base + "objects: [{kind: tree, size: [3, 0, 6]}]\n", "either 'at' or 'region'");
+  expect("name: w\nexploration_box: {min: [0, 0, 0], max: [10, 10, -5]}\n", "exploration_box");
+  // The shipped specs load.
+  for (const char* w : {"urban", "cave", "rooftops", "sparse"})
+    EXPECT_NO_THROW(loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/" + w + "/spec.yaml")) << w;
 }
 
 }  // namespace

@@ -90,7 +90,7 @@ void readCave(MapReader r, CaveSpec& c) {
   r.finish();
 }
 
-void readWorld(MapReader r, WorldSpec& s) {
+void readWorld(MapReader& r, WorldSpec& s) {
   r.read("name", s.name);
   r.read("description", s.description);
   r.read("seed", s.seed);
@@ -134,22 +134,7 @@ void readWorld(MapReader r, WorldSpec& s) {
 }  // namespace
 
 WorldSpec loadWorldSpec(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw FileConfigError(path + ": file not found");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw FileConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
-                          ": " + e.msg);
-  }
-  WorldSpec spec;
-  try {
-    readWorld(MapReader(root, ""), spec);
-    checkValid(spec);
-  } catch (const ConfigError& e) {
-    throw FileConfigError(path + ": " + e.what());
-  }
-  return spec;
+  return parseConfigFile<WorldSpec>(path, [](MapReader& r, WorldSpec& s) { readWorld(r, s); });
 }
 
 std::vector<WorldEntry> listWorlds() {

@@ -185,7 +185,7 @@ void readSlamPoints(MapReader r, SlamPointsConfig& c) {
   r.finish();
 }
 
-void readFlight(MapReader r, const fs::path& dir, FlightSpec& s) {
+void readFlight(MapReader& r, const fs::path& dir, FlightSpec& s) {
   std::string world;
   // A value ending in .xml is an MJCF file relative to this file; anything else a world name.
   if (r.read("world", world)) {
@@ -220,22 +220,8 @@ void readFlight(MapReader r, const fs::path& dir, FlightSpec& s) {
 }  // namespace
 
 FlightSpec loadFlightSpec(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw FileConfigError(path + ": file not found");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw FileConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
-                          ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
-  }
-  FlightSpec spec;
-  try {
-    readFlight(MapReader(root, ""), fs::absolute(path).parent_path(), spec);
-    checkValid(spec);
-  } catch (const ConfigError& e) {
-    throw FileConfigError(path + ": " + e.what());
-  }
-  return spec;
+  const fs::path dir = fs::absolute(path).parent_path();
+  return parseConfigFile<FlightSpec>(path, [&](MapReader& r, FlightSpec& s) { readFlight(r, dir, s); });
 }
 
 }  // namespace msb

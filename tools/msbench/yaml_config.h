@@ -3,18 +3,12 @@
 // and the reason; nothing is written before a file has loaded completely.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 
 #include "tools/msbench/flight_spec.h"
+#include "tools/msbench/yaml_reader.h"
 
 namespace msb {
-
-/// A configuration problem in a named file (message: "FILE: key 'k': reason").
-class FileConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// Loads and validates a flight file for `msbench fly`. Relative paths inside resolve
 /// against the file's directory.

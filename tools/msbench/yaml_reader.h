@@ -6,7 +6,9 @@
 
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,18 @@
 #include "core/common/types.h"
 
 namespace msb {
+
+/// A configuration problem in a named file (message: "FILE: key 'k': reason").
+class FileConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Loads a YAML file and converts it with `read(MapReader&, Spec&)`, then validates the
+/// result. A missing file, a syntax error, an unknown key, a wrong type or a bad value all
+/// throw FileConfigError naming the file (and the key).
+template <class Spec, class Read>
+Spec parseConfigFile(const std::string& path, Read read);
 
 // Strict reader of one YAML map: reads optional keys into typed fields and rejects unknown ones.
 class MapReader {
@@ -104,6 +118,27 @@ class MapReader {
   std::set<std::string> used_;
 };
 
+
+template <class Spec, class Read>
+Spec parseConfigFile(const std::string& path, Read read) {
+  if (!std::filesystem::is_regular_file(path)) throw FileConfigError(path + ": file not found");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw FileConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
+                          ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
+  }
+  Spec spec;
+  try {
+    MapReader reader(root, "");
+    read(reader, spec);
+    checkValid(spec);
+  } catch (const ConfigError& e) {
+    throw FileConfigError(path + ": " + e.what());
+  }
+  return spec;
+}
 
 /// Reads a 2-vector ([x, y]).
 inline void readVec2(MapReader& r, const std::string& key, Vec2& out) {
