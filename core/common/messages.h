@@ -58,4 +58,27 @@ struct TrajectoryReference {
   double yaw_rate_radps = 0.0;        ///< heading rate
 };
 
+/// A triangulated point of a currently tracked feature (VIO world frame).
+struct SlamPoint {
+  uint64_t track_id = 0;
+  Vec3 p_W = Vec3::Zero();
+  Mat3 cov_W = Mat3::Identity();   ///< position covariance, m²
+  double depth_m = 0.0;            ///< along the anchor ray
+  double depth_std_m = 0.0;        ///< 1σ depth uncertainty
+  double reprojection_rms_px = 0.0;
+  int observations = 0;
+  Pose T_W_anchor = Pose::Identity();  ///< estimated camera pose of the anchor observation
+  Vec2 anchor_pixel = Vec2::Zero();
+  int64_t anchor_tick = 0;
+};
+
+/// The mapper's input for one camera frame.
+struct SlamPointsFrame {
+  int64_t tick = 0;
+  double t_s = 0.0;
+  Pose T_W_C = Pose::Identity();   ///< estimated camera pose of this frame
+  std::vector<SlamPoint> points;   ///< sorted by track id, at most max_points
+  int tracks = 0;                  ///< tracked features in this frame
+};
+
 }  // namespace msb

@@ -1,0 +1,253 @@
+#include "core/map/sphere_map.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+
+#include "core/map/free_space_polyhedron.h"
+
+namespace msb {
+
+void SphereMapConfig::validate(ConfigChecker& c) const {
+  c.inRange("dbof_alpha", dbof_alpha, 0.0, 10.0);
+  c.require(r_max_m > r_min_m && r_min_m > 0, "r_max_m", "needs 0 < r_min_m < r_max_m");
+  c.inRange("new_sphere_samples", new_sphere_samples, 0, 100000);
+  c.positive("max_sample_range_m", max_sample_range_m);
+  c.positive("max_point_range_m", max_point_range_m);
+  c.positive("obstacle_spacing_m", obstacle_spacing_m);
+  c.inRange("sparsify_factor", sparsify_factor, 0.0, 2.0);
+  c.inRange("min_points", min_points, 3, 100000);
+  c.inRange("max_view_angle_deg", max_view_angle_deg, 1.0, 89.0);
+}
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+double nearestDistance(const Vec3& c, const std::vector<Vec3>& pts) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& p : pts) best = std::min(best, (p - c).squaredNorm());
+  return std::sqrt(best);
+}
+}  // namespace
+
+SphereMap::SphereMap(const SphereMapConfig& config, const FisheyeCamera& camera, uint64_t seed)
+    : config_(checkValid(config)), camera_(camera), rng_(seed, "map_sampling") {}
+
+double SphereMap::ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf,
+                             const std::vector<Vec3>& constraints) const {
+  double grown = r;
+  if (pf.contains(c)) grown = std::max(r, pf.distance(c));
+  return std::min({grown, nearestDistance(c, constraints), config_.r_max_m});
+}
+
+uint64_t SphereMap::addSphere(const Vec3& centre, double radius) {
+  const uint64_t id = next_sphere_++;
+  spheres_[id] = {id, centre, radius};
+  auto& adj = adjacency_[id];
+  for (uint64_t j : sphere_grid_.near(centre, radius + config_.r_max_m)) {
+    const Sphere& s = spheres_.at(j);
+    if ((s.centre - centre).norm() < s.radius + radius) {
+      adj.insert(j);
+      adjacency_[j].insert(id);
+    }
+  }
+  sphere_grid_.insert(id, centre);
+  return id;
+}
+
+void SphereMap::removeSphere(uint64_t id) {
+  for (uint64_t j : adjacency_.at(id)) adjacency_[j].erase(id);
+  adjacency_.erase(id);
+  sphere_grid_.erase(id, spheres_.at(id).centre);
+  spheres_.erase(id);
+}
+
+void SphereMap::setRadius(uint64_t id, double r) {
+  Sphere& s = spheres_.at(id);
+  s.radius = r;
+  // Re-link: overlaps may appear or vanish.
+  for (uint64_t j : adjacency_.at(id)) adjacency_[j].erase(id);
+  auto& adj = adjacency_[id];
+  adj.clear();
+  for (uint64_t j : sphere_grid_.near(s.centre, r + config_.r_max_m)) {
+    if (j == id) continue;
+    const Sphere& o = spheres_.at(j);
+    if ((o.centre - s.centre).norm() < o.radius + r) {
+      adj.insert(j);
+      adjacency_[j].insert(id);
+    }
+  }
+}
+
+bool SphereMap::sparsify(uint64_t id) {
+  const Sphere& s = spheres_.at(id);
+  const std::set<uint64_t>& adj = adjacency_.at(id);
+  bool redundant = false;
+  for (uint64_t j : adj) {
+    const Sphere& o = spheres_.at(j);
+    redundant = redundant || (o.centre - s.centre).norm() < config_.sparsify_factor * 0.5 * (o.radius + s.radius);
+  }
+  if (!redundant) return false;
+  // Connectivity guard: all of i's neighbours must stay connected without i.
+  if (adj.size() > 1) {
+    std::set<uint64_t> seen = {*adj.begin()};
+    std::deque<uint64_t> queue = {*adj.begin()};
+    size_t found = 1;
+    while (!queue.empty() && found < adj.size()) {
+      const uint64_t k = queue.front();
+      queue.pop_front();
+      for (uint64_t n : adjacency_.at(k)) {
+        if (n == id || seen.count(n)) continue;
+        seen.insert(n);
+        queue.push_back(n);
+        found += adj.count(n);
+      }
+    }
+    if (found < adj.size()) return false;
+  }
+  removeSphere(id);
+  return true;
+}
+
+uint64_t SphereMap::addObstacle(const Vec3& p, double d_min) {
+  const uint64_t id = next_obstacle_++;
+  obstacles_[id] = {id, p, d_min};
+  obstacle_grid_.insert(id, p);
+  return id;
+}
+
+bool SphereMap::insertObstacle(const Vec3& p, double d) {
+  const double rho = config_.obstacle_spacing_m;
+  std::vector<uint64_t> within;
+  for (uint64_t j : obstacle_grid_.near(p, rho)) {
+    const ObstaclePoint& o = obstacles_.at(j);
+    if ((o.position - p).norm() >= rho) continue;
+    if (o.d_min <= d) return false;  // an existing point was measured from closer (or as close)
+    within.push_back(j);
+  }
+  for (uint64_t j : within) {  // measured from farther: replaced
+    obstacle_grid_.erase(j, obstacles_.at(j).position);
+    obstacles_.erase(j);
+  }
+  addObstacle(p, d);
+  return true;
+}
+
+bool SphereMap::connected() const {
+  if (spheres_.empty()) return true;
+  std::set<uint64_t> seen = {spheres_.begin()->first};
+  std::deque<uint64_t> queue = {spheres_.begin()->first};
+  while (!queue.empty()) {
+    const uint64_t k = queue.front();
+    queue.pop_front();
+    for (uint64_t n : adjacency_.at(k))
+      if (seen.insert(n).second) queue.push_back(n);
+  }
+  return seen.size() == spheres_.size();
+}
+
+MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
+  MapUpdateStats st;
+  const Vec3 cam = frame.T_W_C.translation();
+  const Pose T_C_W = frame.T_W_C.inverse();
+
+  // 1. Input: points in front of the camera.
+  std::vector<Vec3> input;
+  const double min_cos = std::cos(config_.max_view_angle_deg * M_PI / 180.0);
+  for (const auto& p : frame.points) {
+    const Vec3 c = T_C_W * p.p_W;
+    if (c.norm() > 1e-6 && c.z() >= min_cos * c.norm()) input.push_back(p.p_W);
+  }
+  st.input_points = int(input.size());
+  if (st.input_points < config_.min_points) {
+    st.skipped = true;
+    return st;
+  }
+
+  // 2./4. Free-space polyhedron.
+  auto t0 = Clock::now();
+  const FreeSpacePolyhedron pf(input, frame.T_W_C, config_.max_view_angle_deg);
+  st.polyhedron_ms = msSince(t0);
+  if (!pf.valid()) {
+    st.skipped = true;
+    return st;
+  }
+  const auto [lo, hi] = pf.bounds();
+
+  // 5. DBOF: delete points seen again from close enough inside P_f; protect the others.
+  t0 = Clock::now();
+  const double alpha = config_.dbof ? config_.dbof_alpha : 0.0;
+  std::vector<Vec3> constraints = input;
+  for (uint64_t id : obstacle_grid_.inBox(lo, hi)) {
+    const ObstaclePoint& o = obstacles_.at(id);
+    if (!pf.contains(o.position)) continue;
+    if ((o.position - cam).norm() < alpha * o.d_min) {
+      obstacle_grid_.erase(id, o.position);
+      obstacles_.erase(id);
+      ++st.deleted_obstacles;
+    } else {
+      constraints.push_back(o.position);
+      ++st.protected_obstacles;
+    }
+  }
+  st.dbof_ms = msSince(t0);
+
+  // 6. Update spheres near P_f (bounding box inflated by the largest radius).
+  t0 = Clock::now();
+  std::vector<uint64_t> touched;
+  for (uint64_t id : sphere_grid_.inBox(lo.array() - config_.r_max_m, hi.array() + config_.r_max_m)) {
+    const Sphere& s = spheres_.at(id);
+    const double r = ruleRadius(s.centre, s.radius, pf, constraints);
+    if (r == s.radius) continue;
+    ++st.updated_spheres;
+    if (r < config_.r_min_m) {
+      removeSphere(id);
+      ++st.deleted_spheres;
+    } else {
+      setRadius(id, r);
+      touched.push_back(id);
+    }
+  }
+  st.spheres_ms = msSince(t0);
+
+  // 7. New spheres sampled along fisheye rays, uniformly in range up to the depth surface.
+  t0 = Clock::now();
+  for (int i = 0; i < config_.new_sphere_samples; ++i) {
+    const Vec2 px(rng_.uniform(0, camera_.width()), rng_.uniform(0, camera_.height()));
+    const double t_frac = rng_.uniform();
+    if (!camera_.pixelInFov(px)) continue;
+    const Vec3 dir = frame.T_W_C.linear() * camera_.unproject(px);
+    const auto range = pf.surfaceRange(dir);
+    if (!range) continue;
+    const Vec3 c = cam + t_frac * std::min(*range, config_.max_sample_range_m) * dir;
+    const double r = ruleRadius(c, 0.0, pf, constraints);
+    if (r < config_.r_min_m) continue;
+    touched.push_back(addSphere(c, r));
+    ++st.new_spheres;
+  }
+  st.sampling_ms = msSince(t0);
+
+  // 8. Sparsify the updated and new spheres, smallest first (ties by id).
+  t0 = Clock::now();
+  std::sort(touched.begin(), touched.end(), [&](uint64_t a, uint64_t b) {
+    const double ra = spheres_.count(a) ? spheres_.at(a).radius : 0, rb = spheres_.count(b) ? spheres_.at(b).radius : 0;
+    return ra != rb ? ra < rb : a < b;
+  });
+  for (uint64_t id : touched)
+    if (spheres_.count(id) && sparsify(id)) ++st.sparsified_spheres;
+  st.graph_ms = msSince(t0);
+
+  // 9. Obstacle points.
+  t0 = Clock::now();
+  for (const auto& p : frame.points) {
+    const double d = (p.p_W - cam).norm();
+    if (d <= config_.max_point_range_m && insertObstacle(p.p_W, d)) ++st.inserted_obstacles;
+  }
+  st.obstacles_ms = msSince(t0);
+  return st;
+}
+
+}  // namespace msb

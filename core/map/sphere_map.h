@@ -1,0 +1,122 @@
+// The MonoSpheres map (paper §III, DESIGN §7): free-space spheres connected where they overlap,
+// plus obstacle points, all in the VIO world frame. One update per SLAM-points frame:
+//   1. input: SLAM points in front of the camera within range (≥ min_points, else skip)
+//   2./4. free-space polyhedron P_f from the points (FreeSpacePolyhedron)
+//   5. DBOF: an obstacle point x inside P_f is deleted iff |x − c| < α·d_min(x), otherwise it
+//      is protected (it constrains spheres); dbof = false means α = 0 (nothing deleted)
+//   6. sphere update near P_f:
+//        r ← min( c ∈ P_f ? max(r, d(c, ∂P_f)) : r,  d(c, X_in ∪ X_p),  r_max )
+//      (X_in: this frame's points, X_p: protected points); spheres with r < r_min are deleted
+//   7. new spheres: samples along fisheye rays from the camera to the depth surface (≤ 20 m),
+//      radius by the same rule with r = 0, kept if r ≥ r_min
+//   8. graph: edge iff spheres overlap; sparsify updated/new spheres smallest first: remove i if
+//      a neighbour j has |c_i − c_j| < 0.9·(r_i + r_j)/2 and i's neighbours stay connected
+//   9. obstacle points: SLAM points within range, spacing ρ; the closer measurement wins
+// Not yet here (see issue 5): OVDE virtual points (step 3) and frontiers (step 10).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "core/camera/fisheye_camera.h"
+#include "core/common/config_check.h"
+#include "core/common/messages.h"
+#include "core/common/rng.h"
+#include "core/map/point_grid.h"
+
+namespace msb {
+
+class FreeSpacePolyhedron;
+
+/// Mapper parameters (DESIGN §7 defaults).
+struct SphereMapConfig {
+  bool dbof = true;                  ///< distance-based obstacle filtering
+  double dbof_alpha = 1.1;           ///< deletion factor α
+  double r_max_m = 10.0;             ///< sphere radius cap
+  double r_min_m = 1.6;              ///< spheres below are deleted / not created
+  int new_sphere_samples = 150;      ///< samples per update
+  double max_sample_range_m = 20.0;  ///< sampling along rays is capped here
+  double max_point_range_m = 20.0;   ///< SLAM points farther are not inserted as obstacles
+  double obstacle_spacing_m = 0.3;   ///< ρ
+  double sparsify_factor = 0.9;      ///< removal when |c_i − c_j| < factor·(r_i + r_j)/2
+  int min_points = 4;                ///< fewer input points: the update is skipped
+  double max_view_angle_deg = 80.0;  ///< points farther off-axis are not triangulated
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// A free-space sphere (centre fixed for life, radius updated).
+struct Sphere {
+  uint64_t id = 0;
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;
+};
+
+/// An obstacle point with the smallest distance it was measured from.
+struct ObstaclePoint {
+  uint64_t id = 0;
+  Vec3 position = Vec3::Zero();
+  double d_min = 0.0;
+};
+
+/// Counts and stage times of one update (times are recorded, never used).
+struct MapUpdateStats {
+  bool skipped = false;
+  int input_points = 0;
+  int deleted_obstacles = 0, protected_obstacles = 0;
+  int updated_spheres = 0, deleted_spheres = 0, new_spheres = 0, sparsified_spheres = 0;
+  int inserted_obstacles = 0;
+  double polyhedron_ms = 0, dbof_ms = 0, spheres_ms = 0, sampling_ms = 0, graph_ms = 0, obstacles_ms = 0;
+};
+
+/// The sphere map. Spheres and points keep their ids for life (planning may hold them).
+class SphereMap {
+ public:
+  /// `seed` seeds the "map_sampling" stream. Throws ConfigError.
+  SphereMap(const SphereMapConfig& config, const FisheyeCamera& camera, uint64_t seed);
+
+  /// Integrates one frame of SLAM points (estimated camera pose + points).
+  MapUpdateStats update(const SlamPointsFrame& frame);
+
+  /// Spheres by id.
+  const std::map<uint64_t, Sphere>& spheres() const { return spheres_; }
+  /// Obstacle points by id.
+  const std::map<uint64_t, ObstaclePoint>& obstacles() const { return obstacles_; }
+  /// Neighbours (overlapping spheres) of a sphere, ascending ids.
+  const std::set<uint64_t>& neighbours(uint64_t sphere_id) const { return adjacency_.at(sphere_id); }
+  /// True if every sphere can reach every other through overlaps.
+  bool connected() const;
+
+  /// The radius rule (step 6) for a centre, given P_f and the constraining points.
+  double ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf,
+                    const std::vector<Vec3>& constraints) const;
+
+  /// Adds a sphere directly (tests, map loading); returns its id. Links it into the graph.
+  uint64_t addSphere(const Vec3& centre, double radius);
+  /// Adds an obstacle point directly with its measurement distance; returns its id.
+  uint64_t addObstacle(const Vec3& p, double d_min);
+  /// Removes sphere i if a close neighbour makes it redundant and its neighbours stay
+  /// connected without it (step 8); returns true if removed.
+  bool sparsify(uint64_t id);
+  /// Inserts a measured point under the spacing rule (step 9); returns true if kept.
+  bool insertObstacle(const Vec3& p, double distance_from_camera);
+
+ private:
+  void removeSphere(uint64_t id);
+  void setRadius(uint64_t id, double r);
+
+  SphereMapConfig config_;
+  FisheyeCamera camera_;
+  RngStream rng_;
+  std::map<uint64_t, Sphere> spheres_;
+  std::map<uint64_t, std::set<uint64_t>> adjacency_;
+  std::map<uint64_t, ObstaclePoint> obstacles_;
+  PointGrid sphere_grid_{10.0};
+  PointGrid obstacle_grid_{2.0};
+  uint64_t next_sphere_ = 1, next_obstacle_ = 1;
+};
+
+}  // namespace msb

@@ -1,0 +1,153 @@
+// The mapper's rules one by one (DESIGN §7 steps 5, 6, 8, 9) on hand-built inputs, and a whole
+// update on a synthetic frame.
+#include "core/map/sphere_map.h"
+
+#include <gtest/gtest.h>
+
+#include "core/map/free_space_polyhedron.h"
+
+namespace msb {
+namespace {
+
+// Camera at the origin looking along +z (optical = world frame); SLAM points on a square wall.
+SlamPointsFrame wallFrame(double half, double depth, int n = 2) {
+  SlamPointsFrame f;
+  f.T_W_C = Pose::Identity();
+  uint64_t id = 1;
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j) {
+      SlamPoint p;
+      p.track_id = id++;
+      p.p_W = Vec3(half * i / n, half * j / n, depth);
+      f.points.push_back(p);
+    }
+  return f;
+}
+
+std::vector<Vec3> positions(const SlamPointsFrame& f) {
+  std::vector<Vec3> v;
+  for (const auto& p : f.points) v.push_back(p.p_W);
+  return v;
+}
+
+TEST(SphereMapRules, RadiusRuleGrowsInsideShrinksNearPointsAndCaps) {
+  const FisheyeCamera cam;
+  const SphereMap map(SphereMapConfig{}, cam, 1);
+  const SlamPointsFrame f = wallFrame(5, 10, 1);
+  const FreeSpacePolyhedron pf(positions(f), f.T_W_C);
+  const std::vector<Vec3> pts = positions(f);
+  const double d_pf = pf.distance({0, 0, 5});
+  EXPECT_NEAR(d_pf, std::sqrt(5.0), 1e-9);
+  // Grows to the distance from P_f's boundary, never shrinks because of P_f alone.
+  EXPECT_NEAR(map.ruleRadius({0, 0, 5}, 0.0, pf, pts), d_pf, 1e-9);
+  EXPECT_NEAR(map.ruleRadius({0, 0, 5}, 3.0, pf, pts), 3.0, 1e-9);
+  // A constraining point nearer than that shrinks it.
+  std::vector<Vec3> with_point = pts;
+  with_point.push_back({0, 0, 6});
+  EXPECT_NEAR(map.ruleRadius({0, 0, 5}, 3.0, pf, with_point), 1.0, 1e-9);
+  // Outside P_f only the points constrain.
+  EXPECT_NEAR(map.ruleRadius({0, 0, 20}, 4.0, pf, pts), 4.0, 1e-9);
+  EXPECT_NEAR(map.ruleRadius({0, 0, 11}, 4.0, pf, pts), 1.0, 1e-9);  // 1 m from (0, 0, 10)
+  // r_max caps growth in a huge P_f.
+  const SlamPointsFrame big = wallFrame(60, 70, 1);
+  const FreeSpacePolyhedron pf_big(positions(big), big.T_W_C);
+  EXPECT_NEAR(map.ruleRadius({0, 0, 30}, 0.0, pf_big, positions(big)), 10.0, 1e-9);
+}
+
+TEST(SphereMapRules, DbofDeletesPointsSeenAgainFromCloserAndProtectsTheOthers) {
+  const FisheyeCamera cam;
+  SphereMapConfig cfg;
+  cfg.new_sphere_samples = 200;
+  SphereMap map(cfg, cam, 1);
+  // Both points lie 8 m from the camera, inside P_f (wall at 10 m).
+  const uint64_t seen_from_far = map.addObstacle({0, 0, 8}, 8.0);  // 8 < 1.1 · 8: deleted
+  const uint64_t seen_from_close = map.addObstacle({2, 0, 7.75}, 5.0);  // 8 > 1.1 · 5: protected
+  const MapUpdateStats st = map.update(wallFrame(15, 10));
+  EXPECT_EQ(st.deleted_obstacles, 1);
+  EXPECT_EQ(st.protected_obstacles, 1);
+  EXPECT_FALSE(map.obstacles().count(seen_from_far));
+  ASSERT_TRUE(map.obstacles().count(seen_from_close));
+  // The protected point constrains every sphere: none contains it.
+  ASSERT_GT(map.spheres().size(), 5u);
+  for (const auto& [id, s] : map.spheres()) EXPECT_LE(s.radius, (s.centre - Vec3(2, 0, 7.75)).norm() + 1e-9);
+  // dbof: false never deletes.
+  cfg.dbof = false;
+  SphereMap keep(cfg, cam, 1);
+  keep.addObstacle({0, 0, 8}, 8.0);
+  EXPECT_EQ(keep.update(wallFrame(15, 10)).deleted_obstacles, 0);
+}
+
+TEST(SphereMapRules, SparsificationNeverDisconnectsTheGraph) {
+  const FisheyeCamera cam;
+  SphereMap map(SphereMapConfig{}, cam, 1);
+  const uint64_t a = map.addSphere({0, 0, 0}, 2.0);
+  const uint64_t b = map.addSphere({0.5, 0, 0}, 2.0);  // redundant next to a ...
+  const uint64_t c = map.addSphere({3.8, 0, 0}, 1.5);  // ... but c hangs on b only
+  ASSERT_TRUE(map.neighbours(c).count(b));
+  ASSERT_FALSE(map.neighbours(c).count(a));
+  EXPECT_FALSE(map.sparsify(b));
+  EXPECT_TRUE(map.connected());
+  // Another sphere links a and c: now b can go.
+  map.addSphere({2.5, 0, 0}, 1.5);
+  EXPECT_TRUE(map.sparsify(b));
+  EXPECT_TRUE(map.connected());
+  EXPECT_FALSE(map.spheres().count(b));
+  // Random clusters: sparsifying everything keeps a connected graph connected.
+  RngStream rng(4, "sparsify");
+  SphereMap dense(SphereMapConfig{}, cam, 1);
+  std::vector<uint64_t> ids = {dense.addSphere({0, 0, 0}, 2.0)};
+  for (int i = 0; i < 300; ++i) {
+    // Each new sphere overlaps a random earlier one: connected by construction.
+    const Sphere& s = dense.spheres().at(ids[rng.uniformInt(ids.size())]);
+    const Vec3 dir = Vec3(rng.normal(), rng.normal(), rng.normal()).normalized();
+    const double r = rng.uniform(1.6, 4.0);
+    ids.push_back(dense.addSphere(s.centre + dir * rng.uniform(0.1, 0.95) * (s.radius + r), r));
+  }
+  ASSERT_TRUE(dense.connected());
+  int removed = 0;
+  for (uint64_t id : ids) removed += dense.sparsify(id);
+  EXPECT_GT(removed, 20);
+  EXPECT_TRUE(dense.connected());
+}
+
+TEST(SphereMapRules, ObstaclePointsKeepTheClosestMeasurement) {
+  const FisheyeCamera cam;
+  SphereMap map(SphereMapConfig{}, cam, 1);
+  EXPECT_TRUE(map.insertObstacle({1, 1, 1}, 10.0));
+  EXPECT_TRUE(map.insertObstacle({1.1, 1, 1}, 5.0));   // closer: replaces
+  EXPECT_FALSE(map.insertObstacle({1, 1.1, 1}, 8.0));  // farther than the kept one: dropped
+  EXPECT_TRUE(map.insertObstacle({1.5, 1, 1}, 9.0));   // beyond the 0.3 m spacing: kept
+  ASSERT_EQ(map.obstacles().size(), 2u);
+  EXPECT_DOUBLE_EQ(map.obstacles().begin()->second.d_min, 5.0);
+  EXPECT_EQ(map.obstacles().begin()->second.position, Vec3(1.1, 1, 1));
+}
+
+TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
+  const FisheyeCamera cam;
+  SphereMap a(SphereMapConfig{}, cam, 7), b(SphereMapConfig{}, cam, 7);
+  const SlamPointsFrame f = wallFrame(18, 12, 3);
+  const MapUpdateStats st = a.update(f);
+  b.update(f);
+  EXPECT_FALSE(st.skipped);
+  EXPECT_GT(st.new_spheres, 10);
+  int within_range = 0;  // obstacle points are inserted up to 20 m from the camera
+  for (const auto& p : f.points) within_range += p.p_W.norm() <= 20.0;
+  EXPECT_EQ(st.inserted_obstacles, within_range);
+  const FreeSpacePolyhedron pf(positions(f), f.T_W_C);
+  for (const auto& [id, s] : a.spheres()) {
+    EXPECT_TRUE(pf.contains(s.centre));
+    EXPECT_LE(s.radius, pf.distance(s.centre) + 1e-9);  // fully inside P_f
+    EXPECT_GE(s.radius, 1.6);
+    const auto& o = b.spheres().at(id);
+    EXPECT_EQ(o.centre, s.centre);
+    EXPECT_EQ(o.radius, s.radius);
+  }
+  EXPECT_EQ(a.spheres().size(), b.spheres().size());
+  // Too few points: skipped.
+  SlamPointsFrame few = f;
+  few.points.resize(3);
+  EXPECT_TRUE(a.update(few).skipped);
+}
+
+}  // namespace
+}  // namespace msb
