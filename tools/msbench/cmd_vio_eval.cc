@@ -16,6 +16,7 @@
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
 #include "tools/msbench/perception_eval.h"
+#include "tools/msbench/perception_log.h"
 #include "tools/msbench/world_registry.h"
 #include "tools/msbench/yaml_config.h"
 
@@ -82,6 +83,7 @@ int runVioEvalCommand(int argc, char** argv) {
   args.positional("FILE.yaml", "flight description (as for fly)")
       .option("out", "", "output directory", true)
       .option("annotate-every", "30", "write every N-th processed frame annotated (0 = none)")
+      .option("record", "", "also record the perception stream to this log (for map-replay)")
       .flag("overwrite", "replace an existing output directory");
   if (!args.parse(argc, argv)) return kExitOk;
   const std::string file = args.get("FILE.yaml");
@@ -106,10 +108,17 @@ int runVioEvalCommand(int argc, char** argv) {
   const FisheyeCamera camera(spec.camera);
   std::map<int64_t, Pose> gt_camera;  // ground-truth camera pose per rendered tick
   VioStats st;
+  std::unique_ptr<PerceptionLogWriter> recorder;
+  if (!args.get("record").empty())
+    recorder = std::make_unique<PerceptionLogWriter>(
+        args.get("record"), nlohmann::json{{"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
+                                           {"seed", spec.seed}, {"camera_scale", spec.camera.scale},
+                                           {"flight", file}});
 
   FlightObservers obs;
   obs.on_perception = [&](const PerceptionSample& s) {
     gt_camera[s.frame.tick] = s.frame.T_W_C;
+    if (recorder) recorder->write(s.points, s.frame.T_W_C);
     std::vector<double> frame_errors;
     if (truth) {
       for (const auto& p : s.points.points) {
@@ -153,6 +162,7 @@ int runVioEvalCommand(int argc, char** argv) {
     }
   };
   const FlightResult r = runFlight(spec, obs);
+  if (recorder) recorder->close();
 
   // Summary.
   const double n = std::max(1, st.frames);

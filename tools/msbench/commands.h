@@ -10,6 +10,10 @@ int runFlyCommand(int argc, char** argv);
 int runRenderProbeCommand(int argc, char** argv);
 /// `msbench vio-eval FILE.yaml --out DIR`: perception evaluated against ground truth.
 int runVioEvalCommand(int argc, char** argv);
+/// `msbench map-replay LOG --out DIR`: the mapper over a recorded perception log.
+int runMapReplayCommand(int argc, char** argv);
+/// `msbench bench-map LOG`: the mapper's per-update time.
+int runBenchMapCommand(int argc, char** argv);
 /// `msbench world list|build|show`: the benchmark worlds.
 int runWorldCommand(int argc, char** argv);
 /// `msbench bench-sim`: physics and rendering throughput figures.

@@ -23,6 +23,8 @@ struct Command {
 constexpr Command kCommands[] = {
     {"fly", msb::runFlyCommand, "fly a scripted waypoint list in a world; write results"},
     {"vio-eval", msb::runVioEvalCommand, "fly with tracker + SLAM points, evaluate against truth"},
+    {"map-replay", msb::runMapReplayCommand, "run the mapper over a recorded perception log"},
+    {"bench-map", msb::runBenchMapCommand, "mapper time per update on a perception log"},
     {"render-probe", msb::runRenderProbeCommand, "render one fisheye frame from a pose"},
     {"bench-sim", msb::runBenchSimCommand, "physics steps/s and fisheye frame cost"},
     {"world", msb::runWorldCommand, "list, build (into the cache) and show the worlds"},
