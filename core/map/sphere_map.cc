@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <optional>
 
 #include "core/map/free_space_polyhedron.h"
 
@@ -19,6 +20,7 @@ void SphereMapConfig::validate(ConfigChecker& c) const {
   c.inRange("sparsify_factor", sparsify_factor, 0.0, 2.0);
   c.inRange("min_points", min_points, 3, 100000);
   c.inRange("max_view_angle_deg", max_view_angle_deg, 1.0, 89.0);
+  c.nested("ovde_params", ovde_params);
 }
 
 namespace {
@@ -34,7 +36,8 @@ double nearestDistance(const Vec3& c, const std::vector<Vec3>& pts) {
 }  // namespace
 
 SphereMap::SphereMap(const SphereMapConfig& config, const FisheyeCamera& camera, uint64_t seed)
-    : config_(checkValid(config)), camera_(camera), rng_(seed, "map_sampling") {}
+    : config_(checkValid(config)), camera_(camera), rng_(seed, "map_sampling"),
+      ovde_(config.ovde_params, camera) {}
 
 double SphereMap::ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf,
                              const std::vector<Vec3>& constraints) const {
@@ -162,6 +165,8 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
     if (c.norm() > 1e-6 && c.z() >= min_cos * c.norm()) input.push_back(p.p_W);
   }
   st.input_points = int(input.size());
+  // The OVDE pose buffer follows every frame, also those skipped below.
+  const std::vector<Vec3> virtual_candidates = config_.ovde ? ovde_.update(frame.T_W_C) : std::vector<Vec3>{};
   if (st.input_points < config_.min_points) {
     st.skipped = true;
     return st;
@@ -169,21 +174,29 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
 
   // 2./4. Free-space polyhedron.
   auto t0 = Clock::now();
-  const FreeSpacePolyhedron pf(input, frame.T_W_C, config_.max_view_angle_deg);
-  st.polyhedron_ms = msSince(t0);
-  if (!pf.valid()) {
+  const FreeSpacePolyhedron real_pf(input, frame.T_W_C, config_.max_view_angle_deg);
+  if (!real_pf.valid()) {
     st.skipped = true;
     return st;
   }
+  // 3. OVDE: active virtual points outside the real points' hull extend P_f.
+  std::vector<Vec3> extended = input;
+  for (const Vec3& v : virtual_candidates)
+    if (!real_pf.surfaceRange(v - cam)) extended.push_back(v), ++st.virtual_points;
+  std::optional<FreeSpacePolyhedron> ovde_pf;
+  if (st.virtual_points > 0) ovde_pf.emplace(extended, frame.T_W_C, config_.max_view_angle_deg);
+  const FreeSpacePolyhedron& pf = ovde_pf ? *ovde_pf : real_pf;
+  st.polyhedron_ms = msSince(t0);
+  const auto [real_lo, real_hi] = real_pf.bounds();
   const auto [lo, hi] = pf.bounds();
 
   // 5. DBOF: delete points seen again from close enough inside P_f; protect the others.
   t0 = Clock::now();
   const double alpha = config_.dbof ? config_.dbof_alpha : 0.0;
   std::vector<Vec3> constraints = input;
-  for (uint64_t id : obstacle_grid_.inBox(lo, hi)) {
+  for (uint64_t id : obstacle_grid_.inBox(real_lo, real_hi)) {
     const ObstaclePoint& o = obstacles_.at(id);
-    if (!pf.contains(o.position)) continue;
+    if (!real_pf.contains(o.position)) continue;
     if ((o.position - cam).norm() < alpha * o.d_min) {
       obstacle_grid_.erase(id, o.position);
       obstacles_.erase(id);

@@ -2,6 +2,8 @@
 // plus obstacle points, all in the VIO world frame. One update per SLAM-points frame:
 //   1. input: SLAM points in front of the camera within range (≥ min_points, else skip)
 //   2./4. free-space polyhedron P_f from the points (FreeSpacePolyhedron)
+//   3. OVDE (switch `ovde`): active virtual points outside the real points' hull extend P_f
+//      for the sphere steps; DBOF keeps using the real-points P_f (virtual points never delete)
 //   5. DBOF: an obstacle point x inside P_f is deleted iff |x − c| < α·d_min(x), otherwise it
 //      is protected (it constrains spheres); dbof = false means α = 0 (nothing deleted)
 //   6. sphere update near P_f:
@@ -12,7 +14,7 @@
 //   8. graph: edge iff spheres overlap; sparsify updated/new spheres smallest first: remove i if
 //      a neighbour j has |c_i − c_j| < 0.9·(r_i + r_j)/2 and i's neighbours stay connected
 //   9. obstacle points: SLAM points within range, spacing ρ; the closer measurement wins
-// Not yet here (see issue 5): OVDE virtual points (step 3) and frontiers (step 10).
+// Not yet here (see issue 5): frontiers (step 10).
 #pragma once
 
 #include <cstdint>
@@ -24,6 +26,7 @@
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
 #include "core/common/rng.h"
+#include "core/map/open_area_depth.h"
 #include "core/map/point_grid.h"
 
 namespace msb {
@@ -32,6 +35,8 @@ class FreeSpacePolyhedron;
 
 /// Mapper parameters (DESIGN §7 defaults).
 struct SphereMapConfig {
+  bool ovde = true;                  ///< open-area virtual depth
+  OpenAreaDepthConfig ovde_params;   ///< its parameters
   bool dbof = true;                  ///< distance-based obstacle filtering
   double dbof_alpha = 1.1;           ///< deletion factor α
   double r_max_m = 10.0;             ///< sphere radius cap
@@ -66,6 +71,7 @@ struct ObstaclePoint {
 struct MapUpdateStats {
   bool skipped = false;
   int input_points = 0;
+  int virtual_points = 0;            ///< active OVDE points added to P_f
   int deleted_obstacles = 0, protected_obstacles = 0;
   int updated_spheres = 0, deleted_spheres = 0, new_spheres = 0, sparsified_spheres = 0;
   int inserted_obstacles = 0;
@@ -111,6 +117,7 @@ class SphereMap {
   SphereMapConfig config_;
   FisheyeCamera camera_;
   RngStream rng_;
+  OpenAreaDepth ovde_;
   std::map<uint64_t, Sphere> spheres_;
   std::map<uint64_t, std::set<uint64_t>> adjacency_;
   std::map<uint64_t, ObstaclePoint> obstacles_;

@@ -36,7 +36,8 @@ void applySet(const std::string& kv, SphereMapConfig& c) {
     if (value == "false") return false;
     throw UsageError("--set " + key + ": expected true or false, got '" + value + "'");
   };
-  if (key == "dbof") c.dbof = flag();
+  if (key == "ovde") c.ovde = flag();
+  else if (key == "dbof") c.dbof = flag();
   else if (key == "dbof_alpha") c.dbof_alpha = num();
   else if (key == "r_max_m") c.r_max_m = num();
   else if (key == "r_min_m") c.r_min_m = num();
@@ -124,12 +125,12 @@ int runMapReplayCommand(int argc, char** argv) {
 
   // map_stats.csv
   std::ostringstream csv;
-  csv << "t,skipped,input_points,spheres,obstacles,new_spheres,updated_spheres,deleted_spheres,"
+  csv << "t,skipped,input_points,virtual_points,spheres,obstacles,new_spheres,updated_spheres,deleted_spheres,"
          "sparsified_spheres,deleted_obstacles,protected_obstacles,inserted_obstacles,polyhedron_ms,"
          "dbof_ms,spheres_ms,sampling_ms,graph_ms,obstacles_ms,total_ms\n";
   for (size_t i = 0; i < r.stats.size(); ++i) {
     const auto& s = r.stats[i];
-    csv << r.t[i] << ',' << s.skipped << ',' << s.input_points << ',' << r.spheres[i] << ','
+    csv << r.t[i] << ',' << s.skipped << ',' << s.input_points << ',' << s.virtual_points << ',' << r.spheres[i] << ','
         << r.obstacles[i] << ',' << s.new_spheres << ',' << s.updated_spheres << ',' << s.deleted_spheres
         << ',' << s.sparsified_spheres << ',' << s.deleted_obstacles << ',' << s.protected_obstacles << ','
         << s.inserted_obstacles << ',' << s.polyhedron_ms << ',' << s.dbof_ms << ',' << s.spheres_ms << ','

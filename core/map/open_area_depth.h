@@ -1,0 +1,59 @@
+// Open-area virtual depth estimation, OVDE (MonoSpheres §III-B, DESIGN §7 step 3).
+//
+// Sparse SLAM sees nothing in open areas (sky, far fields), so P_f would end where the tracked
+// points end. OVDE places virtual points at 15 m along a 6×6 grid of rays over the central 60 %
+// of the image and lets them extend P_f when the assumption "nothing within 15 m there" is
+// supported: the point stayed inside the central view of every buffered past pose, walking back
+// from now without a break (and in front of the camera), and some pair of those poses sees it
+// with ≥ 0.07 rad parallax, i.e. the camera translated enough that a real obstacle there would
+// have been triangulated. A pose buffer keeps up to 10 past poses, adding one when the camera
+// moved > 0.3 m or turned > 45° since the last one. Virtual points only extend free space:
+// they never become obstacle points and never delete any.
+#pragma once
+
+#include <deque>
+#include <vector>
+
+#include "core/camera/fisheye_camera.h"
+#include "core/common/config_check.h"
+#include "core/common/types.h"
+
+namespace msb {
+
+/// OVDE parameters (DESIGN §7 defaults).
+struct OpenAreaDepthConfig {
+  int grid = 6;                        ///< grid × grid virtual points
+  double central_fraction = 0.6;       ///< of the image width and height, centred
+  double range_m = 15.0;               ///< virtual depth
+  int max_poses = 10;                  ///< pose buffer size
+  double min_translation_m = 0.3;      ///< add a pose after this translation ...
+  double min_rotation_deg = 45.0;      ///< ... or this rotation
+  double min_parallax_rad = 0.07;      ///< activation threshold
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Pose buffer and virtual-point activation.
+class OpenAreaDepth {
+ public:
+  /// Throws ConfigError.
+  OpenAreaDepth(const OpenAreaDepthConfig& config, const FisheyeCamera& camera);
+
+  /// Records the current camera pose (added to the buffer if it moved or turned enough) and
+  /// returns the active virtual points (world frame) for it.
+  std::vector<Vec3> update(const Pose& T_W_C);
+  /// All virtual points of a pose (active or not), world frame.
+  std::vector<Vec3> candidates(const Pose& T_W_C) const;
+  /// Buffered poses, oldest first.
+  const std::deque<Pose>& poses() const { return poses_; }
+
+ private:
+  bool inCentralView(const Pose& T_W_C, const Vec3& p_W) const;
+
+  OpenAreaDepthConfig config_;
+  FisheyeCamera camera_;
+  std::deque<Pose> poses_;
+};
+
+}  // namespace msb
