@@ -42,7 +42,7 @@ TEST(OpenAreaDepth, ContinuityBreakDeactivates) {
   OpenAreaDepth broken(OpenAreaDepthConfig{}, cam);
   broken.update(camera(0.0, M_PI / 2));
   broken.update(camera(0.4, M_PI / 2));
-  broken.update(camera(0.8, M_PI));
+  broken.update(camera(0.8, -M_PI / 2));  // looking the opposite way
   broken.update(camera(1.2, M_PI / 2));
   EXPECT_TRUE(broken.update(camera(1.3, M_PI / 2)).empty());
 }
