@@ -2,6 +2,8 @@
 // bench-map (per-update time of the mapper on a log).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <set>
 #include <cstdio>
 #include <sstream>
 
@@ -182,7 +184,22 @@ int runMapReplayCommand(int argc, char** argv) {
              cv::Scalar(0, 140, 255), 2);
   cv::imwrite((out.staging() / "topdown.png").string(), img);
 
+  // Explored area as in the paper: 2.5 m columns whose centre lies inside a sphere's disk.
+  std::set<std::pair<long, long>> columns;
+  for (const auto& [id, sp] : map.spheres()) {
+    const long x0 = long(std::floor((sp.centre.x() - sp.radius) / 2.5)), x1 = long(std::floor((sp.centre.x() + sp.radius) / 2.5));
+    const long y0 = long(std::floor((sp.centre.y() - sp.radius) / 2.5)), y1 = long(std::floor((sp.centre.y() + sp.radius) / 2.5));
+    for (long x = x0; x <= x1; ++x)
+      for (long y = y0; y <= y1; ++y)
+        if (std::hypot((x + 0.5) * 2.5 - sp.centre.x(), (y + 0.5) * 2.5 - sp.centre.y()) <= sp.radius)
+          columns.insert({x, y});
+  }
+  double volume = 0;
+  for (const auto& [id, sp] : map.spheres()) volume += 4.0 / 3.0 * M_PI * std::pow(sp.radius, 3);
   const nlohmann::json j = {{"updates", r.stats.size()},
+                            {"covered_columns", columns.size()},
+                            {"covered_area_m2", 6.25 * columns.size()},
+                            {"sphere_volume_sum_m3", volume},
                             {"spheres", map.spheres().size()},
                             {"obstacle_points", map.obstacles().size()},
                             {"graph_connected", map.connected()},
@@ -191,9 +208,10 @@ int runMapReplayCommand(int argc, char** argv) {
                             {"log", args.get("LOG")}};
   writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
   out.commit();
-  std::printf("map-replay: %zu updates, %zu spheres, %zu obstacle points; update ms median %.2f, p99 %.2f -> %s\n",
-              r.stats.size(), map.spheres().size(), map.obstacles().size(), pct(r.total_ms, 0.5),
-              pct(r.total_ms, 0.99), out.finalDir().c_str());
+  std::printf("map-replay: %zu updates, %zu spheres, %zu obstacle points, %zu columns covered (%.0f m2); "
+              "update ms median %.2f, p99 %.2f -> %s\n",
+              r.stats.size(), map.spheres().size(), map.obstacles().size(), columns.size(), 6.25 * columns.size(),
+              pct(r.total_ms, 0.5), pct(r.total_ms, 0.99), out.finalDir().c_str());
   return kExitOk;
 }
 
