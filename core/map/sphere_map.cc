@@ -21,6 +21,15 @@ void SphereMapConfig::validate(ConfigChecker& c) const {
   c.inRange("min_points", min_points, 3, 100000);
   c.inRange("max_view_angle_deg", max_view_angle_deg, 1.0, 89.0);
   c.nested("ovde_params", ovde_params);
+  c.inRange("frontier_surface_samples", frontier_surface_samples, 0, 100000);
+  c.inRange("frontier_shell_samples", frontier_shell_samples, 0, 100000);
+  c.nonNegative("frontier_jitter_m", frontier_jitter_m);
+  c.require(shell_max_m > shell_min_m && shell_min_m >= 0, "shell_max_m", "needs 0 <= shell_min_m < shell_max_m");
+  c.nonNegative("frontier_spacing_m", frontier_spacing_m);
+  c.nonNegative("frontier_obstacle_gap_m", frontier_obstacle_gap_m);
+  c.positive("frontier_range_m", frontier_range_m);
+  c.inRange("frontier_min_normal_z", frontier_min_normal_z, -1.0, 1.0);
+  c.inRange("frontier_min_balance", frontier_min_balance, 0.0, 1.0);
 }
 
 namespace {
@@ -220,6 +229,7 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
       removeSphere(id);
       ++st.deleted_spheres;
     } else {
+      if (r > s.radius) st.changed_spheres.push_back(id);
       setRadius(id, r);
       touched.push_back(id);
     }
@@ -239,6 +249,7 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
     const double r = ruleRadius(c, 0.0, pf, constraints);
     if (r < config_.r_min_m) continue;
     touched.push_back(addSphere(c, r));
+    st.changed_spheres.push_back(touched.back());
     ++st.new_spheres;
   }
   st.sampling_ms = msSince(t0);
@@ -260,6 +271,18 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
     if (d <= config_.max_point_range_m && insertObstacle(p.p_W, d)) ++st.inserted_obstacles;
   }
   st.obstacles_ms = msSince(t0);
+
+  // 10. Frontiers: re-validate the old ones against the new map, then sample new ones.
+  t0 = Clock::now();
+  st.dropped_frontiers = revalidateFrontiers();
+  sampleFrontiers(pf, cam, st);
+  st.frontiers_ms = msSince(t0);
+  std::vector<uint64_t> alive;
+  for (uint64_t id : st.changed_spheres)
+    if (spheres_.count(id)) alive.push_back(id);
+  std::sort(alive.begin(), alive.end());
+  alive.erase(std::unique(alive.begin(), alive.end()), alive.end());
+  st.changed_spheres = alive;
   return st;
 }
 

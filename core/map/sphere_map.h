@@ -14,11 +14,17 @@
 //   8. graph: edge iff spheres overlap; sparsify updated/new spheres smallest first: remove i if
 //      a neighbour j has |c_i − c_j| < 0.9·(r_i + r_j)/2 and i's neighbours stay connected
 //   9. obstacle points: SLAM points within range, spacing ρ; the closer measurement wins
-// Not yet here (see issue 5): frontiers (step 10).
+//  10. frontiers: candidates on P_f's faces (area-weighted, jittered) and in the shells
+//      [r + 0.48, r + 2.72] of spheres within 20 m; kept if ≥ 1.5 m from other frontiers and
+//      from every obstacle point, outside all spheres, inside some sphere's shell, with free
+//      space on one side (normal = mean direction to the nearby centres) and a normal that
+//      does not put the unknown straight above (n_z ≥ −0.5). All frontiers are re-validated
+//      after every update (and on demand, e.g. per planning step).
 #pragma once
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -48,6 +54,16 @@ struct SphereMapConfig {
   double sparsify_factor = 0.9;      ///< removal when |c_i − c_j| < factor·(r_i + r_j)/2
   int min_points = 4;                ///< fewer input points: the update is skipped
   double max_view_angle_deg = 80.0;  ///< points farther off-axis are not triangulated
+  int frontier_surface_samples = 150;   ///< candidates on P_f's faces per update
+  int frontier_shell_samples = 150;     ///< candidates in sphere shells per update
+  double frontier_jitter_m = 0.96;      ///< Gaussian jitter of surface candidates
+  double shell_min_m = 0.48;            ///< shell inner offset from the sphere surface
+  double shell_max_m = 2.72;            ///< shell outer offset
+  double frontier_spacing_m = 1.5;      ///< between frontiers
+  double frontier_obstacle_gap_m = 1.5; ///< from every obstacle point
+  double frontier_range_m = 20.0;       ///< shell sampling around spheres within this range
+  double frontier_min_normal_z = -0.5;  ///< reject normals pointing down harder than this
+  double frontier_min_balance = 0.3;    ///< |mean direction| needed for a one-sided frontier
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -67,6 +83,13 @@ struct ObstaclePoint {
   double d_min = 0.0;
 };
 
+/// A frontier: the boundary of known free space, with the direction towards the free side.
+struct Frontier {
+  uint64_t id = 0;
+  Vec3 position = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  ///< unit, towards the nearby free-space centres
+};
+
 /// Counts and stage times of one update (times are recorded, never used).
 struct MapUpdateStats {
   bool skipped = false;
@@ -75,6 +98,9 @@ struct MapUpdateStats {
   int deleted_obstacles = 0, protected_obstacles = 0;
   int updated_spheres = 0, deleted_spheres = 0, new_spheres = 0, sparsified_spheres = 0;
   int inserted_obstacles = 0;
+  int new_frontiers = 0, dropped_frontiers = 0;
+  std::vector<uint64_t> changed_spheres;  ///< ids created or grown in this update (still present)
+  double frontiers_ms = 0;
   double polyhedron_ms = 0, dbof_ms = 0, spheres_ms = 0, sampling_ms = 0, graph_ms = 0, obstacles_ms = 0;
 };
 
@@ -93,6 +119,14 @@ class SphereMap {
   const std::map<uint64_t, ObstaclePoint>& obstacles() const { return obstacles_; }
   /// Neighbours (overlapping spheres) of a sphere, ascending ids.
   const std::set<uint64_t>& neighbours(uint64_t sphere_id) const { return adjacency_.at(sphere_id); }
+  /// Frontiers by id.
+  const std::map<uint64_t, Frontier>& frontiers() const { return frontiers_; }
+  /// Frontier test for a point: returns the normal if valid (ignoring frontier `self`).
+  std::optional<Vec3> frontierNormal(const Vec3& x, uint64_t self = 0) const;
+  /// Adds a frontier at x if it passes the frontier test; returns its id.
+  std::optional<uint64_t> tryAddFrontier(const Vec3& x);
+  /// Drops frontiers that are no longer valid; returns how many.
+  int revalidateFrontiers();
   /// True if every sphere can reach every other through overlaps.
   bool connected() const;
 
@@ -112,6 +146,7 @@ class SphereMap {
 
  private:
   void removeSphere(uint64_t id);
+  void sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, MapUpdateStats& st);
   void setRadius(uint64_t id, double r);
 
   SphereMapConfig config_;
@@ -123,7 +158,9 @@ class SphereMap {
   std::map<uint64_t, ObstaclePoint> obstacles_;
   PointGrid sphere_grid_{10.0};
   PointGrid obstacle_grid_{2.0};
-  uint64_t next_sphere_ = 1, next_obstacle_ = 1;
+  std::map<uint64_t, Frontier> frontiers_;
+  PointGrid frontier_grid_{2.0};
+  uint64_t next_sphere_ = 1, next_obstacle_ = 1, next_frontier_ = 1;
 };
 
 }  // namespace msb

@@ -122,6 +122,39 @@ TEST(SphereMapRules, ObstaclePointsKeepTheClosestMeasurement) {
   EXPECT_EQ(map.obstacles().begin()->second.position, Vec3(1.1, 1, 1));
 }
 
+TEST(SphereMapRules, FrontierShellSpacingObstacleGapOneSidednessAndSkyNormal) {
+  const FisheyeCamera cam;
+  SphereMap map(SphereMapConfig{}, cam, 1);
+  map.addSphere({0, 0, 0}, 2.0);
+  // Shell [r + 0.48, r + 2.72] = [2.48, 4.72] around the sphere; outside the sphere itself.
+  const auto n = map.frontierNormal({3, 0, 0});
+  ASSERT_TRUE(n);
+  EXPECT_TRUE(n->isApprox(Vec3(-1, 0, 0)));
+  EXPECT_FALSE(map.frontierNormal({2.2, 0, 0}));  // too close to the sphere
+  EXPECT_FALSE(map.frontierNormal({5.0, 0, 0}));  // beyond the shell
+  EXPECT_FALSE(map.frontierNormal({1.0, 0, 0}));  // inside the sphere
+  // The unknown straight above the free space (normal pointing down) is sky: rejected.
+  EXPECT_FALSE(map.frontierNormal({0, 0, 3}));
+  EXPECT_TRUE(map.frontierNormal({0, 0, -3}));
+  // Spacing between frontiers.
+  ASSERT_TRUE(map.tryAddFrontier({0, 3, 0}));
+  EXPECT_FALSE(map.tryAddFrontier({0.5, 3, 0}));
+  EXPECT_TRUE(map.tryAddFrontier({0, -3, 0}));
+  // Gap to obstacle points.
+  map.addObstacle({3.5, 0, 0}, 5.0);
+  EXPECT_FALSE(map.frontierNormal({3, 0, 0}));
+  // Free space on both sides is no frontier.
+  SphereMap two(SphereMapConfig{}, cam, 1);
+  two.addSphere({-3, 0, 0}, 2.0);
+  two.addSphere({3, 0, 0}, 2.0);
+  EXPECT_FALSE(two.frontierNormal({0, 0, 0}));
+  // Re-validation drops frontiers that new free space has swallowed.
+  EXPECT_EQ(map.frontiers().size(), 2u);
+  map.addSphere({0, 3.5, 0}, 1.8);
+  EXPECT_EQ(map.revalidateFrontiers(), 1);
+  EXPECT_EQ(map.frontiers().size(), 1u);
+}
+
 TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
   const FisheyeCamera cam;
   SphereMap a(SphereMapConfig{}, cam, 7), b(SphereMapConfig{}, cam, 7);
@@ -143,6 +176,12 @@ TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
     EXPECT_EQ(o.radius, s.radius);
   }
   EXPECT_EQ(a.spheres().size(), b.spheres().size());
+  EXPECT_GT(st.new_frontiers, 5);
+  EXPECT_EQ(a.frontiers().size(), b.frontiers().size());
+  for (const auto& [id, f] : a.frontiers()) {
+    EXPECT_TRUE(a.frontierNormal(f.position, id));
+    for (const auto& [sid, s] : a.spheres()) EXPECT_GT((f.position - s.centre).norm(), s.radius);
+  }
   // Too few points: skipped.
   SlamPointsFrame few = f;
   few.points.resize(3);

@@ -1,0 +1,91 @@
+#include <algorithm>
+#include <cmath>
+
+#include "core/map/free_space_polyhedron.h"
+#include "core/map/sphere_map.h"
+
+// Frontier sampling and validation of the sphere map (DESIGN §7 step 10).
+namespace msb {
+
+std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) const {
+  const auto& c = config_;
+  // Spacing from other frontiers and from every obstacle point.
+  for (uint64_t j : frontier_grid_.near(x, c.frontier_spacing_m))
+    if (j != self && (frontiers_.at(j).position - x).norm() < c.frontier_spacing_m) return std::nullopt;
+  for (uint64_t j : obstacle_grid_.near(x, c.frontier_obstacle_gap_m))
+    if ((obstacles_.at(j).position - x).norm() < c.frontier_obstacle_gap_m) return std::nullopt;
+  // Outside every sphere, inside the shell of at least one; collect the shell spheres' centres.
+  Vec3 sum = Vec3::Zero();
+  std::vector<Vec3> dirs;
+  for (uint64_t j : sphere_grid_.near(x, c.r_max_m + c.shell_max_m)) {
+    const Sphere& s = spheres_.at(j);
+    const double d = (s.centre - x).norm();
+    if (d <= s.radius) return std::nullopt;
+    if (d >= s.radius + c.shell_min_m && d <= s.radius + c.shell_max_m) {
+      dirs.push_back((s.centre - x) / d);
+      sum += dirs.back();
+    }
+  }
+  if (dirs.empty()) return std::nullopt;
+  // Free space on one side: the centres lie within a hemisphere around their mean direction.
+  const Vec3 mean = sum / double(dirs.size());
+  if (mean.norm() < c.frontier_min_balance) return std::nullopt;
+  const Vec3 n = mean.normalized();
+  for (const auto& d : dirs)
+    if (d.dot(n) <= 0.0) return std::nullopt;
+  if (n.z() < c.frontier_min_normal_z) return std::nullopt;
+  return n;
+}
+
+int SphereMap::revalidateFrontiers() {
+  std::vector<uint64_t> drop;
+  for (auto& [id, f] : frontiers_) {
+    const auto n = frontierNormal(f.position, id);
+    if (!n) drop.push_back(id);
+    else f.normal = *n;
+  }
+  for (uint64_t id : drop) {
+    frontier_grid_.erase(id, frontiers_.at(id).position);
+    frontiers_.erase(id);
+  }
+  return int(drop.size());
+}
+
+void SphereMap::sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, MapUpdateStats& st) {
+  const auto& c = config_;
+  std::vector<Vec3> candidates;
+  // Area-weighted points on P_f's faces, jittered.
+  const auto tris = pf.triangles();
+  std::vector<double> cumulative;
+  double total = 0;
+  for (const auto& t : tris) cumulative.push_back(total += 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm());
+  for (int i = 0; i < c.frontier_surface_samples && total > 0; ++i) {
+    const double pick = rng_.uniform(0, total);
+    const size_t k = std::min(tris.size() - 1, size_t(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()));
+    double a = rng_.uniform(), b = rng_.uniform();
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    const auto& t = tris[k];
+    candidates.push_back(t[0] + a * (t[1] - t[0]) + b * (t[2] - t[0]) + c.frontier_jitter_m * rng_.normal3());
+  }
+  // Points in the shells of random spheres within range of the camera.
+  std::vector<uint64_t> nearby;
+  for (uint64_t j : sphere_grid_.near(cam, c.frontier_range_m))
+    if ((spheres_.at(j).centre - cam).norm() <= c.frontier_range_m) nearby.push_back(j);
+  for (int i = 0; i < c.frontier_shell_samples && !nearby.empty(); ++i) {
+    const Sphere& s = spheres_.at(nearby[rng_.uniformInt(nearby.size())]);
+    const Vec3 dir = rng_.normal3().normalized();
+    candidates.push_back(s.centre + (s.radius + rng_.uniform(c.shell_min_m, c.shell_max_m)) * dir);
+  }
+  for (const Vec3& x : candidates) st.new_frontiers += tryAddFrontier(x).has_value();
+}
+
+std::optional<uint64_t> SphereMap::tryAddFrontier(const Vec3& x) {
+  const auto n = frontierNormal(x);
+  if (!n) return std::nullopt;
+  const uint64_t id = next_frontier_++;
+  frontiers_[id] = {id, x, *n};
+  frontier_grid_.insert(id, x);
+  return id;
+}
+
+}  // namespace msb
