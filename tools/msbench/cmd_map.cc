@@ -67,7 +67,7 @@ struct Replay {
   std::vector<MapUpdateStats> stats;
   std::vector<double> total_ms;
   std::vector<double> t;
-  std::vector<int> spheres, obstacles;
+  std::vector<int> spheres, obstacles, frontiers;
 };
 
 // Runs the mapper over the log at the given rate (frames at or after each period).
@@ -83,6 +83,7 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz) {
     r.t.push_back(f.points.t_s);
     r.spheres.push_back(int(map.spheres().size()));
     r.obstacles.push_back(int(map.obstacles().size()));
+    r.frontiers.push_back(int(map.frontiers().size()));
   }
   return r;
 }
@@ -128,22 +129,24 @@ int runMapReplayCommand(int argc, char** argv) {
   // map_stats.csv
   std::ostringstream csv;
   csv << "t,skipped,input_points,virtual_points,spheres,obstacles,new_spheres,updated_spheres,deleted_spheres,"
-         "sparsified_spheres,deleted_obstacles,protected_obstacles,inserted_obstacles,polyhedron_ms,"
-         "dbof_ms,spheres_ms,sampling_ms,graph_ms,obstacles_ms,total_ms\n";
+         "sparsified_spheres,deleted_obstacles,protected_obstacles,inserted_obstacles,frontiers,new_frontiers,"
+         "dropped_frontiers,polyhedron_ms,dbof_ms,spheres_ms,sampling_ms,graph_ms,obstacles_ms,frontiers_ms,total_ms\n";
   for (size_t i = 0; i < r.stats.size(); ++i) {
     const auto& s = r.stats[i];
     csv << r.t[i] << ',' << s.skipped << ',' << s.input_points << ',' << s.virtual_points << ',' << r.spheres[i] << ','
         << r.obstacles[i] << ',' << s.new_spheres << ',' << s.updated_spheres << ',' << s.deleted_spheres
         << ',' << s.sparsified_spheres << ',' << s.deleted_obstacles << ',' << s.protected_obstacles << ','
-        << s.inserted_obstacles << ',' << s.polyhedron_ms << ',' << s.dbof_ms << ',' << s.spheres_ms << ','
-        << s.sampling_ms << ',' << s.graph_ms << ',' << s.obstacles_ms << ',' << r.total_ms[i] << '\n';
+        << s.inserted_obstacles << ',' << r.frontiers[i] << ',' << s.new_frontiers << ',' << s.dropped_frontiers << ','
+        << s.polyhedron_ms << ',' << s.dbof_ms << ',' << s.spheres_ms << ',' << s.sampling_ms << ','
+        << s.graph_ms << ',' << s.obstacles_ms << ',' << s.frontiers_ms << ',' << r.total_ms[i] << '\n';
   }
   writeFileAtomic(out.staging() / "map_stats.csv", csv.str());
 
   // map.ply: spheres (kind 0, with radius) and obstacle points (kind 1).
   std::ostringstream ply;
-  ply << "ply\nformat ascii 1.0\ncomment msbench MonoSpheres map (VIO frame)\nelement vertex "
-      << map.spheres().size() + map.obstacles().size()
+  ply << "ply\nformat ascii 1.0\ncomment msbench MonoSpheres map (VIO frame); kind 0 sphere (radius), "
+         "1 obstacle point, 2 frontier\nelement vertex "
+      << map.spheres().size() + map.obstacles().size() + map.frontiers().size()
       << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\n"
          "property uchar kind\nend_header\n";
   char line[160];
@@ -153,6 +156,10 @@ int runMapReplayCommand(int argc, char** argv) {
   }
   for (const auto& [id, o] : map.obstacles()) {
     std::snprintf(line, sizeof(line), "%.4f %.4f %.4f 0 1\n", o.position.x(), o.position.y(), o.position.z());
+    ply << line;
+  }
+  for (const auto& [id, f] : map.frontiers()) {
+    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f 0 2\n", f.position.x(), f.position.y(), f.position.z());
     ply << line;
   }
   writeFileAtomic(out.staging() / "map.ply", ply.str());
@@ -179,6 +186,7 @@ int runMapReplayCommand(int argc, char** argv) {
   for (const auto& [id, s] : map.spheres()) cv::circle(discs, px(s.centre), int(s.radius / mpp), cv::Scalar(230, 160, 90), -1);
   cv::addWeighted(discs, 0.45, img, 0.55, 0, img);
   for (const auto& [id, o] : map.obstacles()) cv::circle(img, px(o.position), 1, cv::Scalar(20, 20, 20), -1);
+  for (const auto& [id, f] : map.frontiers()) cv::circle(img, px(f.position), 3, cv::Scalar(200, 40, 200), -1);
   for (size_t i = 1; i < log.frames.size(); ++i)
     cv::line(img, px(log.frames[i - 1].points.T_W_C.translation()), px(log.frames[i].points.T_W_C.translation()),
              cv::Scalar(0, 140, 255), 2);
@@ -202,6 +210,7 @@ int runMapReplayCommand(int argc, char** argv) {
                             {"sphere_volume_sum_m3", volume},
                             {"spheres", map.spheres().size()},
                             {"obstacle_points", map.obstacles().size()},
+                            {"frontiers", map.frontiers().size()},
                             {"graph_connected", map.connected()},
                             {"update_ms", {{"median", pct(r.total_ms, 0.5)}, {"p95", pct(r.total_ms, 0.95)},
                                            {"p99", pct(r.total_ms, 0.99)}, {"max", pct(r.total_ms, 1.0)}}},
@@ -226,11 +235,12 @@ int runBenchMapCommand(int argc, char** argv) {
               r.t.empty() ? 0.0 : r.t.back(), map.spheres().size(), map.obstacles().size());
   std::printf("  update ms: median %.2f  p95 %.2f  p99 %.2f  max %.2f\n", pct(r.total_ms, 0.5),
               pct(r.total_ms, 0.95), pct(r.total_ms, 0.99), pct(r.total_ms, 1.0));
-  const char* names[] = {"polyhedron", "dbof", "spheres", "sampling", "graph", "obstacles"};
-  for (int k = 0; k < 6; ++k) {
+  const char* names[] = {"polyhedron", "dbof", "spheres", "sampling", "graph", "obstacles", "frontiers"};
+  for (int k = 0; k < 7; ++k) {
     std::vector<double> v;
     for (const auto& s : r.stats) {
-      const double ms[] = {s.polyhedron_ms, s.dbof_ms, s.spheres_ms, s.sampling_ms, s.graph_ms, s.obstacles_ms};
+      const double ms[] = {s.polyhedron_ms, s.dbof_ms, s.spheres_ms, s.sampling_ms, s.graph_ms, s.obstacles_ms,
+                           s.frontiers_ms};
       v.push_back(ms[k]);
     }
     std::printf("  %-11s median %.3f  p99 %.3f ms\n", names[k], pct(v, 0.5), pct(v, 0.99));
