@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <set>
 #include <cstdio>
 #include <sstream>
@@ -16,6 +18,7 @@
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
 #include "tools/msbench/perception_log.h"
+#include "tools/msbench/world_registry.h"
 
 namespace msb {
 
@@ -63,7 +66,20 @@ std::vector<std::string> takeSets(int& argc, char** argv) {
   return sets;
 }
 
+// Map safety against ground truth: every sphere created or grown, with its centre mapped from
+// the estimate to the true world frame of that moment, is checked against the world's
+// geometry; it is unsafe when it reaches more than 0.3 m into a real obstacle.
+struct SafetyStats {
+  long events = 0, unsafe = 0;
+  double volume = 0, unsafe_volume = 0;
+  std::map<std::string, long> unsafe_by_kind;
+  std::map<std::string, double> unsafe_volume_by_kind;
+  std::map<std::string, long> unsafe_by_object;
+  std::vector<double> intrusion_m;  ///< how deep unsafe spheres reach
+};
+
 struct Replay {
+  SafetyStats safety;
   std::vector<MapUpdateStats> stats;
   std::vector<double> total_ms;
   std::vector<double> t;
@@ -71,7 +87,7 @@ struct Replay {
 };
 
 // Runs the mapper over the log at the given rate (frames at or after each period).
-Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz) {
+Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const WorldTruth* truth = nullptr) {
   Replay r;
   double next_t = -1e9;
   for (const auto& f : log.frames) {
@@ -80,6 +96,25 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz) {
     const auto t0 = std::chrono::steady_clock::now();
     r.stats.push_back(map.update(f.points));
     r.total_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (truth) {
+      const Pose T_true_est = f.T_W_C_truth * f.points.T_W_C.inverse();
+      for (uint64_t id : r.stats.back().changed_spheres) {
+        const Sphere& s = map.spheres().at(id);
+        const NearestObstacle n = truth->nearest(T_true_est * s.centre, s.radius + 1.0);
+        const double volume = 4.0 / 3.0 * M_PI * std::pow(s.radius, 3);
+        ++r.safety.events;
+        r.safety.volume += volume;
+        if (n.shape >= 0 && s.radius - n.distance_m > 0.3) {
+          const std::string kind = obstacleKindName(truth->shapes()[n.shape].kind);
+          ++r.safety.unsafe;
+          r.safety.unsafe_volume += volume;
+          ++r.safety.unsafe_by_kind[kind];
+          ++r.safety.unsafe_by_object[truth->shapes()[n.shape].object];
+          r.safety.intrusion_m.push_back(s.radius - n.distance_m);
+          r.safety.unsafe_volume_by_kind[kind] += volume;
+        }
+      }
+    }
     r.t.push_back(f.points.t_s);
     r.spheres.push_back(int(map.spheres().size()));
     r.obstacles.push_back(int(map.obstacles().size()));
@@ -124,7 +159,17 @@ int runMapReplayCommand(int argc, char** argv) {
   const PerceptionLog log = PerceptionLog::read(args.get("LOG"));
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   SphereMap map(cfg, cameraFromHeader(log.header), uint64_t(args.getInt("seed")));
-  const Replay r = replay(log, map, args.getDouble("map-rate-hz"));
+  // Ground truth for the safety check when the log's world is a generated world.
+  std::optional<WorldTruth> truth;
+  if (log.header.contains("world")) {
+    try {
+      const ResolvedWorld w = resolveWorld(log.header["world"].get<std::string>());
+      if (w.built) truth.emplace(w.built->generated.shapes);
+    } catch (const std::exception&) {
+      // not a known generated world: no safety statistics
+    }
+  }
+  const Replay r = replay(log, map, args.getDouble("map-rate-hz"), truth ? &*truth : nullptr);
 
   // map_stats.csv
   std::ostringstream csv;
@@ -215,7 +260,27 @@ int runMapReplayCommand(int argc, char** argv) {
                             {"update_ms", {{"median", pct(r.total_ms, 0.5)}, {"p95", pct(r.total_ms, 0.95)},
                                            {"p99", pct(r.total_ms, 0.99)}, {"max", pct(r.total_ms, 1.0)}}},
                             {"log", args.get("LOG")}};
-  writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
+  nlohmann::json summary = j;
+  if (truth) {
+    const auto& sf = r.safety;
+    nlohmann::json by_kind;
+    for (const auto& [k, n] : sf.unsafe_by_kind)
+      by_kind[k] = {{"unsafe_share", double(n) / std::max(1L, sf.events)},
+                    {"unsafe_volume_share", sf.unsafe_volume_by_kind.at(k) / std::max(1e-9, sf.volume)}};
+    summary["map_safety"] = {{"sphere_events", sf.events},
+                             {"unsafe_share", double(sf.unsafe) / std::max(1L, sf.events)},
+                             {"unsafe_volume_share", sf.unsafe_volume / std::max(1e-9, sf.volume)},
+                             {"safe_volume_share", 1.0 - sf.unsafe_volume / std::max(1e-9, sf.volume)},
+                             {"unsafe_by_kind", by_kind},
+                             {"unsafe_by_object", sf.unsafe_by_object},
+                             {"median_intrusion_m", pct(sf.intrusion_m, 0.5)},
+                             {"rule", "sphere reaches > 0.3 m into a real obstacle (centre mapped to the true frame)"}};
+    std::printf("map safety: %ld sphere creations/growths, %.2f %% unsafe (%.2f %% of volume)", sf.events,
+                100.0 * sf.unsafe / std::max(1L, sf.events), 100.0 * sf.unsafe_volume / std::max(1e-9, sf.volume));
+    for (const auto& [k, n] : sf.unsafe_by_kind) std::printf("; %s %ld", k.c_str(), n);
+    std::printf("\n");
+  }
+  writeFileAtomic(out.staging() / "summary.json", summary.dump(2) + "\n");
   out.commit();
   std::printf("map-replay: %zu updates, %zu spheres, %zu obstacle points, %zu columns covered (%.0f m2); "
               "update ms median %.2f, p99 %.2f -> %s\n",
