@@ -98,13 +98,7 @@ int runFlyCommand(int argc, char** argv) {
     writeFileAtomic(out.staging() / "frames" / name, encodePng(f));
     ++saved;
   };
-  obs.on_progress = [&](double sim_s, double wall_s) {
-    // Progress every 10 simulated seconds (stderr; never part of the results).
-    if (static_cast<long>(sim_s) % 10 != 0) return;
-    const double rtf = sim_s / std::max(wall_s, 1e-9);
-    std::fprintf(stderr, "fly: t = %.0f / %.0f s simulated, real-time factor %.1f, ETA %.0f s\n",
-                 sim_s, spec.duration_s, rtf, (spec.duration_s - sim_s) / rtf);
-  };
+  obs.on_progress = progressPrinter("fly", spec.duration_s);
   const FlightResult r = runFlight(spec, obs);
 
   std::ifstream in(file, std::ios::binary);

@@ -161,6 +161,7 @@ int runVioEvalCommand(int argc, char** argv) {
       cv::imwrite((out.staging() / "annotated" / name).string(), annotate(s));
     }
   };
+  obs.on_progress = progressPrinter("vio-eval", spec.duration_s);
   const FlightResult r = runFlight(spec, obs);
   if (recorder) recorder->close();
 

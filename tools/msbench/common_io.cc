@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -59,6 +60,15 @@ std::string imuCsv(const std::vector<ImuSample>& samples) {
     s += line;
   }
   return s;
+}
+
+ProgressCallback progressPrinter(const std::string& command, double duration_s) {
+  return [command, duration_s](double sim_s, double wall_s) {
+    if (static_cast<long>(sim_s) % 10 != 0) return;
+    const double rtf = sim_s / std::max(wall_s, 1e-9);
+    std::fprintf(stderr, "%s: t = %.0f / %.0f s simulated, real-time factor %.1f, ETA %.0f s\n",
+                 command.c_str(), sim_s, duration_s, rtf, (duration_s - sim_s) / rtf);
+  };
 }
 
 std::string hexHash(uint64_t h) {

@@ -22,6 +22,10 @@ std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);
 /// imu.csv text.
 std::string imuCsv(const std::vector<ImuSample>& samples);
 
+/// A progress printer for long flights: a line on stderr every 10 simulated seconds with the
+/// real-time factor and an ETA (never part of the results).
+ProgressCallback progressPrinter(const std::string& command, double duration_s);
+
 /// 16-digit hexadecimal form of a hash.
 std::string hexHash(uint64_t h);
 
