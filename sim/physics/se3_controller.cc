@@ -69,12 +69,18 @@ Vec4 Se3Controller::compute(const Odometry& s, const TrajectoryReference& r) con
   Vec3 M = -config_.k_attitude.cwiseProduct(eR) - config_.k_rate.cwiseProduct(eW) +
            s.omega_B_radps.cross(JW);
 
-  // Allocation; on saturation drop yaw torque first, then clamp.
+  // Allocation. Thrust, roll and pitch come first; yaw torque (weak on a quadrotor: it comes
+  // from rotor drag only) is scaled down to what the motors can still give.
   const double fmax = vehicle_.max_thrust_n;
-  Vec4 u = allocation_inv_ * Vec4(f, M.x(), M.y(), M.z());
-  if (u.minCoeff() < 0.0 || u.maxCoeff() > fmax) {
-    u = allocation_inv_ * Vec4(f, M.x(), M.y(), 0.0);
+  Vec4 u = allocation_inv_ * Vec4(f, M.x(), M.y(), 0.0);
+  for (int i = 0; i < 4; ++i) u[i] = std::clamp(u[i], 0.0, fmax);
+  const Vec4 yaw_column = allocation_inv_ * Vec4(0.0, 0.0, 0.0, M.z());
+  double scale = 1.0;
+  for (int i = 0; i < 4; ++i) {
+    if (yaw_column[i] > 1e-12) scale = std::min(scale, (fmax - u[i]) / yaw_column[i]);
+    if (yaw_column[i] < -1e-12) scale = std::min(scale, (0.0 - u[i]) / yaw_column[i]);
   }
+  u += std::max(0.0, scale) * yaw_column;
   for (int i = 0; i < 4; ++i) u[i] = std::clamp(u[i], 0.0, fmax);
   return u;
 }

@@ -8,8 +8,9 @@
 //   f = F_d · R e3                                    (collective thrust)
 //   e_R = ½ vee(R_dᵀ R − Rᵀ R_d),  e_Ω = Ω − Rᵀ R_d Ω_d,  Ω_d = (0, 0, ψ̇_d) in the desired frame
 //   M = −k_R e_R − k_Ω e_Ω + Ω × J Ω
-// Allocation inverts [f, M] = A · [f_FL, f_FR, f_BR, f_BL] and clamps to the motor range; when
-// motors saturate, yaw torque is given up first so that attitude and thrust stay controlled.
+// Allocation inverts [f, M] = A · [f_FL, f_FR, f_BR, f_BL] and clamps to the motor range; yaw
+// torque (rotor drag only, weak) is scaled down to what the motors can still give once thrust,
+// roll and pitch are served.
 #pragma once
 
 #include "core/common/config_check.h"
@@ -22,8 +23,8 @@ namespace msb {
 struct Se3ControllerConfig {
   Vec3 k_position = Vec3(7.0, 7.0, 10.0);   ///< N/m
   Vec3 k_velocity = Vec3(5.5, 5.5, 7.0);    ///< N·s/m
-  Vec3 k_attitude = Vec3(8.0, 5.5, 2.0);    ///< N·m/rad
-  Vec3 k_rate = Vec3(0.75, 0.5, 0.45);      ///< N·m·s/rad
+  Vec3 k_attitude = Vec3(8.0, 5.5, 0.6);    ///< N·m/rad (yaw: ω_n ≈ 3 rad/s)
+  Vec3 k_rate = Vec3(0.75, 0.5, 0.3);       ///< N·m·s/rad
   double max_tilt_deg = 40.0;               ///< limit on the commanded tilt
 
   /// Records invalid fields.

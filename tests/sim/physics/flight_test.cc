@@ -17,6 +17,7 @@ const std::string kWorlds = std::string(MSB_SOURCE_DIR) + "/tests/data/worlds/";
 struct Sample {
   double t;
   Vec3 pos, ref, vel;
+  double yaw_error;  // |yaw − reference yaw|, wrapped
 };
 
 // Flies `path` from a ground start; records a sample per controller tick (500 Hz).
@@ -43,7 +44,8 @@ FlightLog fly(const std::string& world, const std::vector<Waypoint>& path, doubl
     }
     const Odometry gt = sim.groundTruth();
     const auto& ref = tracker.update(0.002);
-    log.samples.push_back({gt.t_s, gt.T_W_B.translation(), ref.position_m, gt.v_W_mps});
+    log.samples.push_back({gt.t_s, gt.T_W_B.translation(), ref.position_m, gt.v_W_mps,
+                           std::abs(wrapAngle(yawOf(gt.T_W_B.linear()) - ref.yaw_rad))});
     sim.endTick(ctrl.compute(gt, ref));
     EXPECT_FALSE(sim.diverged());
     if (tracker.finished() && finished_at < 0) finished_at = gt.t_s;
@@ -104,6 +106,10 @@ TEST(Flight, SquareAt4mpsIsTrackedWithRmsBelow30cm) {
   ASSERT_TRUE(log.finished);
   EXPECT_GT(maxSpeed(log), 3.9);
   EXPECT_LT(rmsError(log), 0.3);
+  // The heading follows the direction of travel (the reference turns at ≤ 1 rad/s).
+  double worst_yaw = 0;
+  for (const auto& s : log.samples) worst_yaw = std::max(worst_yaw, s.yaw_error);
+  EXPECT_LT(worst_yaw, 0.2);
   // The flown path stays close to the commanded square (corners are rounded).
   std::vector<Vec3> poly = {Vec3(0, 0, 0.05)};  // take-off point
   for (const auto& w : path) poly.push_back(w.position_m);
@@ -166,6 +172,27 @@ TEST(Collision, StaticWorldGeomsAreNeverTestedAgainstEachOther) {
     EXPECT_FALSE(sim.beginTick());
     EXPECT_EQ(sim.data()->ncon, 0);
     sim.endTick(Vec4::Constant(1.325 * 9.81 / 4));
+  }
+}
+
+TEST(Flight, YawStepsSettleWithinFiveSeconds) {
+  // Regression: yaw torque used to be dropped whenever the motors saturated, which for a
+  // quadrotor's weak yaw authority meant no yaw control at all for large heading errors.
+  for (double step : {1.0, 2.5, -3.0}) {
+    QuadrotorSim sim(PhysicsConfig{}, kWorlds + "open_field.xml", poseFromXyzYaw(Vec3(0, 0, 5), 0));
+    const Se3Controller ctrl(Se3ControllerConfig{}, QuadrotorConfig{});
+    TrajectoryReference ref;
+    ref.position_m = Vec3(0, 0, 5);
+    ref.yaw_rad = step;
+    double worst_pos = 0;
+    for (int i = 0; i < 2500; ++i) {
+      sim.beginTick();
+      const Odometry gt = sim.groundTruth();
+      worst_pos = std::max(worst_pos, (gt.T_W_B.translation() - ref.position_m).norm());
+      sim.endTick(ctrl.compute(gt, ref));
+    }
+    EXPECT_LT(std::abs(wrapAngle(yawOf(sim.groundTruth().T_W_B.linear()) - step)), 0.02) << step;
+    EXPECT_LT(worst_pos, 0.1) << step;
   }
 }
 
