@@ -102,24 +102,31 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   if (points_.empty()) points_ = {p}, headings_ = {std::nullopt}, cumulative_ = {0.0};
 
   // Advance the projection of the reference onto the path (monotonic along the path). A rounded
-  // corner never reaches the end of its segment, so the next segment takes over as soon as
-  // the reference projects onto it at least as closely as onto the current one.
+  // corner never reaches the end of its segment, so the next segment takes over once the
+  // reference crosses the corner's bisector plane. Sharp turns (> 120°, e.g. reversals) are not
+  // rounded: the look-ahead stops at the vertex and the next segment starts once the reference
+  // is there.
   const size_t nseg = points_.size() - 1;
-  auto project = [&](size_t seg, double* t, double* dist) {
-    const Vec3& A = points_[seg];
-    const Vec3 AB = points_[seg + 1] - A;
-    *t = std::clamp((p - A).dot(AB) / AB.squaredNorm(), 0.0, 1.0);
-    *dist = (A + *t * AB - p).norm();
+  auto sharpAfter = [&](size_t seg) {
+    if (seg + 1 >= nseg) return false;
+    const Vec3 a = (points_[seg + 1] - points_[seg]).normalized();
+    const Vec3 b = (points_[seg + 2] - points_[seg + 1]).normalized();
+    return (a + b).norm() < 1.0;
   };
   while (nseg > 0) {
-    double t, dist;
-    project(segment_, &t, &dist);
-    s_proj_ = std::max(s_proj_, cumulative_[segment_] + t * (cumulative_[segment_ + 1] - cumulative_[segment_]));
+    const Vec3& A = points_[segment_];
+    const Vec3& B = points_[segment_ + 1];
+    const Vec3 AB = B - A;
+    const double t = std::clamp((p - A).dot(AB) / AB.squaredNorm(), 0.0, 1.0);
+    s_proj_ = std::max(s_proj_, cumulative_[segment_] + t * AB.norm());
     if (segment_ + 1 < nseg) {
-      double t2, dist2;
-      project(segment_ + 1, &t2, &dist2);
-      if (t >= 1.0 || (t2 > 0.0 && dist2 <= dist)) {
+      const Vec3 a = AB.normalized(), b = (points_[segment_ + 2] - B).normalized();
+      Vec3 n = a + b;
+      if (n.norm() < 0.2) n = a;  // (nearly) reversing: pass the vertex first
+      const bool at_sharp_vertex = sharpAfter(segment_) && (p - B).norm() < 0.3;
+      if (t >= 1.0 || (p - B).dot(n) >= 0.0 || at_sharp_vertex) {
         ++segment_;
+        s_proj_ = std::max(s_proj_, cumulative_[segment_]);
         continue;
       }
     }
@@ -130,14 +137,15 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   // every corner and the end; a proportional approach once the look-ahead reaches the end.
   const double total = cumulative_.back();
   const double lookahead = config_.lookahead_base_m + config_.lookahead_per_speed_s * v.norm();
-  const double s_carrot = std::min(s_proj_ + lookahead, total);
+  const double s_limit = sharpAfter(segment_) ? cumulative_[segment_ + 1] : total;
+  const double s_carrot = std::min(s_proj_ + lookahead, s_limit);
   const Vec3 to_carrot = pointAt(s_carrot) - p;
   const double dist = to_carrot.norm();
   // The limit is taken where the reference will be once its velocity has caught up
   // (first-order velocity lag plus acceleration build-up under the jerk limit).
   const double lag_s = 1.0 / config_.velocity_gain_per_s + lim.max_accel_mps2 / lim.max_jerk_mps3;
   double speed = speedLimit(s_proj_ + v.norm() * lag_s, (points_.back() - p).norm());
-  if (s_carrot >= total) speed = std::min(speed, 1.2 * dist);
+  if (s_carrot >= s_limit) speed = std::min(speed, 1.2 * dist + 0.3 * (s_limit < total));
   const Vec3 v_des = dist > 1e-9 ? Vec3(to_carrot / dist * speed) : Vec3::Zero();
 
   // Jerk- and acceleration-limited double integrator towards v_des.
