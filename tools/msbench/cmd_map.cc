@@ -123,11 +123,6 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
   return r;
 }
 
-double pct(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, size_t(q * (v.size() - 1) + 0.5))];
-}
 
 FisheyeCamera cameraFromHeader(const nlohmann::json& h) {
   FisheyeCameraConfig c;
@@ -257,8 +252,8 @@ int runMapReplayCommand(int argc, char** argv) {
                             {"obstacle_points", map.obstacles().size()},
                             {"frontiers", map.frontiers().size()},
                             {"graph_connected", map.connected()},
-                            {"update_ms", {{"median", pct(r.total_ms, 0.5)}, {"p95", pct(r.total_ms, 0.95)},
-                                           {"p99", pct(r.total_ms, 0.99)}, {"max", pct(r.total_ms, 1.0)}}},
+                            {"update_ms", {{"median", percentile(r.total_ms, 0.5)}, {"p95", percentile(r.total_ms, 0.95)},
+                                           {"p99", percentile(r.total_ms, 0.99)}, {"max", percentile(r.total_ms, 1.0)}}},
                             {"log", args.get("LOG")}};
   nlohmann::json summary = j;
   if (truth) {
@@ -273,7 +268,7 @@ int runMapReplayCommand(int argc, char** argv) {
                              {"safe_volume_share", 1.0 - sf.unsafe_volume / std::max(1e-9, sf.volume)},
                              {"unsafe_by_kind", by_kind},
                              {"unsafe_by_object", sf.unsafe_by_object},
-                             {"median_intrusion_m", pct(sf.intrusion_m, 0.5)},
+                             {"median_intrusion_m", percentile(sf.intrusion_m, 0.5)},
                              {"rule", "sphere reaches > 0.3 m into a real obstacle (centre mapped to the true frame)"}};
     std::printf("map safety: %ld sphere creations/growths, %.2f %% unsafe (%.2f %% of volume)", sf.events,
                 100.0 * sf.unsafe / std::max(1L, sf.events), 100.0 * sf.unsafe_volume / std::max(1e-9, sf.volume));
@@ -285,7 +280,7 @@ int runMapReplayCommand(int argc, char** argv) {
   std::printf("map-replay: %zu updates, %zu spheres, %zu obstacle points, %zu columns covered (%.0f m2); "
               "update ms median %.2f, p99 %.2f -> %s\n",
               r.stats.size(), map.spheres().size(), map.obstacles().size(), columns.size(), 6.25 * columns.size(),
-              pct(r.total_ms, 0.5), pct(r.total_ms, 0.99), out.finalDir().c_str());
+              percentile(r.total_ms, 0.5), percentile(r.total_ms, 0.99), out.finalDir().c_str());
   return kExitOk;
 }
 
@@ -298,8 +293,8 @@ int runBenchMapCommand(int argc, char** argv) {
   const Replay r = replay(log, map, args.getDouble("map-rate-hz"));
   std::printf("bench-map: %zu updates over %.0f s; final %zu spheres, %zu obstacle points\n", r.stats.size(),
               r.t.empty() ? 0.0 : r.t.back(), map.spheres().size(), map.obstacles().size());
-  std::printf("  update ms: median %.2f  p95 %.2f  p99 %.2f  max %.2f\n", pct(r.total_ms, 0.5),
-              pct(r.total_ms, 0.95), pct(r.total_ms, 0.99), pct(r.total_ms, 1.0));
+  std::printf("  update ms: median %.2f  p95 %.2f  p99 %.2f  max %.2f\n", percentile(r.total_ms, 0.5),
+              percentile(r.total_ms, 0.95), percentile(r.total_ms, 0.99), percentile(r.total_ms, 1.0));
   const char* names[] = {"polyhedron", "dbof", "spheres", "sampling", "graph", "obstacles", "frontiers"};
   for (int k = 0; k < 7; ++k) {
     std::vector<double> v;
@@ -308,7 +303,7 @@ int runBenchMapCommand(int argc, char** argv) {
                            s.frontiers_ms};
       v.push_back(ms[k]);
     }
-    std::printf("  %-11s median %.3f  p99 %.3f ms\n", names[k], pct(v, 0.5), pct(v, 0.99));
+    std::printf("  %-11s median %.3f  p99 %.3f ms\n", names[k], percentile(v, 0.5), percentile(v, 0.99));
   }
   return kExitOk;
 }

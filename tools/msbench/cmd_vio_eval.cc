@@ -30,12 +30,6 @@ namespace {
 constexpr double kBinEdges[] = {0, 5, 10, 20, 40, 1e9};
 constexpr int kBins = 5;
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const size_t k = std::min(v.size() - 1, size_t(q * (v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
-}
 
 // Running statistics of the evaluation.
 struct VioStats {

@@ -26,6 +26,9 @@ std::string imuCsv(const std::vector<ImuSample>& samples);
 /// real-time factor and an ETA (never part of the results).
 ProgressCallback progressPrinter(const std::string& command, double duration_s);
 
+/// The q-quantile (0..1, nearest rank) of a sample; 0 for an empty one.
+double percentile(std::vector<double> values, double q);
+
 /// 16-digit hexadecimal form of a hash.
 std::string hexHash(uint64_t h);
 
