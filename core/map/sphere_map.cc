@@ -274,7 +274,8 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
 
   // 10. Frontiers: re-validate the old ones against the new map, then sample new ones.
   t0 = Clock::now();
-  st.dropped_frontiers = revalidateFrontiers();
+  const double reach = config_.r_max_m + config_.shell_max_m + config_.frontier_spacing_m;
+  st.dropped_frontiers = revalidateFrontiers(lo.array() - reach, hi.array() + reach);
   sampleFrontiers(pf, cam, st);
   st.frontiers_ms = msSince(t0);
   std::vector<uint64_t> alive;

@@ -127,6 +127,9 @@ class SphereMap {
   std::optional<uint64_t> tryAddFrontier(const Vec3& x);
   /// Drops frontiers that are no longer valid; returns how many.
   int revalidateFrontiers();
+  /// The same for the frontiers inside the box [lo, hi] only (validity changes only where the
+  /// map changed; update() re-validates around P_f).
+  int revalidateFrontiers(const Vec3& lo, const Vec3& hi);
   /// True if every sphere can reach every other through overlaps.
   bool connected() const;
 

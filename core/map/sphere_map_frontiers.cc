@@ -38,11 +38,22 @@ std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) cons
 }
 
 int SphereMap::revalidateFrontiers() {
+  return revalidateFrontiers(Vec3::Constant(-1e9), Vec3::Constant(1e9));
+}
+
+int SphereMap::revalidateFrontiers(const Vec3& lo, const Vec3& hi) {
   std::vector<uint64_t> drop;
-  for (auto& [id, f] : frontiers_) {
+  const bool everything = (hi - lo).minCoeff() > 1e8;
+  const std::vector<uint64_t> ids = everything ? std::vector<uint64_t>{} : frontier_grid_.inBox(lo, hi);
+  auto check = [&](uint64_t id, Frontier& f) {
     const auto n = frontierNormal(f.position, id);
     if (!n) drop.push_back(id);
     else f.normal = *n;
+  };
+  if (everything) {
+    for (auto& [id, f] : frontiers_) check(id, f);
+  } else {
+    for (uint64_t id : ids) check(id, frontiers_.at(id));
   }
   for (uint64_t id : drop) {
     frontier_grid_.erase(id, frontiers_.at(id).position);
