@@ -58,6 +58,7 @@ double SphereMap::ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron&
 uint64_t SphereMap::addSphere(const Vec3& centre, double radius) {
   const uint64_t id = next_sphere_++;
   spheres_[id] = {id, centre, radius};
+  markDirty(centre, radius + config_.shell_max_m);
   auto& adj = adjacency_[id];
   for (uint64_t j : sphere_grid_.near(centre, radius + config_.r_max_m)) {
     const Sphere& s = spheres_.at(j);
@@ -71,6 +72,7 @@ uint64_t SphereMap::addSphere(const Vec3& centre, double radius) {
 }
 
 void SphereMap::removeSphere(uint64_t id) {
+  markDirty(spheres_.at(id).centre, spheres_.at(id).radius + config_.shell_max_m);
   for (uint64_t j : adjacency_.at(id)) adjacency_[j].erase(id);
   adjacency_.erase(id);
   sphere_grid_.erase(id, spheres_.at(id).centre);
@@ -79,6 +81,7 @@ void SphereMap::removeSphere(uint64_t id) {
 
 void SphereMap::setRadius(uint64_t id, double r) {
   Sphere& s = spheres_.at(id);
+  markDirty(s.centre, std::max(s.radius, r) + config_.shell_max_m);
   s.radius = r;
   // Re-link: overlaps may appear or vanish.
   for (uint64_t j : adjacency_.at(id)) adjacency_[j].erase(id);
@@ -127,6 +130,7 @@ bool SphereMap::sparsify(uint64_t id) {
 uint64_t SphereMap::addObstacle(const Vec3& p, double d_min) {
   const uint64_t id = next_obstacle_++;
   obstacles_[id] = {id, p, d_min};
+  markDirty(p, config_.frontier_obstacle_gap_m);
   obstacle_grid_.insert(id, p);
   return id;
 }
@@ -274,8 +278,7 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
 
   // 10. Frontiers: re-validate the old ones against the new map, then sample new ones.
   t0 = Clock::now();
-  const double reach = config_.r_max_m + config_.shell_max_m + config_.frontier_spacing_m;
-  st.dropped_frontiers = revalidateFrontiers(lo.array() - reach, hi.array() + reach);
+  st.dropped_frontiers = revalidateDirtyFrontiers();
   sampleFrontiers(pf, cam, st);
   st.frontiers_ms = msSince(t0);
   std::vector<uint64_t> alive;

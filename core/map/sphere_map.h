@@ -18,8 +18,10 @@
 //      [r + 0.48, r + 2.72] of spheres within 20 m; kept if ≥ 1.5 m from other frontiers and
 //      from every obstacle point, outside all spheres, inside some sphere's shell, with free
 //      space on one side (normal = mean direction to the nearby centres) and a normal that
-//      does not put the unknown straight above (n_z ≥ −0.5). All frontiers are re-validated
-//      after every update (and on demand, e.g. per planning step).
+//      does not put the unknown straight above (n_z ≥ −0.5). After each update the frontiers
+//      near anything that changed (spheres created, resized or removed; obstacle points
+//      inserted) are re-validated — validity depends on nothing else; revalidateFrontiers()
+//      re-checks all (e.g. per planning step).
 #pragma once
 
 #include <cstdint>
@@ -127,8 +129,7 @@ class SphereMap {
   std::optional<uint64_t> tryAddFrontier(const Vec3& x);
   /// Drops frontiers that are no longer valid; returns how many.
   int revalidateFrontiers();
-  /// The same for the frontiers inside the box [lo, hi] only (validity changes only where the
-  /// map changed; update() re-validates around P_f).
+  /// The same for the frontiers inside the box [lo, hi] only.
   int revalidateFrontiers(const Vec3& lo, const Vec3& hi);
   /// True if every sphere can reach every other through overlaps.
   bool connected() const;
@@ -149,6 +150,8 @@ class SphereMap {
 
  private:
   void removeSphere(uint64_t id);
+  void markDirty(const Vec3& centre, double reach) { dirty_.emplace_back(centre, reach); }
+  int revalidateDirtyFrontiers();
   void sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, MapUpdateStats& st);
   void setRadius(uint64_t id, double r);
 
@@ -159,9 +162,10 @@ class SphereMap {
   std::map<uint64_t, Sphere> spheres_;
   std::map<uint64_t, std::set<uint64_t>> adjacency_;
   std::map<uint64_t, ObstaclePoint> obstacles_;
-  PointGrid sphere_grid_{10.0};
+  PointGrid sphere_grid_{20.0};
   PointGrid obstacle_grid_{2.0};
   std::map<uint64_t, Frontier> frontiers_;
+  std::vector<std::pair<Vec3, double>> dirty_;  // regions changed since the last re-validation
   PointGrid frontier_grid_{2.0};
   uint64_t next_sphere_ = 1, next_obstacle_ = 1, next_frontier_ = 1;
 };

@@ -10,10 +10,14 @@ namespace msb {
 std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) const {
   const auto& c = config_;
   // Spacing from other frontiers and from every obstacle point.
-  for (uint64_t j : frontier_grid_.near(x, c.frontier_spacing_m))
-    if (j != self && (frontiers_.at(j).position - x).norm() < c.frontier_spacing_m) return std::nullopt;
-  for (uint64_t j : obstacle_grid_.near(x, c.frontier_obstacle_gap_m))
-    if ((obstacles_.at(j).position - x).norm() < c.frontier_obstacle_gap_m) return std::nullopt;
+  if (obstacle_grid_.anyNear(x, c.frontier_obstacle_gap_m, [&](uint64_t j) {
+        return (obstacles_.at(j).position - x).norm() < c.frontier_obstacle_gap_m;
+      }))
+    return std::nullopt;
+  if (frontier_grid_.anyNear(x, c.frontier_spacing_m, [&](uint64_t j) {
+        return j != self && (frontiers_.at(j).position - x).norm() < c.frontier_spacing_m;
+      }))
+    return std::nullopt;
   // Outside every sphere, inside the shell of at least one; collect the shell spheres' centres.
   Vec3 sum = Vec3::Zero();
   std::vector<Vec3> dirs;
@@ -54,6 +58,30 @@ int SphereMap::revalidateFrontiers(const Vec3& lo, const Vec3& hi) {
     for (auto& [id, f] : frontiers_) check(id, f);
   } else {
     for (uint64_t id : ids) check(id, frontiers_.at(id));
+  }
+  for (uint64_t id : drop) {
+    frontier_grid_.erase(id, frontiers_.at(id).position);
+    frontiers_.erase(id);
+  }
+  return int(drop.size());
+}
+
+int SphereMap::revalidateDirtyFrontiers() {
+  // Frontiers near a change, deduplicated and in id order.
+  std::vector<uint64_t> ids;
+  for (const auto& [c, reach] : dirty_) {
+    const auto near = frontier_grid_.near(c, reach);
+    ids.insert(ids.end(), near.begin(), near.end());
+  }
+  dirty_.clear();
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::vector<uint64_t> drop;
+  for (uint64_t id : ids) {
+    Frontier& f = frontiers_.at(id);
+    const auto n = frontierNormal(f.position, id);
+    if (!n) drop.push_back(id);
+    else f.normal = *n;
   }
   for (uint64_t id : drop) {
     frontier_grid_.erase(id, frontiers_.at(id).position);
