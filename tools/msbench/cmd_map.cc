@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/common/rng.h"
 #include "core/map/sphere_map.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
@@ -76,6 +77,10 @@ struct SafetyStats {
   std::map<std::string, double> unsafe_volume_by_kind;
   std::map<std::string, long> unsafe_by_object;
   std::vector<double> intrusion_m;  ///< how deep unsafe spheres reach
+  // Volume actually inside obstacles (Monte Carlo, 128 samples per sphere), by the kind of the
+  // obstacle nearest the sphere's centre.
+  std::map<std::string, double> volume_by_kind, occupied_volume_by_kind;
+  double occupied_volume = 0;
 };
 
 struct Replay {
@@ -97,6 +102,7 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
     r.stats.push_back(map.update(f.points));
     r.total_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     if (truth) {
+      static RngStream samples(0, "map_safety_samples");  // fixed: results depend on the map only
       const Pose T_true_est = f.T_W_C_truth * f.points.T_W_C.inverse();
       for (uint64_t id : r.stats.back().changed_spheres) {
         const Sphere& s = map.spheres().at(id);
@@ -104,6 +110,18 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
         const double volume = 4.0 / 3.0 * M_PI * std::pow(s.radius, 3);
         ++r.safety.events;
         r.safety.volume += volume;
+        int occupied = 0;
+        constexpr int kSamples = 128;
+        for (int k = 0; k < kSamples; ++k) {
+          Vec3 u;
+          do u = Vec3(samples.uniform(-1, 1), samples.uniform(-1, 1), samples.uniform(-1, 1));
+          while (u.squaredNorm() > 1.0);
+          occupied += truth->inside(T_true_est * (s.centre + s.radius * u));
+        }
+        const std::string near_kind = n.shape >= 0 ? obstacleKindName(truth->shapes()[n.shape].kind) : "none";
+        r.safety.volume_by_kind[near_kind] += volume;
+        r.safety.occupied_volume_by_kind[near_kind] += volume * occupied / kSamples;
+        r.safety.occupied_volume += volume * occupied / kSamples;
         if (n.shape >= 0 && s.radius - n.distance_m > 0.3) {
           const std::string kind = obstacleKindName(truth->shapes()[n.shape].kind);
           ++r.safety.unsafe;
@@ -244,9 +262,22 @@ int runMapReplayCommand(int argc, char** argv) {
   }
   double volume = 0;
   for (const auto& [id, sp] : map.spheres()) volume += 4.0 / 3.0 * M_PI * std::pow(sp.radius, 3);
+  // Corridor coverage: share of the flown camera positions (every 10th frame) inside the map's
+  // free space at the end.
+  long path_samples = 0, path_covered = 0;
+  for (size_t i = 0; i < log.frames.size(); i += 10) {
+    const Vec3 p = log.frames[i].points.T_W_C.translation();
+    ++path_samples;
+    for (const auto& [id, sp] : map.spheres())
+      if ((sp.centre - p).norm() <= sp.radius) {
+        ++path_covered;
+        break;
+      }
+  }
   const nlohmann::json j = {{"updates", r.stats.size()},
                             {"covered_columns", columns.size()},
                             {"covered_area_m2", 6.25 * columns.size()},
+                            {"flown_path_in_free_space_share", double(path_covered) / std::max(1L, path_samples)},
                             {"sphere_volume_sum_m3", volume},
                             {"spheres", map.spheres().size()},
                             {"obstacle_points", map.obstacles().size()},
@@ -268,18 +299,29 @@ int runMapReplayCommand(int argc, char** argv) {
                              {"safe_volume_share", 1.0 - sf.unsafe_volume / std::max(1e-9, sf.volume)},
                              {"unsafe_by_kind", by_kind},
                              {"unsafe_by_object", sf.unsafe_by_object},
+                             {"free_volume_share", 1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)},
+                             {"free_volume_share_by_nearest_kind", [&] {
+                                nlohmann::json k;
+                                for (const auto& [kind, v] : sf.volume_by_kind)
+                                  k[kind] = 1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v);
+                                return k;
+                              }()},
                              {"median_intrusion_m", percentile(sf.intrusion_m, 0.5)},
                              {"rule", "sphere reaches > 0.3 m into a real obstacle (centre mapped to the true frame)"}};
     std::printf("map safety: %ld sphere creations/growths, %.2f %% unsafe (%.2f %% of volume)", sf.events,
                 100.0 * sf.unsafe / std::max(1L, sf.events), 100.0 * sf.unsafe_volume / std::max(1e-9, sf.volume));
     for (const auto& [k, n] : sf.unsafe_by_kind) std::printf("; %s %ld", k.c_str(), n);
+    std::printf("\nmap safety: %.2f %% of the sphere volume is really free", 100.0 * (1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)));
+    for (const auto& [kind, v] : sf.volume_by_kind)
+      std::printf("; near %s %.2f %%", kind.c_str(), 100.0 * (1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v)));
     std::printf("\n");
   }
   writeFileAtomic(out.staging() / "summary.json", summary.dump(2) + "\n");
   out.commit();
-  std::printf("map-replay: %zu updates, %zu spheres, %zu obstacle points, %zu columns covered (%.0f m2); "
-              "update ms median %.2f, p99 %.2f -> %s\n",
+  std::printf("map-replay: %zu updates, %zu spheres, %zu obstacle points, %zu columns covered (%.0f m2), "
+              "%.0f %% of the flown path in free space; update ms median %.2f, p99 %.2f -> %s\n",
               r.stats.size(), map.spheres().size(), map.obstacles().size(), columns.size(), 6.25 * columns.size(),
+              100.0 * path_covered / std::max(1L, path_samples),
               percentile(r.total_ms, 0.5), percentile(r.total_ms, 0.99), out.finalDir().c_str());
   return kExitOk;
 }
