@@ -129,8 +129,6 @@ class SphereMap {
   std::optional<uint64_t> tryAddFrontier(const Vec3& x);
   /// Drops frontiers that are no longer valid; returns how many.
   int revalidateFrontiers();
-  /// The same for the frontiers inside the box [lo, hi] only.
-  int revalidateFrontiers(const Vec3& lo, const Vec3& hi);
   /// True if every sphere can reach every other through overlaps.
   bool connected() const;
 
@@ -152,6 +150,7 @@ class SphereMap {
   void removeSphere(uint64_t id);
   void markDirty(const Vec3& centre, double reach) { dirty_.emplace_back(centre, reach); }
   int revalidateDirtyFrontiers();
+  int revalidate(const std::vector<uint64_t>& ids);  // re-checks ids (ascending), drops failures
   void sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, MapUpdateStats& st);
   void setRadius(uint64_t id, double r);
 

@@ -42,28 +42,9 @@ std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) cons
 }
 
 int SphereMap::revalidateFrontiers() {
-  return revalidateFrontiers(Vec3::Constant(-1e9), Vec3::Constant(1e9));
-}
-
-int SphereMap::revalidateFrontiers(const Vec3& lo, const Vec3& hi) {
-  std::vector<uint64_t> drop;
-  const bool everything = (hi - lo).minCoeff() > 1e8;
-  const std::vector<uint64_t> ids = everything ? std::vector<uint64_t>{} : frontier_grid_.inBox(lo, hi);
-  auto check = [&](uint64_t id, Frontier& f) {
-    const auto n = frontierNormal(f.position, id);
-    if (!n) drop.push_back(id);
-    else f.normal = *n;
-  };
-  if (everything) {
-    for (auto& [id, f] : frontiers_) check(id, f);
-  } else {
-    for (uint64_t id : ids) check(id, frontiers_.at(id));
-  }
-  for (uint64_t id : drop) {
-    frontier_grid_.erase(id, frontiers_.at(id).position);
-    frontiers_.erase(id);
-  }
-  return int(drop.size());
+  std::vector<uint64_t> ids;
+  for (const auto& [id, f] : frontiers_) ids.push_back(id);
+  return revalidate(ids);
 }
 
 int SphereMap::revalidateDirtyFrontiers() {
@@ -76,6 +57,10 @@ int SphereMap::revalidateDirtyFrontiers() {
   dirty_.clear();
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return revalidate(ids);
+}
+
+int SphereMap::revalidate(const std::vector<uint64_t>& ids) {
   std::vector<uint64_t> drop;
   for (uint64_t id : ids) {
     Frontier& f = frontiers_.at(id);

@@ -78,13 +78,7 @@ int runFlyCommand(int argc, char** argv) {
   // Load and validate everything before anything is written.
   const std::string file = args.get("FILE.yaml");
   FlightSpec spec = loadFlightSpec(file);
-  if (!spec.world_name.empty()) {
-    try {
-      spec.world_path = resolveWorld(spec.world_name).world_xml;
-    } catch (const std::runtime_error& e) {
-      throw FileConfigError(file + ": key 'world': " + e.what());
-    }
-  }
+  resolveFlightWorld(file, spec);
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   fs::create_directories(out.staging() / "frames");
 

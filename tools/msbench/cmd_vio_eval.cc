@@ -83,16 +83,7 @@ int runVioEvalCommand(int argc, char** argv) {
   const std::string file = args.get("FILE.yaml");
   FlightSpec spec = loadFlightSpec(file);
   spec.perception.enabled = true;
-  std::optional<BuiltWorld> built;
-  if (!spec.world_name.empty()) {
-    try {
-      const ResolvedWorld w = resolveWorld(spec.world_name);
-      spec.world_path = w.world_xml;
-      built = w.built;
-    } catch (const std::runtime_error& e) {
-      throw FileConfigError(file + ": key 'world': " + e.what());
-    }
-  }
+  const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
   const long annotate_every = args.getInt("annotate-every");
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   fs::create_directories(out.staging() / "annotated");

@@ -24,7 +24,7 @@ std::string worldCacheDir() {
 
 namespace {
 
-void readObject(MapReader r, ObjectGroupSpec& o) {
+void readObject(MapReader& r, ObjectGroupSpec& o) {
   r.read("kind", o.kind);
   r.read("count", o.count);
   if (r.has("at")) {
@@ -60,24 +60,17 @@ void readCave(MapReader r, CaveSpec& c) {
   r.read("rock_top_m", c.rock_top_m);
   r.read("cell_m", c.cell_m);
   r.read("texture", c.texture);
-  if (r.has("chambers")) {
-    const YAML::Node n = r.raw("chambers");
-    if (!n.IsSequence()) throw ConfigError(r.keyName("chambers"), "expected a list");
-    for (size_t i = 0; i < n.size(); ++i) {
-      MapReader m(n[i], r.keyName("chambers") + "[" + std::to_string(i) + "].");
+  if (r.has("chambers"))
+    r.forEachInList("chambers", [&](MapReader& m) {
       CaveChamberSpec ch;
       readVec2(m, "min", ch.min);
       readVec2(m, "max", ch.max);
       m.read("ceiling_m", ch.ceiling_m);
       m.finish();
       c.chambers.push_back(ch);
-    }
-  }
-  if (r.has("tunnels")) {
-    const YAML::Node n = r.raw("tunnels");
-    if (!n.IsSequence()) throw ConfigError(r.keyName("tunnels"), "expected a list");
-    for (size_t i = 0; i < n.size(); ++i) {
-      MapReader m(n[i], r.keyName("tunnels") + "[" + std::to_string(i) + "].");
+    });
+  if (r.has("tunnels"))
+    r.forEachInList("tunnels", [&](MapReader& m) {
       CaveTunnelSpec t;
       readVec2(m, "from", t.from);
       readVec2(m, "to", t.to);
@@ -85,8 +78,7 @@ void readCave(MapReader r, CaveSpec& c) {
       m.read("ceiling_m", t.ceiling_m);
       m.finish();
       c.tunnels.push_back(t);
-    }
-  }
+    });
   r.finish();
 }
 
@@ -114,15 +106,12 @@ void readWorld(MapReader& r, WorldSpec& s) {
   }
   r.read("start_clearance_m", s.start_clearance_m);
   r.read("texture_px", s.texture_px);
-  if (r.has("objects")) {
-    const YAML::Node n = r.raw("objects");
-    if (!n.IsSequence()) throw ConfigError("objects", "expected a list");
-    for (size_t i = 0; i < n.size(); ++i) {
+  if (r.has("objects"))
+    r.forEachInList("objects", [&](MapReader& m) {
       ObjectGroupSpec o;
-      readObject(MapReader(n[i], "objects[" + std::to_string(i) + "]."), o);
+      readObject(m, o);
       s.objects.push_back(o);
-    }
-  }
+    });
   if (r.has("cave")) {
     CaveSpec c;
     readCave(r.sub("cave"), c);
@@ -183,6 +172,21 @@ ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed)
   for (const auto& w : worlds) names += (names.empty() ? "" : ", ") + w.name;
   throw UsageError("world '" + arg + "': no such file and no world of that name in " +
                            worldsDir() + " (available: " + (names.empty() ? "none" : names) + ")");
+}
+
+}  // namespace msb
+
+namespace msb {
+
+std::optional<BuiltWorld> resolveFlightWorld(const std::string& file, FlightSpec& spec) {
+  if (spec.world_name.empty()) return std::nullopt;
+  try {
+    ResolvedWorld w = resolveWorld(spec.world_name);
+    spec.world_path = w.world_xml;
+    return w.built;
+  } catch (const std::runtime_error& e) {
+    throw FileConfigError(file + ": key 'world': " + e.what());
+  }
 }
 
 }  // namespace msb

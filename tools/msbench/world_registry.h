@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sim/world/world_cache.h"
+#include "tools/msbench/flight_spec.h"
 
 namespace msb {
 
@@ -39,5 +40,9 @@ struct ResolvedWorld {
 /// with the spec's seed or `seed` if given. Throws UsageError (listing the names that exist)
 /// for an unknown world.
 ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed = std::nullopt);
+
+/// Resolves the world named in flight file `file` (spec.world_name, if any) into
+/// spec.world_path; an unknown name is a FileConfigError naming the file and key.
+std::optional<BuiltWorld> resolveFlightWorld(const std::string& file, FlightSpec& spec);
 
 }  // namespace msb

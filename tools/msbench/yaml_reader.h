@@ -60,6 +60,17 @@ class MapReader {
     return node_[key];
   }
 
+  // Calls item(MapReader&) for each map of the list at `key` (keys named "key[i].…").
+  template <class Item>
+  void forEachInList(const std::string& key, Item item) {
+    const YAML::Node n = raw(key);
+    if (!n.IsSequence()) throw ConfigError(keyName(key), "expected a list");
+    for (size_t i = 0; i < n.size(); ++i) {
+      MapReader m(n[i], keyName(key) + "[" + std::to_string(i) + "].");
+      item(m);
+    }
+  }
+
   // Rejects keys that were never read.
   void finish() const {
     std::vector<ConfigIssue> issues;
