@@ -152,6 +152,33 @@ bool SphereMap::insertObstacle(const Vec3& p, double d) {
   return true;
 }
 
+std::vector<uint64_t> SphereMap::spheresNear(const Vec3& p, double reach) const {
+  std::vector<uint64_t> out;
+  for (uint64_t id : sphere_grid_.near(p, reach + config_.r_max_m)) {
+    const Sphere& s = spheres_.at(id);
+    if ((s.centre - p).norm() <= s.radius + reach) out.push_back(id);
+  }
+  return out;
+}
+
+std::vector<uint64_t> SphereMap::obstaclesNear(const Vec3& p, double r) const {
+  std::vector<uint64_t> out;
+  for (uint64_t id : obstacle_grid_.near(p, r))
+    if ((obstacles_.at(id).position - p).norm() <= r) out.push_back(id);
+  return out;
+}
+
+std::vector<uint64_t> SphereMap::frontiersNear(const Vec3& p, double r) const {
+  std::vector<uint64_t> out;
+  for (uint64_t id : frontier_grid_.near(p, r))
+    if ((frontiers_.at(id).position - p).norm() <= r) out.push_back(id);
+  return out;
+}
+
+bool SphereMap::anyObstacleNear(const Vec3& p, double r) const {
+  return obstacle_grid_.anyNear(p, r, [&](uint64_t id) { return (obstacles_.at(id).position - p).norm() <= r; });
+}
+
 bool SphereMap::connected() const {
   if (spheres_.empty()) return true;
   std::set<uint64_t> seen = {spheres_.begin()->first};

@@ -131,6 +131,16 @@ class SphereMap {
   int revalidateFrontiers();
   /// True if every sphere can reach every other through overlaps.
   bool connected() const;
+  /// Ids (ascending) of spheres whose ball comes within `reach` of p: |c − p| ≤ r + reach.
+  std::vector<uint64_t> spheresNear(const Vec3& p, double reach) const;
+  /// Ids (ascending) of obstacle points within distance r of p.
+  std::vector<uint64_t> obstaclesNear(const Vec3& p, double r) const;
+  /// Ids (ascending) of frontiers within distance r of p.
+  std::vector<uint64_t> frontiersNear(const Vec3& p, double r) const;
+  /// True if some obstacle point lies within distance r of p.
+  bool anyObstacleNear(const Vec3& p, double r) const;
+  /// The configuration.
+  const SphereMapConfig& config() const { return config_; }
 
   /// The radius rule (step 6) for a centre, given P_f and the constraining points.
   double ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf,

@@ -113,4 +113,18 @@ std::string ArgParser::help() const {
   return os.str();
 }
 
+std::vector<std::string> takeRepeatedOption(int& argc, char** argv, const std::string& name) {
+  const std::string flag = "--" + name, prefix = flag + "=";
+  std::vector<std::string> values;
+  int w = 0;
+  for (int i = 0; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == flag && i + 1 < argc) values.push_back(argv[++i]);
+    else if (a.rfind(prefix, 0) == 0) values.push_back(a.substr(prefix.size()));
+    else argv[w++] = argv[i];
+  }
+  argc = w;
+  return values;
+}
+
 }  // namespace msb

@@ -55,4 +55,8 @@ class ArgParser {
   std::map<std::string, std::string> values_;
 };
 
+/// Removes every "--NAME VALUE" / "--NAME=VALUE" from argv (for options that may repeat, which
+/// ArgParser keeps once) and returns the values in order.
+std::vector<std::string> takeRepeatedOption(int& argc, char** argv, const std::string& name);
+
 }  // namespace msb

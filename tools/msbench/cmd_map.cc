@@ -53,19 +53,6 @@ void applySet(const std::string& kv, SphereMapConfig& c) {
   else throw UsageError("--set: unknown map key '" + key + "'");
 }
 
-// Collects "--set" occurrences (the parser keeps one value per option) and strips them.
-std::vector<std::string> takeSets(int& argc, char** argv) {
-  std::vector<std::string> sets;
-  int w = 0;
-  for (int i = 0; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--set" && i + 1 < argc) sets.push_back(argv[++i]);
-    else if (a.rfind("--set=", 0) == 0) sets.push_back(a.substr(6));
-    else argv[w++] = argv[i];
-  }
-  argc = w;
-  return sets;
-}
 
 // Map safety against ground truth: every sphere created or grown, with its centre mapped from
 // the estimate to the true world frame of that moment, is checked against the world's
@@ -151,7 +138,7 @@ FisheyeCamera cameraFromHeader(const nlohmann::json& h) {
 }  // namespace
 
 int runMapReplayCommand(int argc, char** argv) {
-  const std::vector<std::string> sets = takeSets(argc, argv);
+  const std::vector<std::string> sets = takeRepeatedOption(argc, argv, "set");
   ArgParser args("msbench map-replay",
                  "Run the MonoSpheres mapper over a recorded perception log (vio-eval --record) and\n"
                  "write map.ply, map_stats.csv, topdown.png and summary.json. --set map.KEY=VALUE\n"

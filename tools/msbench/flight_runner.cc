@@ -101,6 +101,7 @@ FlightResult runFlight(const FlightSpec& spec, const FlightObservers& observers)
     const Odometry est = vio.update(gt);
 
     // Camera render.
+    std::optional<SlamPointsFrame> tick_points;
     if (renderer && cam_schedule.due(tick)) {
       RenderTiming rt;
       renderer->render(sim.data(), gt.T_W_B * camera.T_B_C(), &frame, &rt);
@@ -125,6 +126,7 @@ FlightResult runFlight(const FlightSpec& spec, const FlightObservers& observers)
         const double tri_ms = msSince(t0);
         if (observers.on_perception)
           observers.on_perception({frame, tracks, points, tracker_ms, tri_ms, rt.totalMs()});
+        if (observers.autopilot) tick_points = points;
         if (int(tracks.tracks.size()) < spec.perception.lost_min_tracks) {
           if (few_tracks_since < 0) few_tracks_since = tick;
         } else {
@@ -136,6 +138,12 @@ FlightResult runFlight(const FlightSpec& spec, const FlightObservers& observers)
           break;
         }
       }
+    }
+
+    // Closed loop: mapping and planning may replace the path.
+    if (observers.autopilot) {
+      if (auto path = observers.autopilot({tick, est, tick_points ? &*tick_points : nullptr, trajectory}))
+        trajectory.setPath(*path);
     }
 
     // Trajectory reference and controller.
@@ -172,7 +180,7 @@ FlightResult runFlight(const FlightSpec& spec, const FlightObservers& observers)
     if (on_progress && tick > 0 && tick % spec.physics.physics_hz == 0)
       on_progress(gt.t_s, std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                                         wall_start).count());
-    if (finished_tick >= 0 && tick >= finished_tick + hold_ticks) break;
+    if (!observers.autopilot && finished_tick >= 0 && tick >= finished_tick + hold_ticks) break;
   }
 
   result.ticks = sim.tick();

@@ -67,11 +67,23 @@ using ProgressCallback = std::function<void(double sim_s, double wall_s)>;
 /// Called for every frame processed by perception (when spec.perception.enabled).
 using PerceptionCallback = std::function<void(const PerceptionSample&)>;
 
+/// What a closed-loop autopilot sees each tick (after perception, before the trajectory step).
+struct AutopilotInput {
+  int64_t tick;
+  const Odometry& estimate;             ///< VIO estimate of the body
+  const SlamPointsFrame* points;        ///< this tick's SLAM points, or null if no frame was processed
+  const TrajectoryTracker& trajectory;  ///< the tracker (reference, finished)
+};
+
+/// Closed loop: returns a new path to follow (replacing the current one), or none.
+using AutopilotCallback = std::function<std::optional<std::vector<Waypoint>>(const AutopilotInput&)>;
+
 /// Optional observers of a flight.
 struct FlightObservers {
   FrameCallback on_frame;
   ProgressCallback on_progress;
   PerceptionCallback on_perception;
+  AutopilotCallback autopilot;  ///< if set, the flight ignores hold_after_s and runs to its limit
   double trajectory_rate_hz = 50.0;
 };
 

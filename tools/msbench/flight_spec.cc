@@ -20,7 +20,6 @@ void FlightSpec::validate(ConfigChecker& c) const {
             "file not found: " + world_path);
   c.inRange("duration_s", duration_s, 0.01, 36000.0);
   c.nonNegative("hold_after_s", hold_after_s);
-  c.require(!waypoints.empty(), "trajectory.waypoints", "needs at least one waypoint");
   c.inRange("controller_hz", controller_hz, 50.0, physics.physics_hz);
   c.require(std::abs(physics.physics_hz / controller_hz -
                      std::round(physics.physics_hz / controller_hz)) < 1e-9,

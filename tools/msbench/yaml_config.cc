@@ -185,7 +185,9 @@ void readSlamPoints(MapReader r, SlamPointsConfig& c) {
   r.finish();
 }
 
-void readFlight(MapReader& r, const fs::path& dir, FlightSpec& s) {
+}  // namespace
+
+void readFlightKeys(MapReader& r, const fs::path& dir, FlightSpec& s) {
   std::string world;
   // A value ending in .xml is an MJCF file relative to this file; anything else a world name.
   if (r.read("world", world)) {
@@ -214,14 +216,15 @@ void readFlight(MapReader& r, const fs::path& dir, FlightSpec& s) {
   if (r.has("perception")) readPerception(r.sub("perception"), s.perception);
   if (r.has("tracker")) readTracker(r.sub("tracker"), s.tracker);
   if (r.has("slam_points")) readSlamPoints(r.sub("slam_points"), s.slam_points);
-  r.finish();
 }
-
-}  // namespace
 
 FlightSpec loadFlightSpec(const std::string& path) {
   const fs::path dir = fs::absolute(path).parent_path();
-  return parseConfigFile<FlightSpec>(path, [&](MapReader& r, FlightSpec& s) { readFlight(r, dir, s); });
+  return parseConfigFile<FlightSpec>(path, [&](MapReader& r, FlightSpec& s) {
+    readFlightKeys(r, dir, s);
+    r.finish();
+    if (s.waypoints.empty()) throw ConfigError("trajectory.waypoints", "needs at least one waypoint");
+  });
 }
 
 }  // namespace msb

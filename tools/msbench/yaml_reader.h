@@ -130,25 +130,34 @@ class MapReader {
 };
 
 
-template <class Spec, class Read>
-Spec parseConfigFile(const std::string& path, Read read) {
+/// Loads a YAML file; a missing file or a syntax error throws FileConfigError naming the file.
+inline YAML::Node loadYamlFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw FileConfigError(path + ": file not found");
-  YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    return YAML::LoadFile(path);
   } catch (const YAML::Exception& e) {
     throw FileConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
                           ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
   }
+}
+
+/// Converts an already loaded tree (errors are reported against `label`, usually the file).
+template <class Spec, class Read>
+Spec parseConfigNode(const std::string& label, const YAML::Node& root, Read read) {
   Spec spec;
   try {
     MapReader reader(root, "");
     read(reader, spec);
     checkValid(spec);
   } catch (const ConfigError& e) {
-    throw FileConfigError(path + ": " + e.what());
+    throw FileConfigError(label + ": " + e.what());
   }
   return spec;
+}
+
+template <class Spec, class Read>
+Spec parseConfigFile(const std::string& path, Read read) {
+  return parseConfigNode<Spec>(path, loadYamlFile(path), read);
 }
 
 /// Reads a 2-vector ([x, y]).

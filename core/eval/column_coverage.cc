@@ -1,0 +1,51 @@
+#include "core/eval/column_coverage.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace msb {
+
+ColumnCoverage::ColumnCoverage(double cell_m) : cell_(cell_m) {
+  if (!(cell_m > 0)) throw std::invalid_argument("ColumnCoverage: cell size must be positive");
+}
+
+int ColumnCoverage::markDisk(const Vec2& c, double r) {
+  if (!(r >= 0)) return 0;
+  int added = 0;
+  // Nodes with |x − cx| ≤ r: i in [ceil((cx − r)/cell), floor((cx + r)/cell)].
+  const int64_t i0 = int64_t(std::ceil((c.x() - r) / cell_)), i1 = int64_t(std::floor((c.x() + r) / cell_));
+  for (int64_t i = i0; i <= i1; ++i) {
+    const double dx = cell_ * double(i) - c.x();
+    const double h2 = r * r - dx * dx;
+    if (h2 < 0) continue;
+    const double h = std::sqrt(h2);
+    const int64_t j0 = int64_t(std::ceil((c.y() - h) / cell_)), j1 = int64_t(std::floor((c.y() + h) / cell_));
+    for (int64_t j = j0; j <= j1; ++j) {
+      const double dy = cell_ * double(j) - c.y();
+      if (dx * dx + dy * dy > r * r) continue;  // guard the rounding of sqrt at the boundary
+      added += columns_.insert({i, j}).second;
+    }
+  }
+  return added;
+}
+
+int ColumnCoverage::markSquare(const Vec2& c, double half) {
+  if (!(half >= 0)) return 0;
+  int added = 0;
+  const int64_t i0 = int64_t(std::ceil((c.x() - half) / cell_)), i1 = int64_t(std::floor((c.x() + half) / cell_));
+  const int64_t j0 = int64_t(std::ceil((c.y() - half) / cell_)), j1 = int64_t(std::floor((c.y() + half) / cell_));
+  for (int64_t i = i0; i <= i1; ++i)
+    for (int64_t j = j0; j <= j1; ++j) added += columns_.insert({i, j}).second;
+  return added;
+}
+
+size_t ColumnCoverage::countInside(const Vec2& lo, const Vec2& hi) const {
+  size_t n = 0;
+  for (const auto& c : columns_) {
+    const Vec2 p = node(c);
+    n += p.x() >= lo.x() && p.x() <= hi.x() && p.y() >= lo.y() && p.y() <= hi.y();
+  }
+  return n;
+}
+
+}  // namespace msb

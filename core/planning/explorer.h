@@ -1,0 +1,70 @@
+// The interface every exploration method implements (DESIGN §1, §8): it observes each frame of
+// SLAM points (its own map update), plans at the planning rate and emits path commands for the
+// trajectory tracker, and reports the free space it has mapped for the coverage metric. Methods
+// are chosen by `method.type` in a scenario; a new method lives in its own files behind this
+// interface and is registered in the runner's method table.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/messages.h"
+#include "core/eval/column_coverage.h"
+#include "core/geometry/world_truth.h"
+
+namespace msb {
+
+/// What every method knows about its mission.
+struct ExplorerContext {
+  Aabb exploration_box;              ///< goals outside are ignored (estimate frame = world frame at start)
+  Pose start = Pose::Identity();     ///< body pose at start
+  uint64_t seed = 1;                 ///< scenario seed (for the method's RNG streams)
+};
+
+/// The vehicle as the planner sees it (estimate frame), once per planning step.
+struct VehicleState {
+  int64_t tick = 0;
+  double t_s = 0.0;
+  Pose T_W_B = Pose::Identity();      ///< VIO estimate
+  Vec3 velocity_mps = Vec3::Zero();   ///< VIO estimate
+  TrajectoryReference reference;      ///< the tracker's current reference
+  bool path_finished = true;          ///< the last command is done (at rest, heading reached)
+};
+
+/// Map contents for drawing and hashing, in the estimate frame.
+struct ExplorerSnapshot {
+  struct Disk { uint64_t id; Vec3 centre; double radius; };
+  struct Pose2 { Vec3 position; double yaw_rad; };
+  std::vector<Disk> free_space;         ///< spheres (or free cells as their inscribed spheres)
+  std::vector<Vec3> obstacles;          ///< obstacle points / occupied cells
+  std::vector<Vec3> frontiers;
+  std::vector<Pose2> viewpoints;        ///< current candidate goals
+  std::vector<Pose2> visited;           ///< VPB markers
+  std::optional<Pose2> goal;            ///< the active goal
+  std::vector<Vec3> path;               ///< the last path sent (vehicle first)
+};
+
+/// An exploration method.
+class Explorer {
+ public:
+  virtual ~Explorer() = default;
+  /// The method's name as in `method.type`.
+  virtual std::string type() const = 0;
+  /// Integrates one frame of SLAM points (called at the map-update rate).
+  virtual void observe(const SlamPointsFrame& frame) = 0;
+  /// One planning step; returns a new path to follow, or none to keep the current one.
+  virtual std::optional<PathCommand> plan(const VehicleState& vehicle) = 0;
+  /// Marks the columns covered by the current free space (the metric is cumulative).
+  virtual void markCoverage(ColumnCoverage& coverage) const = 0;
+  /// Map contents for pictures and the determinism hash.
+  virtual ExplorerSnapshot snapshot() const = 0;
+  /// Counters for metrics.json and the progress line (e.g. spheres, goals reached).
+  virtual std::map<std::string, double> counters() const = 0;
+  /// Wall-time totals per stage in ms (recorded, never used in decisions).
+  virtual std::map<std::string, double> stageTimesMs() const = 0;
+};
+
+}  // namespace msb

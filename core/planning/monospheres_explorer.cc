@@ -1,0 +1,327 @@
+#include "core/planning/monospheres_explorer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace msb {
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Cuts a waypoint list at arc length `max_len` from `from` (the cut point keeps no heading
+// unless the cut falls exactly on a waypoint).
+std::vector<Waypoint> cutAt(const Vec3& from, const std::vector<Waypoint>& w, double max_len) {
+  std::vector<Waypoint> out;
+  Vec3 prev = from;
+  double s = 0;
+  for (const auto& wp : w) {
+    const double len = (wp.position_m - prev).norm();
+    if (s + len > max_len && len > 1e-9) {
+      out.push_back({prev + (max_len - s) / len * (wp.position_m - prev), wp.heading_rad});
+      return out;
+    }
+    out.push_back(wp);
+    s += len;
+    prev = wp.position_m;
+  }
+  return out;
+}
+}  // namespace
+
+void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
+  c.positive("fff_turn_rate_rad_per_m", fff_turn_rate_rad_per_m);
+  c.inRange("align_before_route_deg", align_before_route_deg, 0.0, 180.0);
+  c.nested("viewpoints", viewpoints);
+  c.nested("safety", safety);
+  c.nonNegative("start_max_outside_m", start_max_outside_m);
+  c.nonNegative("goal_max_outside_m", goal_max_outside_m);
+  c.positive("local_radius_m", local_radius_m);
+  c.require(local_misses_before_global >= 0, "local_misses_before_global", "must be ≥ 0");
+  c.require(max_goal_candidates >= 1, "max_goal_candidates", "must be ≥ 1");
+  c.positive("carrot_distance_m", carrot_distance_m);
+  c.positive("replan_period_s", replan_period_s);
+  c.nonNegative("check_ahead_m", check_ahead_m);
+  c.nonNegative("check_clearance_m", check_clearance_m);
+  c.require(max_blocked_steps >= 1, "max_blocked_steps", "must be ≥ 1");
+  c.nonNegative("shortcut_depth_m", shortcut_depth_m);
+  c.positive("reach_distance_m", reach_distance_m);
+  c.inRange("reach_angle_deg", reach_angle_deg, 0.0, 180.0);
+  c.positive("no_progress_timeout_s", no_progress_timeout_s);
+  c.inRange("takeoff_altitude_m", takeoff_altitude_m, 0.3, 50.0);
+  c.nonNegative("start_forward_m", start_forward_m);
+  c.inRange("idle_turn_deg", idle_turn_deg, 0.0, 180.0);
+  c.positive("idle_turn_period_s", idle_turn_period_s);
+}
+
+void MonoSpheresConfig::validate(ConfigChecker& c) const {
+  c.nested("map", map);
+  c.nested("planner", planner);
+}
+
+MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const FisheyeCamera& camera,
+                                         const ExplorerContext& context)
+    : config_(checkValid(config)),
+      context_(context),
+      map_(config.map, camera, context.seed),
+      viewpoints_(config.planner.viewpoints, context.seed) {
+  for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_global", "blocked_stops",
+                        "paths_sent", "idle_turns"})
+    counters_[k] = 0;
+}
+
+MonoSpheresExplorer::~MonoSpheresExplorer() = default;
+
+void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) {
+  const auto t0 = std::chrono::steady_clock::now();
+  map_.update(frame);
+  map_ms_ += msSince(t0);
+}
+
+PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
+  PathCommand cmd{s.tick, std::move(w)};
+  last_path_ = {s.reference.position_m};
+  for (const auto& wp : cmd.waypoints) last_path_.push_back(wp.position_m);
+  last_send_s_ = s.t_s;
+  ++counters_["paths_sent"];
+  return cmd;
+}
+
+std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto& pc = config_.planner;
+  const Vec3 start = context_.start.translation();
+  const double start_yaw = yawOf(context_.start.linear());
+  const Vec3 up = start + Vec3(0, 0, pc.takeoff_altitude_m);
+  std::optional<PathCommand> out;
+  switch (phase_) {
+    case Phase::kTakeoff:
+      if (!phase_sent_) {
+        out = command(s, {{up, start_yaw}});
+        phase_sent_ = true;
+      } else if (s.path_finished) {
+        phase_ = Phase::kStartForward;
+        phase_sent_ = false;
+      }
+      break;
+    case Phase::kStartForward:
+      if (!phase_sent_) {
+        out = command(s, {{up + pc.start_forward_m * Vec3(std::cos(start_yaw), std::sin(start_yaw), 0), start_yaw}});
+        phase_sent_ = true;
+      } else if (s.path_finished) {
+        phase_ = Phase::kExplore;
+      }
+      break;
+    case Phase::kExplore:
+      out = explore(s);
+      break;
+  }
+  plan_ms_ += msSince(t0);
+  return out;
+}
+
+bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
+  const double len = (b - a).norm();
+  const int n = std::max(1, int(std::ceil(len / 0.3)));
+  for (int i = 0; i <= n; ++i) {
+    const Vec3 x = a + (double(i) / n) * (b - a);
+    bool inside = false;
+    for (uint64_t id : map_.spheresNear(x, -config_.planner.shortcut_depth_m)) {
+      (void)id;
+      inside = true;
+      break;
+    }
+    if (!inside) return false;
+    if (map_.anyObstacleNear(x, config_.planner.check_clearance_m)) return false;
+  }
+  return true;
+}
+
+bool MonoSpheresExplorer::pathBlocked(const std::vector<Vec3>& pts) const {
+  // Samples along the first check_ahead_m of the path, ignoring the first metre (the vehicle
+  // may already be close to a point it is moving away from).
+  double s = 0;
+  for (size_t i = 1; i < pts.size() && s < config_.planner.check_ahead_m; ++i) {
+    const Vec3 a = pts[i - 1], b = pts[i];
+    const double len = (b - a).norm();
+    for (double t = 0; t < len && s + t < config_.planner.check_ahead_m; t += 0.25) {
+      if (s + t < 1.0) continue;
+      if (map_.anyObstacleNear(a + t / len * (b - a), config_.planner.check_clearance_m)) return true;
+    }
+    s += len;
+  }
+  return false;
+}
+
+std::vector<Vec3> MonoSpheresExplorer::routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const {
+  std::vector<Vec3> pts = {from};
+  for (uint64_t id : path.spheres) pts.push_back(map_.spheres().at(id).centre);
+  if ((pts.back() - goal).norm() > 1e-6) pts.push_back(goal);
+  return shortcutPath(pts, [this](const Vec3& a, const Vec3& b) { return segmentFree(a, b); });
+}
+
+std::optional<uint64_t> MonoSpheresExplorer::chooseGoal(const VehicleState& s, const SphereCostField& field) {
+  const auto& pc = config_.planner;
+  const Vec3 p = s.T_W_B.translation();
+  // Candidates by path cost (ties by id).
+  std::vector<std::pair<double, uint64_t>> local, all;
+  for (const auto& [id, v] : viewpoints_.viewpoints()) {
+    const auto it = field.cost.find(v.sphere);
+    if (it == field.cost.end()) continue;
+    all.emplace_back(it->second, id);
+    if ((v.position - p).norm() <= pc.local_radius_m) local.emplace_back(it->second, id);
+  }
+  std::sort(local.begin(), local.end());
+  std::sort(all.begin(), all.end());
+  auto pick = [&](const std::vector<std::pair<double, uint64_t>>& list) -> std::optional<uint64_t> {
+    int tries = 0;
+    for (const auto& [cost, id] : list) {
+      if (tries++ >= pc.max_goal_candidates) break;
+      const Viewpoint& v = viewpoints_.viewpoints().at(id);
+      if (!pc.fff) return id;
+      const auto pts = routeTo(s.reference.position_m, field.pathTo(v.sphere), v.position);
+      if (assignHeadings(pts, v.yaw_rad, true, pc.fff_turn_rate_rad_per_m).feasible) return id;
+    }
+    return std::nullopt;
+  };
+  if (auto id = pick(local)) {
+    local_misses_ = 0;
+    return id;
+  }
+  if (++local_misses_ <= pc.local_misses_before_global) return std::nullopt;
+  if (auto id = pick(all)) {
+    local_misses_ = 0;
+    ++counters_["goals_global"];
+    return id;
+  }
+  return std::nullopt;
+}
+
+void MonoSpheresExplorer::failGoal(double t_s) {
+  viewpoints_.markFailed(goal_, t_s);
+  goal_ = 0;
+  ++counters_["goals_failed"];
+}
+
+std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
+  const auto& pc = config_.planner;
+  const Vec3 p = s.T_W_B.translation();
+  const double yaw = yawOf(s.T_W_B.linear());
+  const double r_min = pc.safety.r_min_m;
+
+  // 1. Where the vehicle is in the graph; costs to everything reachable.
+  auto start = containingSphere(map_, p, pc.start_max_outside_m, r_min);
+  if (!start) {
+    // Outside the known free space: return to the nearest sphere (deepest within 6 m).
+    const auto back = containingSphere(map_, p, 6.0, r_min);
+    if (back && s.t_s - last_send_s_ >= pc.replan_period_s)
+      return command(s, {{map_.spheres().at(*back).centre, std::nullopt}});
+    return std::nullopt;
+  }
+  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety);
+  std::vector<uint64_t> reachable;
+  reachable.reserve(field.cost.size());
+  for (const auto& [id, c] : field.cost) reachable.push_back(id);  // ascending ids
+
+  // 2. Viewpoints.
+  const Aabb& box = context_.exploration_box;
+  viewpoints_.update(map_, reachable, p, yaw, s.t_s, goal_, [&box](const Vec3& x) { return box.contains(x); });
+
+  // 3. The active goal: reached, lost or stuck.
+  if (goal_ && !viewpoints_.viewpoints().count(goal_)) goal_ = 0;
+  if (goal_) {
+    const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
+    if ((v.position - p).norm() <= pc.reach_distance_m &&
+        std::abs(wrapAngle(v.yaw_rad - yaw)) <= pc.reach_angle_deg * kDeg) {
+      viewpoints_.markReached(goal_, p, yaw);
+      goal_ = 0;
+      ++counters_["goals_reached"];
+    } else if (s.t_s - last_progress_s_ > pc.no_progress_timeout_s || !field.cost.count(v.sphere)) {
+      failGoal(s.t_s);
+    }
+  }
+
+  // 4. A new goal.
+  if (!goal_) {
+    if (auto g = chooseGoal(s, field)) {
+      goal_ = *g;
+      goal_since_s_ = last_progress_s_ = s.t_s;
+      best_remaining_m_ = 1e18;
+      blocked_steps_ = 0;
+      ++counters_["goals_chosen"];
+    }
+  }
+  if (!goal_) {
+    // Nothing worth flying to: look around in place now and then.
+    if (s.t_s - last_idle_turn_s_ >= pc.idle_turn_period_s && pc.idle_turn_deg > 0) {
+      last_idle_turn_s_ = s.t_s;
+      ++counters_["idle_turns"];
+      return command(s, {{s.reference.position_m, wrapAngle(s.reference.yaw_rad + pc.idle_turn_deg * kDeg)}});
+    }
+    return std::nullopt;
+  }
+
+  // 5. Route to the goal, progress, safety check, headings, carrot.
+  const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
+  const std::vector<Vec3> route = routeTo(s.reference.position_m, field.pathTo(v.sphere), v.position);
+  const double remaining = pathLength(route);
+  if (remaining < best_remaining_m_ - 0.5) best_remaining_m_ = remaining, last_progress_s_ = s.t_s;
+  if (pathBlocked(route)) {
+    ++counters_["blocked_stops"];
+    if (++blocked_steps_ >= pc.max_blocked_steps) {
+      failGoal(s.t_s);
+      blocked_steps_ = 0;
+    }
+    return command(s, {{s.reference.position_m, std::nullopt}});  // stop; re-plan next step
+  }
+  blocked_steps_ = 0;
+  if (s.t_s - last_send_s_ < pc.replan_period_s) return std::nullopt;
+  if (pc.fff && route.size() >= 2) {
+    const Vec3 d = route[1] - route[0];
+    const double dir = std::atan2(d.y(), d.x());
+    if (std::hypot(d.x(), d.y()) > 0.5 && std::abs(wrapAngle(dir - yaw)) > pc.align_before_route_deg * kDeg)
+      return command(s, {{s.reference.position_m, dir}});  // face the route before flying it
+  }
+  const HeadingPlan hp = assignHeadings(route, v.yaw_rad, pc.fff, pc.fff_turn_rate_rad_per_m, 1.0, s.reference.yaw_rad);
+  return command(s, cutAt(route.front(), hp.waypoints, pc.carrot_distance_m));
+}
+
+void MonoSpheresExplorer::markCoverage(ColumnCoverage& coverage) const {
+  for (const auto& [id, sp] : map_.spheres()) coverage.markDisk(sp.centre.head<2>(), sp.radius);
+}
+
+ExplorerSnapshot MonoSpheresExplorer::snapshot() const {
+  ExplorerSnapshot snap;
+  for (const auto& [id, sp] : map_.spheres()) snap.free_space.push_back({id, sp.centre, sp.radius});
+  for (const auto& [id, o] : map_.obstacles()) snap.obstacles.push_back(o.position);
+  for (const auto& [id, f] : map_.frontiers()) snap.frontiers.push_back(f.position);
+  for (const auto& [id, v] : viewpoints_.viewpoints()) snap.viewpoints.push_back({v.position, v.yaw_rad});
+  for (const auto& m : viewpoints_.markers()) snap.visited.push_back({m.position, m.yaw_rad});
+  if (goal_) {
+    const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
+    snap.goal = ExplorerSnapshot::Pose2{v.position, v.yaw_rad};
+  }
+  snap.path = last_path_;
+  return snap;
+}
+
+std::map<std::string, double> MonoSpheresExplorer::counters() const {
+  auto c = counters_;
+  c["spheres"] = double(map_.spheres().size());
+  c["obstacle_points"] = double(map_.obstacles().size());
+  c["frontiers"] = double(map_.frontiers().size());
+  c["viewpoints"] = double(viewpoints_.viewpoints().size());
+  c["visited_markers"] = double(viewpoints_.markers().size());
+  c["viewpoints_passed"] = double(viewpoints_.passedCount());
+  return c;
+}
+
+std::map<std::string, double> MonoSpheresExplorer::stageTimesMs() const {
+  return {{"map_update", map_ms_}, {"planning", plan_ms_}};
+}
+
+}  // namespace msb

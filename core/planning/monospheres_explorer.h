@@ -1,0 +1,114 @@
+// The MonoSpheres exploration method (paper §IV, DESIGN §8): the sphere map plus a planner
+// that picks frontier viewpoints and flies sphere-graph paths to them.
+//
+// Each planning step (in the estimate frame):
+//   1. start sphere = the sphere containing the vehicle most deeply (≤ 1.5 m outside);
+//      Dijkstra with the safety cost gives every reachable sphere's path cost;
+//   2. viewpoints: re-valued, VPB applied, 300 new candidates at reachable centres in the box;
+//   3. the active goal is reached (1 m, 90°) → removed (+ marker with VPB), or fails after
+//      10 s without progress / an unreachable goal / repeated blocking → blacklisted;
+//   4. without a goal: the cheapest viewpoint within 15 m (local); after 3 local misses the
+//      cheapest anywhere (global); with FFF goals whose turn does not fit are skipped;
+//   5. the route (vehicle → sphere centres → viewpoint) is shortcut inside the sphere union,
+//      given headings (FFF or goal heading), cut at the carrot (15 m) and sent every
+//      replan period, unless the first 5 m pass closer than 1 m to an obstacle point
+//      (then stop and re-plan) or FFF first needs a turn in place towards the route.
+// Before exploring: take off vertically and fly a short straight stretch forward, so that the
+// first points get parallax.
+#pragma once
+
+#include <memory>
+
+#include "core/camera/fisheye_camera.h"
+#include "core/map/sphere_map.h"
+#include "core/planning/explorer.h"
+#include "core/planning/path_shaping.h"
+#include "core/planning/sphere_graph_search.h"
+#include "core/planning/viewpoint_set.h"
+
+namespace msb {
+
+/// Planner parameters (DESIGN §8 defaults).
+struct MonoSpheresPlannerConfig {
+  bool fff = true;                          ///< forced forward flight
+  double fff_turn_rate_rad_per_m = 0.314;   ///< heading change allowed per metre before a viewpoint
+  double align_before_route_deg = 90.0;     ///< FFF: turn in place first if the route starts this far off
+  ViewpointConfig viewpoints;               ///< sampling, value, VPB
+  SafetyCostConfig safety;                  ///< A* edge cost
+  double start_max_outside_m = 1.5;         ///< start sphere may be this far outside
+  double goal_max_outside_m = 3.5;          ///< (viewpoints sit at centres; used to re-find the goal sphere)
+  double local_radius_m = 15.0;             ///< local goals lie within this distance
+  int local_misses_before_global = 3;       ///< steps without a local goal before searching all
+  int max_goal_candidates = 10;             ///< FFF feasibility checks per goal choice
+  double carrot_distance_m = 15.0;          ///< path sent up to this far along the route
+  double replan_period_s = 0.4;             ///< how often the path is re-sent
+  double check_ahead_m = 5.0;               ///< predicted-trajectory check length ...
+  double check_clearance_m = 1.0;           ///< ... and clearance from obstacle points
+  int max_blocked_steps = 5;                ///< consecutive blocked steps fail the goal
+  double shortcut_depth_m = 0.3;            ///< shortcut samples must lie this deep inside a sphere
+  double reach_distance_m = 1.0;            ///< goal reached within ...
+  double reach_angle_deg = 90.0;            ///< ... and this heading difference
+  double no_progress_timeout_s = 10.0;      ///< goal failed without 0.5 m progress for this long
+  double takeoff_altitude_m = 2.0;          ///< climb to this height above the start
+  double start_forward_m = 4.0;             ///< then fly this far straight ahead
+  double idle_turn_deg = 90.0;              ///< without goals, turn in place by this much ...
+  double idle_turn_period_s = 3.0;          ///< ... this often
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Mapper + planner configuration of the method.
+struct MonoSpheresConfig {
+  SphereMapConfig map;
+  MonoSpheresPlannerConfig planner;
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// The MonoSpheres explorer.
+class MonoSpheresExplorer : public Explorer {
+ public:
+  /// Throws ConfigError if the config is invalid.
+  MonoSpheresExplorer(const MonoSpheresConfig& config, const FisheyeCamera& camera, const ExplorerContext& context);
+  ~MonoSpheresExplorer() override;
+
+  std::string type() const override { return "monospheres"; }
+  void observe(const SlamPointsFrame& frame) override;
+  std::optional<PathCommand> plan(const VehicleState& vehicle) override;
+  void markCoverage(ColumnCoverage& coverage) const override;
+  ExplorerSnapshot snapshot() const override;
+  std::map<std::string, double> counters() const override;
+  std::map<std::string, double> stageTimesMs() const override;
+
+  /// The map (tests, tools).
+  const SphereMap& map() const { return map_; }
+  /// The viewpoints (tests, tools).
+  const ViewpointSet& viewpoints() const { return viewpoints_; }
+
+ private:
+  enum class Phase { kTakeoff, kStartForward, kExplore };
+  std::optional<PathCommand> explore(const VehicleState& s);
+  std::optional<uint64_t> chooseGoal(const VehicleState& s, const SphereCostField& field);
+  std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
+  bool segmentFree(const Vec3& a, const Vec3& b) const;
+  bool pathBlocked(const std::vector<Vec3>& pts) const;
+  PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
+  void failGoal(double t_s);
+
+  MonoSpheresConfig config_;
+  ExplorerContext context_;
+  SphereMap map_;
+  ViewpointSet viewpoints_;
+  Phase phase_ = Phase::kTakeoff;
+  bool phase_sent_ = false;
+  uint64_t goal_ = 0;
+  double goal_since_s_ = 0, best_remaining_m_ = 1e18, last_progress_s_ = 0;
+  int local_misses_ = 0, blocked_steps_ = 0;
+  double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9;
+  std::vector<Vec3> last_path_;
+  std::map<std::string, double> counters_;
+  double map_ms_ = 0, plan_ms_ = 0;
+};
+
+}  // namespace msb

@@ -1,0 +1,60 @@
+// Path search on the sphere graph (DESIGN §8): A* over sphere centres with an admissible
+// Euclidean heuristic and the safety-aware edge cost L·(1 + w·u(r_j)),
+// u(r) = (1 − min((r − r_min)/(r_safe − r_min), 1))², so paths through narrow spheres cost more
+// (fix: the reference code inverted this sign). Also a Dijkstra from one sphere to all, used to
+// rank many candidate goals by path cost at once, and the "containing sphere" rule for the start
+// and goal of a search.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "core/common/config_check.h"
+#include "core/map/sphere_map.h"
+
+namespace msb {
+
+/// Parameters of the safety-aware cost.
+struct SafetyCostConfig {
+  double weight = 50.0;        ///< w
+  double r_min_m = 1.6;        ///< radius at which the penalty is largest; smaller spheres unused
+  double r_safe_m = 8.0;       ///< radius from which there is no penalty
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// The penalty u(r) ∈ [0, 1].
+double narrownessPenalty(double radius_m, const SafetyCostConfig& cfg);
+/// Cost of entering a sphere of radius r_to over an edge of length L.
+double edgeCost(double length_m, double r_to_m, const SafetyCostConfig& cfg);
+
+/// A path through the sphere graph.
+struct SpherePath {
+  std::vector<uint64_t> spheres;  ///< from start to goal
+  double cost = 0.0;              ///< safety-weighted
+  double length_m = 0.0;          ///< Euclidean length through the centres
+};
+
+/// The sphere that contains p most deeply (largest r − |p − c|), if that depth is ≥ −max_outside.
+std::optional<uint64_t> containingSphere(const SphereMap& map, const Vec3& p, double max_outside_m,
+                                         double min_radius_m);
+
+/// A* from start to goal sphere. None if unreachable.
+std::optional<SpherePath> findSpherePath(const SphereMap& map, uint64_t start, uint64_t goal,
+                                         const SafetyCostConfig& cfg);
+
+/// Dijkstra from start: cost to every reachable sphere (with r ≥ r_min) and its predecessor.
+struct SphereCostField {
+  std::map<uint64_t, double> cost;
+  std::map<uint64_t, double> length_m;
+  std::map<uint64_t, uint64_t> parent;  ///< start has none
+  /// The path to a reached sphere (start first).
+  SpherePath pathTo(uint64_t goal) const;
+};
+/// Costs from `start` to all spheres reachable from it.
+SphereCostField sphereCostsFrom(const SphereMap& map, uint64_t start, const SafetyCostConfig& cfg);
+
+}  // namespace msb

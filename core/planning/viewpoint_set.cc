@@ -1,0 +1,123 @@
+#include "core/planning/viewpoint_set.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace msb {
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+}
+
+void ViewpointConfig::validate(ConfigChecker& c) const {
+  c.require(candidates >= 1, "candidates", "must be ≥ 1");
+  c.positive("frontier_range_m", frontier_range_m);
+  c.inRange("fov_half_angle_deg", fov_half_angle_deg, 1.0, 100.0);
+  c.require(min_value >= 1, "min_value", "must be ≥ 1");
+  c.nonNegative("block_distance_m", block_distance_m);
+  c.inRange("block_angle_deg", block_angle_deg, 0.0, 180.0);
+  c.nonNegative("blacklist_radius_m", blacklist_radius_m);
+  c.nonNegative("blacklist_duration_s", blacklist_duration_s);
+}
+
+bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double distance_m, double angle_rad) {
+  return (p - q).norm() <= distance_m && std::abs(wrapAngle(yaw - qyaw)) <= angle_rad;
+}
+
+ViewpointSet::ViewpointSet(const ViewpointConfig& config, uint64_t seed)
+    : config_(checkValid(config)), rng_(seed, "viewpoints") {}
+
+int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw) const {
+  const Vec3 axis(std::cos(yaw), std::sin(yaw), 0.0);
+  const double cos_fov = std::cos(config_.fov_half_angle_deg * kDeg);
+  int n = 0;
+  for (uint64_t id : map.frontiersNear(p, config_.frontier_range_m)) {
+    const Frontier& f = map.frontiers().at(id);
+    const Vec3 ray = f.position - p;
+    const double d = ray.norm();
+    if (d < 1e-6) continue;
+    if (ray.dot(axis) < cos_fov * d) continue;  // outside the useful field of view
+    if (f.normal.dot(ray) >= 0) continue;       // seen from its unknown side
+    ++n;
+  }
+  return n;
+}
+
+bool ViewpointSet::blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id) const {
+  const double d = config_.block_distance_m, a = config_.block_angle_deg * kDeg;
+  if (config_.vpb)
+    for (const auto& m : markers_)
+      if (posesClose(p, yaw, m.position, m.yaw_rad, d, a)) return true;
+  if (goal_id) {
+    const auto it = viewpoints_.find(goal_id);
+    if (it != viewpoints_.end() && posesClose(p, yaw, it->second.position, it->second.yaw_rad, d, a)) return true;
+  }
+  for (const auto& [q, until] : blacklist_)
+    if (t_s < until && (p - q).norm() <= config_.blacklist_radius_m) return true;
+  return false;
+}
+
+int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reachable, const Vec3& vehicle,
+                         double vehicle_yaw, double t_s, uint64_t goal_id,
+                         const std::function<bool(const Vec3&)>& allowed) {
+  const double d = config_.block_distance_m, a = config_.block_angle_deg * kDeg;
+  auto reach = [&](uint64_t sphere) { return std::binary_search(reachable.begin(), reachable.end(), sphere); };
+
+  // Existing viewpoints: still on a reachable sphere, still valuable, not passed (VPB).
+  for (auto it = viewpoints_.begin(); it != viewpoints_.end();) {
+    Viewpoint& v = it->second;
+    bool keep = map.spheres().count(v.sphere) && reach(v.sphere);
+    if (keep && it->first != goal_id) {
+      v.value = value(map, v.position, v.yaw_rad);
+      keep = v.value >= config_.min_value;
+      if (keep && config_.vpb && posesClose(vehicle, vehicle_yaw, v.position, v.yaw_rad, d, a)) {
+        markers_.push_back({vehicle, vehicle_yaw});
+        ++passed_;
+        keep = false;
+      }
+    }
+    it = keep ? std::next(it) : viewpoints_.erase(it);
+  }
+  std::erase_if(blacklist_, [&](const auto& b) { return t_s >= b.second; });
+
+  // New candidates at reachable sphere centres with a random yaw.
+  int added = 0;
+  if (reachable.empty()) return 0;
+  for (int k = 0; k < config_.candidates; ++k) {
+    const uint64_t sphere = reachable[rng_.uniformInt(reachable.size())];
+    const double yaw = rng_.uniform(-M_PI, M_PI);
+    const Vec3 p = map.spheres().at(sphere).centre;
+    if (allowed && !allowed(p)) continue;
+    if (blocked(p, yaw, t_s, goal_id)) continue;
+    const int val = value(map, p, yaw);
+    if (val < config_.min_value) continue;
+    // Near an existing viewpoint: the better one stays (keeps the set sparse).
+    bool dominated = false;
+    std::vector<uint64_t> replaced;
+    for (const auto& [id, v] : viewpoints_) {
+      if (!posesClose(p, yaw, v.position, v.yaw_rad, d, a)) continue;
+      if (v.value >= val || id == goal_id) dominated = true;
+      else replaced.push_back(id);
+    }
+    if (dominated) continue;
+    for (uint64_t id : replaced) viewpoints_.erase(id);
+    viewpoints_[next_id_] = {next_id_, p, yaw, val, sphere};
+    ++next_id_;
+    ++added;
+  }
+  return added;
+}
+
+void ViewpointSet::markReached(uint64_t id, const Vec3& vehicle, double vehicle_yaw) {
+  viewpoints_.erase(id);
+  if (config_.vpb) markers_.push_back({vehicle, vehicle_yaw});
+}
+
+void ViewpointSet::markFailed(uint64_t id, double t_s) {
+  const auto it = viewpoints_.find(id);
+  if (it == viewpoints_.end()) return;
+  blacklist_.emplace_back(it->second.position, t_s + config_.blacklist_duration_s);
+  viewpoints_.erase(it);
+}
+
+}  // namespace msb

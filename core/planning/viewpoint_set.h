@@ -1,0 +1,95 @@
+// Exploration viewpoints and visited-viewpoint blocking (DESIGN §8). Candidates are sampled at
+// centres of spheres reachable from the vehicle (fix: the reference sampled any sphere) with a
+// random yaw and a level camera; a viewpoint's value is the number of frontiers it would see:
+// within range, inside the useful field of view about the optical axis, and facing the camera
+// (n · ray < 0). With VPB, passing a viewpoint (within 7 m and 60°) removes it and leaves a
+// visited marker at the vehicle's pose; markers block new viewpoints around them.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <vector>
+
+#include "core/common/config_check.h"
+#include "core/common/rng.h"
+#include "core/map/sphere_map.h"
+
+namespace msb {
+
+/// Viewpoint sampling, value and blocking parameters.
+struct ViewpointConfig {
+  int candidates = 300;               ///< samples per planning step
+  double frontier_range_m = 10.0;     ///< frontiers farther do not count
+  double fov_half_angle_deg = 60.0;   ///< useful field of view about the optical axis
+  int min_value = 7;                  ///< viewpoints seeing fewer frontiers are dropped
+  bool vpb = true;                    ///< visited-viewpoint blocking
+  double block_distance_m = 7.0;      ///< VPB / blocking radius
+  double block_angle_deg = 60.0;      ///< VPB / blocking heading difference
+  double blacklist_radius_m = 2.0;    ///< failed goals block new viewpoints this close ...
+  double blacklist_duration_s = 60.0; ///< ... for this long
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// A candidate goal: a pose and the frontiers it would see.
+struct Viewpoint {
+  uint64_t id = 0;
+  Vec3 position = Vec3::Zero();
+  double yaw_rad = 0.0;
+  int value = 0;
+  uint64_t sphere = 0;  ///< the sphere whose centre it is
+};
+
+/// A pose from which a viewpoint was visited (VPB).
+struct VisitedMarker {
+  Vec3 position = Vec3::Zero();
+  double yaw_rad = 0.0;
+};
+
+/// True if pose (p, yaw) is within `distance` and `angle` of pose (q, qyaw).
+bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double distance_m, double angle_rad);
+
+/// The set of current viewpoints with their markers and blacklist.
+class ViewpointSet {
+ public:
+  /// Throws ConfigError if invalid. `seed` seeds the "viewpoints" stream.
+  ViewpointSet(const ViewpointConfig& config, uint64_t seed);
+
+  /// Frontiers visible from (p, yaw) with a level camera.
+  int value(const SphereMap& map, const Vec3& p, double yaw) const;
+
+  /// One planning step: re-values the existing viewpoints (dropping those whose sphere is gone,
+  /// unreachable or below the minimum value), applies VPB for the vehicle pose (the active goal
+  /// `goal_id` is exempt) and samples new candidates among `reachable` sphere ids accepted by
+  /// `allowed` (e.g. inside the exploration box). Returns the number of new viewpoints.
+  int update(const SphereMap& map, const std::vector<uint64_t>& reachable, const Vec3& vehicle,
+             double vehicle_yaw, double t_s, uint64_t goal_id,
+             const std::function<bool(const Vec3&)>& allowed);
+
+  /// Removes a viewpoint (reached goal): leaves a marker at the vehicle pose if VPB is on.
+  void markReached(uint64_t id, const Vec3& vehicle, double vehicle_yaw);
+  /// Removes a viewpoint that could not be reached and blacklists its position.
+  void markFailed(uint64_t id, double t_s);
+
+  /// Current viewpoints by id.
+  const std::map<uint64_t, Viewpoint>& viewpoints() const { return viewpoints_; }
+  /// Visited markers in order of creation.
+  const std::vector<VisitedMarker>& markers() const { return markers_; }
+  /// Viewpoints removed by VPB so far (passed, not targeted).
+  int passedCount() const { return passed_; }
+
+ private:
+  bool blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id) const;
+
+  ViewpointConfig config_;
+  RngStream rng_;
+  std::map<uint64_t, Viewpoint> viewpoints_;
+  std::vector<VisitedMarker> markers_;
+  std::vector<std::pair<Vec3, double>> blacklist_;  // position, until
+  uint64_t next_id_ = 1;
+  int passed_ = 0;
+};
+
+}  // namespace msb

@@ -1,0 +1,93 @@
+// Viewpoint value (field of view, range, facing) and visited-viewpoint blocking.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/planning/viewpoint_set.h"
+
+namespace msb {
+namespace {
+
+// One sphere at the origin with frontiers on a patch in its shell towards +x (normals −x).
+struct Scene {
+  SphereMap map{SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1};
+  uint64_t sphere;
+  int frontiers = 0;
+  Scene() {
+    sphere = map.addSphere({0, 0, 2}, 3.0);
+    for (double y = -4; y <= 4; y += 1.6)
+      for (double z = -1; z <= 5; z += 1.6) frontiers += bool(map.tryAddFrontier({4.5, y, z}));
+  }
+};
+
+TEST(ViewpointSet, ValueCountsVisibleFacingFrontiers) {
+  Scene s;
+  ASSERT_GE(s.frontiers, 10);
+  ViewpointSet vs(ViewpointConfig{}, 1);
+  const Vec3 c(0, 0, 2);
+  const int ahead = vs.value(s.map, c, 0.0);
+  EXPECT_GE(ahead, 7);
+  EXPECT_LE(ahead, s.frontiers);
+  EXPECT_EQ(vs.value(s.map, c, M_PI), 0);                   // looking away
+  EXPECT_EQ(vs.value(s.map, c, M_PI / 2), 0);               // 90° off: outside ±60°
+  EXPECT_EQ(vs.value(s.map, {9.0, 0, 2}, M_PI), 0);         // from the unknown side: not facing
+  EXPECT_EQ(vs.value(s.map, {-20, 0, 2}, 0.0), 0);          // beyond 10 m
+}
+
+TEST(ViewpointSet, PassingAViewpointBlocksItsNeighbourhood) {
+  Scene s;
+  auto all = [](const Vec3&) { return true; };
+  ViewpointSet vs(ViewpointConfig{}, 3);
+  const Vec3 far(100, 100, 2);
+  vs.update(s.map, {s.sphere}, far, 0.0, 0.0, 0, all);
+  ASSERT_FALSE(vs.viewpoints().empty());
+  for (const auto& [id, v] : vs.viewpoints()) {
+    EXPECT_GE(v.value, 7);
+    EXPECT_LE(std::abs(v.yaw_rad), M_PI / 2);  // only poses facing the frontiers are valuable
+  }
+  // The vehicle passes the first viewpoint with its heading: removed, a marker left.
+  const Viewpoint first = vs.viewpoints().begin()->second;
+  vs.update(s.map, {s.sphere}, first.position, first.yaw_rad, 1.0, 0, all);
+  EXPECT_FALSE(vs.viewpoints().count(first.id));
+  EXPECT_GE(vs.passedCount(), 1);
+  ASSERT_GE(vs.markers().size(), 1u);
+  // New candidates within 7 m / 60° of a marker are blocked, however often we sample.
+  for (int k = 0; k < 5; ++k) vs.update(s.map, {s.sphere}, far, 0.0, 2.0 + k, 0, all);
+  for (const auto& [id, v] : vs.viewpoints())
+    for (const auto& m : vs.markers())
+      EXPECT_FALSE(posesClose(v.position, v.yaw_rad, m.position, m.yaw_rad, 7.0, M_PI / 3));
+}
+
+TEST(ViewpointSet, WithoutVpbViewpointsSurvivePassing) {
+  Scene s;
+  auto all = [](const Vec3&) { return true; };
+  ViewpointConfig cfg;
+  cfg.vpb = false;
+  ViewpointSet vs(cfg, 3);
+  vs.update(s.map, {s.sphere}, {100, 100, 2}, 0.0, 0.0, 0, all);
+  ASSERT_FALSE(vs.viewpoints().empty());
+  const Viewpoint first = vs.viewpoints().begin()->second;
+  vs.update(s.map, {s.sphere}, first.position, first.yaw_rad, 1.0, 0, all);
+  EXPECT_EQ(vs.passedCount(), 0);
+  EXPECT_TRUE(vs.markers().empty());
+  bool near_again = false;  // the neighbourhood still holds a viewpoint
+  for (const auto& [id, v] : vs.viewpoints())
+    near_again |= posesClose(v.position, v.yaw_rad, first.position, first.yaw_rad, 7.0, M_PI / 3);
+  EXPECT_TRUE(near_again);
+  // Reached goals are removed either way; failed goals are blacklisted.
+  const uint64_t id = vs.viewpoints().begin()->first;
+  vs.markReached(id, first.position, first.yaw_rad);
+  EXPECT_FALSE(vs.viewpoints().count(id));
+  EXPECT_TRUE(vs.markers().empty());
+}
+
+TEST(ViewpointSet, UnreachableOrOutsideCandidatesAreNotSampled) {
+  Scene s;
+  ViewpointSet vs(ViewpointConfig{}, 3);
+  EXPECT_EQ(vs.update(s.map, {}, {100, 100, 2}, 0.0, 0.0, 0, nullptr), 0);
+  EXPECT_EQ(vs.update(s.map, {s.sphere}, {100, 100, 2}, 0.0, 0.0, 0, [](const Vec3& p) { return p.z() > 5; }), 0);
+  EXPECT_TRUE(vs.viewpoints().empty());
+}
+
+}  // namespace
+}  // namespace msb

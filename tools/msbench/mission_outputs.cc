@@ -1,0 +1,188 @@
+#include "tools/msbench/mission_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "tools/msbench/common_io.h"
+#include "tools/msbench/output_files.h"
+
+namespace msb {
+
+namespace {
+nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json stagesJson(const StageTimes& s, double per) {
+  return {{"render", s.render_ms / per},       {"tracker", s.tracker_ms / per},
+          {"triangulation", s.triangulation_ms / per}, {"map_update", s.map_ms / per},
+          {"planning", s.planning_ms / per},   {"metric", s.metric_ms / per}};
+}
+}  // namespace
+
+nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r) {
+  const FlightResult& f = r.flight;
+  nlohmann::json j;
+  j["name"] = spec.name;
+  j["status"] = f.status;
+  j["seed"] = spec.flight.seed;
+  j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
+  j["method"] = spec.method_type;
+  j["switches"] = {{"ovde", spec.switches.ovde}, {"dbof", spec.switches.dbof}, {"fff", spec.switches.fff},
+                   {"vpb", spec.switches.vpb}};
+  j["duration_s"] = spec.flight.duration_s;
+  j["sim_time_s"] = f.sim_time_s;
+  const double cell2 = r.columns.cellM() * r.columns.cellM();
+  const size_t in_box = r.columns.countInside(r.exploration_box.min.head<2>(), r.exploration_box.max.head<2>());
+  j["coverage"] = {
+      {"area_m2", r.columns.areaM2()},
+      {"area_box_m2", double(in_box) * cell2},
+      {"box_explorable_columns", r.box_explorable_columns},
+      {"box_share", r.box_explorable_columns ? nlohmann::json(double(in_box) / r.box_explorable_columns) : nlohmann::json(nullptr)},
+      {"area_true_frame_m2", r.columns_gt.areaM2()},
+      {"column_size_m", r.columns.cellM()},
+      {"exploration_box", nlohmann::json{{"min", vec(r.exploration_box.min)}, {"max", vec(r.exploration_box.max)}}}};
+  if (f.collision) {
+    const auto& c = *f.collision;
+    j["collision"] = {{"t_s", c.t_s}, {"vehicle_position_m", vec(c.vehicle_position_m)},
+                      {"contact_position_m", vec(c.contact_position_m)}, {"vehicle_geom", c.vehicle_geom},
+                      {"world_geom", c.world_geom}};
+  } else {
+    j["collision"] = nullptr;
+  }
+  j["vio_lost_at_s"] = f.vio_lost_at_s >= 0 ? nlohmann::json(f.vio_lost_at_s) : nlohmann::json(nullptr);
+  j["distance_flown_m"] = f.distance_flown_m;
+  j["final_drift_m"] = f.final_drift_m;
+  j["frames_rendered"] = f.frames_rendered;
+  j["wall_time_s"] = f.wall_time_s;
+  j["real_time_factor"] = f.realTimeFactor();
+  // Wall time per simulated second, by stage; "other" = physics, controller, IMU, VIO, records.
+  const double sim = std::max(f.sim_time_s, 1e-9);
+  nlohmann::json st = stagesJson(r.stages, sim);
+  const auto& s = r.stages;
+  const double known = s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
+  st["other"] = (f.wall_time_s * 1000.0 - known) / sim;
+  st["total"] = f.wall_time_s * 1000.0 / sim;
+  j["wall_ms_per_sim_second"] = st;
+  j["counters"] = r.counters;
+  j["versions"] = versionInfo();
+  j["trajectory_hash"] = hexHash(f.trajectory_hash);
+  j["map_hash"] = hexHash(r.map_hash);
+  j["determinism_hash"] = hexHash(r.run_hash);
+  return j;
+}
+
+std::string coverageCsv(const std::vector<CoverageSample>& samples) {
+  std::ostringstream o;
+  o << "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m\n";
+  char line[160];
+  for (const auto& c : samples) {
+    std::snprintf(line, sizeof(line), "%.3f,%.2f,%.2f,%.2f,%.3f\n", c.t_s, c.area_m2, c.area_box_m2, c.area_gt_m2,
+                  c.distance_m);
+    o << line;
+  }
+  return o.str();
+}
+
+std::string timingCsv(const MissionResult& r) {
+  std::ostringstream o;
+  o << "t_s,render_ms,tracker_ms,triangulation_ms,map_update_ms,planning_ms,metric_ms\n";
+  char line[200];
+  for (const auto& [t, s] : r.stage_timeline) {
+    std::snprintf(line, sizeof(line), "%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", t, s.render_ms, s.tracker_ms,
+                  s.triangulation_ms, s.map_ms, s.planning_ms, s.metric_ms);
+    o << line;
+  }
+  return o.str();
+}
+
+std::string mapPly(const ExplorerSnapshot& snap) {
+  std::ostringstream ply;
+  ply << "ply\nformat ascii 1.0\ncomment msbench map (VIO frame); kind 0 free-space sphere (radius), "
+         "1 obstacle point, 2 frontier\nelement vertex "
+      << snap.free_space.size() + snap.obstacles.size() + snap.frontiers.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\n"
+         "property uchar kind\nend_header\n";
+  char line[160];
+  for (const auto& s : snap.free_space) {
+    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f %.4f 0\n", s.centre.x(), s.centre.y(), s.centre.z(), s.radius);
+    ply << line;
+  }
+  for (const auto& p : snap.obstacles) {
+    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f 0 1\n", p.x(), p.y(), p.z());
+    ply << line;
+  }
+  for (const auto& p : snap.frontiers) {
+    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f 0 2\n", p.x(), p.y(), p.z());
+    ply << line;
+  }
+  return ply.str();
+}
+
+void writeTopdown(const std::filesystem::path& file, const MissionResult& r) {
+  // Extent: the box, the trajectory and the map.
+  Vec2 lo = r.exploration_box.min.head<2>(), hi = r.exploration_box.max.head<2>();
+  if (!(hi.array() > lo.array()).all() || (hi - lo).norm() > 1e5) lo = hi = Vec2::Zero();
+  auto grow = [&](const Vec2& p, double m) {
+    lo = lo.cwiseMin(Vec2(p.array() - m));
+    hi = hi.cwiseMax(Vec2(p.array() + m));
+  };
+  for (const auto& t : r.flight.trajectory) grow(t.position_m.head<2>(), 5), grow(t.est_position_m.head<2>(), 5);
+  for (const auto& d : r.final_map.free_space) grow(d.centre.head<2>(), d.radius);
+  const double mpp = std::max({0.05, (hi.x() - lo.x()) / 1600.0, (hi.y() - lo.y()) / 1600.0});
+  const int header = 70;  // legend band above the map
+  const int w = std::max(640, int((hi.x() - lo.x()) / mpp) + 1), h = int((hi.y() - lo.y()) / mpp) + 1 + header;
+  cv::Mat img(h, w, CV_8UC3, cv::Scalar(255, 255, 255));
+  auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), header + int((hi.y() - p.y()) / mpp)); };
+  auto px2 = [&](const Vec2& p) { return px(Vec3(p.x(), p.y(), 0)); };
+
+  // Explored columns (light green squares around their nodes), spheres (blue, translucent).
+  const double half = 0.5 * r.columns.cellM();
+  for (const auto& c : r.columns.columns()) {
+    const Vec2 n = r.columns.node(c);
+    cv::rectangle(img, px2(n + Vec2(-half, half)), px2(n + Vec2(half, -half)), cv::Scalar(200, 240, 200), -1);
+  }
+  cv::Mat discs = img.clone();
+  for (const auto& d : r.final_map.free_space) cv::circle(discs, px(d.centre), int(d.radius / mpp), cv::Scalar(230, 160, 90), -1);
+  cv::addWeighted(discs, 0.35, img, 0.65, 0, img);
+  cv::rectangle(img, px(r.exploration_box.min), px(r.exploration_box.max), cv::Scalar(0, 0, 0), 1);
+  // Obstacle points: near the ground (z < 0.5 m) light grey, above it black.
+  for (const auto& p : r.final_map.obstacles)
+    if (p.z() < 0.5) cv::circle(img, px(p), 1, cv::Scalar(185, 185, 185), -1);
+  for (const auto& p : r.final_map.obstacles)
+    if (p.z() >= 0.5) cv::circle(img, px(p), 1, cv::Scalar(20, 20, 20), -1);
+  for (const auto& p : r.final_map.frontiers) cv::circle(img, px(p), 3, cv::Scalar(200, 40, 200), -1);
+  auto arrow = [&](const ExplorerSnapshot::Pose2& v, const cv::Scalar& col) {
+    const Vec3 tip = v.position + 2.0 * Vec3(std::cos(v.yaw_rad), std::sin(v.yaw_rad), 0);
+    cv::arrowedLine(img, px(v.position), px(tip), col, 2, cv::LINE_AA, 0, 0.4);
+  };
+  for (const auto& v : r.final_map.visited) arrow(v, cv::Scalar(140, 140, 140));
+  for (const auto& v : r.final_map.viewpoints) arrow(v, cv::Scalar(0, 160, 255));
+  // Trajectories: estimate (orange) under truth (red).
+  const auto& tr = r.flight.trajectory;
+  for (size_t i = 1; i < tr.size(); ++i)
+    cv::line(img, px(tr[i - 1].est_position_m), px(tr[i].est_position_m), cv::Scalar(0, 150, 255), 2, cv::LINE_AA);
+  for (size_t i = 1; i < tr.size(); ++i)
+    cv::line(img, px(tr[i - 1].position_m), px(tr[i].position_m), cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
+  if (r.flight.collision) {
+    const cv::Point c = px(r.flight.collision->vehicle_position_m);
+    cv::drawMarker(img, c, cv::Scalar(0, 0, 255), cv::MARKER_TILTED_CROSS, 24, 3);
+  }
+  char text[200];
+  std::snprintf(text, sizeof(text), "A = %.0f m2 (%zu columns), t = %.0f s, %s", r.columns.areaM2(),
+                r.columns.count(), r.flight.sim_time_s, r.flight.status.c_str());
+  cv::rectangle(img, cv::Point(0, 0), cv::Point(w, header - 1), cv::Scalar(255, 255, 255), -1);
+  cv::putText(img, text, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, "green: explored columns, blue: spheres, black/grey: obstacle points (above/below 0.5 m), magenta: frontiers,",
+              cv::Point(8, 42), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+  cv::putText(img, "orange arrows: viewpoints, grey: visited, red: true path, orange: estimate",
+              cv::Point(8, 60), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+  std::vector<uchar> png;
+  cv::imencode(".png", img, png);
+  writeFileAtomic(file, std::string(png.begin(), png.end()));
+}
+
+}  // namespace msb

@@ -1,0 +1,26 @@
+// The files of one mission (DESIGN §3, §10): metrics.json, coverage.csv, timing.csv,
+// trajectory.csv, map.ply and topdown.png.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tools/msbench/mission_runner.h"
+
+namespace msb {
+
+/// metrics.json content.
+nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r);
+/// coverage.csv text (t, A unbounded, A in box, A true frame, distance).
+std::string coverageCsv(const std::vector<CoverageSample>& samples);
+/// timing.csv text: cumulative wall time per stage every 10 simulated seconds.
+std::string timingCsv(const MissionResult& r);
+/// map.ply text: free-space spheres (kind 0, radius), obstacle points (1), frontiers (2).
+std::string mapPly(const ExplorerSnapshot& snap);
+/// Writes the top-down picture: explored columns, spheres, obstacle points, frontiers,
+/// viewpoints and visited markers, the true and estimated trajectories, the box, a collision.
+void writeTopdown(const std::filesystem::path& file, const MissionResult& r);
+
+}  // namespace msb

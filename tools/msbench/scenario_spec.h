@@ -1,0 +1,55 @@
+// A mission scenario (`msbench run`, DESIGN §12): a flight (world, seed, duration, sensors)
+// flown by an exploration method chosen by `method.type`, with the ablation switches and the
+// rates of the closed loop. Plain structs with defaults and validation; YAML lives in
+// scenario_yaml.cc only.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry/world_truth.h"
+#include "core/planning/monospheres_explorer.h"
+#include "tools/msbench/flight_spec.h"
+
+namespace msb {
+
+/// The four switches of the paper's ablation (Table I).
+struct MethodSwitches {
+  bool ovde = true;  ///< open-area virtual depth (mapper)
+  bool dbof = true;  ///< distance-based obstacle filtering (mapper)
+  bool fff = true;   ///< forced forward flight (planner)
+  bool vpb = true;   ///< visited-viewpoint blocking (planner)
+};
+
+/// The closed loop's rates and outputs.
+struct MissionSettings {
+  double map_rate_hz = 5.0;         ///< map updates (latest SLAM frame)
+  double planning_rate_hz = 5.0;    ///< planning steps
+  double metric_rate_hz = 1.0;      ///< coverage samples
+  double trajectory_rate_hz = 10.0; ///< trajectory.csv rows
+  bool write_map_ply = true;        ///< final map as map.ply
+  bool progress = true;             ///< progress line on stderr
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// Everything `msbench run` needs.
+struct ScenarioSpec {
+  std::string name;                 ///< run name (defaults to the file's stem)
+  std::string method_type = "monospheres";  ///< registered exploration method
+  FlightSpec flight;                ///< world, seed, duration, start, vehicle, sensors
+  bool start_from_world = true;     ///< take start pose from the generated world unless `start` is given
+  std::optional<Aabb> exploration_box;  ///< overrides the world's box
+  MethodSwitches switches;
+  MonoSpheresConfig monospheres;    ///< method "monospheres"
+  MissionSettings mission;
+
+  /// The names `method.type` accepts.
+  static std::vector<std::string> methodTypes() { return {"monospheres"}; }
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+}  // namespace msb

@@ -1,0 +1,27 @@
+// Loading scenario files for `msbench run` (DESIGN §12): an optional `base:` file (relative
+// to the including file) whose keys the file overrides map by map, then command-line overrides
+// `--set a.b.c=value` (the value is parsed as YAML), then the strict reader: unknown keys, wrong
+// types and bad values fail with the file and the key named.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "tools/msbench/scenario_spec.h"
+
+namespace msb {
+
+/// The merged tree of a scenario file and its base chain, with `--set` overrides applied.
+/// Relative MJCF world paths are made absolute against the file that names them.
+/// Throws FileConfigError (file problems) or UsageError (malformed --set).
+YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::string>& sets = {});
+
+/// Loads and validates a scenario. Throws FileConfigError / UsageError.
+ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string>& sets = {});
+
+/// The effective configuration as YAML (what config.yaml records): the merged tree.
+std::string scenarioTreeToString(const YAML::Node& tree);
+
+}  // namespace msb
