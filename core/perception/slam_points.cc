@@ -12,6 +12,8 @@ void SlamPointsConfig::validate(ConfigChecker& c) const {
   c.require(max_depth_m > min_depth_m && min_depth_m > 0, "max_depth_m", "needs 0 < min_depth_m < max_depth_m");
   c.inRange("max_points", max_points, 1, 100000);
   c.inRange("max_observations", max_observations, 2, 1000);
+  c.require(min_observations >= 2 && min_observations <= max_observations, "min_observations",
+            "must be in [2, max_observations]");
   c.inRange("max_iterations", max_iterations, 1, 100);
 }
 
@@ -146,7 +148,7 @@ SlamPointsFrame SlamPointEstimator::update(const TrackFrame& tracks, const Pose&
 
   const double min_cos = std::cos(config_.min_parallax_deg * M_PI / 180.0);
   for (auto& [id, h] : histories_) {
-    if (h.obs.size() < 2) continue;
+    if (int(h.obs.size()) < config_.min_observations) continue;
     // Parallax between the anchor ray and the latest ray (world frame).
     const Vec3 d0 = h.obs.front().second.linear() * camera_.unproject(h.obs.front().first);
     const Vec3 d1 = h.obs.back().second.linear() * camera_.unproject(h.obs.back().first);

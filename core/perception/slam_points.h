@@ -29,6 +29,7 @@ struct SlamPointsConfig {
   double min_depth_m = 0.2;
   int max_points = 500;
   int max_observations = 20;             ///< kept per track (anchor + most recent)
+  int min_observations = 4;              ///< a point needs this many observations (rejects 2-frame mismatches)
   int max_iterations = 10;
 
   /// Records invalid fields.

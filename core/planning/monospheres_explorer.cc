@@ -48,6 +48,10 @@ void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
   c.nonNegative("check_ahead_m", check_ahead_m);
   c.nonNegative("check_clearance_m", check_clearance_m);
   c.require(max_blocked_steps >= 1, "max_blocked_steps", "must be ≥ 1");
+  c.require(max_route_repairs >= 1, "max_route_repairs", "must be ≥ 1");
+  c.positive("blocked_edge_timeout_s", blocked_edge_timeout_s);
+  c.require(bridge_below_reachable >= 0, "bridge_below_reachable", "must be ≥ 0");
+  c.positive("bridge_range_m", bridge_range_m);
   c.nonNegative("shortcut_depth_m", shortcut_depth_m);
   c.positive("reach_distance_m", reach_distance_m);
   c.inRange("reach_angle_deg", reach_angle_deg, 0.0, 180.0);
@@ -69,8 +73,9 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
       context_(context),
       map_(config.map, camera, context.seed),
       viewpoints_(config.planner.viewpoints, context.seed) {
-  for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_global", "blocked_stops",
-                        "paths_sent", "idle_turns"})
+  for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress",
+                        "goals_failed_unreachable", "goals_failed_blocked", "goals_global", "blocked_stops",
+                        "paths_sent", "idle_turns", "returns_to_free_space", "edges_blocked", "bridges"})
     counters_[k] = 0;
 }
 
@@ -141,17 +146,31 @@ bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
   return true;
 }
 
+bool MonoSpheresExplorer::approaches(const Vec3& x, const Vec3& here) const {
+  for (uint64_t id : map_.obstaclesNear(x, config_.planner.check_clearance_m)) {
+    const Vec3& o = map_.obstacles().at(id).position;
+    if ((x - o).norm() < (here - o).norm() - 1e-6) return true;
+  }
+  return false;
+}
+
+bool MonoSpheresExplorer::segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const {
+  const double len = (b - a).norm();
+  const int n = std::max(1, int(std::ceil(len / 0.3)));
+  for (int i = 0; i <= n; ++i)
+    if (approaches(a + (double(i) / n) * (b - a), here)) return false;
+  return true;
+}
+
 bool MonoSpheresExplorer::pathBlocked(const std::vector<Vec3>& pts) const {
-  // Samples along the first check_ahead_m of the path, ignoring the first metre (the vehicle
-  // may already be close to a point it is moving away from).
+  // Samples along the first check_ahead_m of the path (see approaches()).
+  if (pts.empty()) return false;
   double s = 0;
   for (size_t i = 1; i < pts.size() && s < config_.planner.check_ahead_m; ++i) {
     const Vec3 a = pts[i - 1], b = pts[i];
     const double len = (b - a).norm();
-    for (double t = 0; t < len && s + t < config_.planner.check_ahead_m; t += 0.25) {
-      if (s + t < 1.0) continue;
-      if (map_.anyObstacleNear(a + t / len * (b - a), config_.planner.check_clearance_m)) return true;
-    }
+    for (double t = 0; t < len && s + t < config_.planner.check_ahead_m; t += 0.25)
+      if (approaches(a + t / len * (b - a), pts.front())) return true;
     s += len;
   }
   return false;
@@ -201,10 +220,11 @@ std::optional<uint64_t> MonoSpheresExplorer::chooseGoal(const VehicleState& s, c
   return std::nullopt;
 }
 
-void MonoSpheresExplorer::failGoal(double t_s) {
+void MonoSpheresExplorer::failGoal(double t_s, const char* reason) {
   viewpoints_.markFailed(goal_, t_s);
   goal_ = 0;
   ++counters_["goals_failed"];
+  ++counters_[std::string("goals_failed_") + reason];
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
@@ -218,14 +238,21 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   if (!start) {
     // Outside the known free space: return to the nearest sphere (deepest within 6 m).
     const auto back = containingSphere(map_, p, 6.0, r_min);
-    if (back && s.t_s - last_send_s_ >= pc.replan_period_s)
+    if (back && s.t_s - last_send_s_ >= pc.replan_period_s) {
+      ++counters_["returns_to_free_space"];
       return command(s, {{map_.spheres().at(*back).centre, std::nullopt}});
+    }
     return std::nullopt;
   }
-  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety);
+  std::erase_if(blocked_edges_, [&](const auto& e) { return s.t_s >= e.second; });
+  const EdgeFilter passable = [this](uint64_t a, uint64_t b) {
+    return !blocked_edges_.count({std::min(a, b), std::max(a, b)});
+  };
+  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, passable);
   std::vector<uint64_t> reachable;
   reachable.reserve(field.cost.size());
   for (const auto& [id, c] : field.cost) reachable.push_back(id);  // ascending ids
+  counters_["reachable_spheres"] = double(reachable.size());
 
   // 2. Viewpoints.
   const Aabb& box = context_.exploration_box;
@@ -240,8 +267,10 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
       viewpoints_.markReached(goal_, p, yaw);
       goal_ = 0;
       ++counters_["goals_reached"];
-    } else if (s.t_s - last_progress_s_ > pc.no_progress_timeout_s || !field.cost.count(v.sphere)) {
-      failGoal(s.t_s);
+    } else if (!field.cost.count(v.sphere)) {
+      failGoal(s.t_s, "unreachable");
+    } else if (s.t_s - last_progress_s_ > pc.no_progress_timeout_s) {
+      failGoal(s.t_s, "no_progress");
     }
   }
 
@@ -255,6 +284,22 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
       ++counters_["goals_chosen"];
     }
   }
+  if (!goal_ && reachable.size() < size_t(pc.bridge_below_reachable) && s.t_s - last_send_s_ >= pc.replan_period_s) {
+    // Cut off in a small pocket of the graph (spheres shrunk or deleted around the vehicle):
+    // bridge to the nearest sphere outside it along a straight segment clear of obstacle points.
+    std::optional<std::pair<double, uint64_t>> best;
+    for (uint64_t id : map_.spheresNear(p, pc.bridge_range_m)) {
+      const Sphere& sp = map_.spheres().at(id);
+      if (field.cost.count(id) || sp.radius < r_min || !box.contains(sp.centre)) continue;
+      const double d = (sp.centre - p).norm();
+      if (d > pc.bridge_range_m || (best && d >= best->first)) continue;
+      if (segmentClear(p, sp.centre, p)) best = {d, id};
+    }
+    if (best) {
+      ++counters_["bridges"];
+      return command(s, {{map_.spheres().at(best->second).centre, std::nullopt}});
+    }
+  }
   if (!goal_) {
     // Nothing worth flying to: look around in place now and then.
     if (s.t_s - last_idle_turn_s_ >= pc.idle_turn_period_s && pc.idle_turn_deg > 0) {
@@ -265,15 +310,36 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
     return std::nullopt;
   }
 
-  // 5. Route to the goal, progress, safety check, headings, carrot.
+  // 5. Route to the goal through edges that keep the clearance from obstacle points (an edge
+  // found too close is blocked for a while and the search repeated), then progress, the
+  // predicted-trajectory check, headings and the carrot.
   const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
-  const std::vector<Vec3> route = routeTo(s.reference.position_m, field.pathTo(v.sphere), v.position);
+  std::optional<SpherePath> spath;
+  for (int attempt = 0; attempt < pc.max_route_repairs; ++attempt) {
+    spath = findSpherePath(map_, *start, v.sphere, pc.safety, passable);
+    if (!spath) break;
+    bool clear = true;
+    for (size_t k = 1; k < spath->spheres.size() && clear; ++k) {
+      const uint64_t a = spath->spheres[k - 1], b = spath->spheres[k];
+      if (segmentClear(map_.spheres().at(a).centre, map_.spheres().at(b).centre, p)) continue;
+      blocked_edges_[{std::min(a, b), std::max(a, b)}] = s.t_s + pc.blocked_edge_timeout_s;
+      ++counters_["edges_blocked"];
+      clear = false;
+    }
+    if (clear) break;
+    spath.reset();
+  }
+  if (!spath) {
+    failGoal(s.t_s, "unreachable");
+    return command(s, {{s.reference.position_m, std::nullopt}});  // hold; choose again next step
+  }
+  const std::vector<Vec3> route = routeTo(s.reference.position_m, *spath, v.position);
   const double remaining = pathLength(route);
   if (remaining < best_remaining_m_ - 0.5) best_remaining_m_ = remaining, last_progress_s_ = s.t_s;
   if (pathBlocked(route)) {
     ++counters_["blocked_stops"];
     if (++blocked_steps_ >= pc.max_blocked_steps) {
-      failGoal(s.t_s);
+      failGoal(s.t_s, "blocked");
       blocked_steps_ = 0;
     }
     return command(s, {{s.reference.position_m, std::nullopt}});  // stop; re-plan next step

@@ -9,10 +9,14 @@
 //      10 s without progress / an unreachable goal / repeated blocking → blacklisted;
 //   4. without a goal: the cheapest viewpoint within 15 m (local); after 3 local misses the
 //      cheapest anywhere (global); with FFF goals whose turn does not fit are skipped;
-//   5. the route (vehicle → sphere centres → viewpoint) is shortcut inside the sphere union,
+//   5. the A* route's edges must keep 1 m from obstacle points (an edge that does not is blocked
+//      for 30 s and the search repeated: overlapping spheres can meet in a narrow neck);
+//      the route (vehicle → sphere centres → viewpoint) is shortcut inside the sphere union,
 //      given headings (FFF or goal heading), cut at the carrot (15 m) and sent every
 //      replan period, unless the first 5 m pass closer than 1 m to an obstacle point
 //      (then stop and re-plan) or FFF first needs a turn in place towards the route.
+// Without a goal while cut off in a small pocket of the graph, the vehicle bridges straight
+// (clear of obstacle points) to the nearest sphere outside the pocket.
 // Before exploring: take off vertically and fly a short straight stretch forward, so that the
 // first points get parallax.
 #pragma once
@@ -45,6 +49,10 @@ struct MonoSpheresPlannerConfig {
   double check_ahead_m = 5.0;               ///< predicted-trajectory check length ...
   double check_clearance_m = 1.0;           ///< ... and clearance from obstacle points
   int max_blocked_steps = 5;                ///< consecutive blocked steps fail the goal
+  int max_route_repairs = 8;                ///< searches per step, each blocking one too-close edge
+  double blocked_edge_timeout_s = 30.0;     ///< a graph edge found too close to obstacles stays blocked this long
+  int bridge_below_reachable = 10;          ///< without a goal and fewer reachable spheres than this ...
+  double bridge_range_m = 15.0;             ///< ... fly straight to the nearest other sphere within this range
   double shortcut_depth_m = 0.3;            ///< shortcut samples must lie this deep inside a sphere
   double reach_distance_m = 1.0;            ///< goal reached within ...
   double reach_angle_deg = 90.0;            ///< ... and this heading difference
@@ -91,10 +99,14 @@ class MonoSpheresExplorer : public Explorer {
   std::optional<PathCommand> explore(const VehicleState& s);
   std::optional<uint64_t> chooseGoal(const VehicleState& s, const SphereCostField& field);
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
-  bool segmentFree(const Vec3& a, const Vec3& b) const;
+  bool segmentFree(const Vec3& a, const Vec3& b) const;   // inside the sphere union and clear
+  // True if x lies within the clearance of an obstacle point and closer to it than `here` (the
+  // vehicle): a vehicle already too close to a point (e.g. a spurious one) may always move away.
+  bool approaches(const Vec3& x, const Vec3& here) const;
+  bool segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const;  // no sample approaches
   bool pathBlocked(const std::vector<Vec3>& pts) const;
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
-  void failGoal(double t_s);
+  void failGoal(double t_s, const char* reason);
 
   MonoSpheresConfig config_;
   ExplorerContext context_;
@@ -107,6 +119,7 @@ class MonoSpheresExplorer : public Explorer {
   int local_misses_ = 0, blocked_steps_ = 0;
   double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9;
   std::vector<Vec3> last_path_;
+  std::map<std::pair<uint64_t, uint64_t>, double> blocked_edges_;  // (low id, high id) → until
   std::map<std::string, double> counters_;
   double map_ms_ = 0, plan_ms_ = 0;
 };

@@ -39,7 +39,8 @@ namespace {
 
 // Search core shared by A* (heuristic towards `goal`) and Dijkstra (goal = 0, no heuristic).
 // Ties in the queue are broken by sphere id, so the result never depends on memory layout.
-SphereCostField search(const SphereMap& map, uint64_t start, uint64_t goal, const SafetyCostConfig& cfg) {
+SphereCostField search(const SphereMap& map, uint64_t start, uint64_t goal, const SafetyCostConfig& cfg,
+                       const EdgeFilter& passable) {
   SphereCostField f;
   const auto& spheres = map.spheres();
   if (!spheres.count(start)) return f;
@@ -61,6 +62,7 @@ SphereCostField search(const SphereMap& map, uint64_t start, uint64_t goal, cons
     for (uint64_t n : map.neighbours(id)) {
       const Sphere& t = spheres.at(n);
       if (t.radius < cfg.r_min_m || closed[n]) continue;
+      if (passable && !passable(id, n)) continue;
       const double len = (t.centre - s.centre).norm();
       const double c = f.cost[id] + edgeCost(len, t.radius, cfg);
       const auto it = f.cost.find(n);
@@ -92,15 +94,16 @@ SpherePath SphereCostField::pathTo(uint64_t goal) const {
 }
 
 std::optional<SpherePath> findSpherePath(const SphereMap& map, uint64_t start, uint64_t goal,
-                                         const SafetyCostConfig& cfg) {
+                                         const SafetyCostConfig& cfg, const EdgeFilter& passable) {
   if (!map.spheres().count(goal)) return std::nullopt;
-  const SphereCostField f = search(map, start, goal, cfg);
+  const SphereCostField f = search(map, start, goal, cfg, passable);
   if (!f.cost.count(goal)) return std::nullopt;
   return f.pathTo(goal);
 }
 
-SphereCostField sphereCostsFrom(const SphereMap& map, uint64_t start, const SafetyCostConfig& cfg) {
-  return search(map, start, 0, cfg);
+SphereCostField sphereCostsFrom(const SphereMap& map, uint64_t start, const SafetyCostConfig& cfg,
+                                const EdgeFilter& passable) {
+  return search(map, start, 0, cfg, passable);
 }
 
 }  // namespace msb

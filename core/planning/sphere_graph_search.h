@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <vector>
@@ -31,6 +32,9 @@ double narrownessPenalty(double radius_m, const SafetyCostConfig& cfg);
 /// Cost of entering a sphere of radius r_to over an edge of length L.
 double edgeCost(double length_m, double r_to_m, const SafetyCostConfig& cfg);
 
+/// Optional edge filter: false if the edge a→b must not be used (e.g. found blocked).
+using EdgeFilter = std::function<bool(uint64_t from, uint64_t to)>;
+
 /// A path through the sphere graph.
 struct SpherePath {
   std::vector<uint64_t> spheres;  ///< from start to goal
@@ -44,7 +48,7 @@ std::optional<uint64_t> containingSphere(const SphereMap& map, const Vec3& p, do
 
 /// A* from start to goal sphere. None if unreachable.
 std::optional<SpherePath> findSpherePath(const SphereMap& map, uint64_t start, uint64_t goal,
-                                         const SafetyCostConfig& cfg);
+                                         const SafetyCostConfig& cfg, const EdgeFilter& passable = {});
 
 /// Dijkstra from start: cost to every reachable sphere (with r ≥ r_min) and its predecessor.
 struct SphereCostField {
@@ -55,6 +59,7 @@ struct SphereCostField {
   SpherePath pathTo(uint64_t goal) const;
 };
 /// Costs from `start` to all spheres reachable from it.
-SphereCostField sphereCostsFrom(const SphereMap& map, uint64_t start, const SafetyCostConfig& cfg);
+SphereCostField sphereCostsFrom(const SphereMap& map, uint64_t start, const SafetyCostConfig& cfg,
+                                const EdgeFilter& passable = {});
 
 }  // namespace msb

@@ -26,9 +26,11 @@ MissionProgress missionProgress(const std::string& name, double duration_s) {
     if (t % 10 != 0 || t == 0) return;
     const double rtf = sim_s / std::max(wall_s, 1e-9);
     auto get = [&c](const char* k) { const auto it = c.find(k); return it == c.end() ? 0.0 : it->second; };
-    std::fprintf(stderr, "run %s: t = %ld / %.0f s, RTF %.2f, A = %.0f m², spheres %.0f, goals %.0f/%.0f, ETA %.0f s\n",
-                 name.c_str(), t, duration_s, rtf, area, get("spheres"), get("goals_reached"),
-                 get("goals_chosen"), (duration_s - sim_s) / std::max(rtf, 1e-9));
+    std::fprintf(stderr,
+                 "run %s: t = %ld / %.0f s, RTF %.2f, A = %.0f m², spheres %.0f (%.0f reachable), viewpoints %.0f, "
+                 "goals reached %.0f of %.0f, ETA %.0f s\n",
+                 name.c_str(), t, duration_s, rtf, area, get("spheres"), get("reachable_spheres"), get("viewpoints"),
+                 get("goals_reached"), get("goals_chosen"), (duration_s - sim_s) / std::max(rtf, 1e-9));
   };
 }
 

@@ -145,6 +145,10 @@ void readPlanner(MapReader r, MonoSpheresPlannerConfig& c) {
   r.read("check_ahead_m", c.check_ahead_m);
   r.read("check_clearance_m", c.check_clearance_m);
   r.read("max_blocked_steps", c.max_blocked_steps);
+  r.read("max_route_repairs", c.max_route_repairs);
+  r.read("blocked_edge_timeout_s", c.blocked_edge_timeout_s);
+  r.read("bridge_below_reachable", c.bridge_below_reachable);
+  r.read("bridge_range_m", c.bridge_range_m);
   r.read("shortcut_depth_m", c.shortcut_depth_m);
   r.read("reach_distance_m", c.reach_distance_m);
   r.read("reach_angle_deg", c.reach_angle_deg);

@@ -181,6 +181,7 @@ void readSlamPoints(MapReader r, SlamPointsConfig& c) {
   r.read("min_depth_m", c.min_depth_m);
   r.read("max_points", c.max_points);
   r.read("max_observations", c.max_observations);
+  r.read("min_observations", c.min_observations);
   r.read("max_iterations", c.max_iterations);
   r.finish();
 }
