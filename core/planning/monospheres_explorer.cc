@@ -360,11 +360,16 @@ void MonoSpheresExplorer::markCoverage(ColumnCoverage& coverage) const {
   for (const auto& [id, sp] : map_.spheres()) coverage.markDisk(sp.centre.head<2>(), sp.radius);
 }
 
-ExplorerSnapshot MonoSpheresExplorer::snapshot() const {
+ExplorerSnapshot sphereMapSnapshot(const SphereMap& map) {
   ExplorerSnapshot snap;
-  for (const auto& [id, sp] : map_.spheres()) snap.free_space.push_back({id, sp.centre, sp.radius});
-  for (const auto& [id, o] : map_.obstacles()) snap.obstacles.push_back(o.position);
-  for (const auto& [id, f] : map_.frontiers()) snap.frontiers.push_back(f.position);
+  for (const auto& [id, sp] : map.spheres()) snap.free_space.push_back({id, sp.centre, sp.radius});
+  for (const auto& [id, o] : map.obstacles()) snap.obstacles.push_back(o.position);
+  for (const auto& [id, f] : map.frontiers()) snap.frontiers.push_back(f.position);
+  return snap;
+}
+
+ExplorerSnapshot MonoSpheresExplorer::snapshot() const {
+  ExplorerSnapshot snap = sphereMapSnapshot(map_);
   for (const auto& [id, v] : viewpoints_.viewpoints()) snap.viewpoints.push_back({v.position, v.yaw_rad});
   for (const auto& m : viewpoints_.markers()) snap.visited.push_back({m.position, m.yaw_rad});
   if (goal_) {

@@ -74,6 +74,9 @@ struct MonoSpheresConfig {
   void validate(ConfigChecker& c) const;
 };
 
+/// Spheres, obstacle points and frontiers of a map as a snapshot (drawing, map.ply, hashing).
+ExplorerSnapshot sphereMapSnapshot(const SphereMap& map);
+
 /// The MonoSpheres explorer.
 class MonoSpheresExplorer : public Explorer {
  public:

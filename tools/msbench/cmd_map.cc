@@ -14,7 +14,10 @@
 
 #include "core/common/rng.h"
 #include "core/map/sphere_map.h"
+#include "core/eval/column_coverage.h"
+#include "core/planning/monospheres_explorer.h"
 #include "tools/msbench/cli_args.h"
+#include "tools/msbench/mission_outputs.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
@@ -187,27 +190,8 @@ int runMapReplayCommand(int argc, char** argv) {
   }
   writeFileAtomic(out.staging() / "map_stats.csv", csv.str());
 
-  // map.ply: spheres (kind 0, with radius) and obstacle points (kind 1).
-  std::ostringstream ply;
-  ply << "ply\nformat ascii 1.0\ncomment msbench MonoSpheres map (VIO frame); kind 0 sphere (radius), "
-         "1 obstacle point, 2 frontier\nelement vertex "
-      << map.spheres().size() + map.obstacles().size() + map.frontiers().size()
-      << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\n"
-         "property uchar kind\nend_header\n";
-  char line[160];
-  for (const auto& [id, s] : map.spheres()) {
-    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f %.4f 0\n", s.centre.x(), s.centre.y(), s.centre.z(), s.radius);
-    ply << line;
-  }
-  for (const auto& [id, o] : map.obstacles()) {
-    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f 0 1\n", o.position.x(), o.position.y(), o.position.z());
-    ply << line;
-  }
-  for (const auto& [id, f] : map.frontiers()) {
-    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f 0 2\n", f.position.x(), f.position.y(), f.position.z());
-    ply << line;
-  }
-  writeFileAtomic(out.staging() / "map.ply", ply.str());
+  // map.ply: spheres (kind 0, with radius), obstacle points (1), frontiers (2).
+  writeFileAtomic(out.staging() / "map.ply", mapPly(sphereMapSnapshot(map)));
 
   // topdown.png: spheres (blue discs), obstacle points (black), estimated camera path (orange).
   Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
@@ -237,16 +221,9 @@ int runMapReplayCommand(int argc, char** argv) {
              cv::Scalar(0, 140, 255), 2);
   cv::imwrite((out.staging() / "topdown.png").string(), img);
 
-  // Explored area as in the paper: 2.5 m columns whose centre lies inside a sphere's disk.
-  std::set<std::pair<long, long>> columns;
-  for (const auto& [id, sp] : map.spheres()) {
-    const long x0 = long(std::floor((sp.centre.x() - sp.radius) / 2.5)), x1 = long(std::floor((sp.centre.x() + sp.radius) / 2.5));
-    const long y0 = long(std::floor((sp.centre.y() - sp.radius) / 2.5)), y1 = long(std::floor((sp.centre.y() + sp.radius) / 2.5));
-    for (long x = x0; x <= x1; ++x)
-      for (long y = y0; y <= y1; ++y)
-        if (std::hypot((x + 0.5) * 2.5 - sp.centre.x(), (y + 0.5) * 2.5 - sp.centre.y()) <= sp.radius)
-          columns.insert({x, y});
-  }
+  // Explored area as in the paper (the metric of core/eval, final map only).
+  ColumnCoverage columns;
+  for (const auto& [id, sp] : map.spheres()) columns.markDisk(sp.centre.head<2>(), sp.radius);
   double volume = 0;
   for (const auto& [id, sp] : map.spheres()) volume += 4.0 / 3.0 * M_PI * std::pow(sp.radius, 3);
   // Corridor coverage: share of the flown camera positions (every 10th frame) inside the map's
@@ -262,8 +239,8 @@ int runMapReplayCommand(int argc, char** argv) {
       }
   }
   const nlohmann::json j = {{"updates", r.stats.size()},
-                            {"covered_columns", columns.size()},
-                            {"covered_area_m2", 6.25 * columns.size()},
+                            {"covered_columns", columns.count()},
+                            {"covered_area_m2", columns.areaM2()},
                             {"flown_path_in_free_space_share", double(path_covered) / std::max(1L, path_samples)},
                             {"sphere_volume_sum_m3", volume},
                             {"spheres", map.spheres().size()},
@@ -307,7 +284,7 @@ int runMapReplayCommand(int argc, char** argv) {
   out.commit();
   std::printf("map-replay: %zu updates, %zu spheres, %zu obstacle points, %zu columns covered (%.0f m2), "
               "%.0f %% of the flown path in free space; update ms median %.2f, p99 %.2f -> %s\n",
-              r.stats.size(), map.spheres().size(), map.obstacles().size(), columns.size(), 6.25 * columns.size(),
+              r.stats.size(), map.spheres().size(), map.obstacles().size(), columns.count(), columns.areaM2(),
               100.0 * path_covered / std::max(1L, path_samples),
               percentile(r.total_ms, 0.5), percentile(r.total_ms, 0.99), out.finalDir().c_str());
   return kExitOk;

@@ -9,6 +9,7 @@
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/mission_outputs.h"
 #include "tools/msbench/output_files.h"
+#include "tools/msbench/perception_log.h"
 #include "tools/msbench/scenario_yaml.h"
 #include "tools/msbench/world_registry.h"
 #include "tools/msbench/yaml_reader.h"
@@ -47,6 +48,7 @@ int runRunCommand(int argc, char** argv) {
       .option("out", "", "output directory (created; must not hold results)", true)
       .option("seed", "", "override the scenario seed")
       .option("duration", "", "override the mission duration (simulated seconds)")
+      .option("record", "", "also record the perception stream to this log (for map-replay)")
       .flag("quiet", "no progress line")
       .flag("overwrite", "replace an existing non-empty output directory");
   if (!args.parse(argc, argv)) return kExitOk;
@@ -78,10 +80,20 @@ int runRunCommand(int argc, char** argv) {
                       scenarioTreeToString(tree));
 
   const bool quiet = args.has("quiet") || !spec.mission.progress;
+  std::unique_ptr<PerceptionLogWriter> recorder;
+  PerceptionCallback record;
+  if (!args.get("record").empty()) {
+    recorder = std::make_unique<PerceptionLogWriter>(
+        args.get("record"), nlohmann::json{{"world", spec.flight.world_name.empty() ? spec.flight.world_path
+                                                                                    : spec.flight.world_name},
+                                           {"seed", spec.flight.seed}, {"camera_scale", spec.flight.camera.scale},
+                                           {"scenario", file}});
+    record = [&recorder](const PerceptionSample& s) { recorder->write(s.points, s.frame.T_W_C); };
+  }
   MissionResult r;
   try {
     r = runMission(spec, box, truth ? &*truth : nullptr,
-                   quiet ? MissionProgress{} : missionProgress(spec.name, spec.flight.duration_s));
+                   quiet ? MissionProgress{} : missionProgress(spec.name, spec.flight.duration_s), record);
   } catch (const std::exception& e) {
     // A crashed run leaves a record saying so (a sweep goes on with the next run).
     nlohmann::json j = {{"name", spec.name}, {"status", "error"}, {"error", e.what()}, {"seed", spec.flight.seed},
@@ -92,6 +104,7 @@ int runRunCommand(int argc, char** argv) {
     return kExitRuntime;
   }
 
+  if (recorder) recorder->close();
   const nlohmann::json metrics = missionMetrics(spec, r);
   writeFileAtomic(out.staging() / "coverage.csv", coverageCsv(r.coverage));
   writeFileAtomic(out.staging() / "trajectory.csv", trajectoryCsv(r.flight.trajectory));

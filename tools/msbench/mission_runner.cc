@@ -48,7 +48,7 @@ uint64_t hashSnapshot(const ExplorerSnapshot& snap) {
 }
 
 MissionResult runMission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth,
-                         const MissionProgress& progress) {
+                         const MissionProgress& progress, const PerceptionCallback& on_perception) {
   checkValid(spec);
   MissionResult result;
   result.exploration_box = box;
@@ -104,6 +104,7 @@ MissionResult runMission(const ScenarioSpec& spec, const Aabb& box, const WorldT
     T_true_est = s.frame.T_W_C * s.points.T_W_C.inverse();
     distance += (s.frame.T_W_C.translation() - last_gt).norm();
     last_gt = s.frame.T_W_C.translation();
+    if (on_perception) on_perception(s);
   };
   obs.autopilot = [&](const AutopilotInput& in) -> std::optional<std::vector<Waypoint>> {
     const int64_t tick = in.tick;

@@ -55,8 +55,9 @@ std::unique_ptr<Explorer> makeExplorer(const ScenarioSpec& spec, const FisheyeCa
 
 /// Runs the mission. `truth` (generated worlds) enables the box share; `spec.flight.world_path`
 /// must be resolved and the start pose set. Throws std::runtime_error on setup failures.
+/// `on_perception` (optional) sees every perception frame, e.g. to record a log for map-replay.
 MissionResult runMission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth,
-                         const MissionProgress& progress = {});
+                         const MissionProgress& progress = {}, const PerceptionCallback& on_perception = {});
 
 /// Hash of a map snapshot (free space, obstacles, frontiers).
 uint64_t hashSnapshot(const ExplorerSnapshot& snap);
