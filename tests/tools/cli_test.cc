@@ -8,32 +8,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_helpers.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kExe = std::string(MSB_BINARY_DIR) + "/bin/msbench";
+using msb_test::kExe;
+using msb_test::readText;
+using msb_test::run;
 
-fs::path tempDir(const std::string& name) {
-  const fs::path d = fs::path(::testing::TempDir()) / ("msb_cli_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-// Runs msbench with arguments; returns its exit code (stdout/stderr to `log`).
-int run(const std::string& args, const fs::path& log) {
-  const std::string cmd = "'" + kExe + "' " + args + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string readText(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+fs::path tempDir(const std::string& name) { return msb_test::tempDir("msb_cli_", name); }
 
 TEST(Cli, HelpAndUsageErrors) {
   const fs::path d = tempDir("help");

@@ -10,32 +10,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_helpers.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kExe = std::string(MSB_BINARY_DIR) + "/bin/msbench";
 const std::string kScenario = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/test_world_short.yaml";
 
-fs::path tempDir(const std::string& name) {
-  const fs::path d = fs::path(::testing::TempDir()) / ("msb_mission_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using msb_test::kExe;
+using msb_test::readText;
+using msb_test::run;
 
-int run(const std::string& args, const fs::path& log) {
-  const std::string cmd = "'" + kExe + "' " + args + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string readText(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+fs::path tempDir(const std::string& name) { return msb_test::tempDir("msb_mission_", name); }
 
 // (t, A) rows of coverage.csv.
 std::vector<std::pair<double, double>> coverage(const fs::path& csv) {

@@ -1,0 +1,43 @@
+// Helpers for tests that run the msbench executable: a fresh directory per test, running a
+// command line with its output captured, reading a result file.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace msb_test {
+
+namespace fs = std::filesystem;
+
+/// The built msbench executable.
+inline const std::string kExe = std::string(MSB_BINARY_DIR) + "/bin/msbench";
+
+/// An empty directory "<prefix><name>" under the test temp dir.
+inline fs::path tempDir(const std::string& prefix, const std::string& name) {
+  const fs::path d = fs::path(::testing::TempDir()) / (prefix + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// Runs msbench with arguments; returns its exit code (stdout/stderr to `log`).
+inline int run(const std::string& args, const fs::path& log) {
+  const std::string cmd = "'" + kExe + "' " + args + " > '" + log.string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// The whole file as a string (empty if missing).
+inline std::string readText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace msb_test
