@@ -14,6 +14,7 @@ namespace msb {
 void FisheyeRendererConfig::validate(ConfigChecker& c) const {
   c.inRange("face_focal_ratio", face_focal_ratio, 0.25, 2.0);
   c.inRange("ambient", ambient, 0.05, 1.0);
+  c.inRange("sun_ambient", sun_ambient, 0.0, 1.0);
   c.inRange("tessellation_slices", tessellation_slices, 4, 100);
   c.inRange("tessellation_stacks", tessellation_stacks, 4, 100);
   c.nonNegative("plane_grid_m", plane_grid_m);
@@ -72,8 +73,12 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   model_->vis.quality.numslices = config_.tessellation_slices;
   model_->vis.quality.numstacks = config_.tessellation_stacks;
   model_->vis.headlight.active = 1;
+  // World lights (a directional sun) only with the `sun` switch: diffuse shading from a
+  // world-fixed direction is the same in every cube face, so it adds no seams.
+  for (int l = 0; l < model_->nlight; ++l) model_->light_active[l] = config_.sun ? 1 : 0;
+  const double ambient = config_.sun ? config_.sun_ambient : config_.ambient;
   for (int i = 0; i < 3; ++i) {
-    model_->vis.headlight.ambient[i] = static_cast<float>(config_.ambient);
+    model_->vis.headlight.ambient[i] = static_cast<float>(ambient);
     model_->vis.headlight.diffuse[i] = 0.0f;
     model_->vis.headlight.specular[i] = 0.0f;
   }
@@ -103,6 +108,7 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   mjv_defaultFreeCamera(model_, &free_camera_);
   for (int f = 0; f < mjNRNDFLAG; ++f) scene_.flags[f] = 0;
   scene_.flags[mjRND_CULL_FACE] = 1;
+  scene_.flags[mjRND_SKYBOX] = config_.sky ? 1 : 0;
 }
 
 FisheyeRenderer::~FisheyeRenderer() {

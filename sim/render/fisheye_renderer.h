@@ -42,6 +42,9 @@ struct FisheyeRendererConfig {
   double far_clip_m = 600.0;       ///< far clipping distance
   bool read_red_channel_only = false;  ///< read one channel (exact for grey-scale worlds)
   int max_visible_geom_group = 2;  ///< groups above are not drawn (3: vehicle, 4: collision-only)
+  bool sky = false;                 ///< draw the world's skybox texture (else the sky is black)
+  bool sun = false;                 ///< use the world's directional lights (diffuse, world-fixed)
+  double sun_ambient = 0.55;        ///< headlight ambient when the sun is on
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -54,13 +54,17 @@ int runRenderProbeCommand(int argc, char** argv) {
       .option("pose", "0,0,1.5,0", "vehicle body pose x,y,z (m), yaw (deg)")
       .option("out", "", "output PNG file", true)
       .option("scale", "1", "image scale: 1 (752x480) or 0.5 (376x240)")
-      .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length");
+      .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length")
+      .flag("sky", "draw the world's sky (render.sky)")
+      .flag("sun", "light the world with its sun (render.sun)");
   if (!args.parse(argc, argv)) return kExitOk;
   const Vec4 pose = parsePose(args.get("pose"));
   FisheyeCameraConfig cam_cfg;
   cam_cfg.scale = parseScale(args);
   FisheyeRendererConfig render_cfg;
   render_cfg.face_focal_ratio = args.getDouble("face-focal-ratio");
+  render_cfg.sky = args.has("sky");
+  render_cfg.sun = args.has("sun");
   const std::string world = resolveWorld(args.get("world")).world_xml;
 
   const Pose T_W_B = poseFromXyzYaw(pose.head<3>(), pose[3] * M_PI / 180.0);

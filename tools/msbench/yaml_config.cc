@@ -129,6 +129,9 @@ void readRender(MapReader r, FisheyeRendererConfig& c) {
   r.read("near_clip_m", c.near_clip_m);
   r.read("far_clip_m", c.far_clip_m);
   r.read("read_red_channel_only", c.read_red_channel_only);
+  r.read("sky", c.sky);
+  r.read("sun", c.sun);
+  r.read("sun_ambient", c.sun_ambient);
   r.finish();
 }
 

@@ -23,7 +23,8 @@ struct OneObject {
   CameraFrame frame;
   Pose T_W_C;
 
-  explicit OneObject(const ObjectGroupSpec& object, const std::string& tag) {
+  explicit OneObject(const ObjectGroupSpec& object, const std::string& tag,
+                     const FisheyeRendererConfig& render = {}) {
     WorldSpec s;
     s.name = "probe_" + tag;
     s.ground_size_m = Vec2(100, 100);
@@ -35,7 +36,7 @@ struct OneObject {
     const Pose T_W_B = poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
     QuadrotorSim sim(PhysicsConfig{}, world.world_xml, T_W_B);
     sim.beginTick();
-    FisheyeRenderer renderer(FisheyeRendererConfig{}, camera, sim.model());
+    FisheyeRenderer renderer(render, camera, sim.model());
     T_W_C = T_W_B * camera.T_B_C();
     renderer.render(sim.data(), T_W_C, &frame);
   }
@@ -130,6 +131,35 @@ TEST(WorldTextures, ThinRodsAreAtMost2PixelsWideAt10m) {
   }
   EXPECT_GT(seen_rows, 15);  // the rod is visible
   EXPECT_LE(widest, 2);
+}
+
+// The optional sky (a uniform light-grey skybox) and sun (world-fixed directional light).
+TEST(WorldRender, SkyAndSunSwitches) {
+  ObjectGroupSpec bus;
+  bus.kind = "bus";
+  bus.at = Vec2(9.0, 0.0);
+  bus.yaw_deg = 17.5;  // two side faces visible: normals (−0.95, −0.30) and (−0.30, 0.95)
+  bus.size_min = bus.size_max = Vec3(4.0, 4.0, 3.0);
+  FisheyeRendererConfig plain, sky, sun;
+  sky.sky = true;
+  sun.sky = sun.sun = true;
+  OneObject a(bus, "bus_plain", plain), b(bus, "bus_sky", sky), c(bus, "bus_sun", sun);
+  // A pixel 35° above the horizon, straight ahead, sees only sky: black without the switch,
+  // 0.75 grey with it.
+  const FisheyeCamera& cam = a.camera;
+  const Vec2 up = cam.project(a.T_W_C.inverse().linear() * Vec3(std::cos(0.61), 0, std::sin(0.61)));
+  ASSERT_TRUE(up.y() >= 0 && up.y() < a.frame.height && up.x() >= 0 && up.x() < a.frame.width);
+  EXPECT_EQ(a.image().at<uint8_t>(int(up.y()), int(up.x())), 0);
+  EXPECT_NEAR(b.image().at<uint8_t>(int(up.y()), int(up.x())), 191, 4);
+  // The textureless box is uniform under the ambient headlight; with the sun its two visible
+  // faces differ in brightness (edges a tracker can use, as under Gazebo's sun).
+  const cv::Mat m = a.mask("bus_0", 3);
+  ASSERT_GT(cv::countNonZero(m), 500);
+  cv::Scalar mean, sd_plain, sd_sun;
+  cv::meanStdDev(a.image(), mean, sd_plain, m);
+  cv::meanStdDev(c.image(), mean, sd_sun, m);
+  EXPECT_LT(sd_plain[0], 1.0);
+  EXPECT_GT(sd_sun[0], 2.0);
 }
 
 }  // namespace
