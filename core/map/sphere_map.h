@@ -16,7 +16,8 @@
 //   9. obstacle points: SLAM points within range, spacing ρ; the closer measurement wins
 //  10. frontiers: candidates on P_f's faces (area-weighted, jittered) and in the shells
 //      [r + 0.48, r + 2.72] of spheres within 20 m; kept if ≥ 1.5 m from other frontiers and
-//      from every obstacle point, outside all spheres, inside some sphere's shell, with free
+//      from every obstacle point, outside all spheres, inside the shell of some sphere it can
+//      see (no obstacle point on the segment towards it: not behind a wall), with free
 //      space on one side (normal = mean direction to the nearby centres) and a normal that
 //      does not put the unknown straight above (n_z ≥ −0.5). After each update the frontiers
 //      near anything that changed (spheres created, resized or removed; obstacle points

@@ -26,7 +26,19 @@ std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) cons
     const double d = (s.centre - x).norm();
     if (d <= s.radius) return std::nullopt;
     if (d >= s.radius + c.shell_min_m && d <= s.radius + c.shell_max_m) {
-      dirs.push_back((s.centre - x) / d);
+      const Vec3 dir = (s.centre - x) / d;
+      // Line of sight: no obstacle point between x and the sphere (a frontier in the shell of a
+      // sphere bounded by a wall would otherwise sit behind that wall). The first
+      // frontier_obstacle_gap_m are free by the test above; check on to 0.3 m inside the sphere.
+      bool blocked = false;
+      for (double t = c.frontier_obstacle_gap_m; t <= d - s.radius + 0.3 && !blocked; t += 0.2) {
+        const Vec3 y = x + t * dir;
+        blocked = obstacle_grid_.anyNear(y, c.obstacle_spacing_m, [&](uint64_t k) {
+          return (obstacles_.at(k).position - y).norm() < c.obstacle_spacing_m;
+        });
+      }
+      if (blocked) continue;
+      dirs.push_back(dir);
       sum += dirs.back();
     }
   }

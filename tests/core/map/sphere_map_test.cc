@@ -155,6 +155,26 @@ TEST(SphereMapRules, FrontierShellSpacingObstacleGapOneSidednessAndSkyNormal) {
   EXPECT_EQ(map.frontiers().size(), 1u);
 }
 
+TEST(SphereMapRules, NoFrontierBehindTheWallThatBoundsASphere) {
+  // A sphere of radius 2 touching a wall of obstacle points (spacing 0.3 m) at x = 2: a
+  // candidate 2.2 m behind the wall is in the sphere's shell and 2.2 m from every point, but
+  // it cannot see the free space through the wall.
+  const FisheyeCamera cam;
+  SphereMap open(SphereMapConfig{}, cam, 1), walled(SphereMapConfig{}, cam, 1);
+  open.addSphere({0, 0, 0}, 2.0);
+  walled.addSphere({0, 0, 0}, 2.0);
+  for (double y = -6; y <= 6; y += 0.3)
+    for (double z = -6; z <= 6; z += 0.3) walled.addObstacle({2.0, y, z}, 5.0);
+  EXPECT_TRUE(open.frontierNormal({4.2, 0, 0}));
+  EXPECT_FALSE(walled.frontierNormal({4.2, 0, 0}));
+  // Beside the wall's edge the way is open again.
+  SphereMap edge(SphereMapConfig{}, cam, 1);
+  edge.addSphere({0, 0, 0}, 2.0);
+  for (double y = 1.0; y <= 6; y += 0.3)
+    for (double z = -6; z <= 6; z += 0.3) edge.addObstacle({2.0, y, z}, 5.0);
+  EXPECT_TRUE(edge.frontierNormal({3.5, -2.0, 0}));
+}
+
 TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
   const FisheyeCamera cam;
   SphereMap a(SphereMapConfig{}, cam, 7), b(SphereMapConfig{}, cam, 7);
