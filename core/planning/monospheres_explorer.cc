@@ -52,6 +52,7 @@ void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
   c.positive("blocked_edge_timeout_s", blocked_edge_timeout_s);
   c.require(bridge_below_reachable >= 0, "bridge_below_reachable", "must be ≥ 0");
   c.positive("bridge_range_m", bridge_range_m);
+  c.positive("bridge_after_idle_s", bridge_after_idle_s);
   c.nonNegative("shortcut_depth_m", shortcut_depth_m);
   c.positive("reach_distance_m", reach_distance_m);
   c.inRange("reach_angle_deg", reach_angle_deg, 0.0, 180.0);
@@ -284,9 +285,14 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
       ++counters_["goals_chosen"];
     }
   }
-  if (!goal_ && reachable.size() < size_t(pc.bridge_below_reachable) && s.t_s - last_send_s_ >= pc.replan_period_s) {
-    // Cut off in a small pocket of the graph (spheres shrunk or deleted around the vehicle):
-    // bridge to the nearest sphere outside it along a straight segment clear of obstacle points.
+  if (goal_) no_goal_since_s_ = -1.0;
+  else if (no_goal_since_s_ < 0) no_goal_since_s_ = s.t_s;
+  const bool stuck_without_goals = !goal_ && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s;
+  if (!goal_ && (reachable.size() < size_t(pc.bridge_below_reachable) || stuck_without_goals) &&
+      s.t_s - last_send_s_ >= pc.replan_period_s) {
+    // Cut off in a small pocket of the graph (spheres shrunk or deleted around the vehicle), or
+    // nothing left to see in the vehicle's part of the graph: bridge to the nearest sphere
+    // outside it along a straight segment clear of obstacle points.
     std::optional<std::pair<double, uint64_t>> best;
     for (uint64_t id : map_.spheresNear(p, pc.bridge_range_m)) {
       const Sphere& sp = map_.spheres().at(id);

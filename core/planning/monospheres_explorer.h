@@ -15,8 +15,9 @@
 //      given headings (FFF or goal heading), cut at the carrot (15 m) and sent every
 //      replan period, unless the first 5 m pass closer than 1 m to an obstacle point
 //      (then stop and re-plan) or FFF first needs a turn in place towards the route.
-// Without a goal while cut off in a small pocket of the graph, the vehicle bridges straight
-// (clear of obstacle points) to the nearest sphere outside the pocket.
+// Without a goal while cut off in a small pocket of the graph, or for 5 s without any goal, the
+// vehicle bridges straight (clear of obstacle points) to the nearest sphere outside its part of
+// the graph.
 // Before exploring: take off vertically and fly a short straight stretch forward, so that the
 // first points get parallax.
 #pragma once
@@ -53,6 +54,7 @@ struct MonoSpheresPlannerConfig {
   double blocked_edge_timeout_s = 30.0;     ///< a graph edge found too close to obstacles stays blocked this long
   int bridge_below_reachable = 10;          ///< without a goal and fewer reachable spheres than this ...
   double bridge_range_m = 15.0;             ///< ... fly straight to the nearest other sphere within this range
+  double bridge_after_idle_s = 5.0;         ///< ... or after this long without any goal
   double shortcut_depth_m = 0.3;            ///< shortcut samples must lie this deep inside a sphere
   double reach_distance_m = 1.0;            ///< goal reached within ...
   double reach_angle_deg = 90.0;            ///< ... and this heading difference
@@ -120,7 +122,7 @@ class MonoSpheresExplorer : public Explorer {
   uint64_t goal_ = 0;
   double goal_since_s_ = 0, best_remaining_m_ = 1e18, last_progress_s_ = 0;
   int local_misses_ = 0, blocked_steps_ = 0;
-  double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9;
+  double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9, no_goal_since_s_ = -1.0;
   std::vector<Vec3> last_path_;
   std::map<std::pair<uint64_t, uint64_t>, double> blocked_edges_;  // (low id, high id) → until
   std::map<std::string, double> counters_;

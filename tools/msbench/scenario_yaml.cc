@@ -149,6 +149,7 @@ void readPlanner(MapReader r, MonoSpheresPlannerConfig& c) {
   r.read("blocked_edge_timeout_s", c.blocked_edge_timeout_s);
   r.read("bridge_below_reachable", c.bridge_below_reachable);
   r.read("bridge_range_m", c.bridge_range_m);
+  r.read("bridge_after_idle_s", c.bridge_after_idle_s);
   r.read("shortcut_depth_m", c.shortcut_depth_m);
   r.read("reach_distance_m", c.reach_distance_m);
   r.read("reach_angle_deg", c.reach_angle_deg);
