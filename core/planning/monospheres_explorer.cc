@@ -76,7 +76,7 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
       viewpoints_(config.planner.viewpoints, context.seed) {
   for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress",
                         "goals_failed_unreachable", "goals_failed_blocked", "goals_global", "blocked_stops",
-                        "paths_sent", "idle_turns", "returns_to_free_space", "edges_blocked", "bridges"})
+                        "paths_sent", "idle_turns", "returns_to_free_space", "edges_blocked", "bridges", "relaxed_steps"})
     counters_[k] = 0;
 }
 
@@ -257,7 +257,12 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
 
   // 2. Viewpoints.
   const Aabb& box = context_.exploration_box;
-  viewpoints_.update(map_, reachable, p, yaw, s.t_s, goal_, [&box](const Vec3& x) { return box.contains(x); });
+  // Nothing above the usual value for a while: accept viewpoints that see a few frontiers.
+  const bool relaxed = !goal_ && no_goal_since_s_ >= 0 && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s &&
+                       viewpoints_.viewpoints().empty();
+  if (relaxed) ++counters_["relaxed_steps"];
+  viewpoints_.update(map_, reachable, p, yaw, s.t_s, goal_, [&box](const Vec3& x) { return box.contains(x); },
+                     relaxed);
 
   // 3. The active goal: reached, lost or stuck.
   if (goal_ && !viewpoints_.viewpoints().count(goal_)) goal_ = 0;

@@ -14,6 +14,8 @@ void ViewpointConfig::validate(ConfigChecker& c) const {
   c.positive("frontier_range_m", frontier_range_m);
   c.inRange("fov_half_angle_deg", fov_half_angle_deg, 1.0, 100.0);
   c.require(min_value >= 1, "min_value", "must be ≥ 1");
+  c.require(relaxed_min_value >= 1 && relaxed_min_value <= min_value, "relaxed_min_value",
+            "must be in [1, min_value]");
   c.nonNegative("block_distance_m", block_distance_m);
   c.inRange("block_angle_deg", block_angle_deg, 0.0, 180.0);
   c.nonNegative("blacklist_radius_m", blacklist_radius_m);
@@ -59,7 +61,8 @@ bool ViewpointSet::blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_
 
 int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reachable, const Vec3& vehicle,
                          double vehicle_yaw, double t_s, uint64_t goal_id,
-                         const std::function<bool(const Vec3&)>& allowed) {
+                         const std::function<bool(const Vec3&)>& allowed, bool relaxed) {
+  const int min_value = relaxed ? config_.relaxed_min_value : config_.min_value;
   const double d = config_.block_distance_m, a = config_.block_angle_deg * kDeg;
   auto reach = [&](uint64_t sphere) { return std::binary_search(reachable.begin(), reachable.end(), sphere); };
 
@@ -69,7 +72,7 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     bool keep = map.spheres().count(v.sphere) && reach(v.sphere);
     if (keep && it->first != goal_id) {
       v.value = value(map, v.position, v.yaw_rad);
-      keep = v.value >= config_.min_value;
+      keep = v.value >= min_value;
       if (keep && config_.vpb && posesClose(vehicle, vehicle_yaw, v.position, v.yaw_rad, d, a)) {
         markers_.push_back({vehicle, vehicle_yaw});
         ++passed_;
@@ -90,7 +93,7 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     if (allowed && !allowed(p)) continue;
     if (blocked(p, yaw, t_s, goal_id)) continue;
     const int val = value(map, p, yaw);
-    if (val < config_.min_value) continue;
+    if (val < min_value) continue;
     // Near an existing viewpoint: the better one stays (keeps the set sparse).
     bool dominated = false;
     std::vector<uint64_t> replaced;

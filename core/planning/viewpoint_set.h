@@ -23,6 +23,7 @@ struct ViewpointConfig {
   double frontier_range_m = 10.0;     ///< frontiers farther do not count
   double fov_half_angle_deg = 60.0;   ///< useful field of view about the optical axis
   int min_value = 7;                  ///< viewpoints seeing fewer frontiers are dropped
+  int relaxed_min_value = 2;          ///< used instead while the set is empty and the planner idles
   bool vpb = true;                    ///< visited-viewpoint blocking
   double block_distance_m = 7.0;      ///< VPB / blocking radius
   double block_angle_deg = 60.0;      ///< VPB / blocking heading difference
@@ -63,10 +64,11 @@ class ViewpointSet {
   /// One planning step: re-values the existing viewpoints (dropping those whose sphere is gone,
   /// unreachable or below the minimum value), applies VPB for the vehicle pose (the active goal
   /// `goal_id` is exempt) and samples new candidates among `reachable` sphere ids accepted by
-  /// `allowed` (e.g. inside the exploration box). Returns the number of new viewpoints.
+  /// `allowed` (e.g. inside the exploration box). `relaxed` uses relaxed_min_value instead of
+  /// min_value (nothing else worth flying to). Returns the number of new viewpoints.
   int update(const SphereMap& map, const std::vector<uint64_t>& reachable, const Vec3& vehicle,
              double vehicle_yaw, double t_s, uint64_t goal_id,
-             const std::function<bool(const Vec3&)>& allowed);
+             const std::function<bool(const Vec3&)>& allowed, bool relaxed = false);
 
   /// Removes a viewpoint (reached goal): leaves a marker at the vehicle pose if VPB is on.
   void markReached(uint64_t id, const Vec3& vehicle, double vehicle_yaw);

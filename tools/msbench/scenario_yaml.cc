@@ -115,6 +115,7 @@ void readViewpoints(MapReader r, ViewpointConfig& c) {
   r.read("frontier_range_m", c.frontier_range_m);
   r.read("fov_half_angle_deg", c.fov_half_angle_deg);
   r.read("min_value", c.min_value);
+  r.read("relaxed_min_value", c.relaxed_min_value);
   r.read("block_distance_m", c.block_distance_m);
   r.read("block_angle_deg", c.block_angle_deg);
   r.read("blacklist_radius_m", c.blacklist_radius_m);

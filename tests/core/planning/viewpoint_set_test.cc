@@ -89,5 +89,18 @@ TEST(ViewpointSet, UnreachableOrOutsideCandidatesAreNotSampled) {
   EXPECT_TRUE(vs.viewpoints().empty());
 }
 
+TEST(ViewpointSet, RelaxedValueAcceptsFewFrontiers) {
+  // Three frontiers only: below min_value 7, above relaxed_min_value 2.
+  SphereMap map{SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1};
+  const uint64_t sphere = map.addSphere({0, 0, 2}, 3.0);
+  int n = 0;
+  for (double y : {-1.6, 0.0, 1.6}) n += bool(map.tryAddFrontier({4.5, y, 2.0}));
+  ASSERT_EQ(n, 3);
+  ViewpointSet vs(ViewpointConfig{}, 5);
+  EXPECT_EQ(vs.update(map, {sphere}, {100, 100, 2}, 0.0, 0.0, 0, nullptr), 0);
+  EXPECT_GT(vs.update(map, {sphere}, {100, 100, 2}, 0.0, 1.0, 0, nullptr, true), 0);
+  for (const auto& [id, v] : vs.viewpoints()) EXPECT_GE(v.value, 2);
+}
+
 }  // namespace
 }  // namespace msb
