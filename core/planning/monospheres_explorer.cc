@@ -135,13 +135,7 @@ bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
   const int n = std::max(1, int(std::ceil(len / 0.3)));
   for (int i = 0; i <= n; ++i) {
     const Vec3 x = a + (double(i) / n) * (b - a);
-    bool inside = false;
-    for (uint64_t id : map_.spheresNear(x, -config_.planner.shortcut_depth_m)) {
-      (void)id;
-      inside = true;
-      break;
-    }
-    if (!inside) return false;
+    if (map_.spheresNear(x, -config_.planner.shortcut_depth_m).empty()) return false;  // not deep inside
     if (map_.anyObstacleNear(x, config_.planner.check_clearance_m)) return false;
   }
   return true;
