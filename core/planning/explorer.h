@@ -2,7 +2,8 @@
 // SLAM points (its own map update), plans at the planning rate and emits path commands for the
 // trajectory tracker, and reports the free space it has mapped for the coverage metric. Methods
 // are chosen by `method.type` in a scenario; a new method lives in its own files behind this
-// interface and is registered in the runner's method table.
+// interface and is registered in the runner's method table. The runner times observe() and
+// plan() itself (wall time is recorded, never used).
 #pragma once
 
 #include <cstdint>
@@ -63,8 +64,6 @@ class Explorer {
   virtual ExplorerSnapshot snapshot() const = 0;
   /// Counters for metrics.json and the progress line (e.g. spheres, goals reached).
   virtual std::map<std::string, double> counters() const = 0;
-  /// Wall-time totals per stage in ms (recorded, never used in decisions).
-  virtual std::map<std::string, double> stageTimesMs() const = 0;
 };
 
 }  // namespace msb

@@ -1,17 +1,12 @@
 #include "core/planning/monospheres_explorer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 namespace msb {
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Cuts a waypoint list at arc length `max_len` from `from` (the cut point keeps no heading
 // unless the cut falls exactly on a waypoint).
@@ -83,9 +78,7 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
 MonoSpheresExplorer::~MonoSpheresExplorer() = default;
 
 void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) {
-  const auto t0 = std::chrono::steady_clock::now();
   map_.update(frame);
-  map_ms_ += msSince(t0);
 }
 
 PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
@@ -98,7 +91,6 @@ PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Wayp
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {
-  const auto t0 = std::chrono::steady_clock::now();
   const auto& pc = config_.planner;
   const Vec3 start = context_.start.translation();
   const double start_yaw = yawOf(context_.start.linear());
@@ -126,7 +118,6 @@ std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {
       out = explore(s);
       break;
   }
-  plan_ms_ += msSince(t0);
   return out;
 }
 
@@ -396,8 +387,5 @@ std::map<std::string, double> MonoSpheresExplorer::counters() const {
   return c;
 }
 
-std::map<std::string, double> MonoSpheresExplorer::stageTimesMs() const {
-  return {{"map_update", map_ms_}, {"planning", plan_ms_}};
-}
 
 }  // namespace msb

@@ -92,7 +92,6 @@ class MonoSpheresExplorer : public Explorer {
   void markCoverage(ColumnCoverage& coverage) const override;
   ExplorerSnapshot snapshot() const override;
   std::map<std::string, double> counters() const override;
-  std::map<std::string, double> stageTimesMs() const override;
 
   /// The map (tests, tools).
   const SphereMap& map() const { return map_; }
@@ -126,7 +125,6 @@ class MonoSpheresExplorer : public Explorer {
   std::vector<Vec3> last_path_;
   std::map<std::pair<uint64_t, uint64_t>, double> blocked_edges_;  // (low id, high id) → until
   std::map<std::string, double> counters_;
-  double map_ms_ = 0, plan_ms_ = 0;
 };
 
 }  // namespace msb
