@@ -1,5 +1,7 @@
 #include "core/map/sphere_map.h"
 
+#include "core/common/wall_time.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -33,10 +35,7 @@ void SphereMapConfig::validate(ConfigChecker& c) const {
 }
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+using Clock = WallClock;
 double nearestDistance(const Vec3& c, const std::vector<Vec3>& pts) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& p : pts) best = std::min(best, (p - c).squaredNorm());

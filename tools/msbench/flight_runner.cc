@@ -5,15 +5,10 @@
 #include <memory>
 
 #include "core/common/clock.h"
+#include "core/common/wall_time.h"
 #include "core/common/rng.h"
 
 namespace msb {
-
-namespace {
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
 
 uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows) {
   uint64_t h = fnv1a64(nullptr, 0);

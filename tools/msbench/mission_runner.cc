@@ -4,16 +4,13 @@
 #include <cmath>
 
 #include "core/common/clock.h"
+#include "core/common/wall_time.h"
 #include "core/common/rng.h"
 #include "core/planning/monospheres_explorer.h"
 
 namespace msb {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Box columns in the metric's node convention: the cells centred on the nodes (2.5 i, 2.5 j)
 // that lie in the box, counted when not fully occupied by obstacles.
