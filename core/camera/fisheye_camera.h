@@ -22,7 +22,7 @@
 
 namespace msb {
 
-/// Intrinsics, image size and mounting of the fisheye camera (DESIGN §5 defaults).
+/// Intrinsics, image size and mounting of the fisheye camera (docs/architecture.md §5 defaults).
 struct FisheyeCameraConfig {
   int width_px = 752;                 ///< image width at full resolution
   int height_px = 480;                ///< image height at full resolution

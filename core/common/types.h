@@ -1,4 +1,4 @@
-// Geometry types shared by every module: Eigen aliases and the frame conventions of DESIGN §3.
+// Geometry types shared by every module: Eigen aliases and the frame conventions of docs/architecture.md §3.
 // World frame ENU (z up), body FLU, camera optical frame (z forward, x right, y down).
 // A pose T_A_B maps points expressed in frame B to frame A.
 #pragma once

@@ -1,4 +1,4 @@
-// The paper's coverage metric (DESIGN §10): the xy plane is cut into 2.5 m columns; column
+// The paper's coverage metric (docs/architecture.md §10): the xy plane is cut into 2.5 m columns; column
 // (i, j) is explored once its node (2.5 i, 2.5 j) lies inside the xy footprint of a free-space
 // element (a sphere's disk of radius r at any height, or a free voxel's square). Cumulative:
 // a column is never un-marked. A = 6.25 m² × explored columns.

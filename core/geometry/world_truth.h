@@ -1,24 +1,16 @@
 // A world's ground truth as solid primitives, queried without MuJoCo: distance to the nearest
 // obstacle, inside test, ray casts, and the explorable 2.5 m columns of the exploration box
-// (DESIGN §10–11). Built by the world generator from the same description as the MJCF, so both
+// (docs/architecture.md §10–11). Built by the world generator from the same description as the MJCF, so both
 // agree by construction; tests check them against MuJoCo's mj_ray.
 #pragma once
 
 #include <optional>
 #include <vector>
 
+#include "core/common/aabb.h"
 #include "core/geometry/shapes.h"
 
 namespace msb {
-
-/// Axis-aligned box.
-struct Aabb {
-  Vec3 min = Vec3::Zero();
-  Vec3 max = Vec3::Zero();
-  bool contains(const Vec3& p) const {
-    return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
-  }
-};
 
 /// Result of a ray cast against the ground truth.
 struct RayHit {

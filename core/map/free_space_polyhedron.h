@@ -1,4 +1,4 @@
-// The free-space polyhedron P_f of one map update (MonoSpheres §III-A, DESIGN §7 steps 2 and 4).
+// The free-space polyhedron P_f of one map update (MonoSpheres §III-A, docs/architecture.md §7 steps 2 and 4).
 //
 // The SLAM points in front of the camera are triangulated in 2D and lifted back to 3D with the
 // same connectivity: the "depth mesh". P_f is the depth mesh closed by a fan of triangles from

@@ -1,4 +1,4 @@
-// Open-area virtual depth estimation, OVDE (MonoSpheres §III-B, DESIGN §7 step 3).
+// Open-area virtual depth estimation, OVDE (MonoSpheres §III-B, docs/architecture.md §7 step 3).
 //
 // Sparse SLAM sees nothing in open areas (sky, far fields), so P_f would end where the tracked
 // points end. OVDE places virtual points at 15 m along a 6×6 grid of rays over the central 60 %
@@ -20,7 +20,7 @@
 
 namespace msb {
 
-/// OVDE parameters (DESIGN §7 defaults).
+/// OVDE parameters (docs/architecture.md §7 defaults).
 struct OpenAreaDepthConfig {
   int grid = 6;                        ///< grid × grid virtual points
   double central_fraction = 0.6;       ///< of the image width and height, centred

@@ -1,4 +1,4 @@
-// The MonoSpheres map (paper §III, DESIGN §7): free-space spheres connected where they overlap,
+// The MonoSpheres map (paper §III, docs/architecture.md §7): free-space spheres connected where they overlap,
 // plus obstacle points, all in the VIO world frame. One update per SLAM-points frame:
 //   1. input: SLAM points in front of the camera within range (≥ min_points, else skip)
 //   2./4. free-space polyhedron P_f from the points (FreeSpacePolyhedron)
@@ -42,7 +42,7 @@ namespace msb {
 
 class FreeSpacePolyhedron;
 
-/// Mapper parameters (DESIGN §7 defaults).
+/// Mapper parameters (docs/architecture.md §7 defaults).
 struct SphereMapConfig {
   bool ovde = true;                  ///< open-area virtual depth
   OpenAreaDepthConfig ovde_params;   ///< its parameters

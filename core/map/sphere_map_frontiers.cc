@@ -4,7 +4,7 @@
 #include "core/map/free_space_polyhedron.h"
 #include "core/map/sphere_map.h"
 
-// Frontier sampling and validation of the sphere map (DESIGN §7 step 10).
+// Frontier sampling and validation of the sphere map (docs/architecture.md §7 step 10).
 namespace msb {
 
 std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) const {

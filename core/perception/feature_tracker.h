@@ -32,7 +32,7 @@ struct TrackFrame {
   int lost_tracks = 0;         ///< tracks of the previous frame not continued
 };
 
-/// Tracker settings (OpenVINS-like defaults, DESIGN §6).
+/// Tracker settings (OpenVINS-like defaults, docs/architecture.md §6).
 struct FeatureTrackerConfig {
   int max_tracks = 400;              ///< total tracks
   int grid_cols = 5;                 ///< detection grid

@@ -1,4 +1,4 @@
-// The interface every exploration method implements (DESIGN §1, §8): it observes each frame of
+// The interface every exploration method implements (docs/architecture.md §1, §8): it observes each frame of
 // SLAM points (its own map update), plans at the planning rate and emits path commands for the
 // trajectory tracker, and reports the free space it has mapped for the coverage metric. Methods
 // are chosen by `method.type` in a scenario; a new method lives in its own files behind this
@@ -12,9 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "core/common/aabb.h"
 #include "core/common/messages.h"
 #include "core/eval/column_coverage.h"
-#include "core/geometry/world_truth.h"
+#include "core/eval/map_snapshot.h"
 
 namespace msb {
 
@@ -33,19 +34,6 @@ struct VehicleState {
   Vec3 velocity_mps = Vec3::Zero();   ///< VIO estimate
   TrajectoryReference reference;      ///< the tracker's current reference
   bool path_finished = true;          ///< the last command is done (at rest, heading reached)
-};
-
-/// Map contents for drawing and hashing, in the estimate frame.
-struct ExplorerSnapshot {
-  struct Disk { uint64_t id; Vec3 centre; double radius; };
-  struct Pose2 { Vec3 position; double yaw_rad; };
-  std::vector<Disk> free_space;         ///< spheres (or free cells as their inscribed spheres)
-  std::vector<Vec3> obstacles;          ///< obstacle points / occupied cells
-  std::vector<Vec3> frontiers;
-  std::vector<Pose2> viewpoints;        ///< current candidate goals
-  std::vector<Pose2> visited;           ///< VPB markers
-  std::optional<Pose2> goal;            ///< the active goal
-  std::vector<Vec3> path;               ///< the last path sent (vehicle first)
 };
 
 /// An exploration method.

@@ -215,70 +215,87 @@ void MonoSpheresExplorer::failGoal(double t_s, const char* reason) {
 
 std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   const auto& pc = config_.planner;
-  const Vec3 p = s.T_W_B.translation();
-  const double yaw = yawOf(s.T_W_B.linear());
-  const double r_min = pc.safety.r_min_m;
-
   // 1. Where the vehicle is in the graph; costs to everything reachable.
-  auto start = containingSphere(map_, p, pc.start_max_outside_m, r_min);
-  if (!start) {
-    // Outside the known free space: return to the nearest sphere (deepest within 6 m).
-    const auto back = containingSphere(map_, p, 6.0, r_min);
-    if (back && s.t_s - last_send_s_ >= pc.replan_period_s) {
-      ++counters_["returns_to_free_space"];
-      return command(s, {{map_.spheres().at(*back).centre, std::nullopt}});
-    }
-    return std::nullopt;
-  }
+  const auto start = containingSphere(map_, s.T_W_B.translation(), pc.start_max_outside_m, pc.safety.r_min_m);
+  if (!start) return returnToFreeSpace(s);
   std::erase_if(blocked_edges_, [&](const auto& e) { return s.t_s >= e.second; });
-  const EdgeFilter passable = [this](uint64_t a, uint64_t b) {
-    return !blocked_edges_.count({std::min(a, b), std::max(a, b)});
-  };
-  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, passable);
+  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, passable());
   std::vector<uint64_t> reachable;
   reachable.reserve(field.cost.size());
   for (const auto& [id, c] : field.cost) reachable.push_back(id);  // ascending ids
   counters_["reachable_spheres"] = double(reachable.size());
+  // 2. Viewpoints; 3. the active goal; 4. a new goal.
+  updateViewpoints(s, reachable);
+  checkActiveGoal(s, field);
+  if (!goal_) takeNewGoal(s, field);
+  if (goal_) no_goal_since_s_ = -1.0;
+  else if (no_goal_since_s_ < 0) no_goal_since_s_ = s.t_s;
+  // 5. Without a goal: bridge out of the vehicle's part of the graph, or look around.
+  if (!goal_) return withoutGoal(s, field, reachable);
+  // 6. Fly the route to the goal.
+  return followGoal(s, *start);
+}
 
-  // 2. Viewpoints.
+EdgeFilter MonoSpheresExplorer::passable() const {
+  return [this](uint64_t a, uint64_t b) { return !blocked_edges_.count({std::min(a, b), std::max(a, b)}); };
+}
+
+std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleState& s) {
+  // Outside the known free space: return to the nearest sphere (deepest within 6 m).
+  const auto& pc = config_.planner;
+  const auto back = containingSphere(map_, s.T_W_B.translation(), 6.0, pc.safety.r_min_m);
+  if (!back || s.t_s - last_send_s_ < pc.replan_period_s) return std::nullopt;
+  ++counters_["returns_to_free_space"];
+  return command(s, {{map_.spheres().at(*back).centre, std::nullopt}});
+}
+
+void MonoSpheresExplorer::updateViewpoints(const VehicleState& s, const std::vector<uint64_t>& reachable) {
+  const auto& pc = config_.planner;
   const Aabb& box = context_.exploration_box;
   // Nothing above the usual value for a while: accept viewpoints that see a few frontiers.
   const bool relaxed = !goal_ && no_goal_since_s_ >= 0 && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s &&
                        viewpoints_.viewpoints().empty();
   if (relaxed) ++counters_["relaxed_steps"];
-  viewpoints_.update(map_, reachable, p, yaw, s.t_s, goal_, [&box](const Vec3& x) { return box.contains(x); },
-                     relaxed);
+  viewpoints_.update(map_, reachable, s.T_W_B.translation(), yawOf(s.T_W_B.linear()), s.t_s, goal_,
+                     [&box](const Vec3& x) { return box.contains(x); }, relaxed);
+}
 
-  // 3. The active goal: reached, lost or stuck.
+void MonoSpheresExplorer::checkActiveGoal(const VehicleState& s, const SphereCostField& field) {
+  // The active goal: gone (VPB), reached, unreachable or without progress.
+  const auto& pc = config_.planner;
   if (goal_ && !viewpoints_.viewpoints().count(goal_)) goal_ = 0;
-  if (goal_) {
-    const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
-    if ((v.position - p).norm() <= pc.reach_distance_m &&
-        std::abs(wrapAngle(v.yaw_rad - yaw)) <= pc.reach_angle_deg * kDeg) {
-      viewpoints_.markReached(goal_, p, yaw);
-      goal_ = 0;
-      ++counters_["goals_reached"];
-    } else if (!field.cost.count(v.sphere)) {
-      failGoal(s.t_s, "unreachable");
-    } else if (s.t_s - last_progress_s_ > pc.no_progress_timeout_s) {
-      failGoal(s.t_s, "no_progress");
-    }
+  if (!goal_) return;
+  const Vec3 p = s.T_W_B.translation();
+  const double yaw = yawOf(s.T_W_B.linear());
+  const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
+  if ((v.position - p).norm() <= pc.reach_distance_m &&
+      std::abs(wrapAngle(v.yaw_rad - yaw)) <= pc.reach_angle_deg * kDeg) {
+    viewpoints_.markReached(goal_, p, yaw);
+    goal_ = 0;
+    ++counters_["goals_reached"];
+  } else if (!field.cost.count(v.sphere)) {
+    failGoal(s.t_s, "unreachable");
+  } else if (s.t_s - last_progress_s_ > pc.no_progress_timeout_s) {
+    failGoal(s.t_s, "no_progress");
   }
+}
 
-  // 4. A new goal.
-  if (!goal_) {
-    if (auto g = chooseGoal(s, field)) {
-      goal_ = *g;
-      goal_since_s_ = last_progress_s_ = s.t_s;
-      best_remaining_m_ = 1e18;
-      blocked_steps_ = 0;
-      ++counters_["goals_chosen"];
-    }
-  }
-  if (goal_) no_goal_since_s_ = -1.0;
-  else if (no_goal_since_s_ < 0) no_goal_since_s_ = s.t_s;
-  const bool stuck_without_goals = !goal_ && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s;
-  if (!goal_ && (reachable.size() < size_t(pc.bridge_below_reachable) || stuck_without_goals) &&
+void MonoSpheresExplorer::takeNewGoal(const VehicleState& s, const SphereCostField& field) {
+  const auto g = chooseGoal(s, field);
+  if (!g) return;
+  goal_ = *g;
+  goal_since_s_ = last_progress_s_ = s.t_s;
+  best_remaining_m_ = 1e18;
+  blocked_steps_ = 0;
+  ++counters_["goals_chosen"];
+}
+
+std::optional<PathCommand> MonoSpheresExplorer::withoutGoal(const VehicleState& s, const SphereCostField& field,
+                                                            const std::vector<uint64_t>& reachable) {
+  const auto& pc = config_.planner;
+  const Vec3 p = s.T_W_B.translation();
+  const bool stuck_without_goals = s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s;
+  if ((reachable.size() < size_t(pc.bridge_below_reachable) || stuck_without_goals) &&
       s.t_s - last_send_s_ >= pc.replan_period_s) {
     // Cut off in a small pocket of the graph (spheres shrunk or deleted around the vehicle), or
     // nothing left to see in the vehicle's part of the graph: bridge to the nearest sphere
@@ -286,7 +303,8 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
     std::optional<std::pair<double, uint64_t>> best;
     for (uint64_t id : map_.spheresNear(p, pc.bridge_range_m)) {
       const Sphere& sp = map_.spheres().at(id);
-      if (field.cost.count(id) || sp.radius < r_min || !box.contains(sp.centre)) continue;
+      if (field.cost.count(id) || sp.radius < pc.safety.r_min_m || !context_.exploration_box.contains(sp.centre))
+        continue;
       const double d = (sp.centre - p).norm();
       if (d > pc.bridge_range_m || (best && d >= best->first)) continue;
       if (segmentClear(p, sp.centre, p)) best = {d, id};
@@ -296,23 +314,26 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
       return command(s, {{map_.spheres().at(best->second).centre, std::nullopt}});
     }
   }
-  if (!goal_) {
-    // Nothing worth flying to: look around in place now and then.
-    if (s.t_s - last_idle_turn_s_ >= pc.idle_turn_period_s && pc.idle_turn_deg > 0) {
-      last_idle_turn_s_ = s.t_s;
-      ++counters_["idle_turns"];
-      return command(s, {{s.reference.position_m, wrapAngle(s.reference.yaw_rad + pc.idle_turn_deg * kDeg)}});
-    }
-    return std::nullopt;
+  // Nothing worth flying to: look around in place now and then.
+  if (s.t_s - last_idle_turn_s_ >= pc.idle_turn_period_s && pc.idle_turn_deg > 0) {
+    last_idle_turn_s_ = s.t_s;
+    ++counters_["idle_turns"];
+    return command(s, {{s.reference.position_m, wrapAngle(s.reference.yaw_rad + pc.idle_turn_deg * kDeg)}});
   }
+  return std::nullopt;
+}
 
-  // 5. Route to the goal through edges that keep the clearance from obstacle points (an edge
+std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s, uint64_t start) {
+  // Route to the goal through edges that keep the clearance from obstacle points (an edge
   // found too close is blocked for a while and the search repeated), then progress, the
   // predicted-trajectory check, headings and the carrot.
+  const auto& pc = config_.planner;
+  const Vec3 p = s.T_W_B.translation();
+  const double yaw = yawOf(s.T_W_B.linear());
   const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
   std::optional<SpherePath> spath;
   for (int attempt = 0; attempt < pc.max_route_repairs; ++attempt) {
-    spath = findSpherePath(map_, *start, v.sphere, pc.safety, passable);
+    spath = findSpherePath(map_, start, v.sphere, pc.safety, passable());
     if (!spath) break;
     bool clear = true;
     for (size_t k = 1; k < spath->spheres.size() && clear; ++k) {

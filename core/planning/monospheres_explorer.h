@@ -1,4 +1,4 @@
-// The MonoSpheres exploration method (paper §IV, DESIGN §8): the sphere map plus a planner
+// The MonoSpheres exploration method (paper §IV, docs/architecture.md §8): the sphere map plus a planner
 // that picks frontier viewpoints and flies sphere-graph paths to them.
 //
 // Each planning step (in the estimate frame):
@@ -33,7 +33,7 @@
 
 namespace msb {
 
-/// Planner parameters (DESIGN §8 defaults).
+/// Planner parameters (docs/architecture.md §8 defaults).
 struct MonoSpheresPlannerConfig {
   bool fff = true;                          ///< forced forward flight
   double fff_turn_rate_rad_per_m = 0.314;   ///< heading change allowed per metre before a viewpoint
@@ -95,12 +95,25 @@ class MonoSpheresExplorer : public Explorer {
 
   /// The map (tests, tools).
   const SphereMap& map() const { return map_; }
+  /// The map for hand-built scenes (tests, tools): addSphere / addObstacle / tryAddFrontier.
+  SphereMap& mutableMap() { return map_; }
   /// The viewpoints (tests, tools).
   const ViewpointSet& viewpoints() const { return viewpoints_; }
+  /// The active goal's viewpoint id (0 = none).
+  uint64_t goal() const { return goal_; }
 
  private:
   enum class Phase { kTakeoff, kStartForward, kExplore };
+  // One exploration step, in the order of the file comment; each step below is one part of it.
   std::optional<PathCommand> explore(const VehicleState& s);
+  EdgeFilter passable() const;                                        // graph edges not blocked
+  std::optional<PathCommand> returnToFreeSpace(const VehicleState& s);  // outside every sphere
+  void updateViewpoints(const VehicleState& s, const std::vector<uint64_t>& reachable);
+  void checkActiveGoal(const VehicleState& s, const SphereCostField& field);  // reached / failed
+  void takeNewGoal(const VehicleState& s, const SphereCostField& field);
+  std::optional<PathCommand> withoutGoal(const VehicleState& s, const SphereCostField& field,
+                                         const std::vector<uint64_t>& reachable);  // bridge or turn
+  std::optional<PathCommand> followGoal(const VehicleState& s, uint64_t start_sphere);  // route, carrot
   std::optional<uint64_t> chooseGoal(const VehicleState& s, const SphereCostField& field);
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
   bool segmentFree(const Vec3& a, const Vec3& b) const;   // inside the sphere union and clear

@@ -1,4 +1,4 @@
-// Turning a sphere path into waypoints for the trajectory tracker (DESIGN §8): shortcutting
+// Turning a sphere path into waypoints for the trajectory tracker (docs/architecture.md §8): shortcutting
 // inside the free space, and the heading of each waypoint with and without forced forward
 // flight (FFF).
 #pragma once

@@ -1,4 +1,4 @@
-// Path search on the sphere graph (DESIGN §8): A* over sphere centres with an admissible
+// Path search on the sphere graph (docs/architecture.md §8): A* over sphere centres with an admissible
 // Euclidean heuristic and the safety-aware edge cost L·(1 + w·u(r_j)),
 // u(r) = (1 − min((r − r_min)/(r_safe − r_min), 1))², so paths through narrow spheres cost more
 // (fix: the reference code inverted this sign). Also a Dijkstra from one sphere to all, used to

@@ -1,4 +1,4 @@
-// Exploration viewpoints and visited-viewpoint blocking (DESIGN §8). Candidates are sampled at
+// Exploration viewpoints and visited-viewpoint blocking (docs/architecture.md §8). Candidates are sampled at
 // centres of spheres reachable from the vehicle (fix: the reference sampled any sphere) with a
 // random yaw and a level camera; a viewpoint's value is the number of frontiers it would see:
 // within range, inside the useful field of view about the optical axis, and facing the camera

@@ -1,4 +1,4 @@
-// The simulated vehicle: an X-frame quadrotor like the Skydio X2 (DESIGN §4), written as an MJCF
+// The simulated vehicle: an X-frame quadrotor like the Skydio X2 (docs/architecture.md §4), written as an MJCF
 // fragment and spliced into a world file to make the model MuJoCo compiles.
 #pragma once
 

@@ -3,11 +3,12 @@
 #include <GL/gl.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
+
+#include "core/common/wall_time.h"
 
 namespace msb {
 
@@ -24,11 +25,6 @@ void FisheyeRendererConfig::validate(ConfigChecker& c) const {
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // Face frames (columns: face x right, face y down, face z normal) in the camera optical frame.
 std::vector<CubeFace> nominalFaces() {
@@ -202,14 +198,14 @@ void FisheyeRenderer::buildFacesAndLut() {
 void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame* frame,
                              RenderTiming* timing) {
   RenderTiming t;
-  auto t0 = Clock::now();
+  auto t0 = WallClock::now();
   context_->makeCurrent();
   mjv_updateScene(model_, const_cast<mjData*>(data), &options_, nullptr, &free_camera_,
                   mjCAT_ALL, &scene_);
   t.scene_ms = msSince(t0);
 
   // Render every face rectangle into its atlas viewport with an off-centre frustum.
-  t0 = Clock::now();
+  t0 = WallClock::now();
   const float n = static_cast<float>(config_.near_clip_m);
   const Mat3 R_W_C = T_W_C.linear();
   const Vec3 pos = T_W_C.translation();
@@ -237,7 +233,7 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
   t.render_ms = msSince(t0);
 
   // One read-back of the whole atlas.
-  t0 = Clock::now();
+  t0 = WallClock::now();
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   if (config_.read_red_channel_only) {
     atlas_grey_.create(atlas_height_, atlas_width_, CV_8UC1);
@@ -249,7 +245,7 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
   t.readback_ms = msSince(t0);
 
   // Grey conversion and fisheye remap.
-  t0 = Clock::now();
+  t0 = WallClock::now();
   if (!config_.read_red_channel_only) cv::cvtColor(atlas_raw_, atlas_grey_, cv::COLOR_RGBA2GRAY);
   cv::remap(atlas_grey_, fisheye_, map_xy_, map_interp_, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
             cv::Scalar(0));

@@ -27,11 +27,12 @@
 #include "core/camera/fisheye_camera.h"
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
+#include "sim/render/frame_renderer.h"
 #include "sim/render/gl_context.h"
 
 namespace msb {
 
-/// Benchmark render settings (DESIGN §5).
+/// Benchmark render settings (docs/architecture.md §5).
 struct FisheyeRendererConfig {
   double face_focal_ratio = 1.0;   ///< cube-face focal length / fisheye fx
   double ambient = 0.9;            ///< headlight ambient intensity (no diffuse/specular)
@@ -50,15 +51,6 @@ struct FisheyeRendererConfig {
   void validate(ConfigChecker& c) const;
 };
 
-/// Wall time of the parts of one rendered frame (recorded, never used for decisions).
-struct RenderTiming {
-  double scene_ms = 0.0;     ///< mjv_updateScene
-  double render_ms = 0.0;    ///< mjr_render of all faces + glFinish
-  double readback_ms = 0.0;  ///< glReadPixels of the atlas
-  double remap_ms = 0.0;     ///< grey conversion + lookup-table remap
-  double totalMs() const { return scene_ms + render_ms + readback_ms + remap_ms; }
-};
-
 /// One cube face as rendered: orientation and its rectangle in face and atlas pixels.
 struct CubeFace {
   std::string name;          ///< front, right, left, down, up
@@ -69,21 +61,23 @@ struct CubeFace {
 };
 
 /// Renders grey-scale fisheye images of a MuJoCo model from a camera pose.
-class FisheyeRenderer {
+class FisheyeRenderer final : public FrameRenderer {
  public:
   /// Creates the GL context and MuJoCo render context for `model`, whose visual settings
   /// (off-screen size, samples, headlight, tessellation, plane grid) it adjusts for benchmark
   /// rendering. Throws ConfigError or std::runtime_error.
   FisheyeRenderer(const FisheyeRendererConfig& config, const FisheyeCamera& camera,
                   mjModel* model);
-  ~FisheyeRenderer();
+  ~FisheyeRenderer() override;
   FisheyeRenderer(const FisheyeRenderer&) = delete;
   FisheyeRenderer& operator=(const FisheyeRenderer&) = delete;
 
   /// Renders the image seen from the camera pose T_W_C (optical frame) for the state in
   /// `data` into `frame` (pixels, size; tick/time/pose are left to the caller).
   void render(const mjData* data, const Pose& T_W_C, CameraFrame* frame,
-              RenderTiming* timing = nullptr);
+              RenderTiming* timing = nullptr) override;
+  /// GL renderer description.
+  std::string description() const override { return context_->description(); }
 
   /// The camera model.
   const FisheyeCamera& camera() const { return camera_; }
@@ -93,8 +87,6 @@ class FisheyeRenderer {
   cv::Size atlasSize() const { return {atlas_width_, atlas_height_}; }
   /// Total rendered face pixels per frame.
   long renderedPixels() const;
-  /// GL renderer description.
-  std::string glDescription() const { return context_->description(); }
 
  private:
   void buildFacesAndLut();

@@ -13,7 +13,7 @@
 
 namespace msb {
 
-/// IMU rate and noise densities (defaults of the reference setup, DESIGN §4).
+/// IMU rate and noise densities (defaults of the reference setup, docs/architecture.md §4).
 struct ImuConfig {
   double rate_hz = 200.0;                   ///< sample rate
   double accel_noise_density = 2.0e-3;      ///< m/s²/√Hz

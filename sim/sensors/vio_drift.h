@@ -18,7 +18,7 @@
 
 namespace msb {
 
-/// Drift process parameters (DESIGN §6 defaults).
+/// Drift process parameters (docs/architecture.md §6 defaults).
 struct VioDriftConfig {
   bool enabled = true;                        ///< false: estimate = ground truth
   double position_drift_fraction = 0.01;      ///< drift-rate size, metres per metre travelled

@@ -10,6 +10,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/common/wall_time.h"
+
 #include "core/common/rng.h"
 #include "sim/world/procedural_textures.h"
 
@@ -44,7 +46,7 @@ std::string shapesCsv(const std::vector<Shape>& shapes) {
 }  // namespace
 
 BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = WallClock::now();
   BuiltWorld out;
   out.generated = generateWorld(spec);
 
@@ -77,7 +79,7 @@ BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
   } else {
     out.reused = true;
   }
-  out.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.build_seconds = secondsSince(t0);
   return out;
 }
 

@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
+#include "core/geometry/world_truth.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/common_io.h"
@@ -78,22 +80,33 @@ int runFlyCommand(int argc, char** argv) {
   // Load and validate everything before anything is written.
   const std::string file = args.get("FILE.yaml");
   FlightSpec spec = loadFlightSpec(file);
-  resolveFlightWorld(file, spec);
+  const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
+  std::optional<WorldTruth> truth;  // for the oracle feature source
+  if (built && spec.perception.enabled && spec.perception.source == "oracle") truth.emplace(built->generated.shapes);
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   fs::create_directories(out.staging() / "frames");
 
-  int saved = 0;
+  // Fly: the closed loop without an explorer follows the waypoints; every N-th frame is saved.
+  LoopSetup setup;
+  setup.truth = truth ? &*truth : nullptr;
+  ClosedLoop loop(spec, setup);
+  ProgressLine progress("fly", spec.duration_s);
+  int saved = 0, index = 0;
   const int every = spec.camera_stream.save_every_n;
-  FlightObservers obs;
-  obs.on_frame = [&](const CameraFrame& f, int index) {
-    if (every <= 0 || index % every != 0) return;
-    char name[64];
-    std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", index, f.t_s);
-    writeFileAtomic(out.staging() / "frames" / name, encodePng(f));
-    ++saved;
-  };
-  obs.on_progress = progressPrinter("fly", spec.duration_s);
-  const FlightResult r = runFlight(spec, obs);
+  while (loop.running()) {
+    const TickRecord& t = loop.step();
+    if (t.frame) {
+      if (every > 0 && index % every == 0) {
+        char name[64];
+        std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", index, t.frame->t_s);
+        writeFileAtomic(out.staging() / "frames" / name, encodePng(*t.frame));
+        ++saved;
+      }
+      ++index;
+    }
+    progress.update(t, loop.physicsHz());
+  }
+  const FlightResult& r = loop.finish();
 
   std::ifstream in(file, std::ios::binary);
   std::ostringstream cfg;

@@ -1,7 +1,6 @@
 // msbench map-replay (run the mapper over a recorded perception log; export the map) and
 // bench-map (per-update time of the mapper on a log).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -12,7 +11,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/common/rng.h"
+#include "core/common/wall_time.h"
+#include "core/eval/map_safety.h"
 #include "core/map/sphere_map.h"
 #include "core/eval/column_coverage.h"
 #include "core/planning/monospheres_explorer.h"
@@ -22,59 +22,16 @@
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
 #include "tools/msbench/perception_log.h"
+#include "tools/msbench/scenario_yaml.h"
 #include "tools/msbench/world_registry.h"
 
 namespace msb {
 
 namespace {
 
-// Applies "--set map.KEY=VALUE" overrides to the mapper config.
-void applySet(const std::string& kv, SphereMapConfig& c) {
-  const auto eq = kv.find('=');
-  if (eq == std::string::npos || kv.rfind("map.", 0) != 0)
-    throw UsageError("--set: expected map.KEY=VALUE, got '" + kv + "'");
-  const std::string key = kv.substr(4, eq - 4), value = kv.substr(eq + 1);
-  auto num = [&] {
-    char* end = nullptr;
-    const double v = std::strtod(value.c_str(), &end);
-    if (value.empty() || *end) throw UsageError("--set " + key + ": '" + value + "' is not a number");
-    return v;
-  };
-  auto flag = [&] {
-    if (value == "true") return true;
-    if (value == "false") return false;
-    throw UsageError("--set " + key + ": expected true or false, got '" + value + "'");
-  };
-  if (key == "ovde") c.ovde = flag();
-  else if (key == "dbof") c.dbof = flag();
-  else if (key == "dbof_alpha") c.dbof_alpha = num();
-  else if (key == "r_max_m") c.r_max_m = num();
-  else if (key == "r_min_m") c.r_min_m = num();
-  else if (key == "new_sphere_samples") c.new_sphere_samples = int(num());
-  else if (key == "max_point_range_m") c.max_point_range_m = num();
-  else if (key == "obstacle_spacing_m") c.obstacle_spacing_m = num();
-  else throw UsageError("--set: unknown map key '" + key + "'");
-}
-
-
-// Map safety against ground truth: every sphere created or grown, with its centre mapped from
-// the estimate to the true world frame of that moment, is checked against the world's
-// geometry; it is unsafe when it reaches more than 0.3 m into a real obstacle.
-struct SafetyStats {
-  long events = 0, unsafe = 0;
-  double volume = 0, unsafe_volume = 0;
-  std::map<std::string, long> unsafe_by_kind;
-  std::map<std::string, double> unsafe_volume_by_kind;
-  std::map<std::string, long> unsafe_by_object;
-  std::vector<double> intrusion_m;  ///< how deep unsafe spheres reach
-  // Volume actually inside obstacles (Monte Carlo, 128 samples per sphere), by the kind of the
-  // obstacle nearest the sphere's centre.
-  std::map<std::string, double> volume_by_kind, occupied_volume_by_kind;
-  double occupied_volume = 0;
-};
-
+// What a replay measured.
 struct Replay {
-  SafetyStats safety;
+  MapSafetyStats safety;
   std::vector<MapUpdateStats> stats;
   std::vector<double> total_ms;
   std::vector<double> t;
@@ -82,9 +39,12 @@ struct Replay {
   long live_samples = 0, live_covered = 0;  // camera above 1 m inside the spheres of that moment
 };
 
-// Runs the mapper over the log at the given rate (frames at or after each period).
+// Runs the mapper over the log at the given rate (frames at or after each period); with ground
+// truth, checks the map's safety (its Monte Carlo stream seeded here, once per replay).
 Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const WorldTruth* truth = nullptr) {
   Replay r;
+  std::optional<MapSafetyCheck> safety;
+  if (truth) safety.emplace(*truth, 0);
   double next_t = -1e9;
   for (const auto& f : log.frames) {
     // Corridor at the time: is the camera inside the free space the map has at that moment?
@@ -94,39 +54,15 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
     }
     if (f.points.t_s + 1e-9 < next_t) continue;
     next_t = f.points.t_s + 1.0 / rate_hz - 1e-6;
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = WallClock::now();
     r.stats.push_back(map.update(f.points));
-    r.total_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    if (truth) {
-      static RngStream samples(0, "map_safety_samples");  // fixed: results depend on the map only
+    r.total_ms.push_back(msSince(t0));
+    // Map safety: every sphere created or grown, against the ground truth of that moment.
+    if (safety) {
       const Pose T_true_est = f.T_W_C_truth * f.points.T_W_C.inverse();
       for (uint64_t id : r.stats.back().changed_spheres) {
         const Sphere& s = map.spheres().at(id);
-        const NearestObstacle n = truth->nearest(T_true_est * s.centre, s.radius + 1.0);
-        const double volume = 4.0 / 3.0 * M_PI * std::pow(s.radius, 3);
-        ++r.safety.events;
-        r.safety.volume += volume;
-        int occupied = 0;
-        constexpr int kSamples = 128;
-        for (int k = 0; k < kSamples; ++k) {
-          Vec3 u;
-          do u = Vec3(samples.uniform(-1, 1), samples.uniform(-1, 1), samples.uniform(-1, 1));
-          while (u.squaredNorm() > 1.0);
-          occupied += truth->inside(T_true_est * (s.centre + s.radius * u));
-        }
-        const std::string near_kind = n.shape >= 0 ? obstacleKindName(truth->shapes()[n.shape].kind) : "none";
-        r.safety.volume_by_kind[near_kind] += volume;
-        r.safety.occupied_volume_by_kind[near_kind] += volume * occupied / kSamples;
-        r.safety.occupied_volume += volume * occupied / kSamples;
-        if (n.shape >= 0 && s.radius - n.distance_m > 0.3) {
-          const std::string kind = obstacleKindName(truth->shapes()[n.shape].kind);
-          ++r.safety.unsafe;
-          r.safety.unsafe_volume += volume;
-          ++r.safety.unsafe_by_kind[kind];
-          ++r.safety.unsafe_by_object[truth->shapes()[n.shape].object];
-          r.safety.intrusion_m.push_back(s.radius - n.distance_m);
-          r.safety.unsafe_volume_by_kind[kind] += volume;
-        }
+        safety->checkSphere(s.centre, s.radius, T_true_est);
       }
     }
     r.t.push_back(f.points.t_s);
@@ -134,6 +70,7 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
     r.obstacles.push_back(int(map.obstacles().size()));
     r.frontiers.push_back(int(map.frontiers().size()));
   }
+  if (safety) r.safety = safety->stats();
   return r;
 }
 
@@ -158,13 +95,7 @@ int runMapReplayCommand(int argc, char** argv) {
       .option("seed", "1", "seed of the map_sampling stream")
       .flag("overwrite", "replace an existing output directory");
   if (!args.parse(argc, argv)) return kExitOk;
-  SphereMapConfig cfg;
-  for (const auto& s : sets) applySet(s, cfg);
-  try {
-    checkValid(cfg);
-  } catch (const ConfigError& e) {
-    throw UsageError(std::string("--set: ") + e.what());
-  }
+  const SphereMapConfig cfg = loadMapOverrides(sets);
   const PerceptionLog log = PerceptionLog::read(args.get("LOG"));
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   SphereMap map(cfg, cameraFromHeader(log.header), uint64_t(args.getInt("seed")));
@@ -278,7 +209,7 @@ int runMapReplayCommand(int argc, char** argv) {
                                 return k;
                               }()},
                              {"median_intrusion_m", percentile(sf.intrusion_m, 0.5)},
-                             {"rule", "sphere reaches > 0.3 m into a real obstacle (centre mapped to the true frame)"}};
+                             {"rule", MapSafetyCheck(*truth).rule()}};
     std::printf("map safety: %ld sphere creations/growths, %.2f %% unsafe (%.2f %% of volume)", sf.events,
                 100.0 * sf.unsafe / std::max(1L, sf.events), 100.0 * sf.unsafe_volume / std::max(1e-9, sf.volume));
     for (const auto& [k, n] : sf.unsafe_by_kind) std::printf("; %s %ld", k.c_str(), n);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/common/clock.h"
+#include "core/common/wall_time.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/physics/se3_controller.h"
 #include "sim/render/fisheye_renderer.h"
@@ -42,8 +43,6 @@ double parseScale(const ArgParser& args) {
   if (s != 1.0 && s != 0.5) throw UsageError("--scale: must be 1 or 0.5");
   return s;
 }
-
-using WallClock = std::chrono::steady_clock;
 
 }  // namespace
 
@@ -107,7 +106,7 @@ int runBenchSimCommand(int argc, char** argv) {
     sim.beginTick();
     sim.endTick(controller.compute(sim.groundTruth(), ref));
   }
-  const double phys_s = std::chrono::duration<double>(WallClock::now() - t0).count();
+  const double phys_s = secondsSince(t0);
   std::printf("world: %s (%d geoms)\n", world.c_str(), sim.geomCount());
   std::printf("physics: %.0f steps/s with controller (%.2f us/step, %.0fx real time at 500 Hz)\n",
               steps / phys_s, 1e6 * phys_s / steps, steps / phys_s / 500.0);
@@ -144,7 +143,7 @@ int runBenchSimCommand(int argc, char** argv) {
                 sum.readback_ms / n, sum.remap_ms / n, renderer.renderedPixels(),
                 static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
                 renderer.atlasSize().height);
-    if (scale == 1.0) std::printf("gl: %s\n", renderer.glDescription().c_str());
+    if (scale == 1.0) std::printf("gl: %s\n", renderer.description().c_str());
   }
   return kExitOk;
 }

@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/common/wall_time.h"
 #include "core/geometry/world_truth.h"
+#include "tools/loop/mission.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/common_io.h"
@@ -21,18 +23,15 @@ namespace fs = std::filesystem;
 namespace {
 
 // Progress on stderr every 10 simulated seconds: time, real-time factor, coverage, ETA.
-MissionProgress missionProgress(const std::string& name, double duration_s) {
-  return [name, duration_s](double sim_s, double wall_s, double area, const std::map<std::string, double>& c) {
-    const long t = std::lround(sim_s);
-    if (t % 10 != 0 || t == 0) return;
-    const double rtf = sim_s / std::max(wall_s, 1e-9);
-    auto get = [&c](const char* k) { const auto it = c.find(k); return it == c.end() ? 0.0 : it->second; };
-    std::fprintf(stderr,
-                 "run %s: t = %ld / %.0f s, RTF %.2f, A = %.0f m², spheres %.0f (%.0f reachable), viewpoints %.0f, "
-                 "goals reached %.0f of %.0f, ETA %.0f s\n",
-                 name.c_str(), t, duration_s, rtf, area, get("spheres"), get("reachable_spheres"), get("viewpoints"),
-                 get("goals_reached"), get("goals_chosen"), (duration_s - sim_s) / std::max(rtf, 1e-9));
-  };
+void printProgress(const std::string& name, double duration_s, double sim_s, double wall_s, double area,
+                   const std::map<std::string, double>& c) {
+  const double rtf = sim_s / std::max(wall_s, 1e-9);
+  auto get = [&c](const char* k) { const auto it = c.find(k); return it == c.end() ? 0.0 : it->second; };
+  std::fprintf(stderr,
+               "run %s: t = %.0f / %.0f s, RTF %.2f, A = %.0f m², spheres %.0f (%.0f reachable), viewpoints %.0f, "
+               "goals reached %.0f of %.0f, ETA %.0f s\n",
+               name.c_str(), sim_s, duration_s, rtf, area, get("spheres"), get("reachable_spheres"), get("viewpoints"),
+               get("goals_reached"), get("goals_chosen"), (duration_s - sim_s) / std::max(rtf, 1e-9));
 }
 
 }  // namespace
@@ -81,19 +80,26 @@ int runRunCommand(int argc, char** argv) {
 
   const bool quiet = args.has("quiet") || !spec.mission.progress;
   std::unique_ptr<PerceptionLogWriter> recorder;
-  PerceptionCallback record;
-  if (!args.get("record").empty()) {
+  if (!args.get("record").empty())
     recorder = std::make_unique<PerceptionLogWriter>(
         args.get("record"), nlohmann::json{{"world", spec.flight.world_name.empty() ? spec.flight.world_path
                                                                                     : spec.flight.world_name},
                                            {"seed", spec.flight.seed}, {"camera_scale", spec.flight.camera.scale},
                                            {"scenario", file}});
-    record = [&recorder](const PerceptionSample& s) { recorder->write(s.points, s.frame.T_W_C); };
-  }
   MissionResult r;
   try {
-    r = runMission(spec, box, truth ? &*truth : nullptr,
-                   quiet ? MissionProgress{} : missionProgress(spec.name, spec.flight.duration_s), record);
+    // Step the mission to its end; record perception and print progress between ticks.
+    Mission mission(spec, box, truth ? &*truth : nullptr);
+    const auto wall_start = WallClock::now();
+    const int64_t progress_ticks = 10 * int64_t(mission.physicsHz());
+    while (mission.running()) {
+      const TickRecord& t = mission.step();
+      if (recorder && t.points) recorder->write(*t.points, t.frame->T_W_C);
+      if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
+        printProgress(spec.name, spec.flight.duration_s, t.t_s, secondsSince(wall_start), mission.areaM2(),
+                      mission.explorer().counters());
+    }
+    r = mission.finish();
   } catch (const std::exception& e) {
     // A crashed run leaves a record saying so (a sweep goes on with the next run).
     nlohmann::json j = {{"name", spec.name}, {"status", "error"}, {"error", e.what()}, {"seed", spec.flight.seed},

@@ -15,7 +15,7 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
-#include "tools/msbench/perception_eval.h"
+#include "core/eval/slam_point_truth.h"
 #include "tools/msbench/perception_log.h"
 #include "tools/msbench/world_registry.h"
 #include "tools/msbench/yaml_config.h"
@@ -30,6 +30,14 @@ namespace {
 constexpr double kBinEdges[] = {0, 5, 10, 20, 40, 1e9};
 constexpr int kBins = 5;
 
+
+// What perception produced for one camera frame.
+struct PerceptionSample {
+  const CameraFrame& frame;
+  const TrackFrame& tracks;
+  const SlamPointsFrame& points;
+  double tracker_ms, triangulation_ms, render_ms;
+};
 
 // Running statistics of the evaluation.
 struct VioStats {
@@ -100,8 +108,8 @@ int runVioEvalCommand(int argc, char** argv) {
                                            {"seed", spec.seed}, {"camera_scale", spec.camera.scale},
                                            {"flight", file}});
 
-  FlightObservers obs;
-  obs.on_perception = [&](const PerceptionSample& s) {
+  // Evaluates one perception frame against the ground truth.
+  auto evaluate = [&](const PerceptionSample& s) {
     gt_camera[s.frame.tick] = s.frame.T_W_C;
     if (recorder) recorder->write(s.points, s.frame.T_W_C);
     std::vector<double> frame_errors;
@@ -146,8 +154,18 @@ int runVioEvalCommand(int argc, char** argv) {
       cv::imwrite((out.staging() / "annotated" / name).string(), annotate(s));
     }
   };
-  obs.on_progress = progressPrinter("vio-eval", spec.duration_s);
-  const FlightResult r = runFlight(spec, obs);
+  // Fly the path with perception on; evaluate every processed frame.
+  LoopSetup setup;
+  setup.truth = truth ? &*truth : nullptr;
+  ClosedLoop loop(spec, setup);
+  ProgressLine progress("vio-eval", spec.duration_s);
+  while (loop.running()) {
+    const TickRecord& t = loop.step();
+    if (t.points)
+      evaluate({*t.frame, *t.tracks, *t.points, t.timing.tracker_ms, t.timing.triangulation_ms, t.timing.render_ms});
+    progress.update(t, loop.physicsHz());
+  }
+  const FlightResult& r = loop.finish();
   if (recorder) recorder->close();
 
   // Summary.

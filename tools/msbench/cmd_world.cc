@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/common/wall_time.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/render/fisheye_renderer.h"
 #include "tools/msbench/cli_args.h"
@@ -128,12 +129,12 @@ int runWorldCommand(int argc, char** argv) {
     ArgParser args("msbench world build", "Generate a world (MJCF, textures, shapes) into the cache.");
     args.positional("NAME", "world name").option("seed", "", "placement seed (default: the spec's)");
     if (!args.parse(argc - 1, argv + 1)) return kExitOk;
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = WallClock::now();
     const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
     const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
     // Compile once in MuJoCo (fails loudly on any MuJoCo error or warning).
     QuadrotorSim sim(PhysicsConfig{}, w.world_xml, w.generated.start);
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double secs = secondsSince(t0);
     std::printf("world %s: %s (%s) in %.2f s; %d collision + %d visual geoms (MuJoCo model: %d geoms)\n",
                 w.generated.name.c_str(), w.directory.c_str(), w.reused ? "cached" : "built", secs,
                 w.generated.collision_geoms, w.generated.visual_geoms, sim.geomCount());

@@ -6,7 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/common/messages.h"
-#include "tools/msbench/flight_runner.h"
+#include "core/common/wall_time.h"
+#include "tools/loop/closed_loop.h"
 
 namespace msb {
 
@@ -22,9 +23,20 @@ std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);
 /// imu.csv text.
 std::string imuCsv(const std::vector<ImuSample>& samples);
 
-/// A progress printer for long flights: a line on stderr every 10 simulated seconds with the
-/// real-time factor and an ETA (never part of the results).
-ProgressCallback progressPrinter(const std::string& command, double duration_s);
+/// A progress line for long flights on stderr every 10 simulated seconds with the real-time
+/// factor and an ETA (never part of the results).
+class ProgressLine {
+ public:
+  /// `command` prefixes the line; `duration_s` is the run's limit.
+  ProgressLine(std::string command, double duration_s);
+  /// Call after every tick; prints when a tick completes a tenth simulated second.
+  void update(const TickRecord& tick, int physics_hz);
+
+ private:
+  std::string command_;
+  double duration_s_;
+  WallClock::time_point start_;
+};
 
 /// The q-quantile (0..1, nearest rank) of a sample; 0 for an empty one.
 double percentile(std::vector<double> values, double q);

@@ -1,4 +1,4 @@
-// The files of one mission (DESIGN §3, §10): metrics.json, coverage.csv, timing.csv,
+// The files of one mission (docs/architecture.md §3, §10): metrics.json, coverage.csv, timing.csv,
 // trajectory.csv, map.ply and topdown.png.
 #pragma once
 
@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tools/msbench/mission_runner.h"
+#include "tools/loop/mission.h"
 
 namespace msb {
 

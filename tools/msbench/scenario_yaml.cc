@@ -84,8 +84,8 @@ void readOvde(MapReader r, OpenAreaDepthConfig& c) {
   r.finish();
 }
 
-// Mapper parameters; the switches ovde/dbof live under `switches`.
-void readSphereMap(MapReader r, SphereMapConfig& c) {
+// Mapper parameters (the caller finishes the reader).
+void readSphereMapKeys(MapReader& r, SphereMapConfig& c) {
   if (r.has("ovde_params")) readOvde(r.sub("ovde_params"), c.ovde_params);
   r.read("dbof_alpha", c.dbof_alpha);
   r.read("r_max_m", c.r_max_m);
@@ -107,6 +107,11 @@ void readSphereMap(MapReader r, SphereMapConfig& c) {
   r.read("frontier_range_m", c.frontier_range_m);
   r.read("frontier_min_normal_z", c.frontier_min_normal_z);
   r.read("frontier_min_balance", c.frontier_min_balance);
+}
+
+// Mapper parameters of a scenario; the switches ovde/dbof live under `switches`.
+void readSphereMap(MapReader r, SphereMapConfig& c) {
+  readSphereMapKeys(r, c);
   r.finish();
 }
 
@@ -230,6 +235,24 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
   });
   if (spec.name.empty()) spec.name = fs::path(path).stem().string();
   return spec;
+}
+
+SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets) {
+  YAML::Node tree(YAML::NodeType::Map);
+  for (const auto& kv : sets) {
+    if (kv.rfind("map.", 0) != 0) throw UsageError("--set: expected map.KEY=VALUE, got '" + kv + "'");
+    applySet(tree, kv);
+  }
+  return parseConfigNode<SphereMapConfig>("--set", tree, [](MapReader& r, SphereMapConfig& c) {
+    if (r.has("map")) {
+      MapReader m = r.sub("map");
+      m.read("ovde", c.ovde);
+      m.read("dbof", c.dbof);
+      readSphereMapKeys(m, c);
+      m.finish();
+    }
+    r.finish();
+  });
 }
 
 std::string scenarioTreeToString(const YAML::Node& tree) {

@@ -1,4 +1,4 @@
-// Loading scenario files for `msbench run` (DESIGN §12): an optional `base:` file (relative
+// Loading scenario files for `msbench run` (docs/architecture.md §12): an optional `base:` file (relative
 // to the including file) whose keys the file overrides map by map, then command-line overrides
 // `--set a.b.c=value` (the value is parsed as YAML), then the strict reader: unknown keys, wrong
 // types and bad values fail with the file and the key named.
@@ -9,7 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "tools/msbench/scenario_spec.h"
+#include "tools/loop/scenario_spec.h"
 
 namespace msb {
 
@@ -20,6 +20,11 @@ YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::stri
 
 /// Loads and validates a scenario. Throws FileConfigError / UsageError.
 ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string>& sets = {});
+
+/// Mapper settings for map-replay from `--set map.KEY=VALUE` overrides, through the same
+/// override path and reader as a scenario's `method.map` keys (plus the switches map.ovde and
+/// map.dbof). Throws UsageError (malformed --set) or FileConfigError (unknown key, bad value).
+SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets);
 
 /// The effective configuration as YAML (what config.yaml records): the merged tree.
 std::string scenarioTreeToString(const YAML::Node& tree);

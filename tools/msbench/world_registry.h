@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "sim/world/world_cache.h"
-#include "tools/msbench/flight_spec.h"
+#include "tools/loop/flight_spec.h"
 
 namespace msb {
 

@@ -139,6 +139,7 @@ void readCameraStream(MapReader r, CameraStreamConfig& c) {
   r.read("enabled", c.enabled);
   r.read("rate_hz", c.rate_hz);
   r.read("save_every_n", c.save_every_n);
+  r.read("renderer", c.renderer);
   r.finish();
 }
 
@@ -153,8 +154,23 @@ void readVioDrift(MapReader r, VioDriftConfig& c) {
   r.finish();
 }
 
+void readOracle(MapReader r, OracleFeatureConfig& c) {
+  r.read("max_tracks", c.max_tracks);
+  r.read("min_distance_px", c.min_distance_px);
+  r.read("pixel_noise_px", c.pixel_noise_px);
+  r.read("landmark_spacing_m", c.landmark_spacing_m);
+  r.read("max_range_m", c.max_range_m);
+  r.read("ground_margin_m", c.ground_margin_m);
+  r.read("border_px", c.border_px);
+  r.read("textureless_landmarks", c.textureless_landmarks);
+  r.read("thin_landmarks", c.thin_landmarks);
+  r.finish();
+}
+
 void readPerception(MapReader r, PerceptionConfig& c) {
   r.read("enabled", c.enabled);
+  r.read("source", c.source);
+  if (r.has("oracle")) readOracle(r.sub("oracle"), c.oracle);
   r.read("lost_min_tracks", c.lost_min_tracks);
   r.read("lost_after_s", c.lost_after_s);
   r.finish();

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "tools/msbench/flight_spec.h"
+#include "tools/loop/flight_spec.h"
 #include "tools/msbench/yaml_reader.h"
 
 namespace msb {

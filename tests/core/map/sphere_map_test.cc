@@ -1,4 +1,4 @@
-// The mapper's rules one by one (DESIGN §7 steps 5, 6, 8, 9) on hand-built inputs, and a whole
+// The mapper's rules one by one (docs/architecture.md §7 steps 5, 6, 8, 9) on hand-built inputs, and a whole
 // update on a synthetic frame.
 #include "core/map/sphere_map.h"
 

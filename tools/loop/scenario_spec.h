@@ -1,4 +1,4 @@
-// A mission scenario (`msbench run`, DESIGN §12): a flight (world, seed, duration, sensors)
+// A mission scenario (`msbench run`, docs/architecture.md §12): a flight (world, seed, duration, sensors)
 // flown by an exploration method chosen by `method.type`, with the ablation switches and the
 // rates of the closed loop. Plain structs with defaults and validation; YAML lives in
 // scenario_yaml.cc only.
@@ -10,7 +10,7 @@
 
 #include "core/geometry/world_truth.h"
 #include "core/planning/monospheres_explorer.h"
-#include "tools/msbench/flight_spec.h"
+#include "tools/loop/flight_spec.h"
 
 namespace msb {
 

@@ -4,7 +4,7 @@
 
 #include "core/camera/fisheye_camera.h"
 #include "core/geometry/world_truth.h"
-#include "core/perception/slam_points.h"
+#include "core/common/messages.h"
 
 namespace msb {
 

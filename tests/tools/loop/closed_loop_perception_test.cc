@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "core/common/rng.h"
-#include "tools/msbench/flight_runner.h"
-#include "tools/msbench/perception_eval.h"
+#include "core/eval/slam_point_truth.h"
+#include "tools/loop/closed_loop.h"
 #include "tools/msbench/world_registry.h"
 
 namespace msb {
@@ -49,13 +49,15 @@ Evaluation evaluate(const FlightSpec& spec, const BuiltWorld& world) {
   const FisheyeCamera camera(spec.camera);
   std::map<int64_t, Pose> gt_camera;
   int frames = 0;
-  FlightObservers obs;
-  obs.on_perception = [&](const PerceptionSample& s) {
-    gt_camera[s.frame.tick] = s.frame.T_W_C;
+  ClosedLoop loop(spec, LoopSetup{});
+  while (loop.running()) {
+    const TickRecord& s = loop.step();
+    if (!s.points) continue;
+    gt_camera[s.frame->tick] = s.frame->T_W_C;
     ++frames;
-    ev.mean_tracks += s.tracks.tracks.size();
-    ev.mean_points += s.points.points.size();
-    for (const auto& p : s.points.points) {
+    ev.mean_tracks += s.tracks->tracks.size();
+    ev.mean_points += s.points->points.size();
+    for (const auto& p : s.points->points) {
       ev.points_hash = fnv1a64(p.p_W.data(), sizeof(double) * 3, ev.points_hash ^ p.track_id);
       const PointTruth t = evaluatePoint(p, gt_camera.at(p.anchor_tick), truth, camera);
       if (!t.has_surface) continue;
@@ -64,8 +66,8 @@ Evaluation evaluate(const FlightSpec& spec, const BuiltWorld& world) {
       if (!t.interior) continue;  // silhouette corners have no single true surface
       ev.errors[t.true_depth_m < 8 ? 0 : t.true_depth_m < 20 ? 1 : 2].push_back(t.error_m);
     }
-  };
-  ev.result = runFlight(spec, obs);
+  }
+  ev.result = loop.finish();
   ev.mean_tracks /= std::max(1, frames);
   ev.mean_points /= std::max(1, frames);
   return ev;
@@ -105,7 +107,9 @@ TEST(PerceptionFlight, FacingATexturelessWallEndsInVioLost) {
   s.waypoints = {{Vec3(0, 0, 1.5), 0.0}, {Vec3(0, 4, 1.5), 0.0}};
   s.camera_stream.save_every_n = 0;
   s.perception.enabled = true;
-  const FlightResult r = runFlight(s);
+  ClosedLoop loop(s, LoopSetup{});
+  loop.run();
+  const FlightResult r = loop.finish();
   EXPECT_EQ(r.status, "vio_lost");
   EXPECT_NEAR(r.vio_lost_at_s, s.perception.lost_after_s, 0.1);
 }

@@ -1,4 +1,4 @@
-#include "tools/msbench/scenario_spec.h"
+#include "tools/loop/scenario_spec.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "tools/msbench/perception_eval.h"
+#include "core/eval/slam_point_truth.h"
 
 namespace msb {
 

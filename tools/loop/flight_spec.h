@@ -1,5 +1,6 @@
-// A scripted flight (`msbench fly`): world, start pose, waypoints, sensor and render settings.
-// Plain struct with defaults and validation; YAML is converted in yaml_config.cc only.
+// Everything one run of the closed loop needs: world, start pose, waypoints (scripted flights),
+// vehicle, sensors, renderer and perception settings. Plain struct with defaults and
+// validation; YAML is converted in tools/msbench/yaml_config.cc only.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include "sim/physics/trajectory_tracker.h"
 #include "sim/render/fisheye_renderer.h"
 #include "core/perception/feature_tracker.h"
+#include "core/perception/oracle_features.h"
 #include "core/perception/slam_points.h"
 #include "sim/sensors/imu_model.h"
 #include "sim/sensors/vio_drift.h"
@@ -23,6 +25,7 @@ namespace msb {
 /// Camera stream settings of a flight.
 struct CameraStreamConfig {
   bool enabled = true;            ///< render fisheye frames at all
+  std::string renderer = "fisheye";  ///< fisheye (OSMesa cube map) | blank (uniform grey frames, no GL: tests)
   double rate_hz = 15.0;          ///< render rate (first tick at or after each period)
   int save_every_n = 15;          ///< write every N-th rendered frame as PNG (0 = none)
 
@@ -33,6 +36,8 @@ struct CameraStreamConfig {
 /// Perception in the loop: tracker + SLAM points on every rendered frame, tracking loss.
 struct PerceptionConfig {
   bool enabled = false;              ///< run the tracker and triangulation (vio-eval, missions)
+  std::string source = "klt";        ///< klt (tracker on the rendered image) | oracle (ground truth)
+  OracleFeatureConfig oracle;        ///< settings of the oracle source
   int lost_min_tracks = 15;          ///< fewer tracks than this ...
   double lost_after_s = 2.0;         ///< ... for this long ends the run as vio_lost
 

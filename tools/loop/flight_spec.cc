@@ -1,4 +1,4 @@
-#include "tools/msbench/flight_spec.h"
+#include "tools/loop/flight_spec.h"
 
 #include <filesystem>
 
@@ -7,11 +7,15 @@ namespace msb {
 void CameraStreamConfig::validate(ConfigChecker& c) const {
   c.inRange("rate_hz", rate_hz, 0.1, 500.0);
   c.require(save_every_n >= 0, "save_every_n", "must be >= 0");
+  c.require(renderer == "fisheye" || renderer == "blank", "renderer",
+            "must be fisheye or blank, got '" + renderer + "'");
 }
 
 void PerceptionConfig::validate(ConfigChecker& c) const {
   c.inRange("lost_min_tracks", lost_min_tracks, 0, 10000);
   c.positive("lost_after_s", lost_after_s);
+  c.require(source == "klt" || source == "oracle", "source", "must be klt or oracle, got '" + source + "'");
+  c.nested("oracle", oracle);
 }
 
 void FlightSpec::validate(ConfigChecker& c) const {
@@ -39,6 +43,9 @@ void FlightSpec::validate(ConfigChecker& c) const {
   c.nested("slam_points", slam_points);
   c.require(!perception.enabled || camera_stream.enabled, "perception.enabled",
             "needs camera_stream.enabled");
+  c.require(!perception.enabled || perception.source != "klt" || camera_stream.renderer != "blank",
+            "camera_stream.renderer", "'blank' draws no images: the klt tracker needs the fisheye renderer "
+            "(or perception.source: oracle)");
 }
 
 }  // namespace msb

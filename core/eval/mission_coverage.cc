@@ -1,0 +1,37 @@
+#include "core/eval/mission_coverage.h"
+
+#include <cmath>
+
+namespace msb {
+
+int boxExplorableNodes(const WorldTruth& truth, const Aabb& box, double cell) {
+  // Align the box to the cells centred on the nodes (cell·i, cell·j) that lie inside it.
+  Aabb aligned = box;
+  for (int k = 0; k < 2; ++k) {
+    aligned.min[k] = (std::ceil(box.min[k] / cell) - 0.5) * cell;
+    aligned.max[k] = (std::floor(box.max[k] / cell) + 0.5) * cell;
+  }
+  if ((aligned.max.head<2>().array() <= aligned.min.head<2>().array()).any()) return 0;
+  return int(truth.explorableColumns(aligned, cell).size());
+}
+
+MissionCoverage::MissionCoverage(const Aabb& box, int box_explorable_columns)
+    : box_(box), box_explorable_(box_explorable_columns) {}
+
+void MissionCoverage::sample(double t_s, double distance_m, const std::vector<ExplorerSnapshot::Disk>& free_space) {
+  // True-frame columns: each element keeps the correction of the moment it was first seen.
+  for (const auto& d : free_space) {
+    const Pose& T = first_seen_.emplace(d.id, T_true_est_).first->second;
+    columns_gt_.markDisk((T * d.centre).head<2>(), d.radius);
+  }
+  const double cell = columns_.cellM();
+  CoverageSample c;
+  c.t_s = t_s;
+  c.area_m2 = columns_.areaM2();
+  c.area_box_m2 = double(columns_.countInside(box_.min.head<2>(), box_.max.head<2>())) * cell * cell;
+  c.area_gt_m2 = columns_gt_.areaM2();
+  c.distance_m = distance_m;
+  samples_.push_back(c);
+}
+
+}  // namespace msb

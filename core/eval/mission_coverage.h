@@ -1,0 +1,54 @@
+// The coverage record of a mission (docs/architecture.md §10) over time: explored columns in the VIO frame
+// (the paper's A), inside the exploration box (also as a share of the box's explorable
+// columns), and with every free-space element mapped to the true frame by the estimate → truth
+// correction of the moment it was first seen (how much of A is real, given drift).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "core/common/aabb.h"
+#include "core/eval/column_coverage.h"
+#include "core/eval/coverage_sample.h"
+#include "core/eval/map_snapshot.h"
+#include "core/geometry/world_truth.h"
+
+namespace msb {
+
+/// Explorable columns of `box` in the metric's node convention: cells of side `cell_m`
+/// centred on the nodes (cell·i, cell·j) inside the box that are not fully occupied.
+int boxExplorableNodes(const WorldTruth& truth, const Aabb& box, double cell_m);
+
+/// Cumulative coverage of one mission.
+class MissionCoverage {
+ public:
+  /// `box`: the exploration box; `box_explorable_columns`: its explorable nodes (0 = unknown).
+  MissionCoverage(const Aabb& box, int box_explorable_columns);
+
+  /// The estimate → truth correction at the latest perception frame (T_true_est).
+  void setTrueFromEstimate(const Pose& T_true_est) { T_true_est_ = T_true_est; }
+  /// Explored columns in the VIO frame; the method marks its free space here before sample().
+  ColumnCoverage& columns() { return columns_; }
+  const ColumnCoverage& columns() const { return columns_; }
+  /// Explored columns with free space mapped to the true frame.
+  const ColumnCoverage& trueFrameColumns() const { return columns_gt_; }
+  /// Records a sample at t_s: maps the current free-space elements to the true frame (each
+  /// with the correction of the first time its id was seen) and appends A.
+  void sample(double t_s, double distance_m, const std::vector<ExplorerSnapshot::Disk>& free_space);
+  /// All samples so far.
+  const std::vector<CoverageSample>& samples() const { return samples_; }
+  /// The exploration box and its explorable nodes.
+  const Aabb& box() const { return box_; }
+  int boxExplorableColumns() const { return box_explorable_; }
+
+ private:
+  Aabb box_;
+  int box_explorable_ = 0;
+  ColumnCoverage columns_, columns_gt_;
+  std::map<uint64_t, Pose> first_seen_;  // estimate → truth correction per free-space element id
+  Pose T_true_est_ = Pose::Identity();
+  std::vector<CoverageSample> samples_;
+};
+
+}  // namespace msb

@@ -1,0 +1,195 @@
+// The MonoSpheres explorer's decisions on hand-built maps (spheres, obstacle points and
+// frontiers added directly): take-off phases, goal choice and reaching (with and without VPB
+// markers), no progress, unreachable goals, blocked-edge repair and bridging out of a pocket.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/planning/monospheres_explorer.h"
+
+namespace msb {
+namespace {
+
+constexpr double kStartZ = 0.05;
+
+// An explorer whose start is the origin (on the ground), heading +x, in a large box.
+struct Fixture {
+  explicit Fixture(bool vpb = true) : explorer(config(vpb), FisheyeCamera(FisheyeCameraConfig{}), context()) {}
+  static MonoSpheresConfig config(bool vpb) {
+    MonoSpheresConfig c;
+    c.planner.viewpoints.vpb = vpb;
+    return c;
+  }
+  static ExplorerContext context() {
+    ExplorerContext ctx;
+    ctx.exploration_box = {Vec3(-100, -100, 0), Vec3(100, 100, 10)};
+    ctx.start = poseFromXyzYaw(Vec3(0, 0, kStartZ), 0.0);
+    ctx.seed = 3;
+    return ctx;
+  }
+  // The vehicle at p with heading yaw at time t, its reference there, at rest.
+  static VehicleState at(const Vec3& p, double yaw, double t, bool finished = true) {
+    VehicleState s;
+    s.t_s = t;
+    s.tick = int64_t(std::llround(t * 500));
+    s.T_W_B = poseFromXyzYaw(p, yaw);
+    s.reference.position_m = p;
+    s.reference.yaw_rad = yaw;
+    s.path_finished = finished;
+    return s;
+  }
+  // Runs the take-off phases (climb, short forward leg) as if each command finished at once.
+  void skipTakeoff() {
+    for (int k = 0; k < 4; ++k) explorer.plan(at(Vec3(0, 0, 2), 0.0, 0.2 * k));
+  }
+  // A chain of overlapping spheres along +x at z = 2 with a patch of frontiers beyond its end.
+  void corridorWithFrontiers() {
+    SphereMap& m = explorer.mutableMap();
+    for (double x : {0.0, 4.0, 8.0, 12.0}) chain.push_back(m.addSphere({x, 0, 2}, 3.0));
+    for (double y = -4; y <= 4; y += 1.6)
+      for (double z = -1; z <= 5; z += 1.6) frontiers += bool(m.tryAddFrontier({16.5, y, z}));
+  }
+  double counter(const std::string& k) const { return explorer.counters().at(k); }
+
+  MonoSpheresExplorer explorer;
+  std::vector<uint64_t> chain;
+  int frontiers = 0;
+};
+
+// Smallest distance from q to the polyline (vehicle first, then the waypoints).
+double distanceToPath(const Vec3& from, const std::vector<Waypoint>& w, const Vec3& q) {
+  double best = 1e18;
+  Vec3 a = from;
+  for (const auto& wp : w) {
+    const Vec3 b = wp.position_m;
+    const double len2 = (b - a).squaredNorm();
+    const double t = len2 > 0 ? std::clamp((q - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (a + t * (b - a) - q).norm());
+    a = b;
+  }
+  return best;
+}
+
+TEST(MonoSpheresExplorer, TakesOffThenFliesForwardThenExplores) {
+  Fixture f;
+  const auto climb = f.explorer.plan(Fixture::at(Vec3(0, 0, kStartZ), 0.0, 0.0));
+  ASSERT_TRUE(climb);
+  ASSERT_EQ(climb->waypoints.size(), 1u);
+  EXPECT_TRUE(climb->waypoints[0].position_m.isApprox(Vec3(0, 0, kStartZ + 2.0)));
+  ASSERT_TRUE(climb->waypoints[0].heading_rad);
+  EXPECT_DOUBLE_EQ(*climb->waypoints[0].heading_rad, 0.0);
+  // Nothing new while the climb is under way; the forward leg once it is done.
+  EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(0, 0, 1), 0.0, 0.2, false)));
+  EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 0.4, true)));
+  const auto forward = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 0.6, false));
+  ASSERT_TRUE(forward);
+  EXPECT_TRUE(forward->waypoints[0].position_m.isApprox(Vec3(4, 0, kStartZ + 2.0)));
+  EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(4, 0, 2), 0.0, 0.8, true)));
+  // Exploring on an empty map: outside every sphere, nothing to return to, no command.
+  EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(4, 0, 2), 0.0, 1.0, true)));
+  EXPECT_EQ(f.counter("goals_chosen"), 0.0);
+}
+
+TEST(MonoSpheresExplorer, ChoosesAViewpointFliesThereAndReachesIt) {
+  for (bool vpb : {true, false}) {
+    Fixture f(vpb);
+    f.corridorWithFrontiers();
+    ASSERT_GE(f.frontiers, 10);
+    f.skipTakeoff();
+    const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    ASSERT_TRUE(cmd);
+    ASSERT_NE(f.explorer.goal(), 0u);
+    EXPECT_EQ(f.counter("goals_chosen"), 1.0);
+    const Viewpoint goal = f.explorer.viewpoints().viewpoints().at(f.explorer.goal());
+    // The goal sees the frontiers: at a far sphere, facing +x; the path ends there.
+    EXPECT_GE(goal.position.x(), 8.0 - 1e-9);
+    EXPECT_LE(std::abs(wrapAngle(goal.yaw_rad)), M_PI / 2);
+    EXPECT_TRUE(cmd->waypoints.back().position_m.isApprox(goal.position));
+    // At the viewpoint with its heading: reached; with VPB a visited marker stays there.
+    f.explorer.plan(Fixture::at(goal.position, goal.yaw_rad, 5.0));
+    EXPECT_EQ(f.counter("goals_reached"), 1.0) << "vpb " << vpb;
+    EXPECT_EQ(f.explorer.viewpoints().markers().size(), vpb ? 1u : 0u);
+    if (!vpb) continue;
+    for (const auto& [id, v] : f.explorer.viewpoints().viewpoints())
+      EXPECT_FALSE((v.position - goal.position).norm() < 7.0 && std::abs(wrapAngle(v.yaw_rad - goal.yaw_rad)) < M_PI / 3)
+          << "a viewpoint next to the visited marker survived";
+  }
+}
+
+TEST(MonoSpheresExplorer, AGoalWithoutProgressFailsAfterTheTimeout) {
+  Fixture f;
+  f.corridorWithFrontiers();
+  f.skipTakeoff();
+  ASSERT_TRUE(f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0)));
+  const uint64_t first = f.explorer.goal();
+  ASSERT_NE(first, 0u);
+  // The vehicle stays where it is: no failure before 10 s, a no-progress failure after.
+  for (double t = 1.2; t <= 10.8; t += 0.2) f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, t));
+  EXPECT_EQ(f.counter("goals_failed"), 0.0);
+  for (double t = 11.0; t <= 11.6; t += 0.2) f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, t));
+  EXPECT_EQ(f.counter("goals_failed_no_progress"), 1.0);
+}
+
+TEST(MonoSpheresExplorer, AGoalCutOffFromTheVehicleIsDropped) {
+  Fixture f;
+  f.corridorWithFrontiers();
+  const Vec3 island(0, 40, 2);
+  f.explorer.mutableMap().addSphere(island, 3.0);  // no overlap with the corridor
+  f.skipTakeoff();
+  ASSERT_TRUE(f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0)));
+  ASSERT_NE(f.explorer.goal(), 0u);
+  // The vehicle is found on the island (e.g. after a drift correction): the goal's sphere is
+  // no longer reachable and the goal is given up. (Today the viewpoint set drops viewpoints on
+  // unreachable spheres before the goal check, so this is not counted as a failed goal and not
+  // blacklisted; the test pins that behaviour.)
+  f.explorer.plan(Fixture::at(island, 0.0, 1.2));
+  EXPECT_EQ(f.explorer.goal(), 0u);
+  EXPECT_EQ(f.counter("goals_failed_unreachable"), 0.0);
+}
+
+TEST(MonoSpheresExplorer, AnEdgeTooCloseToAnObstacleIsBlockedAndTheRouteGoesAround) {
+  Fixture f;
+  f.corridorWithFrontiers();
+  SphereMap& m = f.explorer.mutableMap();
+  // An obstacle point on the corridor's first edge and a detour sphere beside it.
+  const Vec3 obstacle(2, 0, 2);
+  m.addObstacle(obstacle, 2.0);
+  m.addSphere({2, 3.6, 2}, 2.5);
+  f.skipTakeoff();
+  const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+  ASSERT_TRUE(cmd);
+  ASSERT_NE(f.explorer.goal(), 0u);
+  EXPECT_GE(f.counter("edges_blocked"), 1.0);
+  EXPECT_EQ(f.counter("goals_failed"), 0.0);
+  // The path sent keeps the clearance (1 m) from the obstacle point.
+  EXPECT_GE(distanceToPath(Vec3(0, 0, 2), cmd->waypoints, obstacle), 1.0 - 1e-6);
+}
+
+TEST(MonoSpheresExplorer, BridgesOutOfASmallPocketWithoutGoals) {
+  Fixture f;
+  SphereMap& m = f.explorer.mutableMap();
+  m.addSphere({0, 0, 2}, 2.0);
+  const Vec3 other(0, 6, 2);
+  m.addSphere(other, 2.0);  // not overlapping: another part of the graph
+  f.skipTakeoff();
+  const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+  ASSERT_TRUE(cmd);
+  EXPECT_EQ(f.counter("bridges"), 1.0);
+  ASSERT_EQ(cmd->waypoints.size(), 1u);
+  EXPECT_TRUE(cmd->waypoints[0].position_m.isApprox(other));
+  // An obstacle point on the straight line: no bridge, an idle turn instead.
+  Fixture g;
+  g.explorer.mutableMap().addSphere({0, 0, 2}, 2.0);
+  g.explorer.mutableMap().addSphere(other, 2.0);
+  g.explorer.mutableMap().addObstacle({0, 3, 2}, 3.0);
+  g.skipTakeoff();
+  const auto turn = g.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+  EXPECT_EQ(g.counter("bridges"), 0.0);
+  ASSERT_TRUE(turn);
+  EXPECT_EQ(g.counter("idle_turns"), 1.0);
+  ASSERT_TRUE(turn->waypoints[0].heading_rad);
+  EXPECT_NEAR(*turn->waypoints[0].heading_rad, M_PI / 2, 1e-9);
+}
+
+}  // namespace
+}  // namespace msb

@@ -1,0 +1,254 @@
+#include "tools/loop/closed_loop.h"
+
+#include <cmath>
+
+#include "core/common/rng.h"
+#include "core/common/wall_time.h"
+#include "core/geometry/world_truth.h"
+#include "core/perception/oracle_features.h"
+#include "sim/render/fisheye_renderer.h"
+
+namespace msb {
+
+namespace {
+
+// The renderer named by camera_stream.renderer (none when the stream is off).
+std::unique_ptr<FrameRenderer> makeRenderer(const FlightSpec& spec, const FisheyeCamera& camera, QuadrotorSim& sim) {
+  if (!spec.camera_stream.enabled) return nullptr;
+  if (spec.camera_stream.renderer == "blank") return std::make_unique<NullRenderer>(camera);
+  return std::make_unique<FisheyeRenderer>(spec.render, camera, sim.model());
+}
+
+// The feature source named by perception.source (none when perception is off).
+std::unique_ptr<FeatureSource> makeFeatureSource(const FlightSpec& spec, const FisheyeCamera& camera,
+                                                 const WorldTruth* truth) {
+  if (!spec.perception.enabled) return nullptr;
+  if (spec.perception.source == "oracle") {
+    if (!truth)
+      throw ConfigError("perception.source", "'oracle' needs a generated world (its ground truth); this world has none");
+    return std::make_unique<OracleFeatureSource>(spec.perception.oracle, camera, *truth, spec.seed);
+  }
+  return std::make_unique<KltFeatureTracker>(spec.tracker, camera);
+}
+
+}  // namespace
+
+ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
+    : spec_(checkValid(spec)),
+      setup_(setup),
+      sim_(spec.physics, spec.world_path, poseFromXyzYaw(spec.start_position_m, spec.start_yaw_rad)),
+      camera_(spec.camera),
+      renderer_(makeRenderer(spec, camera_, sim_)),
+      controller_(spec.controller, spec.physics.vehicle),
+      trajectory_(spec.trajectory, spec.start_position_m, spec.start_yaw_rad),
+      imu_(spec.imu, spec.seed),
+      vio_(spec.vio_drift, spec.seed),
+      features_(makeFeatureSource(spec, camera_, setup.truth)),
+      last_position_(spec.start_position_m),
+      wall_start_(WallClock::now()) {
+  if (spec.perception.enabled) slam_ = std::make_unique<SlamPointEstimator>(spec.slam_points, camera_);
+  if (renderer_) result_.gl_description = renderer_->description();
+  if (!setup_.explorer) trajectory_.setPath(spec.waypoints);
+
+  // Integer schedules of every stage.
+  const int hz = spec.physics.physics_hz;
+  const TickClock clock(hz);
+  ctrl_div_ = clock.divisorFor(spec.controller_hz, "controller_hz");
+  ctrl_dt_ = double(ctrl_div_) * clock.tickSeconds();
+  cam_schedule_.emplace(hz, spec.camera_stream.rate_hz, "camera_stream.rate_hz");
+  imu_schedule_.emplace(hz, spec.imu.rate_hz, "imu.rate_hz");
+  traj_schedule_.emplace(hz, setup.trajectory_rate_hz, "trajectory");
+  if (setup_.explorer) {
+    map_schedule_.emplace(hz, setup.map_rate_hz, "mission.map_rate_hz");
+    plan_schedule_.emplace(hz, setup.planning_rate_hz, "mission.planning_rate_hz");
+  }
+  lost_ticks_ = clock.ticksFor(spec.perception.lost_after_s);
+  max_ticks_ = clock.ticksFor(spec.duration_s);
+  hold_ticks_ = clock.ticksFor(spec.hold_after_s);
+}
+
+ClosedLoop::~ClosedLoop() = default;
+
+bool ClosedLoop::running() const { return !ended_ && sim_.tick() < max_ticks_; }
+
+const TickRecord& ClosedLoop::step() {
+  record_ = TickRecord{};
+  record_.tick = sim_.tick();
+  record_.t_s = sim_.timeSeconds();
+  // Physics step 1 and contacts: a collision or a non-finite state ends the run.
+  if (!stepPhysicsAndContacts()) return record_;
+  // The VIO estimate of the true state (the controller and the planner fly on it).
+  estimateState();
+  // Camera, then perception on the new frame (tracking loss ends the run).
+  if (renderer_ && cam_schedule_->due(record_.tick)) {
+    renderFrame();
+    if (features_ && !perceive()) return record_;
+  }
+  // The exploration method: map update, then planning (its path replaces the tracker's).
+  if (setup_.explorer) {
+    updateMap();
+    planPath();
+  }
+  // Trajectory reference and controller; records; actuators, integration and the IMU.
+  trackAndControl();
+  recordTick();
+  actuateAndSampleImu();
+  // A scripted flight ends hold_after_s after its path.
+  if (!setup_.explorer && finished_tick_ >= 0 && record_.tick >= finished_tick_ + hold_ticks_) ended_ = true;
+  record_.completed = true;
+  return record_;
+}
+
+void ClosedLoop::run() {
+  while (running()) step();
+}
+
+bool ClosedLoop::stepPhysicsAndContacts() {
+  if (sim_.beginTick()) {
+    result_.status = "collided";
+    result_.collision = sim_.collision();
+    ended_ = true;
+    return false;
+  }
+  if (sim_.diverged()) {
+    result_.status = "diverged";
+    ended_ = true;
+    return false;
+  }
+  return true;
+}
+
+void ClosedLoop::estimateState() {
+  gt_ = sim_.groundTruth();
+  est_ = vio_.update(gt_);
+}
+
+void ClosedLoop::renderFrame() {
+  const Pose T_W_C = gt_.T_W_B * camera_.T_B_C();
+  frame_timing_ = RenderTiming{};
+  renderer_->render(sim_.data(), T_W_C, &frame_, &frame_timing_);
+  frame_.tick = record_.tick;
+  frame_.t_s = gt_.t_s;
+  frame_.T_W_C = T_W_C;
+  auto& sum = result_.render_time_sum;
+  sum.scene_ms += frame_timing_.scene_ms;
+  sum.render_ms += frame_timing_.render_ms;
+  sum.readback_ms += frame_timing_.readback_ms;
+  sum.remap_ms += frame_timing_.remap_ms;
+  ++result_.frames_rendered;
+  record_.frame = &frame_;
+  record_.render = &frame_timing_;
+  record_.timing.render_ms = frame_timing_.totalMs();
+}
+
+bool ClosedLoop::perceive() {
+  // Tracks, then SLAM points from the (noisy) estimated camera pose.
+  auto t0 = WallClock::now();
+  tracks_ = features_->process(frame_);
+  record_.timing.tracker_ms = msSince(t0);
+  t0 = WallClock::now();
+  points_ = slam_->update(tracks_, vio_.noisyCameraPose(frame_.T_W_C));
+  record_.timing.triangulation_ms = msSince(t0);
+  record_.tracks = &tracks_;
+  record_.points = &points_;
+  if (setup_.explorer) pending_points_ = points_;
+  // Tracking loss: too few tracks for lost_after_s.
+  if (int(tracks_.tracks.size()) < spec_.perception.lost_min_tracks) {
+    if (few_tracks_since_ < 0) few_tracks_since_ = record_.tick;
+  } else {
+    few_tracks_since_ = -1;
+  }
+  if (few_tracks_since_ >= 0 && record_.tick - few_tracks_since_ >= lost_ticks_) {
+    result_.status = "vio_lost";
+    result_.vio_lost_at_s = gt_.t_s;
+    ended_ = true;
+    return false;
+  }
+  return true;
+}
+
+void ClosedLoop::updateMap() {
+  if (!map_schedule_->due(record_.tick) || !pending_points_) return;
+  const auto t0 = WallClock::now();
+  setup_.explorer->observe(*pending_points_);
+  record_.timing.map_ms = msSince(t0);
+  pending_points_.reset();
+}
+
+void ClosedLoop::planPath() {
+  if (!plan_schedule_->due(record_.tick)) return;
+  const auto t0 = WallClock::now();
+  VehicleState vs;
+  vs.tick = record_.tick;
+  vs.t_s = double(record_.tick) / spec_.physics.physics_hz;
+  vs.T_W_B = est_.T_W_B;
+  vs.velocity_mps = est_.v_W_mps;
+  vs.reference = trajectory_.reference();
+  vs.path_finished = trajectory_.finished();
+  const std::optional<PathCommand> cmd = setup_.explorer->plan(vs);
+  record_.timing.planning_ms = msSince(t0);
+  if (cmd) trajectory_.setPath(cmd->waypoints);
+}
+
+void ClosedLoop::trackAndControl() {
+  if (record_.tick % ctrl_div_ != 0) return;
+  // The controller flies on the VIO estimate; the reference lives in the estimate frame.
+  const TrajectoryReference& ref = trajectory_.update(ctrl_dt_);
+  cmd_ = controller_.compute(est_, ref);
+  const double err = (est_.T_W_B.translation() - ref.position_m).norm();
+  err_sq_sum_ += err * err;
+  ++err_count_;
+  result_.tracking_max_m = std::max(result_.tracking_max_m, err);
+  if (trajectory_.finished() && finished_tick_ < 0) finished_tick_ = record_.tick;
+}
+
+void ClosedLoop::recordTick() {
+  if (traj_schedule_->due(record_.tick)) {
+    const auto& ref = trajectory_.reference();
+    result_.trajectory.push_back({gt_.t_s, gt_.T_W_B.translation(), Quat(gt_.T_W_B.linear()), gt_.v_W_mps,
+                                  est_.T_W_B.translation(), yawOf(est_.T_W_B.linear()), ref.position_m,
+                                  ref.yaw_rad});
+    result_.final_drift_m = (est_.T_W_B.translation() - gt_.T_W_B.translation()).norm();
+  }
+  result_.distance_flown_m += (gt_.T_W_B.translation() - last_position_).norm();
+  last_position_ = gt_.T_W_B.translation();
+}
+
+void ClosedLoop::actuateAndSampleImu() {
+  // Physics step 2 (actuators, integration), then the IMU sample of this tick's state.
+  sim_.endTick(cmd_);
+  if (!imu_schedule_->due(record_.tick)) return;
+  const double tick_s = 1.0 / spec_.physics.physics_hz;
+  const double dt = record_.tick == 0 ? 1.0 / spec_.imu.rate_hz : double(record_.tick - last_imu_tick_) * tick_s;
+  result_.imu.push_back(imu_.sample(record_.tick, gt_.t_s, dt, sim_.imuTruth().specific_force_mps2,
+                                    sim_.imuTruth().angular_rate_radps));
+  last_imu_tick_ = record_.tick;
+}
+
+uint64_t ClosedLoop::stateHash() const {
+  uint64_t h = hashTrajectory(result_.trajectory);
+  const Odometry now = sim_.groundTruth();
+  const double v[7] = {now.t_s, now.T_W_B.translation().x(), now.T_W_B.translation().y(),
+                       now.T_W_B.translation().z(), now.v_W_mps.x(), now.v_W_mps.y(), now.v_W_mps.z()};
+  h = fnv1a64(v, sizeof(v), h);
+  for (const auto& s : result_.imu) {
+    const double a[6] = {s.accel_mps2.x(), s.accel_mps2.y(), s.accel_mps2.z(),
+                         s.gyro_radps.x(), s.gyro_radps.y(), s.gyro_radps.z()};
+    h = fnv1a64(a, sizeof(a), h);
+  }
+  return h;
+}
+
+const FlightResult& ClosedLoop::finish() {
+  if (finished_) return result_;
+  finished_ = true;
+  result_.ticks = sim_.tick();
+  result_.sim_time_s = sim_.timeSeconds();
+  result_.path_finished = finished_tick_ >= 0;
+  result_.tracking_rms_m = err_count_ ? std::sqrt(err_sq_sum_ / double(err_count_)) : 0.0;
+  result_.trajectory_hash = hashTrajectory(result_.trajectory);
+  result_.wall_time_s = secondsSince(wall_start_);
+  return result_;
+}
+
+}  // namespace msb

@@ -1,0 +1,169 @@
+// The closed loop (docs/architecture.md §2): one object that owns every stage of a run and advances it by one
+// physics tick at a time, in a fixed order that reads top to bottom in step():
+//
+//   physics step 1 → contacts → VIO estimate → render → perceive (features, SLAM points,
+//   tracking loss) → map update → planning → trajectory + controller → records →
+//   physics step 2 (actuators, integration) → IMU
+//
+// A scripted flight and an exploration mission are two uses of the same loop: without an
+// explorer the trajectory tracker follows the flight's waypoints and the run ends
+// `hold_after_s` after the path; with one, the explorer observes SLAM points at the map rate,
+// plans at the planning rate and its path commands replace the tracker's path, until the
+// duration ends. The loop never calls back: after each step() the caller reads what the tick
+// produced (a frame, tracks, SLAM points) from the returned record.
+//
+// Seams: the renderer (`camera_stream.renderer`: the OSMesa fisheye renderer, or the null
+// renderer) and the feature source (`perception.source`: the KLT tracker, or the ground-truth
+// oracle) are interfaces; the defaults are the benchmark's real parts.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/clock.h"
+#include "core/eval/run_hash.h"
+#include "core/perception/feature_tracker.h"
+#include "core/perception/slam_points.h"
+#include "core/planning/explorer.h"
+#include "sim/physics/quadrotor_sim.h"
+#include "sim/physics/se3_controller.h"
+#include "sim/physics/trajectory_tracker.h"
+#include "sim/render/frame_renderer.h"
+#include "sim/sensors/imu_model.h"
+#include "sim/sensors/vio_drift.h"
+#include "tools/loop/flight_spec.h"
+
+namespace msb {
+
+class WorldTruth;
+
+/// Outcome and records of a run of the loop.
+struct FlightResult {
+  std::string status = "completed";     ///< completed | collided | vio_lost | diverged
+  std::optional<CollisionEvent> collision;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+  int64_t ticks = 0;
+  std::vector<TrajectoryRow> trajectory;  ///< at trajectory_rate_hz
+  std::vector<ImuSample> imu;             ///< every IMU sample
+  int frames_rendered = 0;
+  RenderTiming render_time_sum;           ///< summed over frames
+  double tracking_rms_m = 0.0;            ///< RMS |estimate − reference| over controller ticks
+  double tracking_max_m = 0.0;            ///< max |estimate − reference|
+  double distance_flown_m = 0.0;          ///< ground truth, summed every tick
+  double final_drift_m = 0.0;             ///< |estimated − true position| at the end
+  double vio_lost_at_s = -1.0;            ///< when tracking was declared lost
+  bool path_finished = false;
+  std::string gl_description;             ///< what rendered the frames
+  uint64_t trajectory_hash = 0;           ///< FNV-1a over the trajectory rows
+
+  /// Simulated seconds per wall-clock second.
+  double realTimeFactor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
+};
+
+/// What the loop needs besides the flight: the optional explorer and its rates.
+struct LoopSetup {
+  Explorer* explorer = nullptr;        ///< exploration method (not owned), or none: fly spec.waypoints
+  const WorldTruth* truth = nullptr;   ///< ground truth (needed by the oracle feature source only)
+  double trajectory_rate_hz = 50.0;    ///< trajectory rows
+  double map_rate_hz = 5.0;            ///< explorer map updates (latest SLAM points)
+  double planning_rate_hz = 5.0;       ///< explorer planning steps
+};
+
+/// Wall time of the stages of one tick (ms; recorded, never used).
+struct TickTiming {
+  double render_ms = 0, tracker_ms = 0, triangulation_ms = 0, map_ms = 0, planning_ms = 0;
+};
+
+/// What one tick produced; pointers are valid until the next step().
+struct TickRecord {
+  int64_t tick = 0;                          ///< the tick that was stepped
+  double t_s = 0.0;                          ///< its simulated time
+  bool completed = false;                    ///< false: the run ended inside this tick
+  const CameraFrame* frame = nullptr;        ///< rendered this tick
+  const TrackFrame* tracks = nullptr;        ///< perceived this tick
+  const SlamPointsFrame* points = nullptr;   ///< SLAM points of this tick's frame
+  const RenderTiming* render = nullptr;      ///< render split of this tick's frame
+  TickTiming timing;
+};
+
+/// One run of the closed loop (see file comment).
+class ClosedLoop {
+ public:
+  /// Builds every component from its validated config (loads the world). Throws ConfigError
+  /// or std::runtime_error (world, GL context).
+  ClosedLoop(const FlightSpec& spec, const LoopSetup& setup);
+  ~ClosedLoop();
+  ClosedLoop(const ClosedLoop&) = delete;
+  ClosedLoop& operator=(const ClosedLoop&) = delete;
+
+  /// True until the run has ended (duration, collision, divergence, tracking loss, path done).
+  bool running() const;
+  /// Steps one tick through every stage.
+  const TickRecord& step();
+  /// Runs to the end.
+  void run();
+  /// Final records (timing, hash); call once the run has ended.
+  const FlightResult& finish();
+
+  /// The result so far (status, trajectory rows, distance).
+  const FlightResult& result() const { return result_; }
+  /// The physics (model/data for tools; the ground truth of the current state).
+  const QuadrotorSim& sim() const { return sim_; }
+  /// The camera model.
+  const FisheyeCamera& camera() const { return camera_; }
+  /// The loop's tick rate.
+  int physicsHz() const { return spec_.physics.physics_hz; }
+  /// State hash of everything the loop has decided so far (trajectory rows and the
+  /// current true state), for in-process determinism checks.
+  uint64_t stateHash() const;
+
+ private:
+  // The stages of a tick, in order.
+  bool stepPhysicsAndContacts();
+  void estimateState();
+  void renderFrame();
+  bool perceive();
+  void updateMap();
+  void planPath();
+  void trackAndControl();
+  void recordTick();
+  void actuateAndSampleImu();
+
+  FlightSpec spec_;
+  LoopSetup setup_;
+  // Components.
+  QuadrotorSim sim_;
+  FisheyeCamera camera_;
+  std::unique_ptr<FrameRenderer> renderer_;
+  Se3Controller controller_;
+  TrajectoryTracker trajectory_;
+  ImuModel imu_;
+  VioDriftModel vio_;
+  std::unique_ptr<FeatureSource> features_;
+  std::unique_ptr<SlamPointEstimator> slam_;
+  // Schedules (integer ticks).
+  int64_t ctrl_div_ = 1, lost_ticks_ = 0, max_ticks_ = 0, hold_ticks_ = 0;
+  double ctrl_dt_ = 0.0;
+  std::optional<RateSchedule> cam_schedule_, imu_schedule_, traj_schedule_, map_schedule_, plan_schedule_;
+  // State between ticks.
+  Vec4 cmd_ = Vec4::Zero();
+  Odometry gt_, est_;
+  CameraFrame frame_;
+  RenderTiming frame_timing_;
+  TrackFrame tracks_;
+  SlamPointsFrame points_;
+  std::optional<SlamPointsFrame> pending_points_;  // latest SLAM points not yet given to the map
+  int64_t few_tracks_since_ = -1, finished_tick_ = -1, last_imu_tick_ = 0, err_count_ = 0;
+  double err_sq_sum_ = 0.0;
+  Vec3 last_position_;
+  bool ended_ = false, finished_ = false;
+  TickRecord record_;
+  FlightResult result_;
+  std::chrono::steady_clock::time_point wall_start_;
+};
+
+}  // namespace msb

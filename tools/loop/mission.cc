@@ -1,0 +1,102 @@
+#include "tools/loop/mission.h"
+
+#include "core/common/wall_time.h"
+#include "core/planning/monospheres_explorer.h"
+
+namespace msb {
+
+std::unique_ptr<Explorer> makeExplorer(const ScenarioSpec& spec, const FisheyeCamera& camera,
+                                       const ExplorerContext& context) {
+  // The method table: one line per registered method type (ScenarioSpec::methodTypes()).
+  if (spec.method_type == "monospheres") return std::make_unique<MonoSpheresExplorer>(spec.monospheres, camera, context);
+  throw std::runtime_error("unknown method type '" + spec.method_type + "'");
+}
+
+namespace {
+
+// The method's context: box, start pose, seed.
+ExplorerContext explorerContext(const ScenarioSpec& spec, const Aabb& box) {
+  ExplorerContext ctx;
+  ctx.exploration_box = box;
+  ctx.start = poseFromXyzYaw(spec.flight.start_position_m, spec.flight.start_yaw_rad);
+  ctx.seed = spec.flight.seed;
+  return ctx;
+}
+
+// The loop's flight: the explorer gives the path, so no scripted waypoints.
+FlightSpec missionFlight(const ScenarioSpec& spec) {
+  FlightSpec f = spec.flight;
+  f.waypoints.clear();
+  return f;
+}
+
+}  // namespace
+
+Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth)
+    : spec_(checkValid(spec)),
+      explorer_(makeExplorer(spec, FisheyeCamera(spec.flight.camera), explorerContext(spec, box))),
+      coverage_(box, truth ? boxExplorableNodes(*truth, box, ColumnCoverage().cellM()) : 0),
+      metric_schedule_(spec.flight.physics.physics_hz, spec.mission.metric_rate_hz, "mission.metric_rate_hz") {
+  LoopSetup setup;
+  setup.explorer = explorer_.get();
+  setup.truth = truth;
+  setup.trajectory_rate_hz = spec.mission.trajectory_rate_hz;
+  setup.map_rate_hz = spec.mission.map_rate_hz;
+  setup.planning_rate_hz = spec.mission.planning_rate_hz;
+  loop_ = std::make_unique<ClosedLoop>(missionFlight(spec), setup);
+}
+
+Mission::~Mission() = default;
+
+const TickRecord& Mission::step() {
+  const TickRecord& t = loop_->step();
+  stages_.render_ms += t.timing.render_ms;
+  stages_.tracker_ms += t.timing.tracker_ms;
+  stages_.triangulation_ms += t.timing.triangulation_ms;
+  stages_.map_ms += t.timing.map_ms;
+  stages_.planning_ms += t.timing.planning_ms;
+  // The estimate → truth correction of the latest perception frame (true-frame coverage).
+  if (t.points) coverage_.setTrueFromEstimate(t.frame->T_W_C * t.points->T_W_C.inverse());
+  if (!t.completed) return t;
+  // Coverage sample after this tick's map update.
+  if (metric_schedule_.due(t.tick)) {
+    sample(t.t_s);
+    if (t.tick % (10 * int64_t(loop_->physicsHz())) == 0) stage_timeline_.emplace_back(t.t_s, stages_);
+  }
+  return t;
+}
+
+void Mission::sample(double t_s) {
+  const auto t0 = WallClock::now();
+  explorer_->markCoverage(coverage_.columns());
+  coverage_.sample(t_s, loop_->result().distance_flown_m, explorer_->snapshot().free_space);
+  stages_.metric_ms += msSince(t0);
+}
+
+MissionResult Mission::finish() {
+  MissionResult r;
+  r.flight = loop_->finish();
+  // Final sample (the end of the run) and records.
+  if (coverage_.samples().empty() || coverage_.samples().back().t_s < r.flight.sim_time_s) sample(r.flight.sim_time_s);
+  stage_timeline_.emplace_back(r.flight.sim_time_s, stages_);
+  r.coverage = coverage_.samples();
+  r.columns = coverage_.columns();
+  r.columns_gt = coverage_.trueFrameColumns();
+  r.final_map = explorer_->snapshot();
+  r.counters = explorer_->counters();
+  r.stages = stages_;
+  r.stage_timeline = stage_timeline_;
+  r.exploration_box = coverage_.box();
+  r.box_explorable_columns = coverage_.boxExplorableColumns();
+  r.map_hash = hashSnapshot(r.final_map);
+  r.run_hash = hashMission(r.flight.trajectory_hash, r.map_hash, r.columns, r.coverage);
+  return r;
+}
+
+MissionResult runMission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth) {
+  Mission mission(spec, box, truth);
+  while (mission.running()) mission.step();
+  return mission.finish();
+}
+
+}  // namespace msb

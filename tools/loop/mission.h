@@ -1,0 +1,84 @@
+// One exploration mission (`msbench run`, docs/architecture.md §2, §10): the closed loop with an exploration
+// method in it, plus the coverage metric sampled at its rate. A Mission is stepped like the
+// loop (step() returns what the tick produced) so that the caller can record perception or
+// print progress between ticks without callbacks; runMission() steps it to the end.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/common/aabb.h"
+#include "core/eval/mission_coverage.h"
+#include "core/planning/explorer.h"
+#include "tools/loop/closed_loop.h"
+#include "tools/loop/scenario_spec.h"
+
+namespace msb {
+
+/// Wall time per stage, summed over the mission (ms; recorded, never used).
+struct StageTimes {
+  double render_ms = 0, tracker_ms = 0, triangulation_ms = 0, map_ms = 0, planning_ms = 0, metric_ms = 0;
+};
+
+/// Everything a mission produced.
+struct MissionResult {
+  FlightResult flight;                     ///< status, collision, trajectory, timing
+  std::vector<CoverageSample> coverage;    ///< at the metric rate
+  ColumnCoverage columns;                  ///< explored columns (VIO frame)
+  ColumnCoverage columns_gt;               ///< explored columns (true frame)
+  ExplorerSnapshot final_map;              ///< the map at the end
+  std::map<std::string, double> counters;  ///< the method's counters at the end
+  StageTimes stages;
+  std::vector<std::pair<double, StageTimes>> stage_timeline;  ///< cumulative, every 10 simulated s
+  Aabb exploration_box;
+  int box_explorable_columns = 0;          ///< 0 if the world has no ground truth
+  uint64_t map_hash = 0;                   ///< FNV-1a over the final map snapshot
+  uint64_t run_hash = 0;                   ///< trajectory + map + coverage
+};
+
+/// Creates the exploration method named by spec.method_type (the method table).
+std::unique_ptr<Explorer> makeExplorer(const ScenarioSpec& spec, const FisheyeCamera& camera,
+                                       const ExplorerContext& context);
+
+/// A mission in progress.
+class Mission {
+ public:
+  /// `truth` (generated worlds) gives the box share and enables the oracle feature source;
+  /// `spec.flight.world_path` must be resolved and the start pose set. Throws ConfigError or
+  /// std::runtime_error on setup failures.
+  Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth);
+  ~Mission();
+
+  /// True until the run has ended.
+  bool running() const { return loop_->running(); }
+  /// One tick of the loop, then the coverage sample when due.
+  const TickRecord& step();
+  /// Final sample and records; call once, after the run has ended.
+  MissionResult finish();
+
+  /// The exploration method (counters for progress lines).
+  const Explorer& explorer() const { return *explorer_; }
+  /// Explored area so far (VIO frame, m²).
+  double areaM2() const { return coverage_.columns().areaM2(); }
+  /// The loop's tick rate.
+  int physicsHz() const { return loop_->physicsHz(); }
+
+ private:
+  void sample(double t_s);
+
+  ScenarioSpec spec_;
+  std::unique_ptr<Explorer> explorer_;
+  std::unique_ptr<ClosedLoop> loop_;
+  MissionCoverage coverage_;
+  RateSchedule metric_schedule_;
+  StageTimes stages_;
+  std::vector<std::pair<double, StageTimes>> stage_timeline_;
+};
+
+/// Runs a mission to its end.
+MissionResult runMission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth);
+
+}  // namespace msb
