@@ -68,7 +68,8 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
     : config_(checkValid(config)),
       context_(context),
       map_(config.map, camera, context.seed),
-      viewpoints_(config.planner.viewpoints, context.seed) {
+      viewpoints_(config.planner.viewpoints, context.seed),
+      takeoff_(context.start, config.planner.takeoff_altitude_m, config.planner.start_forward_m) {
   for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress",
                         "goals_failed_unreachable", "goals_failed_blocked", "goals_global", "blocked_stops",
                         "paths_sent", "idle_turns", "returns_to_free_space", "edges_blocked", "bridges", "relaxed_steps"})
@@ -91,34 +92,12 @@ PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Wayp
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {
-  const auto& pc = config_.planner;
-  const Vec3 start = context_.start.translation();
-  const double start_yaw = yawOf(context_.start.linear());
-  const Vec3 up = start + Vec3(0, 0, pc.takeoff_altitude_m);
-  std::optional<PathCommand> out;
-  switch (phase_) {
-    case Phase::kTakeoff:
-      if (!phase_sent_) {
-        out = command(s, {{up, start_yaw}});
-        phase_sent_ = true;
-      } else if (s.path_finished) {
-        phase_ = Phase::kStartForward;
-        phase_sent_ = false;
-      }
-      break;
-    case Phase::kStartForward:
-      if (!phase_sent_) {
-        out = command(s, {{up + pc.start_forward_m * Vec3(std::cos(start_yaw), std::sin(start_yaw), 0), start_yaw}});
-        phase_sent_ = true;
-      } else if (s.path_finished) {
-        phase_ = Phase::kExplore;
-      }
-      break;
-    case Phase::kExplore:
-      out = explore(s);
-      break;
+  // Take off first; then explore.
+  if (!takeoff_.done()) {
+    if (auto w = takeoff_.step(s.path_finished)) return command(s, std::move(*w));
+    return std::nullopt;
   }
-  return out;
+  return explore(s);
 }
 
 bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {

@@ -29,6 +29,7 @@
 #include "core/planning/explorer.h"
 #include "core/planning/path_shaping.h"
 #include "core/planning/sphere_graph_search.h"
+#include "core/planning/takeoff.h"
 #include "core/planning/viewpoint_set.h"
 
 namespace msb {
@@ -103,7 +104,6 @@ class MonoSpheresExplorer : public Explorer {
   uint64_t goal() const { return goal_; }
 
  private:
-  enum class Phase { kTakeoff, kStartForward, kExplore };
   // One exploration step, in the order of the file comment; each step below is one part of it.
   std::optional<PathCommand> explore(const VehicleState& s);
   EdgeFilter passable() const;                                        // graph edges not blocked
@@ -129,8 +129,7 @@ class MonoSpheresExplorer : public Explorer {
   ExplorerContext context_;
   SphereMap map_;
   ViewpointSet viewpoints_;
-  Phase phase_ = Phase::kTakeoff;
-  bool phase_sent_ = false;
+  TakeoffSequence takeoff_;
   uint64_t goal_ = 0;
   double goal_since_s_ = 0, best_remaining_m_ = 1e18, last_progress_s_ = 0;
   int local_misses_ = 0, blocked_steps_ = 0;

@@ -17,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // The folders that hold exploration methods (a new method adds its folder here).
-const char* const kMethodFolders[] = {"core/planning"};
+const char* const kMethodFolders[] = {"core/planning", "core/baseline"};
 
 // Every line of the C++ sources under `dir` that matches `rule`, as "file:line: text".
 std::vector<std::string> matchingLines(const fs::path& dir, const std::regex& rule, int* files = nullptr) {

@@ -172,6 +172,7 @@ void ClosedLoop::updateMap() {
   const auto t0 = WallClock::now();
   setup_.explorer->observe(*pending_points_);
   record_.timing.map_ms = msSince(t0);
+  record_.map_updated = true;
   pending_points_.reset();
 }
 

@@ -87,6 +87,7 @@ struct TickRecord {
   const TrackFrame* tracks = nullptr;        ///< perceived this tick
   const SlamPointsFrame* points = nullptr;   ///< SLAM points of this tick's frame
   const RenderTiming* render = nullptr;      ///< render split of this tick's frame
+  bool map_updated = false;                  ///< the explorer integrated SLAM points this tick
   TickTiming timing;
 };
 

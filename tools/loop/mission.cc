@@ -1,16 +1,8 @@
 #include "tools/loop/mission.h"
 
 #include "core/common/wall_time.h"
-#include "core/planning/monospheres_explorer.h"
 
 namespace msb {
-
-std::unique_ptr<Explorer> makeExplorer(const ScenarioSpec& spec, const FisheyeCamera& camera,
-                                       const ExplorerContext& context) {
-  // The method table: one line per registered method type (ScenarioSpec::methodTypes()).
-  if (spec.method_type == "monospheres") return std::make_unique<MonoSpheresExplorer>(spec.monospheres, camera, context);
-  throw std::runtime_error("unknown method type '" + spec.method_type + "'");
-}
 
 namespace {
 
@@ -34,7 +26,7 @@ FlightSpec missionFlight(const ScenarioSpec& spec) {
 
 Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth)
     : spec_(checkValid(spec)),
-      explorer_(makeExplorer(spec, FisheyeCamera(spec.flight.camera), explorerContext(spec, box))),
+      explorer_(spec.method.make(FisheyeCamera(spec.flight.camera), explorerContext(spec, box))),
       coverage_(box, truth ? boxExplorableNodes(*truth, box, ColumnCoverage().cellM()) : 0),
       metric_schedule_(spec.flight.physics.physics_hz, spec.mission.metric_rate_hz, "mission.metric_rate_hz") {
   LoopSetup setup;
@@ -55,6 +47,7 @@ const TickRecord& Mission::step() {
   stages_.triangulation_ms += t.timing.triangulation_ms;
   stages_.map_ms += t.timing.map_ms;
   stages_.planning_ms += t.timing.planning_ms;
+  if (t.map_updated) map_update_ms_.push_back(t.timing.map_ms);
   // The estimate → truth correction of the latest perception frame (true-frame coverage).
   if (t.points) coverage_.setTrueFromEstimate(t.frame->T_W_C * t.points->T_W_C.inverse());
   if (!t.completed) return t;
@@ -86,6 +79,7 @@ MissionResult Mission::finish() {
   r.counters = explorer_->counters();
   r.stages = stages_;
   r.stage_timeline = stage_timeline_;
+  r.map_update_ms = map_update_ms_;
   r.exploration_box = coverage_.box();
   r.box_explorable_columns = coverage_.boxExplorableColumns();
   r.map_hash = hashSnapshot(r.final_map);

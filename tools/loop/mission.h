@@ -33,15 +33,12 @@ struct MissionResult {
   std::map<std::string, double> counters;  ///< the method's counters at the end
   StageTimes stages;
   std::vector<std::pair<double, StageTimes>> stage_timeline;  ///< cumulative, every 10 simulated s
+  std::vector<double> map_update_ms;       ///< wall time of every map update (recorded only)
   Aabb exploration_box;
   int box_explorable_columns = 0;          ///< 0 if the world has no ground truth
   uint64_t map_hash = 0;                   ///< FNV-1a over the final map snapshot
   uint64_t run_hash = 0;                   ///< trajectory + map + coverage
 };
-
-/// Creates the exploration method named by spec.method_type (the method table).
-std::unique_ptr<Explorer> makeExplorer(const ScenarioSpec& spec, const FisheyeCamera& camera,
-                                       const ExplorerContext& context);
 
 /// A mission in progress.
 class Mission {
@@ -76,6 +73,7 @@ class Mission {
   RateSchedule metric_schedule_;
   StageTimes stages_;
   std::vector<std::pair<double, StageTimes>> stage_timeline_;
+  std::vector<double> map_update_ms_;
 };
 
 /// Runs a mission to its end.

@@ -12,18 +12,13 @@ void MissionSettings::validate(ConfigChecker& c) const {
 }
 
 void ScenarioSpec::validate(ConfigChecker& c) const {
-  const auto types = methodTypes();
-  std::string names;
-  for (const auto& t : types) names += (names.empty() ? "" : ", ") + t;
-  c.require(std::find(types.begin(), types.end(), method_type) != types.end(), "method.type",
-            "unknown method '" + method_type + "' (known: " + names + ")");
+  c.require(bool(method.make), "method", "no exploration method chosen");
   flight.validate(c);
   c.require(flight.perception.enabled, "perception.enabled", "must be true for a mission");
   c.require(flight.camera_stream.enabled, "camera_stream.enabled", "must be true for a mission");
   if (exploration_box)
     c.require((exploration_box->max.array() > exploration_box->min.array()).all(), "exploration_box",
               "max must exceed min on every axis");
-  c.nested("method", monospheres);
   c.nested("mission", mission);
 }
 

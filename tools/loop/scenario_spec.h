@@ -8,19 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "core/geometry/world_truth.h"
-#include "core/planning/monospheres_explorer.h"
+#include "core/common/aabb.h"
+#include "tools/loop/methods.h"
 #include "tools/loop/flight_spec.h"
 
 namespace msb {
-
-/// The four switches of the paper's ablation (Table I).
-struct MethodSwitches {
-  bool ovde = true;  ///< open-area virtual depth (mapper)
-  bool dbof = true;  ///< distance-based obstacle filtering (mapper)
-  bool fff = true;   ///< forced forward flight (planner)
-  bool vpb = true;   ///< visited-viewpoint blocking (planner)
-};
 
 /// The closed loop's rates and outputs.
 struct MissionSettings {
@@ -38,16 +30,12 @@ struct MissionSettings {
 /// Everything `msbench run` needs.
 struct ScenarioSpec {
   std::string name;                 ///< run name (defaults to the file's stem)
-  std::string method_type = "monospheres";  ///< registered exploration method
   FlightSpec flight;                ///< world, seed, duration, start, vehicle, sensors
   bool start_from_world = true;     ///< take start pose from the generated world unless `start` is given
   std::optional<Aabb> exploration_box;  ///< overrides the world's box
-  MethodSwitches switches;
-  MonoSpheresConfig monospheres;    ///< method "monospheres"
+  MethodChoice method = monospheresMethod();  ///< the exploration method and its config
   MissionSettings mission;
 
-  /// The names `method.type` accepts.
-  static std::vector<std::string> methodTypes() { return {"monospheres"}; }
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };

@@ -22,16 +22,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Progress on stderr every 10 simulated seconds: time, real-time factor, coverage, ETA.
+// Progress on stderr every 10 simulated seconds: time, real-time factor, coverage, the
+// method's main counters, ETA.
 void printProgress(const std::string& name, double duration_s, double sim_s, double wall_s, double area,
                    const std::map<std::string, double>& c) {
   const double rtf = sim_s / std::max(wall_s, 1e-9);
   auto get = [&c](const char* k) { const auto it = c.find(k); return it == c.end() ? 0.0 : it->second; };
-  std::fprintf(stderr,
-               "run %s: t = %.0f / %.0f s, RTF %.2f, A = %.0f m², spheres %.0f (%.0f reachable), viewpoints %.0f, "
-               "goals reached %.0f of %.0f, ETA %.0f s\n",
-               name.c_str(), sim_s, duration_s, rtf, area, get("spheres"), get("reachable_spheres"), get("viewpoints"),
-               get("goals_reached"), get("goals_chosen"), (duration_s - sim_s) / std::max(rtf, 1e-9));
+  std::string map = c.count("spheres") ? "spheres " + std::to_string(long(get("spheres"))) + " (" +
+                                             std::to_string(long(get("reachable_spheres"))) + " reachable), viewpoints " +
+                                             std::to_string(long(get("viewpoints")))
+                                       : "leaves " + std::to_string(long(get("leaves")));
+  std::fprintf(stderr, "run %s: t = %.0f / %.0f s, RTF %.2f, A = %.0f m², %s, goals reached %.0f of %.0f, ETA %.0f s\n",
+               name.c_str(), sim_s, duration_s, rtf, area, map.c_str(), get("goals_reached"), get("goals_chosen"),
+               (duration_s - sim_s) / std::max(rtf, 1e-9));
 }
 
 }  // namespace
@@ -42,7 +45,7 @@ int runRunCommand(int argc, char** argv) {
                  "Run one exploration mission headless. Writes config.yaml (effective scenario),\n"
                  "metrics.json, coverage.csv, trajectory.csv, timing.csv, map.ply and topdown.png\n"
                  "into DIR. --set KEY=VALUE (repeatable) overrides a scenario key, e.g.\n"
-                 "--set switches.fff=false --set method.planner.local_radius_m=20.");
+                 "--set method.switches.fff=false --set method.planner.local_radius_m=20.");
   args.positional("SCENARIO.yaml", "scenario file (see scenarios/)")
       .option("out", "", "output directory (created; must not hold results)", true)
       .option("seed", "", "override the scenario seed")

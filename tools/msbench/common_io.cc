@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
@@ -78,6 +79,14 @@ double percentile(std::vector<double> v, double q) {
   const size_t k = std::min(v.size() - 1, size_t(q * (v.size() - 1) + 0.5));
   std::nth_element(v.begin(), v.begin() + k, v.end());
   return v[k];
+}
+
+double peakRssMb() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::strtod(line.c_str() + 6, nullptr) / 1024.0;  // kB
+  return 0.0;
 }
 
 std::string hexHash(uint64_t h) {

@@ -41,6 +41,9 @@ class ProgressLine {
 /// The q-quantile (0..1, nearest rank) of a sample; 0 for an empty one.
 double percentile(std::vector<double> values, double q);
 
+/// Peak resident memory of this process in MiB (VmHWM; 0 where /proc is unavailable).
+double peakRssMb();
+
 /// 16-digit hexadecimal form of a hash.
 std::string hexHash(uint64_t h);
 

@@ -30,9 +30,8 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r) 
   j["status"] = f.status;
   j["seed"] = spec.flight.seed;
   j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
-  j["method"] = spec.method_type;
-  j["switches"] = {{"ovde", spec.switches.ovde}, {"dbof", spec.switches.dbof}, {"fff", spec.switches.fff},
-                   {"vpb", spec.switches.vpb}};
+  j["method"] = spec.method.type;
+  j["switches"] = spec.method.switches;
   j["duration_s"] = spec.flight.duration_s;
   j["sim_time_s"] = f.sim_time_s;
   const double cell2 = r.columns.cellM() * r.columns.cellM();
@@ -67,6 +66,11 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r) 
   st["other"] = (f.wall_time_s * 1000.0 - known) / sim;
   st["total"] = f.wall_time_s * 1000.0 / sim;
   j["wall_ms_per_sim_second"] = st;
+  j["map_update_ms"] = {{"updates", r.map_update_ms.size()},
+                        {"median", percentile(r.map_update_ms, 0.5)},
+                        {"p99", percentile(r.map_update_ms, 0.99)},
+                        {"max", percentile(r.map_update_ms, 1.0)}};
+  j["peak_rss_mb"] = peakRssMb();
   j["counters"] = r.counters;
   j["versions"] = versionInfo();
   j["trajectory_hash"] = hexHash(f.trajectory_hash);

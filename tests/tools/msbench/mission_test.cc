@@ -65,6 +65,29 @@ TEST(Mission, ShortMissionExploresAndIsDeterministic) {
   EXPECT_EQ(readText(d / "a" / "trajectory.csv"), readText(d / "b" / "trajectory.csv"));
 }
 
+TEST(Mission, ShortGridMissionExploresAndIsDeterministic) {
+  const std::string grid = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/test_world_grid_short.yaml";
+  const fs::path d = tempDir("grid");
+  for (const char* run_dir : {"a", "b"})
+    ASSERT_EQ(run("run '" + grid + "' --duration 30 --quiet --out '" + (d / run_dir).string() + "'", d / "log"), 0)
+        << readText(d / "log");
+  const auto m = nlohmann::json::parse(readText(d / "a" / "metrics.json"));
+  EXPECT_EQ(m["status"], "completed") << m.dump(2);
+  EXPECT_EQ(m["method"], "grid_random");
+  EXPECT_GE(m["counters"]["goals_chosen"].get<double>(), 2.0);
+  EXPECT_GE(m["distance_flown_m"].get<double>(), 20.0);
+  EXPECT_GE(m["coverage"]["area_box_m2"].get<double>(), 300.0);
+  EXPECT_GT(m["map_update_ms"]["updates"].get<double>(), 100.0);
+  const auto rows = coverage(d / "a" / "coverage.csv");
+  ASSERT_EQ(rows.size(), 31u);
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_GE(rows[i].second, rows[i - 1].second);
+  // Deterministic: the same hash, map and trajectory twice.
+  const auto m2 = nlohmann::json::parse(readText(d / "b" / "metrics.json"));
+  EXPECT_EQ(m["determinism_hash"], m2["determinism_hash"]);
+  EXPECT_EQ(readText(d / "a" / "map.ply"), readText(d / "b" / "map.ply"));
+  EXPECT_EQ(readText(d / "a" / "trajectory.csv"), readText(d / "b" / "trajectory.csv"));
+}
+
 TEST(Mission, BadScenarioExitsWith2AndWritesNothing) {
   const fs::path d = tempDir("bad");
   const fs::path out = d / "out";
@@ -72,6 +95,9 @@ TEST(Mission, BadScenarioExitsWith2AndWritesNothing) {
   EXPECT_NE(readText(d / "log").find("method.planner.bogus"), std::string::npos) << readText(d / "log");
   EXPECT_EQ(run("run '" + kScenario + "' --seed -3 --out '" + out.string() + "'", d / "log"), 2);
   EXPECT_NE(readText(d / "log").find("seed"), std::string::npos) << readText(d / "log");
+  // A key of another method.
+  EXPECT_EQ(run("run '" + kScenario + "' --set method.goal_square_m=30 --out '" + out.string() + "'", d / "log"), 2);
+  EXPECT_NE(readText(d / "log").find("method.goal_square_m"), std::string::npos) << readText(d / "log");
   EXPECT_EQ(run("run nowhere.yaml --out '" + out.string() + "'", d / "log"), 2);
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(d / "out.partial"));

@@ -1,0 +1,166 @@
+#include "core/baseline/grid_explorer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace msb {
+
+void GridExplorerConfig::validate(ConfigChecker& c) const {
+  c.nested("map", map);
+  c.nested("planner", planner);
+  c.positive("goal_period_s", goal_period_s);
+  c.positive("goal_timeout_s", goal_timeout_s);
+  c.positive("goal_square_m", goal_square_m);
+  c.nonNegative("goal_min_altitude_m", goal_min_altitude_m);
+  c.nonNegative("goal_ceiling_margin_m", goal_ceiling_margin_m);
+  c.positive("replan_period_s", replan_period_s);
+  c.positive("reach_distance_m", reach_distance_m);
+  c.nonNegative("check_ahead_m", check_ahead_m);
+  c.nonNegative("check_clearance_m", check_clearance_m);
+  c.inRange("takeoff_altitude_m", takeoff_altitude_m, 0.3, 50.0);
+  c.nonNegative("start_forward_m", start_forward_m);
+}
+
+GridExplorer::GridExplorer(const GridExplorerConfig& config, const ExplorerContext& context)
+    : config_(checkValid(config)),
+      context_(context),
+      map_(config.map),
+      planner_(config.planner, context.exploration_box, config.map.resolution_m),
+      goal_rng_(context.seed, "baseline_goals"),
+      takeoff_(context.start, config.takeoff_altitude_m, config.start_forward_m) {
+  for (const char* k : {"goals_chosen", "goals_reached", "goals_timed_out", "goals_idle", "paths_sent",
+                        "paths_to_closest_cell", "paths_failed", "blocked_stops", "map_points"})
+    counters_[k] = 0;
+}
+
+void GridExplorer::observe(const SlamPointsFrame& frame) {
+  counters_["map_points"] += map_.insert(frame).points;
+  map_changed_ = true;
+}
+
+Vec3 GridExplorer::drawGoal(const Vec3& p) {
+  // Uniform in the square around the vehicle intersected with the box, height in the band.
+  const Aabb& box = context_.exploration_box;
+  const double h = 0.5 * config_.goal_square_m;
+  Vec2 lo = (p.head<2>() - Vec2::Constant(h)).cwiseMax(box.min.head<2>());
+  Vec2 hi = (p.head<2>() + Vec2::Constant(h)).cwiseMin(box.max.head<2>());
+  if ((hi.array() < lo.array()).any()) lo = box.min.head<2>(), hi = box.max.head<2>();  // vehicle far outside
+  double z_lo = std::max(box.min.z(), config_.goal_min_altitude_m);
+  double z_hi = box.max.z() - config_.goal_ceiling_margin_m;
+  if (z_hi < z_lo) z_lo = z_hi = 0.5 * (box.min.z() + box.max.z());
+  const double x = goal_rng_.uniform(lo.x(), hi.x()), y = goal_rng_.uniform(lo.y(), hi.y());
+  const double z = goal_rng_.uniform(z_lo, z_hi);
+  return Vec3(x, y, z);
+}
+
+PathCommand GridExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
+  PathCommand cmd{s.tick, std::move(w)};
+  last_path_ = {s.reference.position_m};
+  for (const auto& wp : cmd.waypoints) last_path_.push_back(wp.position_m);
+  ++counters_["paths_sent"];
+  return cmd;
+}
+
+std::optional<PathCommand> GridExplorer::plan(const VehicleState& s) {
+  // Take off first; then explore.
+  if (!takeoff_.done()) {
+    if (auto w = takeoff_.step(s.path_finished)) return command(s, std::move(*w));
+    return std::nullopt;
+  }
+  return explore(s);
+}
+
+bool GridExplorer::pathBlocked(const Vec3& from) const {
+  // Samples every 0.25 m along the first check_ahead_m of the last path, from the vehicle on.
+  if (last_path_.size() < 2) return false;
+  double s = 0;
+  Vec3 a = from;
+  for (size_t i = 1; i < last_path_.size() && s < config_.check_ahead_m; ++i) {
+    const Vec3 b = last_path_[i];
+    const double len = (b - a).norm();
+    for (double t = 0.25; t <= len && s + t <= config_.check_ahead_m; t += 0.25)
+      if (map_.occupiedWithin(a + t / len * (b - a), config_.check_clearance_m)) return true;
+    s += len;
+    a = b;
+  }
+  return false;
+}
+
+std::optional<PathCommand> GridExplorer::explore(const VehicleState& s) {
+  const Vec3 p = s.T_W_B.translation();
+  // Goal bookkeeping every goal period: reached, idle or timed out → a new goal.
+  if (s.t_s - last_goal_check_s_ >= config_.goal_period_s - 1e-9) {
+    last_goal_check_s_ = s.t_s;
+    bool need_goal = !goal_;
+    if (goal_ && (*goal_ - p).norm() <= config_.reach_distance_m) {
+      ++counters_["goals_reached"];
+      need_goal = true;
+    } else if (goal_ && path_sent_ && s.path_finished) {
+      ++counters_["goals_idle"];  // arrived at the closest reachable cell, or nowhere to go
+      need_goal = true;
+    } else if (goal_ && s.t_s - goal_since_s_ >= config_.goal_timeout_s) {
+      ++counters_["goals_timed_out"];
+      need_goal = true;
+    }
+    if (need_goal) {
+      goal_ = drawGoal(p);
+      goal_since_s_ = s.t_s;
+      path_sent_ = false;
+      replan_now_ = true;
+      ++counters_["goals_chosen"];
+    }
+  }
+  if (!goal_) return std::nullopt;
+
+  // The predicted-path check: stop and re-plan when the path ahead nears an occupied cell.
+  if (path_sent_ && !s.path_finished && pathBlocked(s.reference.position_m)) {
+    ++counters_["blocked_stops"];
+    replan_now_ = true;
+    last_plan_s_ = s.t_s;
+    return command(s, {{s.reference.position_m, std::nullopt}});
+  }
+
+  // Re-plan every replan period (or at once after a new goal or a stop).
+  if (!replan_now_ && s.t_s - last_plan_s_ < config_.replan_period_s - 1e-9) return std::nullopt;
+  replan_now_ = false;
+  last_plan_s_ = s.t_s;
+  if (map_changed_) {
+    planner_.rebuild(map_);
+    map_changed_ = false;
+  }
+  const std::optional<GridPath> path = planner_.plan(s.reference.position_m, *goal_);
+  if (!path || path->points.size() < 2) {
+    ++counters_["paths_failed"];
+    path_sent_ = true;  // nothing to fly: idle, a new goal at the next goal check
+    return command(s, {{s.reference.position_m, std::nullopt}});
+  }
+  if (!path->reaches_goal) ++counters_["paths_to_closest_cell"];
+  std::vector<Waypoint> w;
+  for (size_t i = 1; i < path->points.size(); ++i) w.push_back({path->points[i], std::nullopt});
+  path_sent_ = true;
+  return command(s, std::move(w));
+}
+
+void GridExplorer::markCoverage(ColumnCoverage& coverage) const {
+  for (const GridLeaf& leaf : map_.leaves(false)) coverage.markSquare(leaf.centre.head<2>(), 0.5 * leaf.size_m);
+}
+
+ExplorerSnapshot GridExplorer::snapshot() const {
+  ExplorerSnapshot snap;
+  // Free leaves as their inscribed spheres; occupied leaves as points.
+  for (const GridLeaf& leaf : map_.leaves(false)) snap.free_space.push_back({leaf.id, leaf.centre, 0.5 * leaf.size_m});
+  for (const GridLeaf& leaf : map_.leaves(true)) snap.obstacles.push_back(leaf.centre);
+  if (goal_) snap.goal = ExplorerSnapshot::Pose2{*goal_, 0.0};
+  snap.path = last_path_;
+  return snap;
+}
+
+std::map<std::string, double> GridExplorer::counters() const {
+  auto c = counters_;
+  const auto& tree = map_.tree();
+  c["leaves"] = double(tree.getNumLeafNodes());
+  c["map_memory_mb"] = double(tree.memoryUsage()) / (1024.0 * 1024.0);
+  return c;
+}
+
+}  // namespace msb

@@ -1,0 +1,93 @@
+// The grid-based baseline of the paper's Table I (architecture §9, `method.type: grid_random`):
+// an OctoMap occupancy grid built from the SLAM points, random goals, and grid A*.
+//
+// Each planning step (estimate frame):
+//   1. take off like every method (climb, short straight stretch);
+//   2. every goal_period_s: when idle (no goal, or the last path is done) or after
+//      goal_timeout_s on the same goal, draw a new goal uniformly in the square of side
+//      goal_square_m around the vehicle intersected with the exploration box, at a height
+//      uniform in the box's band (stream `baseline_goals`);
+//   3. every replan_period_s (and after a stop): A* from the vehicle to the goal keeping
+//      clearance_m from occupied cells — to the reachable cell closest to the goal when the
+//      goal cannot be reached — sent as waypoints without headings (the camera faces the
+//      direction of travel);
+//   4. the predicted-path check: if the first check_ahead_m of the path pass within
+//      check_clearance_m of an occupied cell, stop and re-plan.
+// Coverage: a column is explored once its node lies in the xy footprint of a free leaf (the
+// leaf's real size after pruning).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/baseline/grid_map.h"
+#include "core/baseline/grid_path_planner.h"
+#include "core/common/rng.h"
+#include "core/planning/explorer.h"
+#include "core/planning/takeoff.h"
+
+namespace msb {
+
+/// Grid explorer settings (reference values; see docs/deviations.md for the replanning rate).
+struct GridExplorerConfig {
+  GridMapConfig map;                  ///< OctoMap insertion
+  GridPlannerConfig planner;          ///< A* and clearance
+  double goal_period_s = 1.0;         ///< goals are (re)drawn at most this often
+  double goal_timeout_s = 20.0;       ///< a goal is abandoned after this long
+  double goal_square_m = 40.0;        ///< side of the square around the vehicle goals are drawn in
+  double goal_min_altitude_m = 1.0;   ///< goal heights: the box band clipped to this ...
+  double goal_ceiling_margin_m = 0.5; ///< ... and to this far below the box top
+  double replan_period_s = 1.0;       ///< path re-planned this often (reference code: 1 s; paper: 0.2 s)
+  double reach_distance_m = 1.0;      ///< a goal this close counts as reached
+  double check_ahead_m = 5.0;         ///< predicted-path check length ...
+  double check_clearance_m = 1.0;     ///< ... and clearance from occupied cells
+  double takeoff_altitude_m = 2.0;    ///< climb above the start
+  double start_forward_m = 4.0;       ///< then fly this far ahead
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// The grid explorer.
+class GridExplorer : public Explorer {
+ public:
+  /// Throws ConfigError.
+  GridExplorer(const GridExplorerConfig& config, const ExplorerContext& context);
+
+  std::string type() const override { return "grid_random"; }
+  void observe(const SlamPointsFrame& frame) override;
+  std::optional<PathCommand> plan(const VehicleState& vehicle) override;
+  void markCoverage(ColumnCoverage& coverage) const override;
+  ExplorerSnapshot snapshot() const override;
+  std::map<std::string, double> counters() const override;
+
+  /// The map (tests, tools).
+  const GridMap& map() const { return map_; }
+  GridMap& mutableMap() { return map_; }
+  /// The current goal, if any.
+  const std::optional<Vec3>& goal() const { return goal_; }
+  /// Draws a goal for a vehicle at p (advances the goal stream; tests).
+  Vec3 drawGoal(const Vec3& p);
+
+ private:
+  std::optional<PathCommand> explore(const VehicleState& s);
+  PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
+  bool pathBlocked(const Vec3& from) const;
+
+  GridExplorerConfig config_;
+  ExplorerContext context_;
+  GridMap map_;
+  GridPathPlanner planner_;
+  RngStream goal_rng_;
+  TakeoffSequence takeoff_;
+  bool map_changed_ = true;
+  std::optional<Vec3> goal_;
+  bool path_sent_ = false, replan_now_ = false;
+  double goal_since_s_ = 0, last_goal_check_s_ = -1e9, last_plan_s_ = -1e9;
+  std::vector<Vec3> last_path_;
+  std::map<std::string, double> counters_;
+};
+
+}  // namespace msb

@@ -1,0 +1,210 @@
+#include "core/baseline/grid_path_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace msb {
+
+void GridPlannerConfig::validate(ConfigChecker& c) const {
+  c.nonNegative("clearance_m", clearance_m);
+  c.nonNegative("escape_radius_m", escape_radius_m);
+  c.inRange("max_expansions", max_expansions, 1000, 100000000);
+}
+
+GridPathPlanner::GridPathPlanner(const GridPlannerConfig& config, const Aabb& box, double resolution_m)
+    : config_(checkValid(config)), box_(box), res_(resolution_m) {
+  if (!(resolution_m > 0) || (box.max.array() <= box.min.array()).any())
+    throw ConfigError("exploration_box", "must have a positive size for the grid planner");
+  // Cells aligned with the OctoMap grid (boundaries at multiples of the resolution).
+  origin_ = (box.min / res_).array().floor().matrix() * res_;
+  const Vec3 n = ((box.max - origin_) / res_).array().ceil();
+  nx_ = std::max(1, int(n.x()));
+  ny_ = std::max(1, int(n.y()));
+  nz_ = std::max(1, int(n.z()));
+  if (double(nx_) * ny_ * nz_ > 4e8) throw ConfigError("exploration_box", "too large for the grid planner");
+  blocked_.assign(size_t(nx_) * ny_ * nz_, 0);
+}
+
+bool GridPathPlanner::cellOf(const Vec3& p, int* i, int* j, int* k) const {
+  const Vec3 q = (p - origin_) / res_;
+  *i = int(std::floor(q.x()));
+  *j = int(std::floor(q.y()));
+  *k = int(std::floor(q.z()));
+  return *i >= 0 && *j >= 0 && *k >= 0 && *i < nx_ && *j < ny_ && *k < nz_;
+}
+
+Vec3 GridPathPlanner::centre(int i, int j, int k) const {
+  return origin_ + res_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
+}
+
+bool GridPathPlanner::traversable(const Vec3& p) const {
+  int i, j, k;
+  return cellOf(p, &i, &j, &k) && !blocked_[size_t(index(i, j, k))];
+}
+
+long GridPathPlanner::blockedCells() const { return long(std::count(blocked_.begin(), blocked_.end(), 1)); }
+
+void GridPathPlanner::rebuild(const GridMap& map) {
+  std::fill(blocked_.begin(), blocked_.end(), 0);
+  // Offsets of the cells whose centres lie within the clearance of a cell centre.
+  const int r = int(std::floor(config_.clearance_m / res_ + 1e-9));
+  std::vector<std::array<int, 3>> offsets;
+  for (int dz = -r; dz <= r; ++dz)
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx)
+        if (res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz)) <= config_.clearance_m + 1e-9)
+          offsets.push_back({dx, dy, dz});
+  // Every occupied cell (a pruned leaf covers several) blocks its neighbourhood.
+  const Vec3 margin = Vec3::Constant(config_.clearance_m + res_);
+  for (const GridLeaf& leaf : map.leaves(true)) {
+    const double h = 0.5 * leaf.size_m;
+    if (((leaf.centre.array() + h) < (box_.min - margin).array()).any() ||
+        ((leaf.centre.array() - h) > (box_.max + margin).array()).any())
+      continue;
+    const int n = std::max(1, int(std::lround(leaf.size_m / res_)));
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        for (int c = 0; c < n; ++c) {
+          const Vec3 cell = leaf.centre - Vec3::Constant(h) + res_ * Vec3(a + 0.5, b + 0.5, c + 0.5);
+          const Vec3 q = (cell - origin_) / res_;
+          const int ci = int(std::floor(q.x())), cj = int(std::floor(q.y())), ck = int(std::floor(q.z()));
+          for (const auto& o : offsets) {
+            const int i = ci + o[0], j = cj + o[1], k = ck + o[2];
+            if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_) continue;
+            blocked_[size_t(index(i, j, k))] = 1;
+          }
+        }
+  }
+  // Optionally, unknown space is not traversable either.
+  if (config_.unknown_is_occupied)
+    for (int k = 0; k < nz_; ++k)
+      for (int j = 0; j < ny_; ++j)
+        for (int i = 0; i < nx_; ++i) {
+          uint8_t& b = blocked_[size_t(index(i, j, k))];
+          if (!b && map.occupancy(centre(i, j, k)) < 0) b = 1;
+        }
+}
+
+std::optional<GridPath> GridPathPlanner::plan(const Vec3& start_in, const Vec3& goal_in) const {
+  // Start and goal cells (clamped into the box; a start far outside cannot be planned from).
+  auto clampCell = [&](const Vec3& p, int* i, int* j, int* k) {
+    const Vec3 q = (p - origin_) / res_;
+    *i = std::clamp(int(std::floor(q.x())), 0, nx_ - 1);
+    *j = std::clamp(int(std::floor(q.y())), 0, ny_ - 1);
+    *k = std::clamp(int(std::floor(q.z())), 0, nz_ - 1);
+  };
+  const Vec3 lo = origin_ - Vec3::Constant(res_), hi = origin_ + res_ * Vec3(nx_ + 1, ny_ + 1, nz_ + 1);
+  if ((start_in.array() < lo.array()).any() || (start_in.array() > hi.array()).any()) return std::nullopt;
+  int si, sj, sk, gi, gj, gk;
+  clampCell(start_in, &si, &sj, &sk);
+  clampCell(goal_in, &gi, &gj, &gk);
+  const Vec3 start_c = centre(si, sj, sk), goal_c = centre(gi, gj, gk);
+  const int64_t start = index(si, sj, sk), goal = index(gi, gj, gk);
+  const double escape2 = config_.escape_radius_m * config_.escape_radius_m;
+  auto passable = [&](int i, int j, int k) {
+    if (!blocked_[size_t(index(i, j, k))]) return true;
+    return (centre(i, j, k) - start_c).squaredNorm() <= escape2;  // leaving a blocked start
+  };
+
+  // A* over cells; g in metres, parent per cell; ties by the lower cell index.
+  const size_t n = blocked_.size();
+  std::vector<float> g(n, std::numeric_limits<float>::infinity());
+  std::vector<int64_t> parent(n, -1);
+  std::vector<uint8_t> closed(n, 0);
+  using Entry = std::pair<double, int64_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  g[size_t(start)] = 0;
+  open.push({(goal_c - start_c).norm(), start});
+  int64_t best = start;
+  double best_d = (goal_c - start_c).norm();
+  int expansions = 0;
+  while (!open.empty() && expansions < config_.max_expansions) {
+    const auto [f, cur] = open.top();
+    open.pop();
+    if (closed[size_t(cur)]) continue;
+    closed[size_t(cur)] = 1;
+    ++expansions;
+    const int ci = int(cur % nx_), cj = int((cur / nx_) % ny_), ck = int(cur / (int64_t(nx_) * ny_));
+    const double d_goal = (centre(ci, cj, ck) - goal_c).norm();
+    if (d_goal < best_d - 1e-12) best_d = d_goal, best = cur;
+    if (cur == goal) break;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if (!dx && !dy && !dz) continue;
+          const int i = ci + dx, j = cj + dy, k = ck + dz;
+          if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_ || !passable(i, j, k)) continue;
+          const int64_t nb = index(i, j, k);
+          if (closed[size_t(nb)]) continue;
+          const double ng = g[size_t(cur)] + res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
+          if (ng >= g[size_t(nb)]) continue;
+          g[size_t(nb)] = float(ng);
+          parent[size_t(nb)] = cur;
+          open.push({ng + (centre(i, j, k) - goal_c).norm(), nb});
+        }
+  }
+
+  // Cells from the start to the goal (or the reached cell closest to it).
+  GridPath out;
+  out.reaches_goal = best == goal;
+  out.expansions = expansions;
+  std::vector<Vec3> cells;
+  for (int64_t c = best; c >= 0; c = parent[size_t(c)])
+    cells.push_back(centre(int(c % nx_), int((c / nx_) % ny_), int(c / (int64_t(nx_) * ny_))));
+  std::reverse(cells.begin(), cells.end());
+  cells.front() = start_in;
+  if (out.reaches_goal && cells.size() > 1 && traversable(goal_in)) cells.back() = goal_in;
+
+  // Line-of-sight shortcuts: every cell the segment passes through (3D DDA; at an edge or a
+  // corner the cells beside it count too) must be passable.
+  auto cellPassable = [&](const Eigen::Vector3i& c) {
+    return c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() < nx_ && c.y() < ny_ && c.z() < nz_ &&
+           passable(c.x(), c.y(), c.z());
+  };
+  auto clear = [&](const Vec3& a, const Vec3& b) {
+    const Vec3 p0 = (a - origin_) / res_, d = (b - a) / res_;
+    Eigen::Vector3i c = p0.array().floor().cast<int>();
+    const Eigen::Vector3i last = (p0 + d).array().floor().cast<int>();
+    Eigen::Vector3i step;
+    Vec3 t_max, t_delta;
+    for (int k = 0; k < 3; ++k) {
+      step[k] = d[k] > 0 ? 1 : (d[k] < 0 ? -1 : 0);
+      t_delta[k] = step[k] ? 1.0 / std::abs(d[k]) : 1e300;
+      t_max[k] = step[k] ? ((c[k] + (step[k] > 0)) - p0[k]) / d[k] : 1e300;
+    }
+    for (int guard = 0; guard < 100000; ++guard) {
+      if (!cellPassable(c)) return false;
+      if (c == last) return true;
+      const double t = t_max.minCoeff();
+      if (t > 1.0) return true;
+      bool tied[3];
+      int n_tied = 0;
+      for (int k = 0; k < 3; ++k) n_tied += (tied[k] = t_max[k] <= t + 1e-12);
+      Eigen::Vector3i next = c;
+      for (int k = 0; k < 3; ++k) {
+        if (!tied[k]) continue;
+        if (n_tied > 1) {  // through an edge or a corner: the cells beside it count too
+          Eigen::Vector3i side = c;
+          side[k] += step[k];
+          if (!cellPassable(side)) return false;
+        }
+        next[k] += step[k];
+        t_max[k] += t_delta[k];
+      }
+      c = next;
+    }
+    return false;
+  };
+  out.points.push_back(cells.front());
+  size_t from = 0;
+  while (from + 1 < cells.size()) {
+    size_t to = cells.size() - 1;
+    while (to > from + 1 && !clear(cells[from], cells[to])) --to;
+    out.points.push_back(cells[to]);
+    from = to;
+  }
+  return out;
+}
+
+}  // namespace msb

@@ -1,0 +1,69 @@
+// Grid A* for the baseline (architecture §9): a dense traversability grid over the exploration
+// box, aligned with the OctoMap cells, rebuilt from the map before planning. A cell is blocked
+// when its centre lies within `clearance_m` of an occupied cell's centre (and, with
+// `unknown_is_occupied`, when it is unknown; by default unknown space is traversable, as in the
+// reference). A* (26-neighbour moves, Euclidean heuristic, ties broken by cell index) searches
+// from the vehicle's cell; when the goal cannot be reached it returns the path to the reached
+// cell closest to the goal. A vehicle that finds itself in blocked cells (new points appeared
+// close to it) may leave through cells within `escape_radius_m` of its start. The path is
+// shortened by line-of-sight shortcuts over traversable cells.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/baseline/grid_map.h"
+#include "core/common/aabb.h"
+#include "core/common/config_check.h"
+
+namespace msb {
+
+/// Grid planner settings.
+struct GridPlannerConfig {
+  double clearance_m = 1.5;          ///< distance kept from occupied cells
+  bool unknown_is_occupied = false;  ///< unknown cells blocked (reference: traversable)
+  double escape_radius_m = 2.0;      ///< blocked cells this close to the start are passable
+  int max_expansions = 500000;       ///< A* node budget per search
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// A planned grid path.
+struct GridPath {
+  std::vector<Vec3> points;     ///< start position first, cell centres after
+  bool reaches_goal = false;    ///< false: ends at the reachable cell closest to the goal
+  int expansions = 0;
+};
+
+/// A* on a traversability grid over a box.
+class GridPathPlanner {
+ public:
+  /// Throws ConfigError. The box is cut into cells of the map's resolution.
+  GridPathPlanner(const GridPlannerConfig& config, const Aabb& box, double resolution_m);
+
+  /// Recomputes the blocked cells from the map.
+  void rebuild(const GridMap& map);
+  /// Plans from start to goal (both clamped into the box); none if the start is outside
+  /// the box by more than a cell.
+  std::optional<GridPath> plan(const Vec3& start, const Vec3& goal) const;
+  /// True if the cell containing p is inside the box and not blocked.
+  bool traversable(const Vec3& p) const;
+  /// Number of blocked cells (for counters).
+  long blockedCells() const;
+
+ private:
+  int64_t index(int i, int j, int k) const { return (int64_t(k) * ny_ + j) * nx_ + i; }
+  bool cellOf(const Vec3& p, int* i, int* j, int* k) const;  // false if outside the box
+  Vec3 centre(int i, int j, int k) const;
+
+  GridPlannerConfig config_;
+  Aabb box_;
+  double res_;
+  Vec3 origin_;           // min corner of cell (0, 0, 0), on the OctoMap grid
+  int nx_ = 0, ny_ = 0, nz_ = 0;
+  std::vector<uint8_t> blocked_;
+};
+
+}  // namespace msb

@@ -1,0 +1,110 @@
+// The grid explorer's decisions: goals stay in the square around the vehicle and in the box,
+// take-off first, then a goal and a path that avoids mapped obstacles; the predicted-path
+// check stops the vehicle when an obstacle appears on its path.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/baseline/grid_explorer.h"
+
+namespace msb {
+namespace {
+
+ExplorerContext context() {
+  ExplorerContext ctx;
+  ctx.exploration_box = {Vec3(-50, -45, 0), Vec3(12, 20, 7)};
+  ctx.start = poseFromXyzYaw(Vec3(0, 0, 0.05), 0.0);
+  ctx.seed = 5;
+  return ctx;
+}
+
+VehicleState at(const Vec3& p, double t, bool finished) {
+  VehicleState s;
+  s.t_s = t;
+  s.T_W_B = poseFromXyzYaw(p, 0.0);
+  s.reference.position_m = p;
+  s.path_finished = finished;
+  return s;
+}
+
+TEST(GridExplorer, GoalsStayInTheSquareAndTheBox) {
+  GridExplorer e(GridExplorerConfig{}, context());
+  const Aabb box = context().exploration_box;
+  for (const Vec3& p : {Vec3(0, 0, 2), Vec3(10, 18, 2), Vec3(-49, -44, 6), Vec3(-20, -10, 3)}) {
+    Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
+    for (int k = 0; k < 2000; ++k) {
+      const Vec3 g = e.drawGoal(p);
+      ASSERT_TRUE(box.contains(g)) << g.transpose();
+      ASSERT_LE(std::abs(g.x() - p.x()), 20.0 + 1e-9);
+      ASSERT_LE(std::abs(g.y() - p.y()), 20.0 + 1e-9);
+      ASSERT_GE(g.z(), 1.0);
+      ASSERT_LE(g.z(), 6.5);
+      lo = lo.cwiseMin(g.head<2>());
+      hi = hi.cwiseMax(g.head<2>());
+    }
+    // Uniform over the whole intersection: its corners are approached.
+    const Vec2 want_lo = (p.head<2>() - Vec2(20, 20)).cwiseMax(box.min.head<2>());
+    const Vec2 want_hi = (p.head<2>() + Vec2(20, 20)).cwiseMin(box.max.head<2>());
+    EXPECT_LT((lo - want_lo).norm(), 1.0);
+    EXPECT_LT((hi - want_hi).norm(), 1.0);
+  }
+}
+
+TEST(GridExplorer, TakesOffThenPlansAroundMappedObstacles) {
+  GridExplorer e(GridExplorerConfig{}, context());
+  // A wall west of the start (the explorer's goals will be all around).
+  GridMap& map = e.mutableMap();
+  for (double x = -20.25; x < 10; x += 0.5)
+    for (double z = 0.25; z < 7; z += 0.5) map.mutableTree().updateNode(octomap::point3d(float(x), 6.25f, float(z)), true);
+  map.mutableTree().updateInnerOccupancy();
+  const auto wall = map.leaves(true);
+  // Take-off: climb, then forward.
+  ASSERT_TRUE(e.plan(at(Vec3(0, 0, 0.05), 0.0, true)));
+  EXPECT_FALSE(e.plan(at(Vec3(0, 0, 2), 0.2, true)));
+  ASSERT_TRUE(e.plan(at(Vec3(0, 0, 2), 0.4, false)));
+  EXPECT_FALSE(e.plan(at(Vec3(4, 0, 2), 0.6, true)));
+  // Exploring: a goal, a path to it that never comes within 1.5 m of the wall's cells.
+  for (int k = 0; k < 20; ++k) {
+    const double t = 1.0 + 1.0 * k;
+    const auto cmd = e.plan(at(Vec3(4, 0, 2.05), t, true));
+    ASSERT_TRUE(e.goal());
+    if (!cmd) continue;
+    Vec3 a(4, 0, 2.05);
+    for (const auto& w : cmd->waypoints) {
+      EXPECT_FALSE(w.heading_rad) << "the camera faces the direction of travel";
+      for (double s = 0; s <= 1.0; s += 0.002) {
+        // The cell the path passes through keeps the clearance from every wall cell (points on
+        // a cell boundary belong to either cell: skipped).
+        const Vec3 x = a + s * (w.position_m - a);
+        const Vec3 frac = (x / 0.5) - (x / 0.5).array().round().matrix();
+        if (frac.cwiseAbs().minCoeff() < 1e-6) continue;
+        const Vec3 cell = ((x / 0.5).array().floor() + 0.5).matrix() * 0.5;
+        for (const auto& o : wall) EXPECT_GT((cell - o.centre).norm(), 1.5) << x.transpose();
+      }
+      a = w.position_m;
+    }
+  }
+  EXPECT_GE(e.counters().at("goals_chosen"), 2.0);
+}
+
+TEST(GridExplorer, AnObstacleOnThePathAheadStopsTheVehicle) {
+  GridExplorer e(GridExplorerConfig{}, context());
+  for (int k = 0; k < 4; ++k) e.plan(at(Vec3(0, 0, 2), 0.2 * k, true));  // take-off done
+  const auto cmd = e.plan(at(Vec3(4, 0, 2), 1.0, true));
+  ASSERT_TRUE(cmd);
+  ASSERT_FALSE(cmd->waypoints.empty());
+  // An obstacle point appears 2 m ahead on the path: the next step stops.
+  const Vec3 dir = (cmd->waypoints.front().position_m - Vec3(4, 0, 2)).normalized();
+  const Vec3 obstacle = Vec3(4, 0, 2) + 2.0 * dir;
+  e.mutableMap().mutableTree().updateNode(octomap::point3d(float(obstacle.x()), float(obstacle.y()), float(obstacle.z())),
+                                          true);
+  e.mutableMap().mutableTree().updateInnerOccupancy();
+  const auto stop = e.plan(at(Vec3(4, 0, 2), 1.2, false));
+  ASSERT_TRUE(stop);
+  ASSERT_EQ(stop->waypoints.size(), 1u);
+  EXPECT_TRUE(stop->waypoints[0].position_m.isApprox(Vec3(4, 0, 2)));
+  EXPECT_EQ(e.counters().at("blocked_stops"), 1.0);
+}
+
+}  // namespace
+}  // namespace msb

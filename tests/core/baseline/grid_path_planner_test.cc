@@ -1,0 +1,109 @@
+// Grid A*: clearance from occupied cells on hand-built grids, unknown_is_occupied, the closest
+// reachable cell for an unreachable goal, and escaping from a blocked start.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/baseline/grid_path_planner.h"
+
+namespace msb {
+namespace {
+
+const Aabb kBox{Vec3(-10, -10, 0), Vec3(12, 10, 4)};
+
+// A wall of occupied cells across x = 5.25, y ∈ [-4, 4], z ∈ [0, 4].
+GridMap wallMap() {
+  GridMap map(GridMapConfig{});
+  for (double y = -3.75; y < 4.0; y += 0.5)
+    for (double z = 0.25; z < 4.0; z += 0.5) map.mutableTree().updateNode(octomap::point3d(5.25f, float(y), float(z)), true);
+  map.mutableTree().updateInnerOccupancy();
+  return map;
+}
+
+// Smallest distance from the cells a path passes through to any occupied cell centre.
+double pathClearance(const GridMap& map, const std::vector<Vec3>& pts) {
+  const auto occupied = map.leaves(true);
+  double best = 1e18;
+  for (size_t i = 1; i < pts.size(); ++i) {
+    const Vec3 a = pts[i - 1], b = pts[i];
+    const int n = std::max(1, int(std::ceil((b - a).norm() / 0.05)));
+    for (int s = 0; s <= n; ++s) {
+      const Vec3 x = a + (double(s) / n) * (b - a);
+      const Vec3 cell = ((x / 0.5).array().floor() + 0.5).matrix() * 0.5;
+      for (const auto& o : occupied) best = std::min(best, (cell - o.centre).norm());
+    }
+  }
+  return best;
+}
+
+TEST(GridPathPlanner, PathsKeepTheClearanceFromOccupiedCells) {
+  const GridMap map = wallMap();
+  GridPathPlanner planner(GridPlannerConfig{}, kBox, 0.5);
+  planner.rebuild(map);
+  const auto path = planner.plan(Vec3(0.1, 0.1, 2.1), Vec3(10.1, 0.1, 2.1));
+  ASSERT_TRUE(path);
+  EXPECT_TRUE(path->reaches_goal);
+  EXPECT_TRUE(path->points.back().isApprox(Vec3(10.1, 0.1, 2.1)));
+  EXPECT_GT(pathClearance(map, path->points), 1.5);
+  // It went around the wall's end, not over it (the box ends at 4 m).
+  double max_abs_y = 0;
+  for (const auto& p : path->points) max_abs_y = std::max(max_abs_y, std::abs(p.y()));
+  EXPECT_GT(max_abs_y, 4.0);
+}
+
+TEST(GridPathPlanner, UnknownIsOccupiedKeepsPathsInKnownFreeSpace) {
+  GridMap map(GridMapConfig{});
+  // Known free space: a corridor along x at y ≈ 0, z ≈ 2 (rays from the origin).
+  for (double z = 1.25; z <= 2.75; z += 0.5)
+    for (double y = -1.25; y <= 1.25; y += 0.5) map.insertScan(Vec3(0.25, y, z), {Vec3(14.0, y, z)});
+  GridPlannerConfig strict;
+  strict.unknown_is_occupied = true;
+  strict.clearance_m = 0.0;
+  GridPathPlanner planner(strict, kBox, 0.5);
+  planner.rebuild(map);
+  // Inside the corridor: reachable. Off it (unknown): the closest known cell instead.
+  const auto along = planner.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 0.25, 2.25));
+  ASSERT_TRUE(along);
+  EXPECT_TRUE(along->reaches_goal);
+  const auto off = planner.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 8.25, 2.25));
+  ASSERT_TRUE(off);
+  EXPECT_FALSE(off->reaches_goal);
+  for (const auto& p : off->points) EXPECT_GE(map.occupancy(p), 0) << p.transpose();
+  EXPECT_NEAR(off->points.back().y(), 1.25, 0.3);
+  // The same goal with unknown space traversable (the reference's rule) is reached.
+  GridPlannerConfig loose = strict;
+  loose.unknown_is_occupied = false;
+  GridPathPlanner open(loose, kBox, 0.5);
+  open.rebuild(map);
+  EXPECT_TRUE(open.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 8.25, 2.25))->reaches_goal);
+}
+
+TEST(GridPathPlanner, AnUnreachableGoalGivesTheClosestReachableCell) {
+  const GridMap map = wallMap();
+  GridPathPlanner planner(GridPlannerConfig{}, kBox, 0.5);
+  planner.rebuild(map);
+  const Vec3 goal(5.25, 0.25, 2.25);  // inside the wall
+  const auto path = planner.plan(Vec3(0.1, 0.1, 2.1), goal);
+  ASSERT_TRUE(path);
+  EXPECT_FALSE(path->reaches_goal);
+  const Vec3 end = path->points.back();
+  EXPECT_TRUE(planner.traversable(end));
+  // The closest cells keep just over 1.5 m from the wall's cells: 2 cells (1.5 m) from the
+  // wall cell would be blocked, so the end lies 4 cells (2 m) before the wall's centre line.
+  EXPECT_NEAR((end - goal).norm(), 2.0, 1e-9);
+  EXPECT_GT(pathClearance(map, path->points), 1.5);
+}
+
+TEST(GridPathPlanner, AVehicleInBlockedCellsCanLeave) {
+  const GridMap map = wallMap();
+  GridPathPlanner planner(GridPlannerConfig{}, kBox, 0.5);
+  planner.rebuild(map);
+  const Vec3 start(4.1, 0.1, 2.1);  // 1.15 m from the wall: blocked
+  EXPECT_FALSE(planner.traversable(start));
+  const auto path = planner.plan(start, Vec3(-5.1, 0.1, 2.1));
+  ASSERT_TRUE(path);
+  EXPECT_TRUE(path->reaches_goal);
+}
+
+}  // namespace
+}  // namespace msb
