@@ -68,6 +68,7 @@ void Mission::sample(double t_s) {
 
 MissionResult Mission::finish() {
   MissionResult r;
+  r.method = spec_.method.type;
   r.flight = loop_->finish();
   // Final sample (the end of the run) and records.
   if (coverage_.samples().empty() || coverage_.samples().back().t_s < r.flight.sim_time_s) sample(r.flight.sim_time_s);

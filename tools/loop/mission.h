@@ -25,6 +25,7 @@ struct StageTimes {
 
 /// Everything a mission produced.
 struct MissionResult {
+  std::string method;                      ///< method.type
   FlightResult flight;                     ///< status, collision, trajectory, timing
   std::vector<CoverageSample> coverage;    ///< at the metric rate
   ColumnCoverage columns;                  ///< explored columns (VIO frame)

@@ -149,8 +149,18 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r) {
     const Vec2 n = r.columns.node(c);
     cv::rectangle(img, px2(n + Vec2(-half, half)), px2(n + Vec2(half, -half)), cv::Scalar(200, 240, 200), -1);
   }
+  // Free space: spheres as discs; a grid method's free cells as their squares.
+  const bool spheres = r.method == "monospheres";
   cv::Mat discs = img.clone();
-  for (const auto& d : r.final_map.free_space) cv::circle(discs, px(d.centre), int(d.radius / mpp), cv::Scalar(230, 160, 90), -1);
+  for (const auto& d : r.final_map.free_space) {
+    if (spheres) {
+      cv::circle(discs, px(d.centre), int(d.radius / mpp), cv::Scalar(230, 160, 90), -1);
+    } else {
+      const Vec2 c = d.centre.head<2>();
+      cv::rectangle(discs, px2(c + Vec2(-d.radius, d.radius)), px2(c + Vec2(d.radius, -d.radius)),
+                    cv::Scalar(230, 160, 90), -1);
+    }
+  }
   cv::addWeighted(discs, 0.35, img, 0.65, 0, img);
   cv::rectangle(img, px(r.exploration_box.min), px(r.exploration_box.max), cv::Scalar(0, 0, 0), 1);
   // Obstacle points: near the ground (z < 0.5 m) light grey, above it black.
@@ -171,6 +181,10 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r) {
     cv::line(img, px(tr[i - 1].est_position_m), px(tr[i].est_position_m), cv::Scalar(0, 150, 255), 2, cv::LINE_AA);
   for (size_t i = 1; i < tr.size(); ++i)
     cv::line(img, px(tr[i - 1].position_m), px(tr[i].position_m), cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
+  // The last path sent (blue) and the active goal (red circle).
+  const auto& path = r.final_map.path;
+  for (size_t i = 1; i < path.size(); ++i) cv::line(img, px(path[i - 1]), px(path[i]), cv::Scalar(200, 60, 0), 2, cv::LINE_AA);
+  if (r.final_map.goal) cv::circle(img, px(r.final_map.goal->position), 6, cv::Scalar(0, 0, 230), 2, cv::LINE_AA);
   if (r.flight.collision) {
     const cv::Point c = px(r.flight.collision->vehicle_position_m);
     cv::drawMarker(img, c, cv::Scalar(0, 0, 255), cv::MARKER_TILTED_CROSS, 24, 3);
@@ -180,9 +194,11 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r) {
                 r.columns.count(), r.flight.sim_time_s, r.flight.status.c_str());
   cv::rectangle(img, cv::Point(0, 0), cv::Point(w, header - 1), cv::Scalar(255, 255, 255), -1);
   cv::putText(img, text, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  cv::putText(img, "green: explored columns, blue: spheres, black/grey: obstacle points (above/below 0.5 m), magenta: frontiers,",
+  cv::putText(img, spheres ? "green: explored columns, blue: spheres, black/grey: obstacle points (above/below 0.5 m), magenta: frontiers,"
+                           : "green: explored columns, blue: free cells, black/grey: occupied cells (above/below 0.5 m), red circle: goal,",
               cv::Point(8, 42), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
-  cv::putText(img, "orange arrows: viewpoints, grey: visited, red: true path, orange: estimate",
+  cv::putText(img, spheres ? "orange arrows: viewpoints, grey: visited, red: true path, orange: estimate, blue: last path"
+                           : "red: true path, orange: estimate, blue: last path",
               cv::Point(8, 60), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
   std::vector<uchar> png;
   cv::imencode(".png", img, png);
