@@ -76,14 +76,48 @@ void GridPathPlanner::rebuild(const GridMap& map) {
           }
         }
   }
-  // Optionally, unknown space is not traversable either.
-  if (config_.unknown_is_occupied)
+  // Optionally (the paper's rule), unknown space is not traversable either and the clearance
+  // is kept from it too: unknown cells are blocked, and those bordering known cells block
+  // their neighbourhood (the nearest unknown cell to a known one always borders known space).
+  if (config_.unknown_is_occupied) {
+    std::vector<uint8_t> known(blocked_.size(), 0);
+    for (auto it = map.tree().begin_leafs_bbx(octomap::point3d(float(origin_.x()), float(origin_.y()), float(origin_.z())),
+                                              octomap::point3d(float(origin_.x() + nx_ * res_), float(origin_.y() + ny_ * res_),
+                                                               float(origin_.z() + nz_ * res_))),
+              end = map.tree().end_leafs_bbx();
+         it != end; ++it) {
+      const Vec3 c(it.getX(), it.getY(), it.getZ());
+      const double h = 0.5 * it.getSize();
+      const int n = std::max(1, int(std::lround(it.getSize() / res_)));
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+          for (int d = 0; d < n; ++d) {
+            int i, j, k;
+            if (cellOf(c - Vec3::Constant(h) + res_ * Vec3(a + 0.5, b + 0.5, d + 0.5), &i, &j, &k))
+              known[size_t(index(i, j, k))] = 1;
+          }
+    }
+    std::vector<uint8_t> dilated = blocked_;
     for (int k = 0; k < nz_; ++k)
       for (int j = 0; j < ny_; ++j)
         for (int i = 0; i < nx_; ++i) {
-          uint8_t& b = blocked_[size_t(index(i, j, k))];
-          if (!b && map.occupancy(centre(i, j, k)) < 0) b = 1;
+          if (known[size_t(index(i, j, k))]) continue;
+          dilated[size_t(index(i, j, k))] = 1;
+          bool border = false;
+          for (int f = 0; f < 6 && !border; ++f) {
+            const int di = f == 0 ? 1 : f == 1 ? -1 : 0, dj = f == 2 ? 1 : f == 3 ? -1 : 0, dk = f == 4 ? 1 : f == 5 ? -1 : 0;
+            const int a = i + di, b = j + dj, c = k + dk;
+            border = a >= 0 && b >= 0 && c >= 0 && a < nx_ && b < ny_ && c < nz_ && known[size_t(index(a, b, c))];
+          }
+          if (!border) continue;
+          for (const auto& o : offsets) {
+            const int a = i + o[0], b = j + o[1], c = k + o[2];
+            if (a < 0 || b < 0 || c < 0 || a >= nx_ || b >= ny_ || c >= nz_) continue;
+            dilated[size_t(index(a, b, c))] = 1;
+          }
         }
+    blocked_ = std::move(dilated);
+  }
 }
 
 std::optional<GridPath> GridPathPlanner::plan(const Vec3& start_in, const Vec3& goal_in) const {

@@ -1,8 +1,9 @@
 // Grid A* for the baseline (architecture §9): a dense traversability grid over the exploration
 // box, aligned with the OctoMap cells, rebuilt from the map before planning. A cell is blocked
-// when its centre lies within `clearance_m` of an occupied cell's centre (and, with
-// `unknown_is_occupied`, when it is unknown; by default unknown space is traversable, as in the
-// reference). A* (26-neighbour moves, Euclidean heuristic, ties broken by cell index) searches
+// when its centre lies within `clearance_m` of an occupied cell's centre; with
+// `unknown_is_occupied` (the paper's description: the same distance from obstacles and unknown
+// space) also when it is unknown or within `clearance_m` of an unknown cell. By default unknown
+// space is traversable, as in the reference code. A* (26-neighbour moves, Euclidean heuristic, ties broken by cell index) searches
 // from the vehicle's cell; when the goal cannot be reached it returns the path to the reached
 // cell closest to the goal. A vehicle that finds itself in blocked cells (new points appeared
 // close to it) may leave through cells within `escape_radius_m` of its start. The path is
@@ -22,7 +23,7 @@ namespace msb {
 /// Grid planner settings.
 struct GridPlannerConfig {
   double clearance_m = 1.5;          ///< distance kept from occupied cells
-  bool unknown_is_occupied = false;  ///< unknown cells blocked (reference: traversable)
+  bool unknown_is_occupied = false;  ///< unknown cells and their clearance blocked (paper; code: traversable)
   double escape_radius_m = 2.0;      ///< blocked cells this close to the start are passable
   int max_expansions = 500000;       ///< A* node budget per search
 

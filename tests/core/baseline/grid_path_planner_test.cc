@@ -78,6 +78,25 @@ TEST(GridPathPlanner, UnknownIsOccupiedKeepsPathsInKnownFreeSpace) {
   EXPECT_TRUE(open.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 8.25, 2.25))->reaches_goal);
 }
 
+TEST(GridPathPlanner, UnknownIsOccupiedKeepsTheClearanceFromUnknownSpace) {
+  GridMap map(GridMapConfig{});
+  // Known free space: a slab x ∈ [0, 14], y ∈ [-4, 4], the box's full height.
+  for (double z = 0.25; z < 4.0; z += 0.5)
+    for (double y = -3.75; y < 4.0; y += 0.5) map.insertScan(Vec3(0.25, y, z), {Vec3(14.1, y, z)});
+  GridPlannerConfig paper;
+  paper.unknown_is_occupied = true;  // clearance 1.5 m from unknown cells too
+  GridPathPlanner planner(paper, kBox, 0.5);
+  planner.rebuild(map);
+  const auto along = planner.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 0.25, 2.25));
+  ASSERT_TRUE(along);
+  EXPECT_TRUE(along->reaches_goal);
+  // Known, but within 1.5 m of the unknown side: the closest cell keeps the clearance.
+  const auto edge = planner.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 3.75, 2.25));
+  ASSERT_TRUE(edge);
+  EXPECT_FALSE(edge->reaches_goal);
+  EXPECT_NEAR(edge->points.back().y(), 2.25, 1e-9);
+}
+
 TEST(GridPathPlanner, AnUnreachableGoalGivesTheClosestReachableCell) {
   const GridMap map = wallMap();
   GridPathPlanner planner(GridPlannerConfig{}, kBox, 0.5);
