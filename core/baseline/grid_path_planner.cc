@@ -8,6 +8,7 @@ namespace msb {
 
 void GridPlannerConfig::validate(ConfigChecker& c) const {
   c.nonNegative("clearance_m", clearance_m);
+  c.nonNegative("escape_clearance_m", escape_clearance_m);
   c.nonNegative("escape_radius_m", escape_radius_m);
   c.inRange("max_expansions", max_expansions, 1000, 100000000);
 }
@@ -40,21 +41,29 @@ Vec3 GridPathPlanner::centre(int i, int j, int k) const {
 
 bool GridPathPlanner::traversable(const Vec3& p) const {
   int i, j, k;
-  return cellOf(p, &i, &j, &k) && !blocked_[size_t(index(i, j, k))];
+  return cellOf(p, &i, &j, &k) && !(blocked_[size_t(index(i, j, k))] & kBlocked);
 }
 
-long GridPathPlanner::blockedCells() const { return long(std::count(blocked_.begin(), blocked_.end(), 1)); }
+long GridPathPlanner::blockedCells() const {
+  return long(std::count_if(blocked_.begin(), blocked_.end(), [](uint8_t b) { return b & kBlocked; }));
+}
 
 void GridPathPlanner::rebuild(const GridMap& map) {
   std::fill(blocked_.begin(), blocked_.end(), 0);
-  // Offsets of the cells whose centres lie within the clearance of a cell centre.
-  const int r = int(std::floor(config_.clearance_m / res_ + 1e-9));
-  std::vector<std::array<int, 3>> offsets;
+  // Offsets of the cells whose centres lie within a distance of a cell centre, with the flags
+  // they get: kBlocked within the clearance, kBlocked | kHard within the escape clearance.
+  const double hard_m = std::min(config_.escape_clearance_m, config_.clearance_m);
+  const double reach = config_.clearance_m;
+  const int r = int(std::floor(reach / res_ + 1e-9));
+  std::vector<std::array<int, 4>> offsets;
   for (int dz = -r; dz <= r; ++dz)
     for (int dy = -r; dy <= r; ++dy)
-      for (int dx = -r; dx <= r; ++dx)
-        if (res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz)) <= config_.clearance_m + 1e-9)
-          offsets.push_back({dx, dy, dz});
+      for (int dx = -r; dx <= r; ++dx) {
+        const double d = res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
+        const int flags = (d <= config_.clearance_m + 1e-9 ? kBlocked : 0) |
+                          (d <= hard_m + 1e-9 ? kBlocked | kHard : 0);
+        if (flags) offsets.push_back({dx, dy, dz, flags});
+      }
   // Every occupied cell (a pruned leaf covers several) blocks its neighbourhood.
   const Vec3 margin = Vec3::Constant(config_.clearance_m + res_);
   for (const GridLeaf& leaf : map.leaves(true)) {
@@ -72,7 +81,7 @@ void GridPathPlanner::rebuild(const GridMap& map) {
           for (const auto& o : offsets) {
             const int i = ci + o[0], j = cj + o[1], k = ck + o[2];
             if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_) continue;
-            blocked_[size_t(index(i, j, k))] = 1;
+            blocked_[size_t(index(i, j, k))] |= uint8_t(o[3]);
           }
         }
   }
@@ -102,7 +111,7 @@ void GridPathPlanner::rebuild(const GridMap& map) {
       for (int j = 0; j < ny_; ++j)
         for (int i = 0; i < nx_; ++i) {
           if (known[size_t(index(i, j, k))]) continue;
-          dilated[size_t(index(i, j, k))] = 1;
+          dilated[size_t(index(i, j, k))] |= kBlocked | kHard;  // unknown itself
           bool border = false;
           for (int f = 0; f < 6 && !border; ++f) {
             const int di = f == 0 ? 1 : f == 1 ? -1 : 0, dj = f == 2 ? 1 : f == 3 ? -1 : 0, dk = f == 4 ? 1 : f == 5 ? -1 : 0;
@@ -113,7 +122,7 @@ void GridPathPlanner::rebuild(const GridMap& map) {
           for (const auto& o : offsets) {
             const int a = i + o[0], b = j + o[1], c = k + o[2];
             if (a < 0 || b < 0 || c < 0 || a >= nx_ || b >= ny_ || c >= nz_) continue;
-            dilated[size_t(index(a, b, c))] = 1;
+            dilated[size_t(index(a, b, c))] |= uint8_t(o[3]);
           }
         }
     blocked_ = std::move(dilated);
@@ -135,10 +144,14 @@ std::optional<GridPath> GridPathPlanner::plan(const Vec3& start_in, const Vec3& 
   clampCell(goal_in, &gi, &gj, &gk);
   const Vec3 start_c = centre(si, sj, sk), goal_c = centre(gi, gj, gk);
   const int64_t start = index(si, sj, sk), goal = index(gi, gj, gk);
+  // A vehicle already in blocked cells may leave through blocked cells near it, but never
+  // through hard ones (occupied, unknown with unknown_is_occupied, or within the escape clearance).
+  const bool start_blocked = blocked_[size_t(start)] & kBlocked;
   const double escape2 = config_.escape_radius_m * config_.escape_radius_m;
   auto passable = [&](int i, int j, int k) {
-    if (!blocked_[size_t(index(i, j, k))]) return true;
-    return (centre(i, j, k) - start_c).squaredNorm() <= escape2;  // leaving a blocked start
+    const uint8_t b = blocked_[size_t(index(i, j, k))];
+    if (!(b & kBlocked)) return true;
+    return start_blocked && !(b & kHard) && (centre(i, j, k) - start_c).squaredNorm() <= escape2;
   };
 
   // A* over cells; g in metres, parent per cell; ties by the lower cell index.

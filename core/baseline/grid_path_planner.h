@@ -6,7 +6,9 @@
 // space is traversable, as in the reference code. A* (26-neighbour moves, Euclidean heuristic, ties broken by cell index) searches
 // from the vehicle's cell; when the goal cannot be reached it returns the path to the reached
 // cell closest to the goal. A vehicle that finds itself in blocked cells (new points appeared
-// close to it) may leave through cells within `escape_radius_m` of its start. The path is
+// close to it) may leave through blocked cells within `escape_radius_m` of its start, but never
+// through cells within `escape_clearance_m` of an occupied cell (nor unknown ones when unknown
+// is occupied). The path is
 // shortened by line-of-sight shortcuts over traversable cells.
 #pragma once
 
@@ -24,7 +26,8 @@ namespace msb {
 struct GridPlannerConfig {
   double clearance_m = 1.5;          ///< distance kept from occupied cells
   bool unknown_is_occupied = false;  ///< unknown cells and their clearance blocked (paper; code: traversable)
-  double escape_radius_m = 2.0;      ///< blocked cells this close to the start are passable
+  double escape_radius_m = 2.0;      ///< from a blocked start, blocked cells this close are passable ...
+  double escape_clearance_m = 0.75;  ///< ... unless this close to an occupied cell
   int max_expansions = 500000;       ///< A* node budget per search
 
   /// Records invalid fields.
@@ -64,6 +67,7 @@ class GridPathPlanner {
   double res_;
   Vec3 origin_;           // min corner of cell (0, 0, 0), on the OctoMap grid
   int nx_ = 0, ny_ = 0, nz_ = 0;
+  static constexpr uint8_t kBlocked = 1, kHard = 2;  // cell flags
   std::vector<uint8_t> blocked_;
 };
 

@@ -145,6 +145,7 @@ MethodChoice readGridRandom(MapReader& m) {
     r.read("clearance_m", c.planner.clearance_m);
     r.read("unknown_is_occupied", c.planner.unknown_is_occupied);
     r.read("escape_radius_m", c.planner.escape_radius_m);
+    r.read("escape_clearance_m", c.planner.escape_clearance_m);
     r.read("max_expansions", c.planner.max_expansions);
     r.finish();
   }

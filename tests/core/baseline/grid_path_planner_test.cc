@@ -122,6 +122,16 @@ TEST(GridPathPlanner, AVehicleInBlockedCellsCanLeave) {
   const auto path = planner.plan(start, Vec3(-5.1, 0.1, 2.1));
   ASSERT_TRUE(path);
   EXPECT_TRUE(path->reaches_goal);
+  EXPECT_GT(pathClearance(map, path->points), 0.75);  // never through the escape clearance
+  // Towards the wall's far side the way leads around the wall, not through it.
+  const auto around = planner.plan(start, Vec3(8.1, 0.1, 2.1));
+  ASSERT_TRUE(around);
+  EXPECT_TRUE(around->reaches_goal);
+  EXPECT_GT(pathClearance(map, around->points), 0.75);
+  // A start that is not blocked never enters blocked cells, even near it.
+  const auto free_start = planner.plan(Vec3(3.1, 0.1, 2.1), Vec3(-5.1, 0.1, 2.1));
+  ASSERT_TRUE(free_start);
+  EXPECT_GT(pathClearance(map, free_start->points), 1.5);
 }
 
 }  // namespace
