@@ -82,30 +82,18 @@ std::string actuators(const QuadrotorConfig& q) {
 
 }  // namespace
 
-std::string composeModelXml(const std::string& world_xml, const QuadrotorConfig& vehicle,
+std::string composeModelXml(const std::string& world_file_name, const QuadrotorConfig& vehicle,
                             const Pose& start_T_W_B, double timestep_s) {
-  const auto open = world_xml.find("<mujoco");
-  const auto close_world = world_xml.rfind("</worldbody>");
-  const auto close_doc = world_xml.rfind("</mujoco>");
-  if (open == std::string::npos || close_doc == std::string::npos)
-    throw std::runtime_error("not an MJCF document (no <mujoco> ... </mujoco>)");
-  if (close_world == std::string::npos)
-    throw std::runtime_error("MJCF has no <worldbody> element");
-  if (world_xml.find("<option") != std::string::npos)
-    throw std::runtime_error("world MJCF must not set <option> (the simulator owns it)");
-  const auto open_end = world_xml.find('>', open);
-
-  std::ostringstream options;
-  options.precision(17);
-  options << "\n<option timestep=\"" << timestep_s
-          << "\" integrator=\"Euler\" gravity=\"0 0 -9.81\"/>\n";
-
-  std::string xml = world_xml;
-  // Insert in reverse document order so earlier offsets stay valid.
-  xml.insert(close_doc, actuators(vehicle));
-  xml.insert(close_world, vehicleBody(vehicle, start_T_W_B));
-  xml.insert(open_end + 1, options.str());
-  return xml;
+  // A wrapper model: the world by MuJoCo's own <include> (parsed, never searched as text),
+  // then the simulation options, the vehicle body and its actuators and sensors.
+  std::ostringstream xml;
+  xml.precision(17);
+  xml << "<mujoco model=\"msbench\">\n"
+      << "<include file=\"" << world_file_name << "\"/>\n"
+      << "<option timestep=\"" << timestep_s << "\" integrator=\"Euler\" gravity=\"0 0 -9.81\"/>\n"
+      << "<worldbody>\n" << vehicleBody(vehicle, start_T_W_B) << "</worldbody>\n"
+      << actuators(vehicle) << "</mujoco>\n";
+  return xml.str();
 }
 
 }  // namespace msb

@@ -40,10 +40,10 @@ inline constexpr const char* kGyroSensor = "vehicle_gyro";
 /// MuJoCo geom group of the vehicle's own geoms (hidden from the onboard camera).
 inline constexpr int kVehicleGeomGroup = 3;
 
-/// Splices the vehicle (body, actuators, sensors) and the simulation options into the text of
-/// a world MJCF. The world must be a <mujoco> document with a <worldbody> and must not set
-/// <option>. Throws std::runtime_error with a reason when it cannot.
-std::string composeModelXml(const std::string& world_xml, const QuadrotorConfig& vehicle,
+/// The model MuJoCo compiles: a wrapper that includes the world file `world_file_name` (a
+/// <mujoco> document, resolved next to the wrapper) and adds the simulation options, the vehicle
+/// body, its actuators and sensors.
+std::string composeModelXml(const std::string& world_file_name, const QuadrotorConfig& vehicle,
                             const Pose& start_T_W_B, double timestep_s);
 
 }  // namespace msb

@@ -18,7 +18,7 @@ namespace {
 
 std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open world file");
+  if (!in) throw ConfigError("world", path + ": cannot open world file");
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
@@ -35,47 +35,65 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
                            const Pose& start_T_W_B)
     : config_(checkValid(config)) {
   namespace fs = std::filesystem;
+  // The world file and a wrapper that includes it, both as virtual files in the world's
+  // directory (relative texture and mesh paths resolve against the world file).
   const std::string world = readFile(world_xml_path);
-  std::string xml;
-  try {
-    xml = composeModelXml(world, config_.vehicle, start_T_W_B, 1.0 / config_.physics_hz);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(world_xml_path + ": " + e.what());
-  }
-
-  // Compile from a virtual file that sits in the world's directory, so relative texture and
-  // mesh paths of the world resolve against the world file, not the working directory.
   const fs::path dir = fs::absolute(world_xml_path).parent_path();
-  const std::string vfs_name = (dir / "msbench_composed_model.xml").string();
+  const std::string world_name = fs::path(world_xml_path).filename().string();
+  const std::string wrapper_name = "msbench_composed_model.xml";
+  if (world_name == wrapper_name || world_name.find('"') != std::string::npos)
+    throw ConfigError("world", world_xml_path + ": unsupported world file name");
+  const std::string xml = composeModelXml(world_name, config_.vehicle, start_T_W_B, 1.0 / config_.physics_hz);
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
-  if (mj_makeEmptyFileVFS(vfs.get(), vfs_name.c_str(), static_cast<int>(xml.size())) != 0)
-    throw std::runtime_error(world_xml_path + ": cannot create MuJoCo virtual file");
-  const int idx = mj_findFileVFS(vfs.get(), vfs_name.c_str());
-  std::copy(xml.begin(), xml.end(), static_cast<char*>(vfs->filedata[idx]));
+  auto addFile = [&](const std::string& name, const std::string& text) {
+    const std::string path = (dir / name).string();
+    if (mj_makeEmptyFileVFS(vfs.get(), path.c_str(), static_cast<int>(text.size())) != 0)
+      throw std::runtime_error(world_xml_path + ": cannot create MuJoCo virtual file");
+    const int idx = mj_findFileVFS(vfs.get(), path.c_str());
+    std::copy(text.begin(), text.end(), static_cast<char*>(vfs->filedata[idx]));
+  };
+  addFile(world_name, world);
+  addFile(wrapper_name, xml);
 
   char error[1024] = "";
   auto* prev_warning = mju_user_warning;
   mju_user_warning = recordWarning;
   g_mj_warning.clear();
-  m_ = mj_loadXML(vfs_name.c_str(), vfs.get(), error, sizeof(error));
+  m_ = mj_loadXML((dir / wrapper_name).string().c_str(), vfs.get(), error, sizeof(error));
   mju_user_warning = prev_warning;
   mj_deleteVFS(vfs.get());
-  if (!m_) throw std::runtime_error(world_xml_path + ": MuJoCo could not compile: " + error);
+  if (!m_) throw ConfigError("world", world_xml_path + ": MuJoCo could not compile: " + error);
   if (error[0] != '\0' || !g_mj_warning.empty()) {
     mj_deleteModel(m_);
-    throw std::runtime_error(world_xml_path + ": MuJoCo warning: " +
+    m_ = nullptr;
+    throw ConfigError("world", world_xml_path + ": MuJoCo warning: " +
                              (error[0] ? std::string(error) : g_mj_warning));
+  }
+  // The simulator owns the options: a world that sets its own would change the physics.
+  if (m_->opt.timestep != 1.0 / config_.physics_hz || m_->opt.integrator != mjINT_EULER) {
+    mj_deleteModel(m_);
+    m_ = nullptr;
+    throw ConfigError("world", world_xml_path + ": world MJCF must not set <option> (the simulator owns it)");
   }
   d_ = mj_makeData(m_);
 
-  // Cache addresses of the vehicle's state and IMU sensors.
+  // Cache addresses of the vehicle's state and IMU sensors (every lookup checked).
   body_id_ = mj_name2id(m_, mjOBJ_BODY, mjcf_names::kVehicleBody);
+  const int accel = mj_name2id(m_, mjOBJ_SENSOR, mjcf_names::kAccelSensor);
+  const int gyro = mj_name2id(m_, mjOBJ_SENSOR, mjcf_names::kGyroSensor);
+  if (body_id_ < 0 || accel < 0 || gyro < 0 || m_->body_jntadr[body_id_] < 0) {
+    mj_deleteData(d_);
+    mj_deleteModel(m_);
+    d_ = nullptr;
+    m_ = nullptr;
+    throw ConfigError("world", world_xml_path + ": the composed model lacks the vehicle (a world element collides with its names?)");
+  }
   const int jnt = m_->body_jntadr[body_id_];
   qpos_adr_ = m_->jnt_qposadr[jnt];
   qvel_adr_ = m_->jnt_dofadr[jnt];
-  accel_adr_ = m_->sensor_adr[mj_name2id(m_, mjOBJ_SENSOR, mjcf_names::kAccelSensor)];
-  gyro_adr_ = m_->sensor_adr[mj_name2id(m_, mjOBJ_SENSOR, mjcf_names::kGyroSensor)];
+  accel_adr_ = m_->sensor_adr[accel];
+  gyro_adr_ = m_->sensor_adr[gyro];
   start_z_ = start_T_W_B.translation().z();
   mj_forward(m_, d_);
 }

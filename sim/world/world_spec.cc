@@ -36,6 +36,10 @@ void ObjectGroupSpec::validate(ConfigChecker& c) const {
 
 void WorldSpec::validate(ConfigChecker& c) const {
   c.require(!name.empty(), "name", "is required");
+  // A plain name: it becomes a directory of the world cache.
+  c.require(name.size() <= 64 && name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") ==
+                                     std::string::npos,
+            "name", "must be a plain name (letters, digits, '_' and '-', at most 64), got '" + name + "'");
   c.require(ground_size_m.minCoeff() >= 10 && ground_size_m.maxCoeff() <= 2000, "ground.size_m",
             "must be in [10, 2000] m");
   c.require(isTextureName(ground_texture), "ground.texture", "unknown texture '" + ground_texture + "'");

@@ -1,5 +1,7 @@
 #include "tools/msbench/cli_args.h"
 
+#include "tools/msbench/strict_number.h"
+
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
@@ -50,7 +52,10 @@ bool ArgParser::parse(int argc, char** argv) {
           if (i + 1 >= argc) throw UsageError("--" + name + " needs a value");
           value = argv[++i];
         }
+        if (value.empty()) throw UsageError("--" + name + ": empty value");
+        if (given_.count(name)) throw UsageError("--" + name + " given twice");
         values_[name] = value;
+        given_.insert(name);
       }
       continue;
     }
@@ -76,21 +81,30 @@ const std::string& ArgParser::get(const std::string& name) const {
 }
 
 double ArgParser::getDouble(const std::string& name) const {
-  const std::string& v = get(name);
-  char* end = nullptr;
-  const double d = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end != '\0') throw UsageError("--" + name + ": '" + v + "' is not a number");
+  double d;
+  std::string why;
+  if (!parseNumber(get(name), &d, &why)) throw UsageError("--" + name + ": " + why);
+  return d;
+}
+
+double ArgParser::getDoubleIn(const std::string& name, double lo, double hi) const {
+  const double d = getDouble(name);
+  if (d < lo || d > hi) {
+    std::ostringstream os;
+    os << "--" << name << ": must be in [" << lo << ", " << hi << "] (got " << d << ")";
+    throw UsageError(os.str());
+  }
   return d;
 }
 
 long ArgParser::getInt(const std::string& name) const {
-  const std::string& v = get(name);
-  char* end = nullptr;
-  const long d = std::strtol(v.c_str(), &end, 10);
-  if (v.empty() || *end != '\0')
-    throw UsageError("--" + name + ": '" + v + "' is not an integer");
-  return d;
+  int64_t v;
+  std::string why;
+  if (!parseInteger(get(name), &v, &why)) throw UsageError("--" + name + ": " + why);
+  return long(v);
 }
+
+bool ArgParser::given(const std::string& name) const { return given_.count(name) > 0; }
 
 bool ArgParser::has(const std::string& name) const { return values_.count(name) > 0; }
 

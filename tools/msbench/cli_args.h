@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -37,8 +38,12 @@ class ArgParser {
   const std::string& get(const std::string& name) const;
   /// Numeric value; throws UsageError naming the option if not a number.
   double getDouble(const std::string& name) const;
+  /// Numeric value that must lie in [lo, hi]; throws UsageError naming the option.
+  double getDoubleIn(const std::string& name, double lo, double hi) const;
   /// Integer value; throws UsageError naming the option if not an integer.
   long getInt(const std::string& name) const;
+  /// True if the option was given on the command line (not defaulted).
+  bool given(const std::string& name) const;
   /// True if the flag was given.
   bool has(const std::string& name) const;
   /// The help text.
@@ -53,6 +58,7 @@ class ArgParser {
   std::vector<Opt> options_;
   std::vector<std::pair<std::string, std::string>> positionals_;
   std::map<std::string, std::string> values_;
+  std::set<std::string> given_;
 };
 
 /// Removes every "--NAME VALUE" / "--NAME=VALUE" from argv (for options that may repeat, which

@@ -10,6 +10,7 @@
 #include "core/geometry/world_truth.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/interrupt.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
 #include "tools/msbench/world_registry.h"
@@ -83,17 +84,20 @@ int runFlyCommand(int argc, char** argv) {
   const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
   std::optional<WorldTruth> truth;  // for the oracle feature source
   if (built && spec.perception.enabled && spec.perception.source == "oracle") truth.emplace(built->generated.shapes);
-  StagedOutputDir out(args.get("out"), args.has("overwrite"));
-  fs::create_directories(out.staging() / "frames");
-
-  // Fly: the closed loop without an explorer follows the waypoints; every N-th frame is saved.
+  // The loop (world model, renderer) before any output exists: a bad world writes nothing.
   LoopSetup setup;
   setup.truth = truth ? &*truth : nullptr;
   ClosedLoop loop(spec, setup);
+  StagedOutputDir out(args.get("out"), args.has("overwrite"));
+  fs::create_directories(out.staging() / "frames");
+
+  // Fly: the closed loop without an explorer follows the waypoints; every N-th frame is saved;
+  // SIGINT/SIGTERM stop at the end of a tick and leave nothing.
   ProgressLine progress("fly", spec.duration_s);
   int saved = 0, index = 0;
   const int every = spec.camera_stream.save_every_n;
   while (loop.running()) {
+    throwIfInterrupted();
     const TickRecord& t = loop.step();
     if (t.frame) {
       if (every > 0 && index % every == 0) {

@@ -23,6 +23,7 @@
 #include "tools/msbench/output_files.h"
 #include "tools/msbench/perception_log.h"
 #include "tools/msbench/scenario_yaml.h"
+#include "tools/msbench/strict_number.h"
 #include "tools/msbench/world_registry.h"
 
 namespace msb {
@@ -75,10 +76,19 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
 }
 
 
-FisheyeCamera cameraFromHeader(const nlohmann::json& h) {
+// The camera of a log, from its header (errors name the log file).
+FisheyeCamera cameraFromHeader(const std::string& path, const nlohmann::json& h) {
   FisheyeCameraConfig c;
-  if (h.contains("camera_scale")) c.scale = h["camera_scale"].get<double>();
-  return FisheyeCamera(c);
+  if (h.contains("camera_scale")) {
+    if (!h["camera_scale"].is_number() || !std::isfinite(h["camera_scale"].get<double>()))
+      throw UsageError(path + ": log header 'camera_scale': expected a number");
+    c.scale = h["camera_scale"].get<double>();
+  }
+  try {
+    return FisheyeCamera(c);
+  } catch (const ConfigError& e) {
+    throw UsageError(path + ": log header: " + e.what());
+  }
 }
 
 }  // namespace
@@ -96,9 +106,13 @@ int runMapReplayCommand(int argc, char** argv) {
       .flag("overwrite", "replace an existing output directory");
   if (!args.parse(argc, argv)) return kExitOk;
   const SphereMapConfig cfg = loadMapOverrides(sets);
+  const double rate_hz = args.getDoubleIn("map-rate-hz", 0.01, 1000.0);
+  uint64_t seed;
+  std::string why;
+  if (!parseUnsigned(args.get("seed"), &seed, &why)) throw UsageError("--seed: " + why);
   const PerceptionLog log = PerceptionLog::read(args.get("LOG"));
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
-  SphereMap map(cfg, cameraFromHeader(log.header), uint64_t(args.getInt("seed")));
+  SphereMap map(cfg, cameraFromHeader(args.get("LOG"), log.header), seed);
   // Ground truth for the safety check when the log's world is a generated world.
   std::optional<WorldTruth> truth;
   if (log.header.contains("world")) {
@@ -109,7 +123,7 @@ int runMapReplayCommand(int argc, char** argv) {
       // not a known generated world: no safety statistics
     }
   }
-  const Replay r = replay(log, map, args.getDouble("map-rate-hz"), truth ? &*truth : nullptr);
+  const Replay r = replay(log, map, rate_hz, truth ? &*truth : nullptr);
 
   // map_stats.csv
   std::ostringstream csv;
@@ -144,10 +158,16 @@ int runMapReplayCommand(int argc, char** argv) {
   const double mpp = std::max(0.05, std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 1000.0);
   cv::Mat img(int((hi.y() - lo.y()) / mpp), int((hi.x() - lo.x()) / mpp), CV_8UC3, cv::Scalar(245, 245, 245));
   auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), int((hi.y() - p.y()) / mpp)); };
-  for (double x = std::floor(lo.x() / 2.5) * 2.5; x < hi.x(); x += 2.5)
+  // Column grid lines (2.5 m, or coarser on huge extents: at most ~400 lines a direction).
+  const double step = std::max(2.5, std::ceil(std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 400.0 / 2.5) * 2.5);
+  for (int k = 0; k <= int((hi.x() - lo.x()) / step) + 1; ++k) {
+    const double x = std::floor(lo.x() / step) * step + k * step;
     cv::line(img, px({x, lo.y(), 0}), px({x, hi.y(), 0}), cv::Scalar(225, 225, 225));
-  for (double y = std::floor(lo.y() / 2.5) * 2.5; y < hi.y(); y += 2.5)
+  }
+  for (int k = 0; k <= int((hi.y() - lo.y()) / step) + 1; ++k) {
+    const double y = std::floor(lo.y() / step) * step + k * step;
     cv::line(img, px({lo.x(), y, 0}), px({hi.x(), y, 0}), cv::Scalar(225, 225, 225));
+  }
   cv::Mat discs = img.clone();
   for (const auto& [id, s] : map.spheres()) cv::circle(discs, px(s.centre), int(s.radius / mpp), cv::Scalar(230, 160, 90), -1);
   cv::addWeighted(discs, 0.45, img, 0.55, 0, img);
@@ -233,9 +253,10 @@ int runBenchMapCommand(int argc, char** argv) {
   ArgParser args("msbench bench-map", "Per-update time of the mapper over a perception log.");
   args.positional("LOG", "perception log").option("map-rate-hz", "5", "map update rate");
   if (!args.parse(argc, argv)) return kExitOk;
+  const double rate_hz = args.getDoubleIn("map-rate-hz", 0.01, 1000.0);
   const PerceptionLog log = PerceptionLog::read(args.get("LOG"));
-  SphereMap map(SphereMapConfig{}, cameraFromHeader(log.header), 1);
-  const Replay r = replay(log, map, args.getDouble("map-rate-hz"));
+  SphereMap map(SphereMapConfig{}, cameraFromHeader(args.get("LOG"), log.header), 1);
+  const Replay r = replay(log, map, rate_hz);
   std::printf("bench-map: %zu updates over %.0f s; final %zu spheres, %zu obstacle points\n", r.stats.size(),
               r.t.empty() ? 0.0 : r.t.back(), map.spheres().size(), map.obstacles().size());
   std::printf("  update ms: median %.2f  p95 %.2f  p99 %.2f  max %.2f\n", percentile(r.total_ms, 0.5),

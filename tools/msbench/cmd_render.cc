@@ -14,6 +14,7 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
+#include "tools/msbench/strict_number.h"
 #include "tools/msbench/world_registry.h"
 
 namespace msb {
@@ -22,19 +23,19 @@ namespace {
 
 // Parses "x,y,z,yaw_deg".
 Vec4 parsePose(const std::string& s) {
-  Vec4 v;
+  // Exactly four comma-separated numbers, each through the strict reader.
+  std::vector<std::string> parts;
   std::stringstream ss(s);
-  std::string part;
-  int i = 0;
-  while (std::getline(ss, part, ',')) {
-    if (i >= 4) break;
-    char* end = nullptr;
-    v[i] = std::strtod(part.c_str(), &end);
-    if (part.empty() || *end != '\0') break;
-    ++i;
+  for (std::string part; std::getline(ss, part, ',');) parts.push_back(part);
+  if (!s.empty() && s.back() == ',') parts.push_back("");
+  if (parts.size() != 4)
+    throw UsageError("--pose: expected x,y,z,yaw_deg (four numbers), got " + std::to_string(parts.size()) +
+                     " values in '" + s + "'");
+  Vec4 v;
+  for (int i = 0; i < 4; ++i) {
+    std::string why;
+    if (!parseNumber(parts[size_t(i)], &v[i], &why)) throw UsageError("--pose: value " + std::to_string(i + 1) + ": " + why);
   }
-  if (i != 4 || ss.rdbuf()->in_avail() > 0)
-    throw UsageError("--pose: expected x,y,z,yaw_deg (four numbers), got '" + s + "'");
   return v;
 }
 
@@ -52,6 +53,7 @@ int runRenderProbeCommand(int argc, char** argv) {
   args.option("world", "test", "world name or MJCF file")
       .option("pose", "0,0,1.5,0", "vehicle body pose x,y,z (m), yaw (deg)")
       .option("out", "", "output PNG file", true)
+      .flag("overwrite", "replace an existing output file")
       .option("scale", "1", "image scale: 1 (752x480) or 0.5 (376x240)")
       .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length")
       .flag("sky", "draw the world's sky (render.sky)")
@@ -65,6 +67,7 @@ int runRenderProbeCommand(int argc, char** argv) {
   render_cfg.sky = args.has("sky");
   render_cfg.sun = args.has("sun");
   const std::string world = resolveWorld(args.get("world")).world_xml;
+  checkOutputFile(args.get("out"), args.has("overwrite"), "out");
 
   const Pose T_W_B = poseFromXyzYaw(pose.head<3>(), pose[3] * M_PI / 180.0);
   QuadrotorSim sim(PhysicsConfig{}, world, T_W_B);

@@ -8,6 +8,7 @@
 #include "tools/loop/mission.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/interrupt.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/mission_outputs.h"
 #include "tools/msbench/output_files.h"
@@ -58,8 +59,8 @@ int runRunCommand(int argc, char** argv) {
   // Load, override and validate everything before anything is written.
   const std::string file = args.get("SCENARIO.yaml");
   std::vector<std::string> all_sets = sets;
-  if (!args.get("seed").empty()) all_sets.push_back("seed=" + args.get("seed"));
-  if (!args.get("duration").empty()) all_sets.push_back("duration_s=" + args.get("duration"));
+  if (args.given("seed")) all_sets.push_back("seed=" + args.get("seed"));
+  if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
   ScenarioSpec spec = loadScenario(file, all_sets);
   const YAML::Node tree = loadScenarioTree(file, all_sets);
   std::optional<BuiltWorld> built = resolveFlightWorld(file, spec.flight);
@@ -76,6 +77,10 @@ int runRunCommand(int argc, char** argv) {
     truth.emplace(built->generated.shapes);
   }
   if (spec.exploration_box) box = *spec.exploration_box;
+  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record");
+  // Build the mission (world model, renderer, method) before any output exists: a world that
+  // does not compile is bad input (exit 2) and leaves nothing behind.
+  Mission mission(spec, box, truth ? &*truth : nullptr);
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   writeFileAtomic(out.staging() / "config.yaml",
                   "# effective scenario: " + file + (all_sets.empty() ? "" : " with overrides") + "\n" +
@@ -91,11 +96,12 @@ int runRunCommand(int argc, char** argv) {
                                            {"scenario", file}});
   MissionResult r;
   try {
-    // Step the mission to its end; record perception and print progress between ticks.
-    Mission mission(spec, box, truth ? &*truth : nullptr);
+    // Step the mission to its end; record perception and print progress between ticks; stop at
+    // the end of a tick on SIGINT/SIGTERM (nothing is kept).
     const auto wall_start = WallClock::now();
     const int64_t progress_ticks = 10 * int64_t(mission.physicsHz());
     while (mission.running()) {
+      throwIfInterrupted();
       const TickRecord& t = mission.step();
       if (recorder && t.points) recorder->write(*t.points, t.frame->T_W_C);
       if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
@@ -103,6 +109,8 @@ int runRunCommand(int argc, char** argv) {
                       mission.explorer().counters());
     }
     r = mission.finish();
+  } catch (const Interrupted&) {
+    throw;  // unwinds: the recorder and the staging directory remove themselves
   } catch (const std::exception& e) {
     // A crashed run leaves a record saying so (a sweep goes on with the next run).
     nlohmann::json j = {{"name", spec.name}, {"status", "error"}, {"error", e.what()}, {"seed", spec.flight.seed},

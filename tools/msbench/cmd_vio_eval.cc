@@ -13,6 +13,7 @@
 
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/interrupt.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
 #include "core/eval/slam_point_truth.h"
@@ -93,11 +94,15 @@ int runVioEvalCommand(int argc, char** argv) {
   spec.perception.enabled = true;
   const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
   const long annotate_every = args.getInt("annotate-every");
-  StagedOutputDir out(args.get("out"), args.has("overwrite"));
-  fs::create_directories(out.staging() / "annotated");
-
+  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record");
   std::optional<WorldTruth> truth;
   if (built) truth.emplace(built->generated.shapes);
+  // The loop (world model, renderer) before any output exists: a bad world writes nothing.
+  LoopSetup setup;
+  setup.truth = truth ? &*truth : nullptr;
+  ClosedLoop loop(spec, setup);
+  StagedOutputDir out(args.get("out"), args.has("overwrite"));
+  fs::create_directories(out.staging() / "annotated");
   const FisheyeCamera camera(spec.camera);
   std::map<int64_t, Pose> gt_camera;  // ground-truth camera pose per rendered tick
   VioStats st;
@@ -154,12 +159,10 @@ int runVioEvalCommand(int argc, char** argv) {
       cv::imwrite((out.staging() / "annotated" / name).string(), annotate(s));
     }
   };
-  // Fly the path with perception on; evaluate every processed frame.
-  LoopSetup setup;
-  setup.truth = truth ? &*truth : nullptr;
-  ClosedLoop loop(spec, setup);
+  // Fly the path with perception on; evaluate every processed frame; stop on SIGINT/SIGTERM.
   ProgressLine progress("vio-eval", spec.duration_s);
   while (loop.running()) {
+    throwIfInterrupted();
     const TickRecord& t = loop.step();
     if (t.points)
       evaluate({*t.frame, *t.tracks, *t.points, t.timing.tracker_ms, t.timing.triangulation_ms, t.timing.render_ms});

@@ -14,6 +14,7 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
+#include "tools/msbench/strict_number.h"
 #include "tools/msbench/world_registry.h"
 
 namespace msb {
@@ -23,10 +24,11 @@ namespace fs = std::filesystem;
 namespace {
 
 std::optional<uint64_t> seedArg(const ArgParser& args) {
-  if (args.get("seed").empty()) return std::nullopt;
-  const long s = args.getInt("seed");
-  if (s < 0) throw UsageError("--seed must be >= 0");
-  return static_cast<uint64_t>(s);
+  if (!args.given("seed")) return std::nullopt;
+  uint64_t s;
+  std::string why;
+  if (!parseUnsigned(args.get("seed"), &s, &why)) throw UsageError("--seed: " + why);
+  return s;
 }
 
 const BuiltWorld& requireGenerated(const ResolvedWorld& w, const std::string& name) {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <new>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -10,6 +11,7 @@
 #include "core/common/config_check.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/interrupt.h"
 #include "tools/msbench/yaml_config.h"
 
 namespace {
@@ -36,7 +38,7 @@ void printUsage() {
               "msbench - deterministic headless closed-loop benchmark for monocular UAV "
               "exploration\n\ncommands:\n");
   for (const auto& c : kCommands) std::printf("  %-14s %s\n", c.name, c.summary);
-  std::printf("\nexit codes: 0 ok, 1 runtime failure, 2 usage or configuration error\n");
+  std::printf("\nexit codes: 0 ok, 1 runtime failure, 2 usage or configuration error, 130/143 interrupted\n");
 }
 
 }  // namespace
@@ -44,6 +46,7 @@ void printUsage() {
 int main(int argc, char** argv) {
   // Single-threaded OpenCV inside a run (determinism; parallelism comes from processes).
   cv::setNumThreads(0);
+  msb::installInterruptHandlers();
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     printUsage();
     return argc < 2 ? msb::kExitUsage : msb::kExitOk;
@@ -52,6 +55,9 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[1], c.name) != 0) continue;
     try {
       return c.run(argc - 2, argv + 2);
+    } catch (const msb::Interrupted& e) {
+      std::fprintf(stderr, "msbench %s: %s; stopped, no partial results left\n", c.name, e.what());
+      return 128 + e.signal();
     } catch (const msb::UsageError& e) {
       std::fprintf(stderr, "msbench %s: %s\n", c.name, e.what());
       return msb::kExitUsage;
@@ -61,6 +67,12 @@ int main(int argc, char** argv) {
     } catch (const msb::ConfigError& e) {
       std::fprintf(stderr, "msbench %s: configuration error: %s\n", c.name, e.what());
       return msb::kExitUsage;
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr, "msbench %s: error: out of memory\n", c.name);
+      return msb::kExitRuntime;
+    } catch (const cv::Exception& e) {
+      std::fprintf(stderr, "msbench %s: error: image processing failed (OpenCV: %s)\n", c.name, e.err.c_str());
+      return msb::kExitRuntime;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "msbench %s: error: %s\n", c.name, e.what());
       return msb::kExitRuntime;

@@ -1,8 +1,11 @@
 #include "tools/msbench/output_files.h"
 
+#include "tools/msbench/cli_args.h"
+
 #include <unistd.h>
 
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 namespace msb {
@@ -20,14 +23,73 @@ void writeFileAtomic(const fs::path& path, const std::string& bytes) {
   fs::rename(tmp, path);
 }
 
-StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite)
-    : final_(std::move(final_dir)), overwrite_(overwrite) {
-  if (fs::exists(final_) && !fs::is_empty(final_) && !overwrite_)
-    throw std::runtime_error(final_.string() +
-                             ": output directory exists and is not empty (use --overwrite)");
-  staging_ = final_.string() + ".partial";
-  fs::remove_all(staging_);
-  fs::create_directories(staging_);
+namespace {
+
+constexpr char kMarker[] = ".msbench-output";
+
+// True if `dir` is `p` or one of its ancestors (both absolute and normalised).
+bool isSameOrAncestor(const fs::path& dir, const fs::path& p) {
+  auto q = p.begin();
+  for (auto d = dir.begin(); d != dir.end(); ++d, ++q) {
+    if (d->empty()) continue;  // a trailing separator
+    if (q == p.end() || *d != *q) return false;
+  }
+  return true;
+}
+
+bool existsNoFollow(const fs::path& p) {
+  std::error_code ec;
+  return fs::exists(fs::symlink_status(p, ec));
+}
+
+}  // namespace
+
+void checkOutputFile(const fs::path& file, bool overwrite, const std::string& flag) {
+  const std::string name = "--" + flag + " " + file.string();
+  if (file.empty() || !fs::absolute(file).has_filename()) throw UsageError(name + ": expected a file name");
+  if (existsNoFollow(file)) {
+    if (!fs::is_regular_file(fs::symlink_status(file))) throw UsageError(name + ": exists and is not a regular file");
+    if (!overwrite) throw UsageError(name + ": exists (use --overwrite to replace it)");
+  }
+  const fs::path dir = fs::absolute(file).parent_path();
+  if (!fs::is_directory(dir)) throw UsageError(name + ": directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw UsageError(name + ": directory " + dir.string() + " is not writable");
+}
+
+bool isMsbenchOutput(const fs::path& dir) { return fs::is_directory(dir) && fs::exists(dir / kMarker); }
+
+StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite) : overwrite_(overwrite) {
+  // One normal absolute form (a trailing slash names the same directory).
+  if (final_dir.empty()) throw UsageError("--out: empty path");
+  fs::path p = fs::absolute(final_dir).lexically_normal();
+  if (!p.has_filename()) p = p.parent_path();
+  final_ = p;
+  const std::string name = final_dir.string();
+  if (p == p.root_path() || isSameOrAncestor(p, fs::current_path().lexically_normal()))
+    throw UsageError(name + ": refusing to use the current directory, one of its parents or / as an output directory");
+  // An existing target must be a directory; a non-empty one needs --overwrite and must be an
+  // msbench result (marker file), so nothing else is ever deleted.
+  if (existsNoFollow(p)) {
+    if (!fs::is_directory(fs::symlink_status(p)))
+      throw UsageError(name + ": exists and is not a directory; refusing to replace it");
+    if (!fs::is_empty(p)) {
+      if (!overwrite_)
+        throw UsageError(name + ": output directory exists and is not empty (use --overwrite to replace an msbench result)");
+      if (!isMsbenchOutput(p))
+        throw UsageError(name + ": was not written by msbench (no " + kMarker + " inside); refusing to replace it");
+    }
+  }
+  // The staging directory: a stale one of an interrupted msbench run is cleared, anything else kept.
+  staging_ = p.string() + ".partial";
+  if (existsNoFollow(staging_)) {
+    if (!fs::is_directory(fs::symlink_status(staging_)) || !isMsbenchOutput(staging_))
+      throw UsageError(staging_.string() + ": exists and was not written by msbench; remove or rename it first");
+    fs::remove_all(staging_);
+  }
+  std::error_code ec;
+  fs::create_directories(staging_, ec);
+  if (ec) throw UsageError(staging_.string() + ": cannot create the output directory: " + ec.message());
+  writeFileAtomic(staging_ / kMarker, "This directory was written by msbench; --overwrite may replace it.\n");
 }
 
 StagedOutputDir::~StagedOutputDir() {
@@ -38,7 +100,8 @@ StagedOutputDir::~StagedOutputDir() {
 }
 
 void StagedOutputDir::commit() {
-  if (fs::exists(final_)) fs::remove_all(final_);
+  // The target is empty or an msbench result (checked at construction).
+  if (existsNoFollow(final_)) fs::remove_all(final_);
   if (final_.has_parent_path()) fs::create_directories(final_.parent_path());
   fs::rename(staging_, final_);
   committed_ = true;

@@ -11,10 +11,23 @@ namespace msb {
 /// Writes `bytes` to `path` through a temporary file in the same directory and a rename.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& bytes);
 
-/// A staging directory "<final>.partial" that becomes "<final>" on commit().
+/// Checks before a run that `file` can be written as an output file named by `flag`: not a
+/// directory, its directory exists and is writable, and an existing file only with `overwrite`.
+/// Throws UsageError (exit 2).
+void checkOutputFile(const std::filesystem::path& file, bool overwrite, const std::string& flag);
+
+/// True if `dir` is a directory msbench wrote (it holds the marker file `.msbench-output`).
+bool isMsbenchOutput(const std::filesystem::path& dir);
+
+/// A staging directory "<final>.partial" that becomes "<final>" on commit(). Safe by
+/// construction: the path is normalised (a trailing slash is the same directory); the current
+/// directory, its parents, `/` and anything that is not a directory are refused; a non-empty
+/// target needs `overwrite` and is replaced only if msbench wrote it (marker file); a
+/// "<final>.partial" msbench did not write is never touched. Every output directory gets the
+/// marker file.
 class StagedOutputDir {
  public:
-  /// Fails (std::runtime_error) if `final_dir` exists and is not empty, unless `overwrite`.
+  /// Checks the target and creates the staging directory; refusals throw UsageError (exit 2).
   StagedOutputDir(std::filesystem::path final_dir, bool overwrite);
   /// Removes the staging directory if commit() was never called.
   ~StagedOutputDir();

@@ -1,6 +1,8 @@
 #include "tools/msbench/perception_log.h"
 
+#include <cmath>
 #include <cstring>
+#include <memory>
 #include <filesystem>
 #include <stdexcept>
 
@@ -16,37 +18,58 @@ void putPose(std::FILE* f, const Pose& T) {
   std::fwrite(v, sizeof(double), 7, f);
 }
 
+// Bounded, validating reader of a log file: every value must be finite and within ±1e6; a
+// short read names the frame it happened in.
 class Reader {
  public:
-  Reader(const std::string& path, std::string bytes) : path_(path), b_(std::move(bytes)) {}
+  Reader(const std::string& path, std::FILE* f) : path_(path), f_(f) {}
+  void setFrame(long frame) { frame_ = frame; }
   template <class T>
   T get() {
-    if (pos_ + sizeof(T) > b_.size()) throw std::runtime_error(path_ + ": truncated perception log");
     T v;
-    std::memcpy(&v, b_.data() + pos_, sizeof(T));
-    pos_ += sizeof(T);
+    if (std::fread(&v, sizeof(T), 1, f_) != 1) fail("truncated");
+    return v;
+  }
+  double real() {
+    const double v = get<double>();
+    if (!std::isfinite(v) || std::abs(v) > 1e6) fail("value out of range (" + std::to_string(v) + ")");
     return v;
   }
   Pose pose() {
     double v[7];
-    for (double& x : v) x = get<double>();
+    for (double& x : v) x = real();
+    const Quat q(v[3], v[4], v[5], v[6]);
+    if (q.norm() < 1e-6) fail("degenerate orientation");
     Pose T = Pose::Identity();
     T.translation() = Vec3(v[0], v[1], v[2]);
-    T.linear() = Quat(v[3], v[4], v[5], v[6]).normalized().toRotationMatrix();
+    T.linear() = q.normalized().toRotationMatrix();
     return T;
   }
-  std::string line() {
-    const auto end = b_.find('\n', pos_);
-    if (end == std::string::npos) throw std::runtime_error(path_ + ": truncated perception log");
-    std::string s = b_.substr(pos_, end - pos_);
-    pos_ = end + 1;
+  // A text line of at most `max_len` characters.
+  std::string line(size_t max_len) {
+    std::string s;
+    for (int c; (c = std::fgetc(f_)) != '\n';) {
+      if (c == EOF) fail("truncated header");
+      if (s.size() >= max_len) fail("header line too long");
+      s.push_back(char(c));
+    }
     return s;
   }
-  bool done() const { return pos_ >= b_.size(); }
+  bool done() {
+    const int c = std::fgetc(f_);
+    if (c == EOF) return true;
+    std::ungetc(c, f_);
+    return false;
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error(path_ + ": " + what + (frame_ >= 0 ? " in frame " + std::to_string(frame_) : "") +
+                             " (a corrupt or truncated perception log)");
+  }
 
  private:
-  std::string path_, b_;
-  size_t pos_ = 0;
+  std::string path_;
+  std::FILE* f_;
+  long frame_ = -1;
 };
 
 }  // namespace
@@ -93,40 +116,41 @@ void PerceptionLogWriter::close() {
 }
 
 PerceptionLog PerceptionLog::read(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": not a perception log file");
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!f) throw std::runtime_error(path + ": cannot open the perception log");
-  std::string bytes;
-  char buf[1 << 16];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0) bytes.append(buf, n);
-  std::fclose(f);
-  if (bytes.compare(0, std::strlen(kMagic), kMagic) != 0)
+  // The magic bytes first: nothing else is read from a file that is not a log.
+  char magic[sizeof(kMagic) - 1];
+  if (std::fread(magic, 1, sizeof(magic), f.get()) != sizeof(magic) || std::memcmp(magic, kMagic, sizeof(magic)) != 0)
     throw std::runtime_error(path + ": not an msbench perception log (bad magic)");
-  Reader r(path, bytes.substr(std::strlen(kMagic)));
+  Reader r(path, f.get());
   PerceptionLog log;
   try {
-    log.header = nlohmann::json::parse(r.line());
+    log.header = nlohmann::json::parse(r.line(1 << 20));
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(path + ": bad log header: " + e.what());
   }
-  while (!r.done()) {
+  if (!log.header.is_object()) throw std::runtime_error(path + ": bad log header: expected a JSON object");
+  for (long frame = 0; !r.done(); ++frame) {
+    r.setFrame(frame);
     LoggedFrame fr;
     fr.points.tick = r.get<int64_t>();
-    fr.points.t_s = r.get<double>();
+    fr.points.t_s = r.real();
     fr.points.T_W_C = r.pose();
     fr.T_W_C_truth = r.pose();
     const uint32_t count = r.get<uint32_t>();
+    if (count > 100000) r.fail("implausible point count " + std::to_string(count));
     for (uint32_t i = 0; i < count; ++i) {
       SlamPoint p;
       p.track_id = r.get<uint64_t>();
       double v[11];
-      for (double& x : v) x = r.get<double>();
+      for (double& x : v) x = r.real();
       p.p_W = Vec3(v[0], v[1], v[2]);
       p.cov_W << v[3], v[4], v[5], v[4], v[6], v[7], v[5], v[7], v[8];
       p.depth_m = v[9];
       p.depth_std_m = v[10];
       p.anchor_tick = r.get<int64_t>();
-      const double u = r.get<double>(), w = r.get<double>();
+      const double u = r.real(), w = r.real();
       p.anchor_pixel = Vec2(u, w);
       fr.points.points.push_back(p);
     }

@@ -56,6 +56,7 @@ void applySet(YAML::Node& root, const std::string& kv) {
   } catch (const YAML::Exception& e) {
     throw UsageError("--set " + path + ": value '" + text + "' is not valid YAML: " + e.msg);
   }
+  rejectDuplicateKeys(value, "--set " + path);
   std::vector<std::string> keys;
   std::stringstream ss(path);
   for (std::string k; std::getline(ss, k, '.');) {

@@ -53,16 +53,15 @@ void readLimits(MapReader r, TrajectoryLimits& l) {
 std::vector<Waypoint> readWaypoints(const YAML::Node& n, const std::string& key) {
   if (!n.IsSequence()) throw ConfigError(key, "expected a list of waypoints");
   std::vector<Waypoint> out;
-  for (size_t i = 0; i < n.size(); ++i) {
-    const std::string k = key + "[" + std::to_string(i) + "]";
+  size_t i = 0;
+  for (const YAML::Node& item : n) {  // iterators: indexing a yaml-cpp sequence is linear
+    const std::string k = key + "[" + std::to_string(i++) + "]";
     Waypoint w;
-    if (n[i].IsSequence()) {
-      YAML::Node wrap;
-      wrap["position"] = n[i];
-      MapReader r(wrap, k + ".");
-      r.read("position", w.position_m);
+    if (item.IsSequence()) {
+      // [x, y, z] (no wrapping node: assigning nodes merges yaml-cpp's memory, quadratic in lists)
+      MapReader(YAML::Node(YAML::NodeType::Map), "").value(item, k, w.position_m);
     } else {
-      MapReader r(n[i], k + ".");
+      MapReader r(item, k + ".");
       if (!r.read("position", w.position_m)) throw ConfigError(k + ".position", "is required");
       double h;
       if (r.read("heading_deg", h)) w.heading_rad = h * kDeg;

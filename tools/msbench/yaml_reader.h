@@ -14,6 +14,7 @@
 
 #include "core/common/config_check.h"
 #include "core/common/types.h"
+#include "tools/msbench/strict_number.h"
 
 namespace msb {
 
@@ -48,6 +49,13 @@ class MapReader {
     return true;
   }
 
+  // Converts `n`, which is not a key of this map (e.g. a list element), with the same strictness;
+  // errors name it `key` after this reader's prefix.
+  template <class T>
+  void value(const YAML::Node& n, const std::string& key, T& out) const {
+    convert(n, key, out);
+  }
+
   // Reader for the nested map at `key` (the map must exist: call has() first).
   MapReader sub(const std::string& key) {
     used_.insert(key);
@@ -65,8 +73,9 @@ class MapReader {
   void forEachInList(const std::string& key, Item item) {
     const YAML::Node n = raw(key);
     if (!n.IsSequence()) throw ConfigError(keyName(key), "expected a list");
-    for (size_t i = 0; i < n.size(); ++i) {
-      MapReader m(n[i], keyName(key) + "[" + std::to_string(i) + "].");
+    size_t i = 0;
+    for (const YAML::Node& element : n) {  // iterators: indexing a yaml-cpp sequence is linear
+      MapReader m(element, keyName(key) + "[" + std::to_string(i++) + "].");
       item(m);
     }
   }
@@ -88,21 +97,33 @@ class MapReader {
 
  private:
   [[noreturn]] void typeError(const YAML::Node& n, const std::string& key, const char* want) const {
-    std::string got = n.IsScalar() ? "'" + n.Scalar() + "'" : n.IsSequence() ? "a list" : "a map";
+    std::string got = n.IsScalar()     ? "'" + n.Scalar() + "'"
+                      : n.IsSequence() ? "a list of " + std::to_string(n.size())
+                      : n.IsMap()      ? "a map"
+                                       : "nothing (null)";
     throw ConfigError(keyName(key), std::string("expected ") + want + ", got " + got);
   }
-  void convert(const YAML::Node& n, const std::string& key, double& out) const {
-    if (!n.IsScalar() || !YAML::convert<double>::decode(n, out) || !std::isfinite(out))
-      typeError(n, key, "a number");
+  // Every number goes through the strict reader (finite, in range, whole text).
+  double number(const YAML::Node& n, const std::string& key, const char* want) const {
+    if (!n.IsScalar()) typeError(n, key, want);
+    double v;
+    std::string why;
+    if (!parseNumber(n.Scalar(), &v, &why)) throw ConfigError(keyName(key), std::string("expected ") + want + ": " + why);
+    return v;
   }
+  void convert(const YAML::Node& n, const std::string& key, double& out) const { out = number(n, key, "a number"); }
   void convert(const YAML::Node& n, const std::string& key, int& out) const {
-    if (!n.IsScalar() || !YAML::convert<int>::decode(n, out)) typeError(n, key, "an integer");
+    if (!n.IsScalar()) typeError(n, key, "an integer");
+    int64_t v;
+    std::string why;
+    if (!parseInteger(n.Scalar(), &v, &why)) throw ConfigError(keyName(key), "expected an integer: " + why);
+    if (v < INT32_MIN || v > INT32_MAX) throw ConfigError(keyName(key), "expected an integer: '" + n.Scalar() + "' is out of range");
+    out = int(v);
   }
   void convert(const YAML::Node& n, const std::string& key, uint64_t& out) const {
-    long long v;
-    if (!n.IsScalar() || !YAML::convert<long long>::decode(n, v) || v < 0)
-      typeError(n, key, "a non-negative integer");
-    out = static_cast<uint64_t>(v);
+    if (!n.IsScalar()) typeError(n, key, "a non-negative integer");
+    std::string why;
+    if (!parseUnsigned(n.Scalar(), &out, &why)) throw ConfigError(keyName(key), "expected a non-negative integer: " + why);
   }
   void convert(const YAML::Node& n, const std::string& key, bool& out) const {
     if (!n.IsScalar() || !YAML::convert<bool>::decode(n, out)) typeError(n, key, "true or false");
@@ -111,17 +132,22 @@ class MapReader {
     if (!n.IsScalar()) typeError(n, key, "a string");
     out = n.Scalar();
   }
-  void convert(const YAML::Node& n, const std::string& key, Vec3& out) const {
-    if (!n.IsSequence() || n.size() != 3) typeError(n, key, "a list of 3 numbers");
-    for (int i = 0; i < 3; ++i)
-      if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], out[i]))
-        typeError(n, key, "a list of 3 numbers");
+  // A list of exactly N numbers, each through the strict reader.
+  template <size_t N, class Out>
+  void numbers(const YAML::Node& n, const std::string& key, Out& out) const {
+    const std::string want = "a list of " + std::to_string(N) + " numbers";
+    if (!n.IsSequence()) typeError(n, key, want.c_str());
+    if (n.size() != N)
+      throw ConfigError(keyName(key), "expected " + want + ", got a list of " + std::to_string(n.size()));
+    size_t i = 0;
+    for (const YAML::Node& element : n) {
+      out[i] = number(element, key + "[" + std::to_string(i) + "]", "a number");
+      ++i;
+    }
   }
+  void convert(const YAML::Node& n, const std::string& key, Vec3& out) const { numbers<3>(n, key, out); }
   void convert(const YAML::Node& n, const std::string& key, std::array<double, 4>& out) const {
-    if (!n.IsSequence() || n.size() != 4) typeError(n, key, "a list of 4 numbers");
-    for (int i = 0; i < 4; ++i)
-      if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], out[i]))
-        typeError(n, key, "a list of 4 numbers");
+    numbers<4>(n, key, out);
   }
 
   YAML::Node node_;
@@ -130,16 +156,13 @@ class MapReader {
 };
 
 
-/// Loads a YAML file; a missing file or a syntax error throws FileConfigError naming the file.
-inline YAML::Node loadYamlFile(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw FileConfigError(path + ": file not found");
-  try {
-    return YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw FileConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
-                          ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
-  }
-}
+/// Throws FileConfigError (naming `label` and both lines) if a map anywhere in `node` holds
+/// the same key twice (YAML forbids it; yaml-cpp keeps both and lookups would pick one).
+void rejectDuplicateKeys(const YAML::Node& node, const std::string& label, const std::string& prefix = "");
+
+/// Loads a YAML file; a missing file, a syntax error or a duplicate key throws FileConfigError
+/// naming the file.
+YAML::Node loadYamlFile(const std::string& path);
 
 /// Converts an already loaded tree (errors are reported against `label`, usually the file).
 template <class Spec, class Read>

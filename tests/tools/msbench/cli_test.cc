@@ -82,7 +82,7 @@ TEST(Cli, ExistingResultsAreNotOverwritten) {
                                  "trajectory: {waypoints: [[0,0,1]]}\n";
   EXPECT_EQ(run("fly '" + (d / "f.yaml").string() + "' --out '" + (d / "out").string() + "'",
                 d / "log"),
-            1);
+            2);  // a usage error: the output directory is taken
   EXPECT_EQ(readText(d / "out" / "metrics.json"), "{}");
 }
 

@@ -85,7 +85,7 @@ TEST(YamlConfig, WrongTypeIsAnError) {
   expectError("world: world.xml\nduration_s: long\ntrajectory: {waypoints: [[0,0,1]]}\n",
               {"duration_s", "expected a number", "long"});
   expectError("world: world.xml\ntrajectory: {waypoints: [[0,0]]}\n",
-              {"trajectory.waypoints[0].position", "3 numbers"});
+              {"trajectory.waypoints[0]", "3 numbers, got a list of 2"});
   expectError("world: world.xml\ncamera: [1, 2]\ntrajectory: {waypoints: [[0,0,1]]}\n",
               {"camera", "expected a map"});
   expectError("world: world.xml\nseed: -3\ntrajectory: {waypoints: [[0,0,1]]}\n",
