@@ -145,10 +145,16 @@ void GridExplorer::markCoverage(ColumnCoverage& coverage) const {
   for (const GridLeaf& leaf : map_.leaves(false)) coverage.markSquare(leaf.centre.head<2>(), 0.5 * leaf.size_m);
 }
 
+std::vector<ExplorerSnapshot::Disk> GridExplorer::freeSpace() const {
+  std::vector<ExplorerSnapshot::Disk> out;
+  for (const GridLeaf& leaf : map_.leaves(false)) out.push_back({leaf.id, leaf.centre, 0.5 * leaf.size_m});
+  return out;
+}
+
 ExplorerSnapshot GridExplorer::snapshot() const {
   ExplorerSnapshot snap;
   // Free leaves as their inscribed spheres; occupied leaves as points.
-  for (const GridLeaf& leaf : map_.leaves(false)) snap.free_space.push_back({leaf.id, leaf.centre, 0.5 * leaf.size_m});
+  snap.free_space = freeSpace();
   for (const GridLeaf& leaf : map_.leaves(true)) snap.obstacles.push_back(leaf.centre);
   if (goal_) snap.goal = ExplorerSnapshot::Pose2{*goal_, 0.0};
   snap.path = last_path_;

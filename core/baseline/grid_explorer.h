@@ -61,6 +61,7 @@ class GridExplorer : public Explorer {
   std::optional<PathCommand> plan(const VehicleState& vehicle) override;
   void markCoverage(ColumnCoverage& coverage) const override;
   ExplorerSnapshot snapshot() const override;
+  std::vector<ExplorerSnapshot::Disk> freeSpace() const override;
   std::map<std::string, double> counters() const override;
 
   /// The map (tests, tools).

@@ -1,9 +1,10 @@
 // Grid A* for the baseline (architecture §9): a dense traversability grid over the exploration
 // box, aligned with the OctoMap cells, rebuilt from the map before planning. A cell is blocked
 // when its centre lies within `clearance_m` of an occupied cell's centre; with
-// `unknown_is_occupied` (the paper's description: the same distance from obstacles and unknown
-// space) also when it is unknown or within `clearance_m` of an unknown cell. By default unknown
-// space is traversable, as in the reference code. A* (26-neighbour moves, Euclidean heuristic, ties broken by cell index) searches
+// `unknown_is_occupied` (the default; the paper: "the same distance from obstacles and unknown
+// space as MonoSpheres") also when it is unknown or within `clearance_m` of an unknown cell.
+// With it off, unknown space is traversable (what our design notes record of the reference
+// code; measured to crash into unseen walls and ceilings within a minute, docs/baseline.md). A* (26-neighbour moves, Euclidean heuristic, ties broken by cell index) searches
 // from the vehicle's cell; when the goal cannot be reached it returns the path to the reached
 // cell closest to the goal. A vehicle that finds itself in blocked cells (new points appeared
 // close to it) may leave through blocked cells within `escape_radius_m` of its start, but never
@@ -25,7 +26,7 @@ namespace msb {
 /// Grid planner settings.
 struct GridPlannerConfig {
   double clearance_m = 1.5;          ///< distance kept from occupied cells
-  bool unknown_is_occupied = false;  ///< unknown cells and their clearance blocked (paper; code: traversable)
+  bool unknown_is_occupied = true;   ///< unknown cells and their clearance blocked (the paper; false: traversable)
   double escape_radius_m = 2.0;      ///< from a blocked start, blocked cells this close are passable ...
   double escape_clearance_m = 0.75;  ///< ... unless this close to an occupied cell
   int max_expansions = 500000;       ///< A* node budget per search

@@ -5,7 +5,7 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
+#include <unordered_map>
 #include <vector>
 
 #include "core/common/aabb.h"
@@ -46,7 +46,8 @@ class MissionCoverage {
   Aabb box_;
   int box_explorable_ = 0;
   ColumnCoverage columns_, columns_gt_;
-  std::map<uint64_t, Pose> first_seen_;  // estimate → truth correction per free-space element id
+  // Estimate → truth correction per free-space element id (looked up only, never iterated).
+  std::unordered_map<uint64_t, Pose> first_seen_;
   Pose T_true_est_ = Pose::Identity();
   std::vector<CoverageSample> samples_;
 };

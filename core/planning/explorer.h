@@ -50,6 +50,9 @@ class Explorer {
   virtual void markCoverage(ColumnCoverage& coverage) const = 0;
   /// Map contents for pictures and the determinism hash.
   virtual ExplorerSnapshot snapshot() const = 0;
+  /// The free-space elements only (the metric's true-frame coverage samples them every
+  /// second); by default taken from snapshot().
+  virtual std::vector<ExplorerSnapshot::Disk> freeSpace() const { return snapshot().free_space; }
   /// Counters for metrics.json and the progress line (e.g. spheres, goals reached).
   virtual std::map<std::string, double> counters() const = 0;
 };

@@ -62,7 +62,7 @@ const TickRecord& Mission::step() {
 void Mission::sample(double t_s) {
   const auto t0 = WallClock::now();
   explorer_->markCoverage(coverage_.columns());
-  coverage_.sample(t_s, loop_->result().distance_flown_m, explorer_->snapshot().free_space);
+  coverage_.sample(t_s, loop_->result().distance_flown_m, explorer_->freeSpace());
   stages_.metric_ms += msSince(t0);
 }
 

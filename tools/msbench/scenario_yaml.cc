@@ -18,7 +18,8 @@ YAML::Node merge(const YAML::Node& a, const YAML::Node& b) {
   if (!a.IsMap() || !b.IsMap()) return YAML::Clone(b);
   YAML::Node out = YAML::Clone(a);
   for (const auto& kv : b) {
-    const std::string k = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) throw FileConfigError("a scenario map has a non-text key");
+    const std::string k = kv.first.Scalar();
     out[k] = out[k] ? merge(out[k], kv.second) : YAML::Clone(kv.second);
   }
   return out;

@@ -84,7 +84,7 @@ class MapReader {
   void finish() const {
     std::vector<ConfigIssue> issues;
     for (const auto& kv : node_) {
-      const auto k = kv.first.as<std::string>();
+      const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : "<a non-text key>";
       if (!used_.count(k)) issues.push_back({keyName(k), "unknown key"});
     }
     if (!issues.empty()) throw ConfigError(issues);
@@ -174,6 +174,8 @@ Spec parseConfigNode(const std::string& label, const YAML::Node& root, Read read
     checkValid(spec);
   } catch (const ConfigError& e) {
     throw FileConfigError(label + ": " + e.what());
+  } catch (const YAML::Exception& e) {
+    throw FileConfigError(label + ": unreadable YAML value: " + e.msg);
   }
   return spec;
 }

@@ -10,6 +10,14 @@
 namespace msb {
 namespace {
 
+// The explorer's mechanics on hand-built maps where most space is unknown: unknown space
+// traversable (the default blocks it, tested in the planner tests).
+GridExplorerConfig traversableUnknown() {
+  GridExplorerConfig c;
+  c.planner.unknown_is_occupied = false;
+  return c;
+}
+
 ExplorerContext context() {
   ExplorerContext ctx;
   ctx.exploration_box = {Vec3(-50, -45, 0), Vec3(12, 20, 7)};
@@ -51,7 +59,7 @@ TEST(GridExplorer, GoalsStayInTheSquareAndTheBox) {
 }
 
 TEST(GridExplorer, TakesOffThenPlansAroundMappedObstacles) {
-  GridExplorer e(GridExplorerConfig{}, context());
+  GridExplorer e(traversableUnknown(), context());
   // A wall west of the start (the explorer's goals will be all around).
   GridMap& map = e.mutableMap();
   for (double x = -20.25; x < 10; x += 0.5)
@@ -88,7 +96,7 @@ TEST(GridExplorer, TakesOffThenPlansAroundMappedObstacles) {
 }
 
 TEST(GridExplorer, AnObstacleOnThePathAheadStopsTheVehicle) {
-  GridExplorer e(GridExplorerConfig{}, context());
+  GridExplorer e(traversableUnknown(), context());
   for (int k = 0; k < 4; ++k) e.plan(at(Vec3(0, 0, 2), 0.2 * k, true));  // take-off done
   const auto cmd = e.plan(at(Vec3(4, 0, 2), 1.0, true));
   ASSERT_TRUE(cmd);

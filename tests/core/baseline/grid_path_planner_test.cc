@@ -11,6 +11,13 @@ namespace {
 
 const Aabb kBox{Vec3(-10, -10, 0), Vec3(12, 10, 4)};
 
+// Unknown space traversable: the hand-built maps below know only their obstacles.
+GridPlannerConfig traversableUnknown() {
+  GridPlannerConfig c;
+  c.unknown_is_occupied = false;
+  return c;
+}
+
 // A wall of occupied cells across x = 5.25, y ∈ [-4, 4], z ∈ [0, 4].
 GridMap wallMap() {
   GridMap map(GridMapConfig{});
@@ -38,7 +45,7 @@ double pathClearance(const GridMap& map, const std::vector<Vec3>& pts) {
 
 TEST(GridPathPlanner, PathsKeepTheClearanceFromOccupiedCells) {
   const GridMap map = wallMap();
-  GridPathPlanner planner(GridPlannerConfig{}, kBox, 0.5);
+  GridPathPlanner planner(traversableUnknown(), kBox, 0.5);
   planner.rebuild(map);
   const auto path = planner.plan(Vec3(0.1, 0.1, 2.1), Vec3(10.1, 0.1, 2.1));
   ASSERT_TRUE(path);
@@ -99,7 +106,7 @@ TEST(GridPathPlanner, UnknownIsOccupiedKeepsTheClearanceFromUnknownSpace) {
 
 TEST(GridPathPlanner, AnUnreachableGoalGivesTheClosestReachableCell) {
   const GridMap map = wallMap();
-  GridPathPlanner planner(GridPlannerConfig{}, kBox, 0.5);
+  GridPathPlanner planner(traversableUnknown(), kBox, 0.5);
   planner.rebuild(map);
   const Vec3 goal(5.25, 0.25, 2.25);  // inside the wall
   const auto path = planner.plan(Vec3(0.1, 0.1, 2.1), goal);
@@ -115,7 +122,7 @@ TEST(GridPathPlanner, AnUnreachableGoalGivesTheClosestReachableCell) {
 
 TEST(GridPathPlanner, AVehicleInBlockedCellsCanLeave) {
   const GridMap map = wallMap();
-  GridPathPlanner planner(GridPlannerConfig{}, kBox, 0.5);
+  GridPathPlanner planner(traversableUnknown(), kBox, 0.5);
   planner.rebuild(map);
   const Vec3 start(4.1, 0.1, 2.1);  // 1.15 m from the wall: blocked
   EXPECT_FALSE(planner.traversable(start));

@@ -189,7 +189,7 @@ TEST(FisheyeRenderer, RendersAreBitIdenticalWithOneOrTwoLlvmpipeThreads) {
   for (int threads : {1, 2}) {
     const std::string out = (dir / ("probe_" + std::to_string(threads) + ".png")).string();
     const std::string cmd = "LP_NUM_THREADS=" + std::to_string(threads) + " '" + exe +
-                            "' render-probe --world test --pose 3,2,1.7,40 --out '" + out +
+                            "' render-probe --world test --pose 3,2,1.7,40 --overwrite --out '" + out +
                             "' > /dev/null";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     images.push_back(readBytes(out));
