@@ -1,5 +1,7 @@
 #include "tools/msbench/perception_log.h"
 
+#include "core/common/rng.h"
+
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -10,12 +12,19 @@ namespace msb {
 
 namespace {
 
-constexpr char kMagic[] = "MSBLOG1\n";
+constexpr char kMagicV1[] = "MSBLOG1\n";  // frames back to back (read, no longer written)
+constexpr char kMagic[] = "MSBLOG2\n";    // frames with a length and a checksum
+constexpr uint32_t kMaxFrameBytes = 64u << 20;
 
-void putPose(std::FILE* f, const Pose& T) {
+// Appends the raw bytes of a value to a frame buffer.
+template <class T>
+void put(std::string& b, const T& v) {
+  b.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+void putPose(std::string& b, const Pose& T) {
   const Quat q(T.linear());
   const double v[7] = {T.translation().x(), T.translation().y(), T.translation().z(), q.w(), q.x(), q.y(), q.z()};
-  std::fwrite(v, sizeof(double), 7, f);
+  b.append(reinterpret_cast<const char*>(v), sizeof(v));
 }
 
 // Bounded, validating reader of a log file: every value must be finite and within ±1e6; a
@@ -24,11 +33,28 @@ class Reader {
  public:
   Reader(const std::string& path, std::FILE* f) : path_(path), f_(f) {}
   void setFrame(long frame) { frame_ = frame; }
+  // Reads from `buffer` instead of the file until clearBuffer() (a checked v2 frame).
+  void useBuffer(std::string buffer) { buf_ = std::move(buffer), pos_ = 0, buffered_ = true; }
+  void clearBuffer() {
+    if (pos_ != buf_.size()) fail("frame length does not match its content");
+    buffered_ = false;
+  }
   template <class T>
   T get() {
     T v;
-    if (std::fread(&v, sizeof(T), 1, f_) != 1) fail("truncated");
+    if (buffered_) {
+      if (pos_ + sizeof(T) > buf_.size()) fail("frame shorter than its content");
+      std::memcpy(&v, buf_.data() + pos_, sizeof(T));
+      pos_ += sizeof(T);
+    } else if (std::fread(&v, sizeof(T), 1, f_) != 1) {
+      fail("truncated");
+    }
     return v;
+  }
+  std::string bytes(size_t n) {
+    std::string b(n, '\0');
+    if (n && std::fread(b.data(), 1, n, f_) != n) fail("truncated");
+    return b;
   }
   double real() {
     const double v = get<double>();
@@ -70,6 +96,9 @@ class Reader {
   std::string path_;
   std::FILE* f_;
   long frame_ = -1;
+  std::string buf_;
+  size_t pos_ = 0;
+  bool buffered_ = false;
 };
 
 }  // namespace
@@ -90,21 +119,27 @@ PerceptionLogWriter::~PerceptionLogWriter() {
 }
 
 void PerceptionLogWriter::write(const SlamPointsFrame& frame, const Pose& T_W_C_truth) {
-  std::fwrite(&frame.tick, sizeof(int64_t), 1, f_);
-  std::fwrite(&frame.t_s, sizeof(double), 1, f_);
-  putPose(f_, frame.T_W_C);
-  putPose(f_, T_W_C_truth);
-  const uint32_t n = uint32_t(frame.points.size());
-  std::fwrite(&n, sizeof(n), 1, f_);
+  // The frame's payload, then: u32 length, payload, u64 FNV-1a checksum of the payload.
+  std::string b;
+  put(b, frame.tick);
+  put(b, frame.t_s);
+  putPose(b, frame.T_W_C);
+  putPose(b, T_W_C_truth);
+  put(b, uint32_t(frame.points.size()));
   for (const auto& p : frame.points) {
     const double v[14] = {p.p_W.x(), p.p_W.y(), p.p_W.z(), p.cov_W(0, 0), p.cov_W(0, 1),
                           p.cov_W(0, 2), p.cov_W(1, 1), p.cov_W(1, 2), p.cov_W(2, 2), p.depth_m,
                           p.depth_std_m, double(p.anchor_tick), p.anchor_pixel.x(), p.anchor_pixel.y()};
-    std::fwrite(&p.track_id, sizeof(uint64_t), 1, f_);
-    std::fwrite(v, sizeof(double), 11, f_);
-    std::fwrite(&p.anchor_tick, sizeof(int64_t), 1, f_);
-    std::fwrite(v + 12, sizeof(double), 2, f_);
+    put(b, p.track_id);
+    b.append(reinterpret_cast<const char*>(v), 11 * sizeof(double));
+    put(b, p.anchor_tick);
+    b.append(reinterpret_cast<const char*>(v + 12), 2 * sizeof(double));
   }
+  const uint32_t n = uint32_t(b.size());
+  const uint64_t sum = fnv1a64(b.data(), b.size());
+  std::fwrite(&n, sizeof(n), 1, f_);
+  std::fwrite(b.data(), 1, b.size(), f_);
+  std::fwrite(&sum, sizeof(sum), 1, f_);
 }
 
 void PerceptionLogWriter::close() {
@@ -121,7 +156,10 @@ PerceptionLog PerceptionLog::read(const std::string& path) {
   if (!f) throw std::runtime_error(path + ": cannot open the perception log");
   // The magic bytes first: nothing else is read from a file that is not a log.
   char magic[sizeof(kMagic) - 1];
-  if (std::fread(magic, 1, sizeof(magic), f.get()) != sizeof(magic) || std::memcmp(magic, kMagic, sizeof(magic)) != 0)
+  if (std::fread(magic, 1, sizeof(magic), f.get()) != sizeof(magic))
+    throw std::runtime_error(path + ": not an msbench perception log (bad magic)");
+  const bool v2 = std::memcmp(magic, kMagic, sizeof(magic)) == 0;
+  if (!v2 && std::memcmp(magic, kMagicV1, sizeof(magic)) != 0)
     throw std::runtime_error(path + ": not an msbench perception log (bad magic)");
   Reader r(path, f.get());
   PerceptionLog log;
@@ -133,6 +171,13 @@ PerceptionLog PerceptionLog::read(const std::string& path) {
   if (!log.header.is_object()) throw std::runtime_error(path + ": bad log header: expected a JSON object");
   for (long frame = 0; !r.done(); ++frame) {
     r.setFrame(frame);
+    if (v2) {  // length, payload, checksum: the payload is checked before it is parsed
+      const uint32_t n = r.get<uint32_t>();
+      if (n > kMaxFrameBytes) r.fail("implausible frame length " + std::to_string(n));
+      std::string payload = r.bytes(n);
+      if (r.get<uint64_t>() != fnv1a64(payload.data(), payload.size())) r.fail("checksum mismatch");
+      r.useBuffer(std::move(payload));
+    }
     LoggedFrame fr;
     fr.points.tick = r.get<int64_t>();
     fr.points.t_s = r.real();
@@ -154,6 +199,7 @@ PerceptionLog PerceptionLog::read(const std::string& path) {
       p.anchor_pixel = Vec2(u, w);
       fr.points.points.push_back(p);
     }
+    if (v2) r.clearBuffer();
     log.frames.push_back(std::move(fr));
   }
   return log;

@@ -1,10 +1,12 @@
 // Recorded perception streams ("vio-eval --record LOG"): per camera frame the estimated camera
 // pose, the ground-truth camera pose and the SLAM points, so the mapper can be replayed and
-// benchmarked without simulating. Binary, little-endian, versioned:
-//   "MSBLOG1\n", one JSON header line (world, seed, camera config), then frames:
+// benchmarked without simulating. Binary, little-endian, versioned by the magic bytes:
+//   "MSBLOG2\n", one JSON header line (world, seed, camera config), then frames, each
+//   u32 payload length, the payload, u64 FNV-1a checksum of the payload; the payload is
 //   int64 tick, f64 t, 7×f64 T_W_C estimate (t, q wxyz), 7×f64 T_W_C truth, u32 n,
 //   n × { u64 track id, 3×f64 p_W, 6×f64 covariance (xx xy xz yy yz zz), f64 depth, f64 depth σ,
-//         i64 anchor tick, 2×f64 anchor pixel }
+//         i64 anchor tick, 2×f64 anchor pixel }.
+// Version 1 ("MSBLOG1\n", payloads back to back without length or checksum) is still read.
 #pragma once
 
 #include <cstdio>

@@ -132,3 +132,36 @@ TEST(Fuzz, PerceptionLogs) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+TEST(PerceptionLogFormat, AFlippedByteFailsTheChecksumOfItsFrame) {
+  const fs::path d = dir("checksum");
+  {
+    PerceptionLogWriter w((d / "a.log").string(), nlohmann::json{{"camera_scale", 1}});
+    for (int f = 0; f < 2; ++f) {
+      SlamPointsFrame frame;
+      frame.tick = f;
+      SlamPoint p;
+      p.track_id = 7;
+      p.p_W = Vec3(1, 2, 3);
+      frame.points.push_back(p);
+      w.write(frame, Pose::Identity());
+    }
+    w.close();
+  }
+  ASSERT_EQ(PerceptionLog::read((d / "a.log").string()).frames.size(), 2u);
+  std::string bytes = readFile(d / "a.log");
+  bytes[bytes.size() - 20] ^= 0x10;  // inside the last frame's payload
+  std::ofstream(d / "b.log", std::ios::binary) << bytes;
+  try {
+    PerceptionLog::read((d / "b.log").string());
+    FAIL() << "a corrupt frame was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("checksum mismatch in frame 1"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace msb
