@@ -56,7 +56,14 @@ void checkOutputFile(const fs::path& file, bool overwrite, const std::string& fl
   if (::access(dir.c_str(), W_OK) != 0) throw UsageError(name + ": directory " + dir.string() + " is not writable");
 }
 
-bool isMsbenchOutput(const fs::path& dir) { return fs::is_directory(dir) && fs::exists(dir / kMarker); }
+bool isMsbenchOutput(const fs::path& dir) {
+  if (!fs::is_directory(dir)) return false;
+  if (fs::exists(dir / kMarker)) return true;
+  // A result written before the marker existed: its metrics.json names msbench's versions.
+  std::ifstream in(dir / "metrics.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text.find("\"versions\"") != std::string::npos && text.find("\"msbench\"") != std::string::npos;
+}
 
 StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite) : overwrite_(overwrite) {
   // One normal absolute form (a trailing slash names the same directory).
