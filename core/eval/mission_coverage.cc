@@ -4,19 +4,29 @@
 
 namespace msb {
 
-int boxExplorableNodes(const WorldTruth& truth, const Aabb& box, double cell) {
+std::set<ColumnIndex> boxExplorableNodes(const WorldTruth& truth, const Aabb& box, double cell) {
   // Align the box to the cells centred on the nodes (cell·i, cell·j) that lie inside it.
   Aabb aligned = box;
+  int64_t first[2];
   for (int k = 0; k < 2; ++k) {
-    aligned.min[k] = (std::ceil(box.min[k] / cell) - 0.5) * cell;
+    first[k] = int64_t(std::ceil(box.min[k] / cell));
+    aligned.min[k] = (double(first[k]) - 0.5) * cell;
     aligned.max[k] = (std::floor(box.max[k] / cell) + 0.5) * cell;
   }
-  if ((aligned.max.head<2>().array() <= aligned.min.head<2>().array()).any()) return 0;
-  return int(truth.explorableColumns(aligned, cell).size());
+  std::set<ColumnIndex> nodes;
+  if ((aligned.max.head<2>().array() <= aligned.min.head<2>().array()).any()) return nodes;
+  for (const Column& c : truth.explorableColumns(aligned, cell)) nodes.insert({first[0] + c.ix, first[1] + c.iy});
+  return nodes;
 }
 
-MissionCoverage::MissionCoverage(const Aabb& box, int box_explorable_columns)
-    : box_(box), box_explorable_(box_explorable_columns) {}
+MissionCoverage::MissionCoverage(const Aabb& box, std::set<ColumnIndex> box_explorable)
+    : box_(box), box_explorable_(std::move(box_explorable)) {}
+
+size_t MissionCoverage::exploredExplorableColumns() const {
+  size_t n = 0;
+  for (const ColumnIndex& c : columns_.columns()) n += box_explorable_.count(c);
+  return n;
+}
 
 void MissionCoverage::sample(double t_s, double distance_m, const std::vector<ExplorerSnapshot::Disk>& free_space) {
   // True-frame columns: each element keeps the correction of the moment it was first seen.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <set>
 #include <unordered_map>
 #include <vector>
 
@@ -16,15 +17,15 @@
 
 namespace msb {
 
-/// Explorable columns of `box` in the metric's node convention: cells of side `cell_m`
-/// centred on the nodes (cell·i, cell·j) inside the box that are not fully occupied.
-int boxExplorableNodes(const WorldTruth& truth, const Aabb& box, double cell_m);
+/// Explorable columns of `box` in the metric's node convention: the nodes (cell·i, cell·j)
+/// inside the box whose cell of side `cell_m` is not fully occupied.
+std::set<ColumnIndex> boxExplorableNodes(const WorldTruth& truth, const Aabb& box, double cell_m);
 
 /// Cumulative coverage of one mission.
 class MissionCoverage {
  public:
-  /// `box`: the exploration box; `box_explorable_columns`: its explorable nodes (0 = unknown).
-  MissionCoverage(const Aabb& box, int box_explorable_columns);
+  /// `box`: the exploration box; `box_explorable`: its explorable nodes (empty = unknown).
+  MissionCoverage(const Aabb& box, std::set<ColumnIndex> box_explorable);
 
   /// The estimate → truth correction at the latest perception frame (T_true_est).
   void setTrueFromEstimate(const Pose& T_true_est) { T_true_est_ = T_true_est; }
@@ -40,11 +41,13 @@ class MissionCoverage {
   const std::vector<CoverageSample>& samples() const { return samples_; }
   /// The exploration box and its explorable nodes.
   const Aabb& box() const { return box_; }
-  int boxExplorableColumns() const { return box_explorable_; }
+  int boxExplorableColumns() const { return int(box_explorable_.size()); }
+  /// Explored columns (VIO frame) that are explorable columns of the box: box_share's numerator.
+  size_t exploredExplorableColumns() const;
 
  private:
   Aabb box_;
-  int box_explorable_ = 0;
+  std::set<ColumnIndex> box_explorable_;
   ColumnCoverage columns_, columns_gt_;
   // Estimate → truth correction per free-space element id (looked up only, never iterated).
   std::unordered_map<uint64_t, Pose> first_seen_;

@@ -36,6 +36,7 @@ void SphereMapConfig::validate(ConfigChecker& c) const {
 
 namespace {
 using Clock = WallClock;
+constexpr int kSampleAttemptsPerSample = 20;
 double nearestDistance(const Vec3& c, const std::vector<Vec3>& pts) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& p : pts) best = std::min(best, (p - c).squaredNorm());
@@ -126,12 +127,26 @@ bool SphereMap::sparsify(uint64_t id) {
   return true;
 }
 
+double SphereMap::frontierObstacleReach() const {
+  // frontierNormal() looks at obstacle points within the gap of the frontier and along its
+  // line-of-sight segments towards shell spheres: up to shell_max_m + 0.3 m from it, each
+  // sample with a tolerance of obstacle_spacing_m.
+  return std::max(config_.frontier_obstacle_gap_m, config_.shell_max_m + 0.3 + config_.obstacle_spacing_m);
+}
+
 uint64_t SphereMap::addObstacle(const Vec3& p, double d_min) {
   const uint64_t id = next_obstacle_++;
   obstacles_[id] = {id, p, d_min};
-  markDirty(p, config_.frontier_obstacle_gap_m);
+  markDirty(p, frontierObstacleReach());
   obstacle_grid_.insert(id, p);
   return id;
+}
+
+void SphereMap::eraseObstacle(uint64_t id) {
+  const Vec3 p = obstacles_.at(id).position;
+  markDirty(p, frontierObstacleReach());
+  obstacle_grid_.erase(id, p);
+  obstacles_.erase(id);
 }
 
 bool SphereMap::insertObstacle(const Vec3& p, double d) {
@@ -143,10 +158,7 @@ bool SphereMap::insertObstacle(const Vec3& p, double d) {
     if (o.d_min <= d) return false;  // an existing point was measured from closer (or as close)
     within.push_back(j);
   }
-  for (uint64_t j : within) {  // measured from farther: replaced
-    obstacle_grid_.erase(j, obstacles_.at(j).position);
-    obstacles_.erase(j);
-  }
+  for (uint64_t j : within) eraseObstacle(j);  // measured from farther: replaced
   addObstacle(p, d);
   return true;
 }
@@ -230,15 +242,18 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
   const auto [lo, hi] = pf.bounds();
 
   // 5. DBOF: delete points seen again from close enough inside P_f; protect the others.
+  // Every point of this frame limits radii, also those outside the triangulation cone (side
+  // points 80–90° off-axis or behind the camera): they are obstacles all the same.
   t0 = Clock::now();
   const double alpha = config_.dbof ? config_.dbof_alpha : 0.0;
-  std::vector<Vec3> constraints = input;
+  std::vector<Vec3> constraints;
+  constraints.reserve(frame.points.size());
+  for (const auto& p : frame.points) constraints.push_back(p.p_W);
   for (uint64_t id : obstacle_grid_.inBox(real_lo, real_hi)) {
     const ObstaclePoint& o = obstacles_.at(id);
     if (!real_pf.contains(o.position)) continue;
     if ((o.position - cam).norm() < alpha * o.d_min) {
-      obstacle_grid_.erase(id, o.position);
-      obstacles_.erase(id);
+      eraseObstacle(id);
       ++st.deleted_obstacles;
     } else {
       constraints.push_back(o.position);
@@ -267,14 +282,19 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
   st.spheres_ms = msSince(t0);
 
   // 7. New spheres sampled along fisheye rays, uniformly in range up to the depth surface.
+  // Directions are drawn over the image until `new_sphere_samples` fall inside P_f's cone
+  // (rejection sampling, at most kSampleAttemptsPerSample tries per sample), so a narrow view
+  // gets as many samples as an open one.
   t0 = Clock::now();
-  for (int i = 0; i < config_.new_sphere_samples; ++i) {
+  const int max_attempts = kSampleAttemptsPerSample * config_.new_sphere_samples;
+  for (int attempt = 0; attempt < max_attempts && st.sphere_samples < config_.new_sphere_samples; ++attempt) {
     const Vec2 px(rng_.uniform(0, camera_.width()), rng_.uniform(0, camera_.height()));
     const double t_frac = rng_.uniform();
     if (!camera_.pixelInFov(px)) continue;
     const Vec3 dir = frame.T_W_C.linear() * camera_.unproject(px);
     const auto range = pf.surfaceRange(dir);
     if (!range) continue;
+    ++st.sphere_samples;
     const Vec3 c = cam + t_frac * std::min(*range, config_.max_sample_range_m) * dir;
     const double r = ruleRadius(c, 0.0, pf, constraints);
     if (r < config_.r_min_m) continue;

@@ -1,6 +1,7 @@
 // The MonoSpheres map (paper §III, docs/architecture.md §7): free-space spheres connected where they overlap,
 // plus obstacle points, all in the VIO world frame. One update per SLAM-points frame:
-//   1. input: SLAM points in front of the camera within range (≥ min_points, else skip)
+//   1. input: SLAM points in front of the camera (≤ max_view_angle_deg off-axis; ≥ min_points,
+//      else skip); all points of the frame, also side points, limit radii in step 6/7
 //   2./4. free-space polyhedron P_f from the points (FreeSpacePolyhedron)
 //   3. OVDE (switch `ovde`): active virtual points outside the real points' hull extend P_f
 //      for the sphere steps; DBOF keeps using the real-points P_f (virtual points never delete)
@@ -8,9 +9,10 @@
 //      is protected (it constrains spheres); dbof = false means α = 0 (nothing deleted)
 //   6. sphere update near P_f:
 //        r ← min( c ∈ P_f ? max(r, d(c, ∂P_f)) : r,  d(c, X_in ∪ X_p),  r_max )
-//      (X_in: this frame's points, X_p: protected points); spheres with r < r_min are deleted
-//   7. new spheres: samples along fisheye rays from the camera to the depth surface (≤ 20 m),
-//      radius by the same rule with r = 0, kept if r ≥ r_min
+//      (X_in: all of this frame's points, X_p: protected points); spheres with r < r_min are deleted
+//   7. new spheres: new_sphere_samples samples along fisheye rays inside P_f's cone (drawn
+//      over the image until that many fall inside), uniform from the camera to the depth
+//      surface (≤ 20 m); radius by the same rule with r = 0, kept if r ≥ r_min
 //   8. graph: edge iff spheres overlap; sparsify updated/new spheres smallest first: remove i if
 //      a neighbour j has |c_i − c_j| < 0.9·(r_i + r_j)/2 and i's neighbours stay connected
 //   9. obstacle points: SLAM points within range, spacing ρ; the closer measurement wins
@@ -21,8 +23,10 @@
 //      space on one side (normal = mean direction to the nearby centres) and a normal that
 //      does not put the unknown straight above (n_z ≥ −0.5). After each update the frontiers
 //      near anything that changed (spheres created, resized or removed; obstacle points
-//      inserted) are re-validated — validity depends on nothing else; revalidateFrontiers()
-//      re-checks all (e.g. per planning step).
+//      inserted, deleted or replaced) are re-validated. Validity depends on the spheres whose
+//      shell may hold the frontier (within r + shell_max_m) and on obstacle points up to
+//      frontierObstacleReach() away (the gap and the line-of-sight segments); every change to
+//      either marks that neighbourhood. revalidateFrontiers() re-checks all.
 #pragma once
 
 #include <cstdint>
@@ -100,6 +104,7 @@ struct MapUpdateStats {
   int virtual_points = 0;            ///< active OVDE points added to P_f
   int deleted_obstacles = 0, protected_obstacles = 0;
   int updated_spheres = 0, deleted_spheres = 0, new_spheres = 0, sparsified_spheres = 0;
+  int sphere_samples = 0;            ///< step 7 samples that fell inside P_f's cone
   int inserted_obstacles = 0;
   int new_frontiers = 0, dropped_frontiers = 0;
   std::vector<uint64_t> changed_spheres;  ///< ids created or grown in this update (still present)
@@ -156,6 +161,14 @@ class SphereMap {
   bool sparsify(uint64_t id);
   /// Inserts a measured point under the spacing rule (step 9); returns true if kept.
   bool insertObstacle(const Vec3& p, double distance_from_camera);
+  /// Removes an obstacle point (as DBOF does); frontiers it may have affected are re-checked
+  /// at the next update.
+  void eraseObstacle(uint64_t id);
+  /// How far from a frontier an obstacle point can change its validity (see step 10).
+  double frontierObstacleReach() const;
+  /// Re-validates the frontiers near everything changed since the last update (step 10 does
+  /// this itself; tests and tools editing the map by hand call it); returns how many dropped.
+  int revalidateChangedFrontiers() { return revalidateDirtyFrontiers(); }
 
  private:
   void removeSphere(uint64_t id);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <tuple>
 
 namespace msb {
 
@@ -48,6 +50,12 @@ void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
   c.require(bridge_below_reachable >= 0, "bridge_below_reachable", "must be ≥ 0");
   c.positive("bridge_range_m", bridge_range_m);
   c.positive("bridge_after_idle_s", bridge_after_idle_s);
+  c.nonNegative("link_gap_m", link_gap_m);
+  c.nonNegative("link_trail_radius_m", link_trail_radius_m);
+  c.nonNegative("link_trail_max_m", link_trail_max_m);
+  c.positive("trail_spacing_m", trail_spacing_m);
+  c.require(link_tests_per_pair >= 0, "link_tests_per_pair", "must be ≥ 0");
+  c.positive("return_range_m", return_range_m);
   c.nonNegative("shortcut_depth_m", shortcut_depth_m);
   c.positive("reach_distance_m", reach_distance_m);
   c.inRange("reach_angle_deg", reach_angle_deg, 0.0, 180.0);
@@ -61,18 +69,28 @@ void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
 void MonoSpheresConfig::validate(ConfigChecker& c) const {
   c.nested("map", map);
   c.nested("planner", planner);
+  c.require(planner.safety.r_safe_m > map.r_min_m, "planner.safety.r_safe_m", "must be larger than map.r_min_m");
 }
+
+namespace {
+// The planner's search uses the map's minimum radius: one quantity, one key.
+MonoSpheresConfig withSharedMinRadius(MonoSpheresConfig c) {
+  c.planner.safety.r_min_m = c.map.r_min_m;
+  return c;
+}
+}  // namespace
 
 MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const FisheyeCamera& camera,
                                          const ExplorerContext& context)
-    : config_(checkValid(config)),
+    : config_(withSharedMinRadius(checkValid(config))),
       context_(context),
       map_(config.map, camera, context.seed),
       viewpoints_(config.planner.viewpoints, context.seed),
       takeoff_(context.start, config.planner.takeoff_altitude_m, config.planner.start_forward_m) {
   for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress",
                         "goals_failed_unreachable", "goals_failed_blocked", "goals_global", "blocked_stops",
-                        "paths_sent", "idle_turns", "returns_to_free_space", "edges_blocked", "bridges", "relaxed_steps"})
+                        "paths_sent", "idle_turns", "returns_to_free_space", "returns_refused", "edges_blocked", "bridges",
+                        "relaxed_steps", "links_used"})
     counters_[k] = 0;
 }
 
@@ -194,12 +212,21 @@ void MonoSpheresExplorer::failGoal(double t_s, const char* reason) {
 
 std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   const auto& pc = config_.planner;
-  // 1. Where the vehicle is in the graph; costs to everything reachable.
-  const auto start = containingSphere(map_, s.T_W_B.translation(), pc.start_max_outside_m, pc.safety.r_min_m);
-  if (!start) return returnToFreeSpace(s);
+  const Vec3 p = s.T_W_B.translation();
+  if (trail_.empty() || (p - trail_.back()).norm() >= pc.trail_spacing_m) trail_.push_back(p);
+  // 1. Where the vehicle is in the graph (on a link: its far sphere); links between the parts
+  //    of the graph; costs to everything reachable.
   std::erase_if(blocked_edges_, [&](const auto& e) { return s.t_s >= e.second; });
-  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, passable());
-  std::vector<uint64_t> reachable;
+  auto start = containingSphere(map_, p, pc.start_max_outside_m, pc.safety.r_min_m);
+  if (!start && goal_ && s.t_s < transit_until_s_ && map_.spheres().count(transit_sphere_)) {
+    start = transit_sphere_;
+    transit_until_s_ = std::max(transit_until_s_, last_progress_s_ + pc.no_progress_timeout_s);
+  }
+  if (!start) return returnToFreeSpace(s);
+  links_ = linkParts();
+  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, passable(), &links_);
+  std::vector<uint64_t>& reachable = reachable_;
+  reachable.clear();
   reachable.reserve(field.cost.size());
   for (const auto& [id, c] : field.cost) reachable.push_back(id);  // ascending ids
   counters_["reachable_spheres"] = double(reachable.size());
@@ -220,12 +247,110 @@ EdgeFilter MonoSpheresExplorer::passable() const {
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleState& s) {
-  // Outside the known free space: return to the nearest sphere (deepest within 6 m).
+  // Outside the known free space: return to the deepest sphere within return_range_m whose
+  // centre can be reached along a segment that does not approach an obstacle point; if none
+  // can, stop where the vehicle is.
   const auto& pc = config_.planner;
-  const auto back = containingSphere(map_, s.T_W_B.translation(), 6.0, pc.safety.r_min_m);
-  if (!back || s.t_s - last_send_s_ < pc.replan_period_s) return std::nullopt;
-  ++counters_["returns_to_free_space"];
-  return command(s, {{map_.spheres().at(*back).centre, std::nullopt}});
+  if (s.t_s - last_send_s_ < pc.replan_period_s) return std::nullopt;
+  const Vec3 p = s.T_W_B.translation();
+  std::vector<std::pair<double, uint64_t>> candidates;  // (distance outside, id): deepest first, ties by id
+  for (uint64_t id : map_.spheresNear(p, pc.return_range_m)) {
+    const Sphere& sp = map_.spheres().at(id);
+    if (sp.radius >= pc.safety.r_min_m) candidates.emplace_back((sp.centre - p).norm() - sp.radius, id);
+  }
+  if (candidates.empty()) return std::nullopt;  // nothing to return to (e.g. an empty map)
+  std::sort(candidates.begin(), candidates.end());
+  for (const auto& [neg_depth, id] : candidates) {
+    const Vec3& c = map_.spheres().at(id).centre;
+    if (!segmentClear(p, c, p)) continue;
+    ++counters_["returns_to_free_space"];
+    return command(s, {{c, std::nullopt}});
+  }
+  ++counters_["returns_refused"];
+  return command(s, {{s.reference.position_m, std::nullopt}});
+}
+
+bool MonoSpheresExplorer::keepsClearance(const Vec3& a, const Vec3& b) const {
+  const double len = (b - a).norm();
+  const int n = std::max(1, int(std::ceil(len / 0.3)));
+  for (int i = 0; i <= n; ++i)
+    if (map_.anyObstacleNear(a + (double(i) / n) * (b - a), config_.planner.check_clearance_m)) return false;
+  return true;
+}
+
+bool MonoSpheresExplorer::nearTrail(const Vec3& x, size_t from, size_t to) const {
+  const double r2 = config_.planner.link_trail_radius_m * config_.planner.link_trail_radius_m;
+  for (size_t k = from; k <= to && k < trail_.size(); ++k)
+    if ((trail_[k] - x).squaredNorm() <= r2) return true;
+  return false;
+}
+
+SphereLinks MonoSpheresExplorer::linkParts() const {
+  const auto& pc = config_.planner;
+  const auto part = sphereGraphParts(map_, pc.safety, passable());
+  SphereLinks links;
+  std::set<uint64_t> labels;
+  for (const auto& [id, label] : part) labels.insert(label);
+  if (labels.size() < 2 || pc.link_tests_per_pair == 0) return links;
+  // Candidates per pair of parts: (centre distance, sphere a, sphere b, trail range or none).
+  struct Candidate {
+    double d;
+    uint64_t a, b;
+    size_t from, to;  // trail indices (from > to: a gap link, no trail)
+    bool operator<(const Candidate& o) const { return std::tie(d, a, b, from) < std::tie(o.d, o.a, o.b, o.from); }
+  };
+  std::map<std::pair<uint64_t, uint64_t>, std::vector<Candidate>> candidates;
+  auto pairKey = [&](uint64_t a, uint64_t b) {
+    return std::make_pair(std::min(part.at(a), part.at(b)), std::max(part.at(a), part.at(b)));
+  };
+  // (a) Narrow gaps between spheres of different parts.
+  for (const auto& [a, label] : part) {
+    const Sphere& sa = map_.spheres().at(a);
+    for (uint64_t b : map_.spheresNear(sa.centre, sa.radius + pc.link_gap_m)) {
+      if (b <= a || !part.count(b) || part.at(b) == label) continue;
+      candidates[pairKey(a, b)].push_back({(map_.spheres().at(b).centre - sa.centre).norm(), a, b, 1, 0});
+    }
+  }
+  // (b) Where the vehicle's trail leaves one part and enters another.
+  std::optional<std::pair<size_t, uint64_t>> last;  // (trail index, containing sphere)
+  for (size_t k = 0; k < trail_.size(); ++k) {
+    const auto in = containingSphere(map_, trail_[k], 0.0, pc.safety.r_min_m);
+    if (!in || !part.count(*in)) continue;
+    if (last && part.at(last->second) != part.at(*in) &&
+        double(k - last->first) * pc.trail_spacing_m <= pc.link_trail_max_m) {
+      const uint64_t a = std::min(last->second, *in), b = std::max(last->second, *in);
+      candidates[pairKey(a, b)].push_back(
+          {(map_.spheres().at(b).centre - map_.spheres().at(a).centre).norm(), a, b, last->first, k});
+    }
+    last = {k, *in};
+  }
+  // The shortest acceptable candidate of each pair becomes a link.
+  for (auto& [key, list] : candidates) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end(), [](const Candidate& x, const Candidate& y) {
+                 return x.a == y.a && x.b == y.b && x.from == y.from;
+               }), list.end());
+    int tests = 0;
+    for (const Candidate& c : list) {
+      if (tests++ >= pc.link_tests_per_pair) break;
+      const Vec3 &ca = map_.spheres().at(c.a).centre, &cb = map_.spheres().at(c.b).centre;
+      if (!keepsClearance(ca, cb)) continue;
+      if (c.from <= c.to) {  // trail link: every sample outside the spheres near the trail
+        const int n = std::max(1, int(std::ceil((cb - ca).norm() / 0.5)));
+        bool along = true;
+        for (int i = 0; i <= n && along; ++i) {
+          const Vec3 x = ca + (double(i) / n) * (cb - ca);
+          along = !map_.spheresNear(x, 0.0).empty() || nearTrail(x, c.from, c.to);
+        }
+        if (!along) continue;
+      }
+      links[c.a].push_back(c.b);
+      links[c.b].push_back(c.a);
+      break;
+    }
+  }
+  for (auto& [id, list] : links) std::sort(list.begin(), list.end());
+  return links;
 }
 
 void MonoSpheresExplorer::updateViewpoints(const VehicleState& s, const std::vector<uint64_t>& reachable) {
@@ -312,7 +437,7 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
   std::optional<SpherePath> spath;
   for (int attempt = 0; attempt < pc.max_route_repairs; ++attempt) {
-    spath = findSpherePath(map_, start, v.sphere, pc.safety, passable());
+    spath = findSpherePath(map_, start, v.sphere, pc.safety, passable(), &links_);
     if (!spath) break;
     bool clear = true;
     for (size_t k = 1; k < spath->spheres.size() && clear; ++k) {
@@ -328,6 +453,15 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   if (!spath) {
     failGoal(s.t_s, "unreachable");
     return command(s, {{s.reference.position_m, std::nullopt}});  // hold; choose again next step
+  }
+  // A route over a link: remember its far sphere, to start from while crossing the gap.
+  for (size_t k = 1; k < spath->spheres.size(); ++k) {
+    const uint64_t a = spath->spheres[k - 1], b = spath->spheres[k];
+    if (map_.neighbours(a).count(b)) continue;
+    if (transit_sphere_ != b || s.t_s >= transit_until_s_) ++counters_["links_used"];
+    transit_sphere_ = b;
+    transit_until_s_ = s.t_s + pc.no_progress_timeout_s;
+    break;
   }
   const std::vector<Vec3> route = routeTo(s.reference.position_m, *spath, v.position);
   const double remaining = pathLength(route);
@@ -384,6 +518,17 @@ std::map<std::string, double> MonoSpheresExplorer::counters() const {
   c["viewpoints"] = double(viewpoints_.viewpoints().size());
   c["visited_markers"] = double(viewpoints_.markers().size());
   c["viewpoints_passed"] = double(viewpoints_.passedCount());
+  c["links"] = 0;
+  for (const auto& [id, list] : links_) c["links"] += 0.5 * double(list.size());
+  // Frontiers in the shell of a sphere the vehicle could reach at the last planning step.
+  double reachable_frontiers = 0;
+  for (const auto& [id, f] : map_.frontiers())
+    for (uint64_t sp : map_.spheresNear(f.position, config_.map.shell_max_m))
+      if (std::binary_search(reachable_.begin(), reachable_.end(), sp)) {
+        ++reachable_frontiers;
+        break;
+      }
+  c["frontiers_reachable"] = reachable_frontiers;
   return c;
 }
 

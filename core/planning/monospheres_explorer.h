@@ -15,9 +15,21 @@
 //      given headings (FFF or goal heading), cut at the carrot (15 m) and sent every
 //      replan period, unless the first 5 m pass closer than 1 m to an obstacle point
 //      (then stop and re-plan) or FFF first needs a turn in place towards the route.
+// Parts of the graph joined by links: spheres shrink and vanish as drifted or new points arrive,
+// so a tunnel the vehicle flew through can lose its spheres and cut the graph in parts, leaving
+// frontiers in other parts out of reach. Each step, parts are linked by straight segments between
+// sphere centres that keep check_clearance_m from every obstacle point and either (a) span a
+// gap of at most link_gap_m between the two spheres' surfaces, or (b) follow the vehicle's own
+// estimated path (every sample outside the spheres within link_trail_radius_m of the trail
+// between the two spheres, at most link_trail_max_m of trail): space it has flown through. A
+// link costs like an edge into the narrowest admissible sphere. While crossing a link outside
+// every sphere, the search starts at the link's far sphere.
 // Without a goal while cut off in a small pocket of the graph, or for 5 s without any goal, the
-// vehicle bridges straight (clear of obstacle points) to the nearest sphere outside its part of
-// the graph.
+// vehicle bridges straight to the nearest sphere outside its part of the graph within
+// bridge_range_m. A bridge may cross space without spheres (that is its purpose) but no sample
+// of it may come within check_clearance_m of an obstacle point, unless it moves away from a point
+// the vehicle is already closer to. The return to free space (outside every sphere) obeys the
+// same rule; if no nearby sphere can be reached that way, the vehicle stops.
 // Before exploring: take off vertically and fly a short straight stretch forward, so that the
 // first points get parallax.
 #pragma once
@@ -56,6 +68,12 @@ struct MonoSpheresPlannerConfig {
   int bridge_below_reachable = 10;          ///< without a goal and fewer reachable spheres than this ...
   double bridge_range_m = 15.0;             ///< ... fly straight to the nearest other sphere within this range
   double bridge_after_idle_s = 5.0;         ///< ... or after this long without any goal
+  double link_gap_m = 4.0;                  ///< parts are linked across gaps up to this wide ...
+  double link_trail_radius_m = 2.0;         ///< ... or along the vehicle's path (within this) ...
+  double link_trail_max_m = 25.0;           ///< ... over at most this much of it
+  double trail_spacing_m = 1.0;             ///< the path is remembered every this far
+  int link_tests_per_pair = 4;              ///< candidate links tested per pair of parts
+  double return_range_m = 6.0;              ///< return to free space: spheres this far outside
   double shortcut_depth_m = 0.3;            ///< shortcut samples must lie this deep inside a sphere
   double reach_distance_m = 1.0;            ///< goal reached within ...
   double reach_angle_deg = 90.0;            ///< ... and this heading difference
@@ -108,6 +126,9 @@ class MonoSpheresExplorer : public Explorer {
   std::optional<PathCommand> explore(const VehicleState& s);
   EdgeFilter passable() const;                                        // graph edges not blocked
   std::optional<PathCommand> returnToFreeSpace(const VehicleState& s);  // outside every sphere
+  SphereLinks linkParts() const;                                      // links between graph parts
+  bool keepsClearance(const Vec3& a, const Vec3& b) const;            // no sample near a point
+  bool nearTrail(const Vec3& x, size_t from, size_t to) const;        // within reach of the trail
   void updateViewpoints(const VehicleState& s, const std::vector<uint64_t>& reachable);
   void checkActiveGoal(const VehicleState& s, const SphereCostField& field);  // reached / failed
   void takeNewGoal(const VehicleState& s, const SphereCostField& field);
@@ -135,6 +156,11 @@ class MonoSpheresExplorer : public Explorer {
   int local_misses_ = 0, blocked_steps_ = 0;
   double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9, no_goal_since_s_ = -1.0;
   std::vector<Vec3> last_path_;
+  std::vector<Vec3> trail_;                    // estimated vehicle positions, trail_spacing_m apart
+  SphereLinks links_;                          // this step's links between graph parts
+  std::vector<uint64_t> reachable_;            // this step's reachable spheres (ascending)
+  uint64_t transit_sphere_ = 0;                // far end of the link being crossed
+  double transit_until_s_ = -1.0;
   std::map<std::pair<uint64_t, uint64_t>, double> blocked_edges_;  // (low id, high id) → until
   std::map<std::string, double> counters_;
 };

@@ -40,7 +40,8 @@ namespace {
 // Search core shared by A* (heuristic towards `goal`) and Dijkstra (goal = 0, no heuristic).
 // Ties in the queue are broken by sphere id, so the result never depends on memory layout.
 SphereCostField search(const SphereMap& map, uint64_t start, uint64_t goal, const SafetyCostConfig& cfg,
-                       const EdgeFilter& passable) {
+                       const EdgeFilter& passable, const SphereLinks* links) {
+  static const std::vector<uint64_t> kNone;
   SphereCostField f;
   const auto& spheres = map.spheres();
   if (!spheres.count(start)) return f;
@@ -59,19 +60,25 @@ SphereCostField search(const SphereMap& map, uint64_t start, uint64_t goal, cons
     closed[id] = true;
     if (id == goal) break;
     const Sphere& s = spheres.at(id);
-    for (uint64_t n : map.neighbours(id)) {
-      const Sphere& t = spheres.at(n);
-      if (t.radius < cfg.r_min_m || closed[n]) continue;
-      if (passable && !passable(id, n)) continue;
+    const auto linked = links ? links->find(id) : SphereLinks::const_iterator{};
+    const std::vector<uint64_t>& extra = links && linked != links->end() ? linked->second : kNone;
+    auto relax = [&](uint64_t n, bool is_link) {
+      const auto t_it = spheres.find(n);
+      if (t_it == spheres.end()) return;
+      const Sphere& t = t_it->second;
+      if (t.radius < cfg.r_min_m || closed[n]) return;
+      if (passable && !passable(id, n)) return;
       const double len = (t.centre - s.centre).norm();
-      const double c = f.cost[id] + edgeCost(len, t.radius, cfg);
+      const double c = f.cost[id] + edgeCost(len, is_link ? cfg.r_min_m : t.radius, cfg);
       const auto it = f.cost.find(n);
-      if (it != f.cost.end() && it->second <= c) continue;
+      if (it != f.cost.end() && it->second <= c) return;
       f.cost[n] = c;
       f.length_m[n] = f.length_m[id] + len;
       f.parent[n] = id;
       open.emplace(c + h(n), n);
-    }
+    };
+    for (uint64_t n : map.neighbours(id)) relax(n, false);
+    for (uint64_t n : extra) relax(n, true);
   }
   return f;
 }
@@ -94,16 +101,40 @@ SpherePath SphereCostField::pathTo(uint64_t goal) const {
 }
 
 std::optional<SpherePath> findSpherePath(const SphereMap& map, uint64_t start, uint64_t goal,
-                                         const SafetyCostConfig& cfg, const EdgeFilter& passable) {
+                                         const SafetyCostConfig& cfg, const EdgeFilter& passable,
+                                         const SphereLinks* links) {
   if (!map.spheres().count(goal)) return std::nullopt;
-  const SphereCostField f = search(map, start, goal, cfg, passable);
+  const SphereCostField f = search(map, start, goal, cfg, passable, links);
   if (!f.cost.count(goal)) return std::nullopt;
   return f.pathTo(goal);
 }
 
 SphereCostField sphereCostsFrom(const SphereMap& map, uint64_t start, const SafetyCostConfig& cfg,
-                                const EdgeFilter& passable) {
-  return search(map, start, 0, cfg, passable);
+                                const EdgeFilter& passable, const SphereLinks* links) {
+  return search(map, start, 0, cfg, passable, links);
+}
+
+std::map<uint64_t, uint64_t> sphereGraphParts(const SphereMap& map, const SafetyCostConfig& cfg,
+                                              const EdgeFilter& passable) {
+  // Breadth-first search from each unlabelled sphere in id order: the label is the part's
+  // smallest id.
+  std::map<uint64_t, uint64_t> part;
+  std::vector<uint64_t> queue;
+  for (const auto& [id, s] : map.spheres()) {
+    if (s.radius < cfg.r_min_m || part.count(id)) continue;
+    part[id] = id;
+    queue.assign(1, id);
+    for (size_t k = 0; k < queue.size(); ++k) {
+      const uint64_t a = queue[k];
+      for (uint64_t b : map.neighbours(a)) {
+        if (part.count(b) || map.spheres().at(b).radius < cfg.r_min_m) continue;
+        if (passable && !passable(a, b)) continue;
+        part[b] = id;
+        queue.push_back(b);
+      }
+    }
+  }
+  return part;
 }
 
 }  // namespace msb

@@ -20,7 +20,9 @@ namespace msb {
 /// Parameters of the safety-aware cost.
 struct SafetyCostConfig {
   double weight = 50.0;        ///< w
-  double r_min_m = 1.6;        ///< radius at which the penalty is largest; smaller spheres unused
+  /// Radius at which the penalty is largest; smaller spheres unused. Not a key of its own: the
+  /// explorer sets it to the map's r_min_m (one quantity, one key: method.map.r_min_m).
+  double r_min_m = 1.6;
   double r_safe_m = 8.0;       ///< radius from which there is no penalty
 
   /// Records invalid fields.
@@ -35,6 +37,11 @@ double edgeCost(double length_m, double r_to_m, const SafetyCostConfig& cfg);
 /// Optional edge filter: false if the edge a→b must not be used (e.g. found blocked).
 using EdgeFilter = std::function<bool(uint64_t from, uint64_t to)>;
 
+/// Extra graph edges between spheres that do not overlap (links across gaps of the map, see
+/// MonoSpheresExplorer); each edge listed under both ends. A link costs like an edge into the
+/// narrowest admissible sphere: edgeCost(L, r_min).
+using SphereLinks = std::map<uint64_t, std::vector<uint64_t>>;
+
 /// A path through the sphere graph.
 struct SpherePath {
   std::vector<uint64_t> spheres;  ///< from start to goal
@@ -48,7 +55,8 @@ std::optional<uint64_t> containingSphere(const SphereMap& map, const Vec3& p, do
 
 /// A* from start to goal sphere. None if unreachable.
 std::optional<SpherePath> findSpherePath(const SphereMap& map, uint64_t start, uint64_t goal,
-                                         const SafetyCostConfig& cfg, const EdgeFilter& passable = {});
+                                         const SafetyCostConfig& cfg, const EdgeFilter& passable = {},
+                                         const SphereLinks* links = nullptr);
 
 /// Dijkstra from start: cost to every reachable sphere (with r ≥ r_min) and its predecessor.
 struct SphereCostField {
@@ -60,6 +68,11 @@ struct SphereCostField {
 };
 /// Costs from `start` to all spheres reachable from it.
 SphereCostField sphereCostsFrom(const SphereMap& map, uint64_t start, const SafetyCostConfig& cfg,
-                                const EdgeFilter& passable = {});
+                                const EdgeFilter& passable = {}, const SphereLinks* links = nullptr);
+
+/// Connected parts of the sphere graph over spheres with r ≥ cfg.r_min_m and passable edges:
+/// sphere id → part label (the smallest id in the part).
+std::map<uint64_t, uint64_t> sphereGraphParts(const SphereMap& map, const SafetyCostConfig& cfg,
+                                              const EdgeFilter& passable = {});
 
 }  // namespace msb

@@ -27,7 +27,7 @@ FlightSpec missionFlight(const ScenarioSpec& spec) {
 Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth)
     : spec_(checkValid(spec)),
       explorer_(spec.method.make(FisheyeCamera(spec.flight.camera), explorerContext(spec, box))),
-      coverage_(box, truth ? boxExplorableNodes(*truth, box, ColumnCoverage().cellM()) : 0),
+      coverage_(box, truth ? boxExplorableNodes(*truth, box, ColumnCoverage().cellM()) : std::set<ColumnIndex>{}),
       metric_schedule_(spec.flight.physics.physics_hz, spec.mission.metric_rate_hz, "mission.metric_rate_hz") {
   LoopSetup setup;
   setup.explorer = explorer_.get();
@@ -83,6 +83,8 @@ MissionResult Mission::finish() {
   r.map_update_ms = map_update_ms_;
   r.exploration_box = coverage_.box();
   r.box_explorable_columns = coverage_.boxExplorableColumns();
+  r.box_explored_explorable_columns = int(coverage_.exploredExplorableColumns());
+  r.longest_no_gain = longestIntervalWithoutGain(r.coverage);
   r.map_hash = hashSnapshot(r.final_map);
   r.run_hash = hashMission(r.flight.trajectory_hash, r.map_hash, r.columns, r.coverage);
   return r;

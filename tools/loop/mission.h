@@ -37,6 +37,8 @@ struct MissionResult {
   std::vector<double> map_update_ms;       ///< wall time of every map update (recorded only)
   Aabb exploration_box;
   int box_explorable_columns = 0;          ///< 0 if the world has no ground truth
+  int box_explored_explorable_columns = 0; ///< explored columns among those (box_share numerator)
+  NoGainInterval longest_no_gain;          ///< longest stretch without coverage gain
   uint64_t map_hash = 0;                   ///< FNV-1a over the final map snapshot
   uint64_t run_hash = 0;                   ///< trajectory + map + coverage
 };

@@ -58,7 +58,8 @@ void readViewpoints(MapReader r, ViewpointConfig& c) {
 
 void readSafety(MapReader r, SafetyCostConfig& c) {
   r.read("weight", c.weight);
-  r.read("r_min_m", c.r_min_m);
+  if (r.has("r_min_m"))
+    throw ConfigError(r.keyName("r_min_m"), "not a key of its own: the minimum sphere radius is method.map.r_min_m");
   r.read("r_safe_m", c.r_safe_m);
   r.finish();
 }
@@ -84,6 +85,12 @@ void readPlanner(MapReader r, MonoSpheresPlannerConfig& c) {
   r.read("bridge_below_reachable", c.bridge_below_reachable);
   r.read("bridge_range_m", c.bridge_range_m);
   r.read("bridge_after_idle_s", c.bridge_after_idle_s);
+  r.read("link_gap_m", c.link_gap_m);
+  r.read("link_trail_radius_m", c.link_trail_radius_m);
+  r.read("link_trail_max_m", c.link_trail_max_m);
+  r.read("trail_spacing_m", c.trail_spacing_m);
+  r.read("link_tests_per_pair", c.link_tests_per_pair);
+  r.read("return_range_m", c.return_range_m);
   r.read("shortcut_depth_m", c.shortcut_depth_m);
   r.read("reach_distance_m", c.reach_distance_m);
   r.read("reach_angle_deg", c.reach_angle_deg);

@@ -40,7 +40,11 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r) 
       {"area_m2", r.columns.areaM2()},
       {"area_box_m2", double(in_box) * cell2},
       {"box_explorable_columns", r.box_explorable_columns},
-      {"box_share", r.box_explorable_columns ? nlohmann::json(double(in_box) / r.box_explorable_columns) : nlohmann::json(nullptr)},
+      {"box_explored_explorable_columns", r.box_explored_explorable_columns},
+      {"box_share", r.box_explorable_columns ? nlohmann::json(double(r.box_explored_explorable_columns) / r.box_explorable_columns)
+                                             : nlohmann::json(nullptr)},
+      {"longest_no_gain_s", r.longest_no_gain.lengthS()},
+      {"longest_no_gain_from_s", r.longest_no_gain.start_s},
       {"area_true_frame_m2", r.columns_gt.areaM2()},
       {"column_size_m", r.columns.cellM()},
       {"exploration_box", nlohmann::json{{"min", vec(r.exploration_box.min)}, {"max", vec(r.exploration_box.max)}}}};

@@ -208,5 +208,100 @@ TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
   EXPECT_TRUE(a.update(few).skipped);
 }
 
+// Two spheres with a frontier between them: in both shells, so it is two-sided (invalid) unless
+// an obstacle point blocks its line of sight to the second sphere B.
+struct BlockedSight {
+  BlockedSight() : map(SphereMapConfig{}, FisheyeCamera{}, 1) {
+    map.addSphere({0, 0, 0}, 2.0);
+    map.addSphere({7, 0, 0}, 2.0);
+  }
+  SphereMap map;
+  const Vec3 x{3.5, 0, 0};  // 3.5 m from both centres: in both shells
+};
+
+TEST(SphereMapRules, AFrontierIsDroppedWhenThePointThatMadeItValidIsDeleted) {
+  BlockedSight f;
+  EXPECT_FALSE(f.map.frontierNormal(f.x));  // sees both spheres: two-sided
+  // A point 1.7 m away on the line of sight to B (outside the 1.5 m gap) makes it one-sided.
+  const uint64_t blocker = f.map.addObstacle({5.2, 0.15, 0}, 8.0);
+  const auto id = f.map.tryAddFrontier(f.x);
+  ASSERT_TRUE(id);
+  f.map.revalidateChangedFrontiers();
+  ASSERT_TRUE(f.map.frontiers().count(*id));
+  // Deleted (as DBOF deletes): the frontier is re-checked and dropped.
+  f.map.eraseObstacle(blocker);
+  EXPECT_EQ(f.map.revalidateChangedFrontiers(), 1);
+  EXPECT_FALSE(f.map.frontiers().count(*id));
+}
+
+TEST(SphereMapRules, AFrontierIsDroppedWhenThePointThatMadeItValidIsReplaced) {
+  BlockedSight f;
+  f.map.addObstacle({5.2, 0.15, 0}, 8.0);
+  const auto id = f.map.tryAddFrontier(f.x);
+  ASSERT_TRUE(id);
+  f.map.revalidateChangedFrontiers();
+  // Measured again from closer, 0.25 m to the side (step 9 replaces it): off the line of sight.
+  ASSERT_TRUE(f.map.insertObstacle({5.2, 0.40, 0}, 4.0));
+  EXPECT_EQ(f.map.obstacles().size(), 1u);
+  EXPECT_EQ(f.map.revalidateChangedFrontiers(), 1);
+  EXPECT_FALSE(f.map.frontiers().count(*id));
+}
+
+TEST(SphereMapRules, AFrontierIsDroppedWhenAPointAppearsOnItsLineOfSight) {
+  SphereMap map(SphereMapConfig{}, FisheyeCamera{}, 1);
+  map.addSphere({0, 0, 0}, 2.0);
+  const auto id = map.tryAddFrontier({4.7, 0, 0});  // in the outer shell, facing the sphere
+  ASSERT_TRUE(id);
+  map.revalidateChangedFrontiers();
+  // A point 2.5 m away, between the frontier and its only sphere: behind a wall now.
+  map.addObstacle({2.2, 0, 0}, 6.0);
+  EXPECT_GT(map.frontierObstacleReach(), 2.5);
+  EXPECT_EQ(map.revalidateChangedFrontiers(), 1);
+  EXPECT_FALSE(map.frontiers().count(*id));
+}
+
+// A wall of points filling only a cone of `half_angle_deg` about the optical axis, at depth d.
+SlamPointsFrame coneFrame(double half_angle_deg, double d) {
+  SlamPointsFrame f;
+  const double half = d * std::tan(half_angle_deg * M_PI / 180.0);
+  uint64_t id = 1;
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -3; j <= 3; ++j) {
+      SlamPoint p;
+      p.track_id = id++;
+      p.p_W = Vec3(half * i / 3, half * j / 3, d);
+      f.points.push_back(p);
+    }
+  return f;
+}
+
+TEST(SphereMapRules, SamplingDrawsTheConfiguredNumberOfSamplesInsidePf) {
+  // Open view (points up to 70° off-axis) and a narrow one (20°): 150 samples either way.
+  for (double half_angle : {70.0, 20.0}) {
+    SphereMap map(SphereMapConfig{}, FisheyeCamera{}, 5);
+    const MapUpdateStats st = map.update(coneFrame(half_angle, 12.0));
+    ASSERT_FALSE(st.skipped);
+    EXPECT_EQ(st.sphere_samples, 150) << half_angle;
+  }
+}
+
+TEST(SphereMapRules, ASidePointLimitsSpheres) {
+  // A sphere from an earlier view beside the camera; this frame sees a wall 12 m ahead and a
+  // point 85° off-axis (outside the 80° cone P_f is built from) or behind the camera, inside
+  // that sphere: it limits the sphere all the same (here below r_min: deleted).
+  for (const Vec3& side : {Vec3(3 * std::sin(85 * M_PI / 180), 0, 3 * std::cos(85 * M_PI / 180)), Vec3(2.5, 0, -0.5)}) {
+    SphereMap map(SphereMapConfig{}, FisheyeCamera{}, 2);
+    const uint64_t beside = map.addSphere({3, 0, 0}, 3.0);
+    SlamPointsFrame f = wallFrame(18, 12, 3);
+    SlamPoint p;
+    p.track_id = 999;
+    p.p_W = side;
+    f.points.push_back(p);
+    map.update(f);
+    EXPECT_FALSE(map.spheres().count(beside)) << side.transpose();
+    for (const auto& [id, s] : map.spheres()) EXPECT_LE(s.radius, (s.centre - side).norm() + 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace msb

@@ -169,8 +169,8 @@ TEST(MonoSpheresExplorer, BridgesOutOfASmallPocketWithoutGoals) {
   Fixture f;
   SphereMap& m = f.explorer.mutableMap();
   m.addSphere({0, 0, 2}, 2.0);
-  const Vec3 other(0, 6, 2);
-  m.addSphere(other, 2.0);  // not overlapping: another part of the graph
+  const Vec3 other(0, 10, 2);
+  m.addSphere(other, 2.0);  // 6 m apart: another part of the graph, too far for a link
   f.skipTakeoff();
   const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
   ASSERT_TRUE(cmd);
@@ -181,7 +181,7 @@ TEST(MonoSpheresExplorer, BridgesOutOfASmallPocketWithoutGoals) {
   Fixture g;
   g.explorer.mutableMap().addSphere({0, 0, 2}, 2.0);
   g.explorer.mutableMap().addSphere(other, 2.0);
-  g.explorer.mutableMap().addObstacle({0, 3, 2}, 3.0);
+  g.explorer.mutableMap().addObstacle({0, 5, 2}, 3.0);
   g.skipTakeoff();
   const auto turn = g.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
   EXPECT_EQ(g.counter("bridges"), 0.0);
@@ -189,6 +189,85 @@ TEST(MonoSpheresExplorer, BridgesOutOfASmallPocketWithoutGoals) {
   EXPECT_EQ(g.counter("idle_turns"), 1.0);
   ASSERT_TRUE(turn->waypoints[0].heading_rad);
   EXPECT_NEAR(*turn->waypoints[0].heading_rad, M_PI / 2, 1e-9);
+}
+
+TEST(MonoSpheresExplorer, ReturnToFreeSpaceRefusesABlockedSegment) {
+  // The vehicle 2 m outside the only sphere: it returns to its centre, unless an obstacle point
+  // lies on the way (then it stops where it is).
+  for (bool blocked : {false, true}) {
+    Fixture f;
+    SphereMap& m = f.explorer.mutableMap();
+    const Vec3 centre(4, 0, 2);
+    m.addSphere(centre, 2.0);
+    if (blocked) m.addObstacle({2, 0, 2}, 3.0);
+    f.skipTakeoff();
+    const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    ASSERT_TRUE(cmd);
+    ASSERT_EQ(cmd->waypoints.size(), 1u);
+    EXPECT_TRUE(cmd->waypoints[0].position_m.isApprox(blocked ? Vec3(0, 0, 2) : centre)) << blocked;
+    EXPECT_EQ(f.counter("returns_to_free_space"), blocked ? 0.0 : 1.0);
+    EXPECT_EQ(f.counter("returns_refused"), blocked ? 1.0 : 0.0);
+  }
+}
+
+// Two parts of the graph: a chain along +x around the vehicle, and beyond a gap of `gap` m a
+// second chain with frontiers at its far end.
+struct TwoParts : Fixture {
+  explicit TwoParts(double gap) {
+    SphereMap& m = explorer.mutableMap();
+    for (double x : {0.0, 4.0}) m.addSphere({x, 0, 2}, 3.0);
+    x0 = 4.0 + 3.0 + gap + 3.0;
+    for (double x : {x0, x0 + 4.0}) m.addSphere({x, 0, 2}, 3.0);
+  }
+  void addFrontiers() {
+    for (double y = -4; y <= 4; y += 1.6)
+      for (double z = -1; z <= 5; z += 1.6) frontiers += bool(explorer.mutableMap().tryAddFrontier({x0 + 8.5, y, z}));
+  }
+  double x0 = 0;
+};
+
+TEST(MonoSpheresExplorer, PartsOfTheGraphAreLinkedAcrossANarrowGap) {
+  for (double gap : {3.0, 8.0}) {
+    TwoParts f(gap);
+    f.addFrontiers();
+    ASSERT_GE(f.frontiers, 10);
+    f.skipTakeoff();
+    f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    // 3 m: linked, the frontiers beyond are a goal; 8 m (never flown): out of reach.
+    EXPECT_EQ(f.counter("links"), gap < 4.0 ? 1.0 : 0.0) << gap;
+    EXPECT_EQ(f.explorer.goal() != 0, gap < 4.0) << gap;
+    EXPECT_EQ(f.counter("frontiers_reachable") > 0, gap < 4.0) << gap;
+  }
+  // An obstacle point in the gap: no link.
+  TwoParts g(3.0);
+  g.addFrontiers();
+  g.explorer.mutableMap().addObstacle({8.5, 0, 2}, 5.0);
+  g.skipTakeoff();
+  g.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+  EXPECT_EQ(g.counter("links"), 0.0);
+}
+
+TEST(MonoSpheresExplorer, PartsOfTheGraphAreLinkedAlongTheFlownPath) {
+  // An 8 m gap the vehicle has flown through (its spheres since gone): the trail links the parts
+  // and the route crosses the gap; while outside every sphere, the search starts at the far end.
+  TwoParts f(8.0);
+  f.skipTakeoff();
+  double t = 1.0;
+  for (double x = 20.0; x >= 0.0; x -= 1.0, t += 0.5) f.explorer.plan(Fixture::at(Vec3(x, 0, 2), M_PI, t));
+  f.addFrontiers();
+  ASSERT_GE(f.frontiers, 10);
+  const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, t));
+  EXPECT_EQ(f.counter("links"), 1.0);
+  ASSERT_NE(f.explorer.goal(), 0u);
+  ASSERT_TRUE(cmd);
+  EXPECT_EQ(f.counter("links_used"), 1.0);
+  // In the middle of the gap, 4 m from any sphere: the route goes on to the far part.
+  const double returns = f.counter("returns_to_free_space");
+  const auto mid = f.explorer.plan(Fixture::at(Vec3(11, 0, 2), 0.0, t + 1.0));
+  ASSERT_TRUE(mid);
+  EXPECT_EQ(f.counter("returns_to_free_space"), returns);
+  EXPECT_GT(mid->waypoints.back().position_m.x(), 11.0);
+  // Without the trail (never flown), the same gap is not linked: see the test above.
 }
 
 }  // namespace

@@ -71,6 +71,9 @@ TEST(BadInput, YamlNumbersListsAndDuplicateKeys) {
   t.expectRefused("run " + t.p("s2.yaml") + " --set duration_s=nan --out " + t.p("o"), {"--set", "duration_s"});
   t.expectRefused("run " + t.p("s2.yaml") + " --set 'start={position: [0, 0, 1], position: [1, 1, 1]}' --out " + t.p("o"),
                   {"--set start", "given twice"});
+  // One quantity, one key: the planner's minimum radius is the map's.
+  t.expectRefused("run " + t.p("s2.yaml") + " --set method.planner.safety.r_min_m=2 --out " + t.p("o"),
+                  {"method.planner.safety.r_min_m", "method.map.r_min_m"});
 }
 
 TEST(BadInput, CommandLineFlags) {

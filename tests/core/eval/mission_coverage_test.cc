@@ -1,0 +1,46 @@
+// Mission coverage: box share over explorable columns only, and the longest stretch without gain.
+#include "core/eval/mission_coverage.h"
+
+#include <gtest/gtest.h>
+
+namespace msb {
+namespace {
+
+TEST(MissionCoverage, BoxShareCountsOnlyExplorableColumns) {
+  // A 10 x 10 m box whose explorable columns are two nodes; free space covers the whole box
+  // (and more): the numerator is the explored explorable columns, never more than the two.
+  const Aabb box{Vec3(0, 0, 0), Vec3(10, 10, 5)};
+  MissionCoverage cov(box, {{0, 0}, {1, 0}});
+  EXPECT_EQ(cov.boxExplorableColumns(), 2);
+  cov.columns().markDisk(Vec2(5, 5), 20.0);
+  cov.sample(1.0, 0.0, {});
+  EXPECT_GT(cov.columns().countInside(box.min.head<2>(), box.max.head<2>()), 2u);
+  EXPECT_EQ(cov.exploredExplorableColumns(), 2u);
+  // Only one of them explored: half.
+  MissionCoverage half(box, {{0, 0}, {3, 3}});
+  half.columns().markDisk(Vec2(0, 0), 1.0);
+  EXPECT_EQ(half.exploredExplorableColumns(), 1u);
+}
+
+TEST(MissionCoverage, LongestIntervalWithoutGain) {
+  auto at = [](double t, double a) {
+    CoverageSample s;
+    s.t_s = t;
+    s.area_m2 = a;
+    return s;
+  };
+  // Gains at 1 and 2, flat from 2 to 6, a gain at 7, flat to the end at 9.
+  const std::vector<CoverageSample> samples = {at(0, 0),  at(1, 10), at(2, 20), at(3, 20), at(4, 20),
+                                               at(5, 20), at(6, 20), at(7, 30), at(8, 30), at(9, 30)};
+  const NoGainInterval i = longestIntervalWithoutGain(samples);
+  EXPECT_DOUBLE_EQ(i.start_s, 2.0);
+  EXPECT_DOUBLE_EQ(i.end_s, 6.0);
+  EXPECT_DOUBLE_EQ(i.lengthS(), 4.0);
+  // A stall still open at the end counts up to the last sample.
+  const std::vector<CoverageSample> stalled = {at(0, 0), at(1, 10), at(2, 10), at(3, 10), at(10, 10)};
+  EXPECT_DOUBLE_EQ(longestIntervalWithoutGain(stalled).lengthS(), 9.0);
+  EXPECT_DOUBLE_EQ(longestIntervalWithoutGain({}).lengthS(), 0.0);
+}
+
+}  // namespace
+}  // namespace msb
