@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <opencv2/calib3d.hpp>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
@@ -20,6 +21,55 @@ void FeatureTrackerConfig::validate(ConfigChecker& c) const {
   c.inRange("klt_max_iterations", klt_max_iterations, 1, 200);
   c.positive("fb_max_error_px", fb_max_error_px);
   c.inRange("border_px", border_px, 0, 100);
+  c.positive("ransac_threshold_px", ransac_threshold_px);
+  c.inRange("ransac_max_angle_deg", ransac_max_angle_deg, 1.0, 89.0);
+  c.inRange("ransac_min_pairs", ransac_min_pairs, 5, 10000);
+}
+
+int trackedFromPrevious(const TrackFrame& f) {
+  return int(std::count_if(f.tracks.begin(), f.tracks.end(), [](const Track& t) { return t.age >= 1; }));
+}
+
+std::vector<bool> KltFeatureTracker::epipolarInliers(const std::vector<Vec2>& prev_px, const std::vector<Vec2>& new_px,
+                                                     TrackFrame& out) const {
+  std::vector<bool> keep(prev_px.size(), true);
+  if (!config_.ransac) return keep;
+  // Bearings; the estimate uses those close enough to the axis for normalised coordinates.
+  std::vector<Vec3> b0(prev_px.size()), b1(prev_px.size());
+  std::vector<cv::Point2d> n0, n1;
+  const double min_cos = std::cos(config_.ransac_max_angle_deg * M_PI / 180.0);
+  for (size_t i = 0; i < prev_px.size(); ++i) {
+    b0[i] = camera_.unproject(prev_px[i]).normalized();
+    b1[i] = camera_.unproject(new_px[i]).normalized();
+    if (b0[i].z() >= min_cos && b1[i].z() >= min_cos) {
+      n0.emplace_back(b0[i].x() / b0[i].z(), b0[i].y() / b0[i].z());
+      n1.emplace_back(b1[i].x() / b1[i].z(), b1[i].y() / b1[i].z());
+    }
+  }
+  if (int(n0.size()) < config_.ransac_min_pairs) return keep;
+  // Angular threshold: ransac_threshold_px at the image centre.
+  const Vec2 c(0.5 * (camera_.width() - 1), 0.5 * (camera_.height() - 1));
+  const double thr = std::acos(std::clamp(
+      camera_.unproject(c).normalized().dot(camera_.unproject(c + Vec2(config_.ransac_threshold_px, 0)).normalized()),
+      -1.0, 1.0));
+  const cv::Mat E = cv::findEssentialMat(n0, n1, cv::Mat::eye(3, 3, CV_64F), cv::RANSAC, 0.999, thr);
+  if (E.rows != 3 || E.cols != 3) return keep;  // degenerate: nothing rejected
+  Eigen::Matrix3d Em;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) Em(r, k) = E.at<double>(r, k);
+  // Angular epipolar error of every pair: distance of b1 from the epipolar plane of b0 (and
+  // symmetrically), as a sine.
+  for (size_t i = 0; i < prev_px.size(); ++i) {
+    const Vec3 l1 = Em * b0[i], l0 = Em.transpose() * b1[i];
+    const double e = std::abs(b1[i].dot(l1));
+    const double n = std::max(l1.norm(), l0.norm());
+    ++out.ransac_tested;
+    if (n > 1e-12 && e / n > thr) {
+      keep[i] = false;
+      ++out.ransac_rejected;
+    }
+  }
+  return keep;
 }
 
 KltFeatureTracker::KltFeatureTracker(const FeatureTrackerConfig& config, const FisheyeCamera& camera)
@@ -64,6 +114,7 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
     const cv::TermCriteria crit(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations, 0.01);
     cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, err, win, config_.klt_pyramid_levels, crit);
     cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1, p0_back, st_b, err, win, config_.klt_pyramid_levels, crit);
+    std::vector<Vec2> from, to;
     for (size_t i = 0; i < p0.size(); ++i) {
       if (!st_f[i] || !st_b[i]) continue;
       const double fb = std::hypot(p0[i].x - p0_back[i].x, p0[i].y - p0_back[i].y);
@@ -72,10 +123,18 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
           !valid_mask_.at<uint8_t>(v, u))
         continue;
       Track t = prev_tracks_[i];
+      from.push_back(t.pixel);
       t.pixel = Vec2(p1[i].x, p1[i].y);
+      to.push_back(t.pixel);
       ++t.age;
       tracks.push_back(t);
     }
+    // Epipolar outliers (RANSAC) leave.
+    const std::vector<bool> inlier = epipolarInliers(from, to, out);
+    std::vector<Track> consistent;
+    for (size_t i = 0; i < tracks.size(); ++i)
+      if (inlier[i]) consistent.push_back(tracks[i]);
+    tracks = std::move(consistent);
   }
   // Tracks that converged onto each other: keep the older (lower id) one.
   std::vector<Track> kept;

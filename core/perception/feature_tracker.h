@@ -2,6 +2,10 @@
 // detected on a grid (threshold 15, ≥ 20 px apart), pyramidal Lucas–Kanade from frame to frame
 // with a forward–backward consistency check, histogram equalisation, up to 400 tracks with
 // stable ids and ages. Works in fisheye pixel space; bearings come from the shared camera model.
+// Geometric outlier rejection as OpenVINS' front end does it: the tracked pairs' bearings within
+// ransac_max_angle_deg of the axis give an essential matrix by RANSAC (5-point, OpenCV) on
+// normalised coordinates; every tracked pair whose angular epipolar error exceeds the threshold
+// (ransac_threshold_px at the image centre) is dropped.
 // Single-threaded OpenCV calls only (the caller sets cv::setNumThreads(0) for determinism).
 #pragma once
 
@@ -30,7 +34,13 @@ struct TrackFrame {
   std::vector<Track> tracks;   ///< sorted by id
   int new_tracks = 0;          ///< detected in this frame
   int lost_tracks = 0;         ///< tracks of the previous frame not continued
+  int ransac_rejected = 0;     ///< tracked pairs dropped as epipolar outliers
+  int ransac_tested = 0;       ///< tracked pairs the epipolar test was applied to
 };
+
+/// Tracks continued from the previous frame (age ≥ 1): what tracking loss counts (a frame whose
+/// features are all new has lost track, however many corners were detected).
+int trackedFromPrevious(const TrackFrame& f);
 
 /// Tracker settings (OpenVINS-like defaults, docs/architecture.md §6).
 struct FeatureTrackerConfig {
@@ -45,6 +55,10 @@ struct FeatureTrackerConfig {
   double fb_max_error_px = 1.0;      ///< forward–backward consistency threshold
   int border_px = 8;                 ///< no features this close to the image or FoV border
   bool equalize_histogram = true;
+  bool ransac = true;                ///< epipolar outlier rejection of tracked pairs
+  double ransac_threshold_px = 1.0;  ///< epipolar error threshold (pixels at the image centre)
+  double ransac_max_angle_deg = 80.0;///< bearings used for the estimate (normalised coords)
+  int ransac_min_pairs = 10;         ///< fewer usable pairs: no rejection this frame
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -68,6 +82,9 @@ class KltFeatureTracker final : public FeatureSource {
 
  private:
   void detect(const cv::Mat& img, std::vector<Track>& tracks, int* added);
+  // Drops the epipolar outliers among tracked pairs (prev pixel, new pixel); returns the keep mask.
+  std::vector<bool> epipolarInliers(const std::vector<Vec2>& prev_px, const std::vector<Vec2>& new_px,
+                                    TrackFrame& out) const;
 
   FeatureTrackerConfig config_;
   FisheyeCamera camera_;

@@ -6,6 +6,13 @@
 //             `position_drift_fraction` (default 1 % of distance) and whose direction wanders
 //             (b ← b + σ_b √ds · n);
 //   yaw:      δψ' = σ_ψ √ds · n  (random walk; σ_ψ = yaw_random_walk_deg_per_sqrt_m).
+// The drift follows the image: with fewer features tracked from the previous frame than
+// `nominal_tracks` (shortfall q = 1 − n/nominal ∈ [0, 1]) the position drift rate, both random
+// walks and the yaw random walk grow by the factor 1 + few_tracks_gain · q², and every yaw
+// change of the vehicle adds a yaw error of σ = yaw_error_per_turn_deg_per_rad · q per radian
+// turned (rotation with few features is what VIO gets wrong). At or above the nominal count the
+// model is the distance-only one above (≈ 1 % of distance). The loop reports the count once
+// per camera frame (setTrackedFeatures); it applies from the next physics step on.
 // A yaw increment rotates the drift frame about the vehicle's current position, so the
 // estimated trajectory stays continuous. The estimate starts equal to ground truth (VIO world
 // frame = world frame at t = 0). Per camera frame a small white noise is added to the pose
@@ -27,6 +34,9 @@ struct VioDriftConfig {
   double yaw_random_walk_deg_per_sqrt_m = 0.1;///< yaw random walk
   double frame_position_noise_m = 0.005;      ///< white noise per camera-frame pose
   double frame_yaw_noise_deg = 0.02;          ///< white noise per camera-frame yaw
+  int nominal_tracks = 100;                   ///< tracked features at (and above) which drift is nominal
+  double few_tracks_gain = 4.0;               ///< drift growth at zero tracked features: × (1 + gain)
+  double yaw_error_per_turn_deg_per_rad = 2.0;///< yaw error σ per radian turned, at zero tracked features
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -43,6 +53,10 @@ class VioDriftModel {
   Odometry update(const Odometry& gt);
   /// A camera-frame pose estimate: the estimate of T_W_C with per-frame white noise.
   Pose noisyCameraPose(const Pose& T_W_C_gt);
+  /// Features tracked from the previous frame in the latest camera frame (drives the growth).
+  void setTrackedFeatures(int tracked);
+  /// The current shortfall q = 1 − min(tracked / nominal_tracks, 1).
+  double shortfall() const { return shortfall_; }
   /// The current drift transform (estimate frame ← world frame).
   const Pose& drift() const { return T_drift_; }
   /// Distance travelled so far (m).
@@ -56,6 +70,8 @@ class VioDriftModel {
   Vec3 rate_ = Vec3::Zero();
   Vec3 last_position_ = Vec3::Zero();
   bool started_ = false;
+  double shortfall_ = 0.0;
+  double last_gt_yaw_ = 0.0;
   double distance_ = 0.0;
 };
 

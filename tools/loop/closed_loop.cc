@@ -148,12 +148,14 @@ bool ClosedLoop::perceive() {
   record_.timing.tracker_ms = msSince(t0);
   t0 = WallClock::now();
   points_ = slam_->update(tracks_, vio_.noisyCameraPose(frame_.T_W_C));
+  vio_.setTrackedFeatures(trackedFromPrevious(tracks_));  // drift grows with few features
   record_.timing.triangulation_ms = msSince(t0);
   record_.tracks = &tracks_;
   record_.points = &points_;
   if (setup_.explorer) pending_points_ = points_;
-  // Tracking loss: too few tracks for lost_after_s.
-  if (int(tracks_.tracks.size()) < spec_.perception.lost_min_tracks) {
+  // Tracking loss: too few features tracked from the previous frame (new detections do not
+  // count) for lost_after_s.
+  if (trackedFromPrevious(tracks_) < spec_.perception.lost_min_tracks) {
     if (few_tracks_since_ < 0) few_tracks_since_ = record_.tick;
   } else {
     few_tracks_since_ = -1;

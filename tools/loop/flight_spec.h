@@ -38,7 +38,7 @@ struct PerceptionConfig {
   bool enabled = false;              ///< run the tracker and triangulation (vio-eval, missions)
   std::string source = "klt";        ///< klt (tracker on the rendered image) | oracle (ground truth)
   OracleFeatureConfig oracle;        ///< settings of the oracle source
-  int lost_min_tracks = 15;          ///< fewer tracks than this ...
+  int lost_min_tracks = 15;          ///< fewer features tracked from the previous frame than this ...
   double lost_after_s = 2.0;         ///< ... for this long ends the run as vio_lost
 
   /// Records invalid fields.

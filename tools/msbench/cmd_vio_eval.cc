@@ -44,6 +44,8 @@ struct PerceptionSample {
 struct VioStats {
   std::vector<double> errors[kBins], depth_std[kBins];
   long point_samples = 0, textureless = 0, textureless_interior = 0, thin = 0, no_surface = 0, silhouette = 0;
+  long ransac_tested = 0, ransac_rejected = 0;   // tracked pairs tested / dropped as epipolar outliers
+  long near_points = 0, spurious_near = 0;       // points < 1 m from the camera / of those, on no surface
   double tracks_sum = 0, points_sum = 0, tracker_ms = 0, tri_ms = 0, render_ms = 0;
   int frames = 0, min_tracks = 1 << 30;
   std::string csv = "t,tracks,new_tracks,lost_tracks,slam_points,median_error_m,tracker_ms,triangulation_ms,render_ms\n";
@@ -122,6 +124,12 @@ int runVioEvalCommand(int argc, char** argv) {
       for (const auto& p : s.points.points) {
         const PointTruth t = evaluatePoint(p, gt_camera.at(p.anchor_tick), *truth, camera);
         ++st.point_samples;
+        // Spurious near points: closer than 1 m to the camera and not on a surface (no surface
+        // along the ray, or more than 0.3 m off it).
+        if ((p.p_W - s.points.T_W_C.translation()).norm() < 1.0) {
+          ++st.near_points;
+          st.spurious_near += !t.has_surface || (t.interior && t.error_m > 0.3);
+        }
         if (!t.has_surface) {
           ++st.no_surface;
           continue;
@@ -141,6 +149,8 @@ int runVioEvalCommand(int argc, char** argv) {
       }
     }
     ++st.frames;
+    st.ransac_tested += s.tracks.ransac_tested;
+    st.ransac_rejected += s.tracks.ransac_rejected;
     st.tracks_sum += s.tracks.tracks.size();
     st.points_sum += s.points.points.size();
     st.min_tracks = std::min(st.min_tracks, int(s.tracks.tracks.size()));
@@ -199,6 +209,9 @@ int runVioEvalCommand(int argc, char** argv) {
       {"thin_point_share", truth ? nlohmann::json(st.thin / ps) : nlohmann::json(nullptr)},
       {"no_surface_point_share", truth ? nlohmann::json(st.no_surface / ps) : nlohmann::json(nullptr)},
       {"silhouette_point_share", truth ? nlohmann::json(st.silhouette / ps) : nlohmann::json(nullptr)},
+      {"ransac_rejected_share", double(st.ransac_rejected) / double(std::max<long>(1, st.ransac_tested))},
+      {"near_point_share", truth ? nlohmann::json(st.near_points / ps) : nlohmann::json(nullptr)},
+      {"spurious_near_point_share", truth ? nlohmann::json(st.spurious_near / ps) : nlohmann::json(nullptr)},
       {"distance_flown_m", r.distance_flown_m},
       {"final_drift_m", r.final_drift_m},
       {"drift_percent_of_distance", r.distance_flown_m > 0 ? 100 * r.final_drift_m / r.distance_flown_m : 0.0},
@@ -228,6 +241,9 @@ int runVioEvalCommand(int argc, char** argv) {
     std::printf("  points on textureless surfaces %.2f %% (%.2f %% incl. their silhouettes), thin %.2f %%, "
                 "no surface %.2f %%\n", 100 * st.textureless_interior / ps, 100 * st.textureless / ps,
                 100 * st.thin / ps, 100 * st.no_surface / ps);
+    std::printf("  RANSAC rejected %.2f %% of tracked pairs; points < 1 m from the camera %.3f %%, spurious %.3f %%\n",
+                100.0 * st.ransac_rejected / std::max<long>(1, st.ransac_tested), 100 * st.near_points / ps,
+                100 * st.spurious_near / ps);
     std::printf("  errors of interior points (%.1f %% of points lie on silhouettes, not compared):\n",
                 100 * st.silhouette / ps);
     std::printf("  %-9s %8s %10s %10s %14s\n", "depth", "samples", "median m", "p90 m", "pred. std m");

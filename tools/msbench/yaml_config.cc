@@ -150,6 +150,9 @@ void readVioDrift(MapReader r, VioDriftConfig& c) {
   r.read("yaw_random_walk_deg_per_sqrt_m", c.yaw_random_walk_deg_per_sqrt_m);
   r.read("frame_position_noise_m", c.frame_position_noise_m);
   r.read("frame_yaw_noise_deg", c.frame_yaw_noise_deg);
+  r.read("nominal_tracks", c.nominal_tracks);
+  r.read("few_tracks_gain", c.few_tracks_gain);
+  r.read("yaw_error_per_turn_deg_per_rad", c.yaw_error_per_turn_deg_per_rad);
   r.finish();
 }
 
@@ -185,6 +188,10 @@ void readTracker(MapReader r, FeatureTrackerConfig& c) {
   r.read("klt_pyramid_levels", c.klt_pyramid_levels);
   r.read("klt_max_iterations", c.klt_max_iterations);
   r.read("fb_max_error_px", c.fb_max_error_px);
+  r.read("ransac", c.ransac);
+  r.read("ransac_threshold_px", c.ransac_threshold_px);
+  r.read("ransac_max_angle_deg", c.ransac_max_angle_deg);
+  r.read("ransac_min_pairs", c.ransac_min_pairs);
   r.read("border_px", c.border_px);
   r.read("equalize_histogram", c.equalize_histogram);
   r.finish();
