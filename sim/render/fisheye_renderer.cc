@@ -71,8 +71,9 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   model_->vis.headlight.active = 1;
   // World lights (a directional sun) only with the `sun` switch: diffuse shading from a
   // world-fixed direction is the same in every cube face, so it adds no seams.
+  // Worlds without lights (caves) keep the bright ambient headlight.
   for (int l = 0; l < model_->nlight; ++l) model_->light_active[l] = config_.sun ? 1 : 0;
-  const double ambient = config_.sun ? config_.sun_ambient : config_.ambient;
+  const double ambient = config_.sun && model_->nlight > 0 ? config_.sun_ambient : config_.ambient;
   for (int i = 0; i < 3; ++i) {
     model_->vis.headlight.ambient[i] = static_cast<float>(ambient);
     model_->vis.headlight.diffuse[i] = 0.0f;
@@ -96,6 +97,7 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   mjv_defaultOption(&options_);
   // Geom groups 0-2 are the visible world; 3 is the vehicle, 4 collision-only geoms.
   for (int g = 0; g < mjNGROUP; ++g) options_.geomgroup[g] = g <= config_.max_visible_geom_group;
+  options_.geomgroup[kSkyGeomGroup] = config_.sky ? 1 : 0;  // the world's sky planes, if any
   // Only geoms: no sites, joints, tendons or other decorations.
   for (int g = 0; g < mjNGROUP; ++g) options_.sitegroup[g] = 0;
   for (int f = 0; f < mjNVISFLAG; ++f) options_.flags[f] = 0;
@@ -104,7 +106,7 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   mjv_defaultFreeCamera(model_, &free_camera_);
   for (int f = 0; f < mjNRNDFLAG; ++f) scene_.flags[f] = 0;
   scene_.flags[mjRND_CULL_FACE] = 1;
-  scene_.flags[mjRND_SKYBOX] = config_.sky ? 1 : 0;
+  scene_.flags[mjRND_SKYBOX] = 0;
 }
 
 FisheyeRenderer::~FisheyeRenderer() {

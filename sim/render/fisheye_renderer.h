@@ -32,6 +32,9 @@
 
 namespace msb {
 
+/// Geom group of sky planes (sim/world's geom_groups::kSky; sim/render does not include it).
+inline constexpr int kSkyGeomGroup = 5;
+
 /// Benchmark render settings (docs/architecture.md §5).
 struct FisheyeRendererConfig {
   double face_focal_ratio = 1.0;   ///< cube-face focal length / fisheye fx
@@ -43,8 +46,8 @@ struct FisheyeRendererConfig {
   double far_clip_m = 600.0;       ///< far clipping distance
   bool read_red_channel_only = false;  ///< read one channel (exact for grey-scale worlds)
   int max_visible_geom_group = 2;  ///< groups above are not drawn (3: vehicle, 4: collision-only)
-  bool sky = false;                 ///< draw the world's skybox texture (else the sky is black)
-  bool sun = false;                 ///< use the world's directional lights (diffuse, world-fixed)
+  bool sky = true;                  ///< draw the world's sky planes (outdoor worlds; else black)
+  bool sun = true;                  ///< use the world's directional lights (outdoor worlds' sun)
   double sun_ambient = 0.55;        ///< headlight ambient when the sun is on
 
   /// Records invalid fields.

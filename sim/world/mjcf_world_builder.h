@@ -25,6 +25,7 @@ namespace geom_groups {
 inline constexpr int kRendered = 0;      ///< collision geoms drawn as they are
 inline constexpr int kVisualMesh = 1;    ///< textured visual meshes (no collision)
 inline constexpr int kCollisionOnly = 4; ///< collision geoms hidden from the camera
+inline constexpr int kSky = 5;           ///< sky planes (drawn with the renderer's `sky` switch)
 }  // namespace geom_groups
 
 /// How a solid looks.
@@ -62,6 +63,10 @@ class MjcfWorldBuilder {
   /// larger collision solid whose hidden faces need not be drawn.
   void addVisualSlab(const std::string& name, const Pose& T, const Vec3& half,
                      const std::string& texture);
+  /// An outdoor sky: five inward-facing planes (a lid and four walls) well beyond the ground,
+  /// flat and self-lit (no collision, no ground-truth shape), and a world-fixed sun. Worlds
+  /// without it (caves) have neither.
+  void setOutdoorSky(const Vec2& ground_size_m);
   /// The ground: plane z = 0 of the given extent with a texture repeating every tile.
   void setGround(const Vec2& size_m, const std::string& texture);
 
@@ -89,6 +94,7 @@ class MjcfWorldBuilder {
   std::map<int, std::string> flat_materials_;  // grey level (0..255) -> material
   std::ostringstream assets_, bodies_;
   int visual_geoms_ = 0;
+  bool outdoor_ = false;
 };
 
 }  // namespace msb

@@ -261,6 +261,7 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
   checkValid(spec);
   MjcfWorldBuilder b(spec.name);
   b.setGround(spec.ground_size_m, spec.ground_texture);
+  if (!spec.cave) b.setOutdoorSky(spec.ground_size_m);  // caves: no sky, no sun
   GeneratedWorld out;
   out.name = spec.name;
   if (spec.cave) {

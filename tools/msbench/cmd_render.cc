@@ -56,16 +56,16 @@ int runRenderProbeCommand(int argc, char** argv) {
       .flag("overwrite", "replace an existing output file")
       .option("scale", "1", "image scale: 1 (752x480) or 0.5 (376x240)")
       .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length")
-      .flag("sky", "draw the world's sky (render.sky)")
-      .flag("sun", "light the world with its sun (render.sun)");
+      .flag("no-sky", "leave the sky black (render.sky: false)")
+      .flag("no-sun", "no sun, ambient light only (render.sun: false)");
   if (!args.parse(argc, argv)) return kExitOk;
   const Vec4 pose = parsePose(args.get("pose"));
   FisheyeCameraConfig cam_cfg;
   cam_cfg.scale = parseScale(args);
   FisheyeRendererConfig render_cfg;
   render_cfg.face_focal_ratio = args.getDouble("face-focal-ratio");
-  render_cfg.sky = args.has("sky");
-  render_cfg.sun = args.has("sun");
+  render_cfg.sky = !args.has("no-sky");
+  render_cfg.sun = !args.has("no-sun");
   const std::string world = resolveWorld(args.get("world")).world_xml;
   checkOutputFile(args.get("out"), args.has("overwrite"), "out");
 
@@ -92,7 +92,9 @@ int runBenchSimCommand(int argc, char** argv) {
       .option("steps", "20000", "physics steps to time")
       .option("frames", "60", "frames to time per resolution")
       .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length")
-      .flag("red-only", "read back the red channel only (grey-scale worlds)");
+      .flag("red-only", "read back the red channel only (grey-scale worlds)")
+      .flag("no-sky", "leave the sky black (render.sky: false)")
+      .flag("no-sun", "no sun, ambient light only (render.sun: false)");
   if (!args.parse(argc, argv)) return kExitOk;
   const std::string world = resolveWorld(args.get("world")).world_xml;
   const long steps = args.getInt("steps"), frames = args.getInt("frames");
@@ -122,6 +124,8 @@ int runBenchSimCommand(int argc, char** argv) {
     FisheyeRendererConfig rcfg;
     rcfg.face_focal_ratio = args.getDouble("face-focal-ratio");
     rcfg.read_red_channel_only = args.has("red-only");
+    rcfg.sky = !args.has("no-sky");
+    rcfg.sun = !args.has("no-sun");
     QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
     rsim.beginTick();
     FisheyeRenderer renderer(rcfg, camera, rsim.model());

@@ -105,7 +105,10 @@ TEST(Worlds, GroundTruthRayCastsAgreeWithMuJoCoWithin1cm) {
       const Vec3 d = Vec3(rng.normal(), rng.normal(), rng.normal()).normalized();
       const auto hit = truth.raycast(o, d, 300.0);
       int geom = -1;
-      const double t = mj_ray(sim.model(), sim.data(), o.data(), d.data(), collision_groups, 1, -1, &geom);
+      double t = mj_ray(sim.model(), sim.data(), o.data(), d.data(), collision_groups, 1, -1, &geom);
+      // The sky planes (visual only, far beyond the ground) are not obstacles.
+      const char* hit_name = geom >= 0 ? mj_id2name(sim.model(), mjOBJ_GEOM, geom) : nullptr;
+      if (hit_name && std::string(hit_name).rfind("sky_", 0) == 0) t = -1.0;
       // MuJoCo's ground plane ends at the ground extent; the truth's half-space does not.
       if (hit && w.generated.shapes[hit->shape].type == ShapeType::kHalfSpace) {
         const Vec3 p = o + hit->distance_m * d;
