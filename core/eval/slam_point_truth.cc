@@ -14,13 +14,14 @@ PointTruth evaluatePoint(const SlamPoint& p, const Pose& T, const WorldTruth& tr
   out.kind = shape.kind;
   const Vec3 p_true = T.translation() + hit->distance_m * ray;
   out.error_m = (p.p_W - p.T_W_anchor * (T.inverse() * p_true)).norm();
-  // Silhouette points (a neighbour sees another object) have no single true surface: the
-  // corner is formed by two. Corners on a textureless object's silhouette are real features;
-  // only interior points count as "on" a textureless surface.
+  // Silhouette points (a neighbour sees another shape: another object, or another part of one,
+  // e.g. a vehicle's window on its body) have no single true surface: the corner is formed by
+  // two. Such corners on textureless parts are real features; only interior points count as
+  // "on" a textureless surface.
   out.interior = true;
   for (const Vec2& d : {Vec2(3, 0), Vec2(-3, 0), Vec2(0, 3), Vec2(0, -3)}) {
     const auto h = truth.raycast(T.translation(), T.linear() * camera.unproject(p.anchor_pixel + d), 400.0);
-    if (!h || truth.shapes()[h->shape].object != shape.object) {
+    if (!h || h->shape != hit->shape) {
       out.interior = false;
       break;
     }

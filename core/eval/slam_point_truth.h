@@ -14,7 +14,7 @@ struct PointTruth {
   double true_depth_m = 0.0;         ///< distance from the anchor camera to the true surface
   double error_m = 0.0;              ///< |estimate − truth| in the anchor's estimate frame
   ObstacleKind kind = ObstacleKind::kTextured;  ///< kind of the surface hit
-  bool interior = false;             ///< the anchor pixel's 3-px neighbours see the same object
+  bool interior = false;             ///< the anchor pixel's 3-px neighbours see the same shape
   bool textureless_interior = false; ///< interior and textureless
 };
 

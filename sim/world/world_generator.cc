@@ -1,4 +1,5 @@
 #include "sim/world/world_generator.h"
+#include "sim/world/vehicle_models.h"
 
 #include <algorithm>
 #include <cmath>
@@ -97,17 +98,8 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
       b.addBox(id + (side > 0 ? "_roof_a" : "_roof_b"), id, local(base, c, R),
                Vec3(0.5 * s.x() + 0.3, 0.5 * slab, 0.12), T, Look::textured("wood"));
     }
-  } else if (k == "car") {
-    // Textureless paint: a lower body and a cabin.
-    const double grey = detail.uniform(0.15, 0.85);
-    b.addBox(id + "_body", id, local(base, Vec3(0, 0, 0.3 * s.z())),
-             Vec3(0.5 * s.x(), 0.5 * s.y(), 0.3 * s.z()), ObstacleKind::kTextureless, Look::flat(grey));
-    b.addBox(id + "_cabin", id, local(base, Vec3(-0.05 * s.x(), 0, 0.8 * s.z())),
-             Vec3(0.28 * s.x(), 0.45 * s.y(), 0.2 * s.z()), ObstacleKind::kTextureless,
-             Look::flat(std::clamp(grey * 0.6, 0.0, 1.0)));
-  } else if (k == "bus") {
-    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, ObstacleKind::kTextureless,
-             Look::flat(detail.uniform(0.3, 0.8)));
+  } else if (isVehicleKind(k)) {
+    buildVehicle(k, id, base, s, detail, b);
   } else if (k == "tree") {
     // Bark trunk up into a foliage canopy (sphere of diameter size.x, top at size.z).
     const double r = 0.5 * s.x(), trunk_r = std::max(0.12, 0.05 * s.x());

@@ -7,9 +7,9 @@
 namespace msb {
 
 const std::vector<std::string>& worldObjectKinds() {
-  static const std::vector<std::string> kinds = {"building", "tower", "house", "car", "bus",
-                                                 "tree", "rod", "pole", "wall", "rock",
-                                                 "gazebo", "pillar"};
+  static const std::vector<std::string> kinds = {"building", "tower", "house", "car", "suv", "bus",
+                                                 "fire_truck", "ambulance", "tree", "rod", "pole",
+                                                 "wall", "rock", "gazebo", "pillar"};
   return kinds;
 }
 

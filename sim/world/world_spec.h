@@ -18,7 +18,7 @@ const std::vector<std::string>& worldObjectKinds();
 
 /// A group of objects of one kind.
 struct ObjectGroupSpec {
-  std::string kind;                  ///< building, tower, car, bus, tree, rod, pole, wall, rock, gazebo, house, pillar
+  std::string kind;                  ///< building, tower, car, suv, bus, fire_truck, ambulance, tree, rod, pole, wall, rock, gazebo, house, pillar
   int count = 1;                     ///< number of objects
   std::optional<Vec2> at;            ///< fixed position (count must be 1)
   std::optional<Vec2> region_min;    ///< random placement region (with region_max)
