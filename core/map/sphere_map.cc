@@ -21,6 +21,7 @@ void SphereMapConfig::validate(ConfigChecker& c) const {
   c.positive("obstacle_spacing_m", obstacle_spacing_m);
   c.inRange("sparsify_factor", sparsify_factor, 0.0, 2.0);
   c.inRange("min_points", min_points, 3, 100000);
+  c.positive("max_point_depth_std_m", max_point_depth_std_m);
   c.inRange("max_view_angle_deg", max_view_angle_deg, 1.0, 89.0);
   c.nested("ovde_params", ovde_params);
   c.inRange("frontier_surface_samples", frontier_surface_samples, 0, 100000);
@@ -203,8 +204,18 @@ bool SphereMap::connected() const {
   return seen.size() == spheres_.size();
 }
 
-MapUpdateStats SphereMap::update(const SlamPointsFrame& frame) {
+MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   MapUpdateStats st;
+  // Points too uncertain in depth are left out of every step (off unless configured).
+  SlamPointsFrame filtered;
+  const bool filter = std::any_of(frame_in.points.begin(), frame_in.points.end(), [&](const SlamPoint& p) {
+    return p.depth_std_m > config_.max_point_depth_std_m;
+  });
+  if (filter) {
+    filtered = frame_in;
+    std::erase_if(filtered.points, [&](const SlamPoint& p) { return p.depth_std_m > config_.max_point_depth_std_m; });
+  }
+  const SlamPointsFrame& frame = filter ? filtered : frame_in;
   const Vec3 cam = frame.T_W_C.translation();
   const Pose T_C_W = frame.T_W_C.inverse();
 

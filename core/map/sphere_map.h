@@ -1,5 +1,7 @@
 // The MonoSpheres map (paper §III, docs/architecture.md §7): free-space spheres connected where they overlap,
 // plus obstacle points, all in the VIO world frame. One update per SLAM-points frame:
+//   0. optional (off by default): points with a depth σ above max_point_depth_std_m are left
+//      out of every step (experiment of issue 13: far, uncertain points inside tunnels)
 //   1. input: SLAM points in front of the camera (≤ max_view_angle_deg off-axis; ≥ min_points,
 //      else skip); all points of the frame, also side points, limit radii in step 6/7
 //   2./4. free-space polyhedron P_f from the points (FreeSpacePolyhedron)
@@ -60,6 +62,7 @@ struct SphereMapConfig {
   double obstacle_spacing_m = 0.3;   ///< ρ
   double sparsify_factor = 0.9;      ///< removal when |c_i − c_j| < factor·(r_i + r_j)/2
   int min_points = 4;                ///< fewer input points: the update is skipped
+  double max_point_depth_std_m = 1e9;///< points with a larger 1σ depth uncertainty are ignored (off by default)
   double max_view_angle_deg = 80.0;  ///< points farther off-axis are not triangulated
   int frontier_surface_samples = 150;   ///< candidates on P_f's faces per update
   int frontier_shell_samples = 150;     ///< candidates in sphere shells per update

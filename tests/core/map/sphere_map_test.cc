@@ -303,5 +303,27 @@ TEST(SphereMapRules, ASidePointLimitsSpheres) {
   }
 }
 
+TEST(SphereMapRules, PointsTooUncertainInDepthCanBeLeftOut) {
+  // A far point placed (wrongly) inside an existing sphere with a 3 m depth σ: by default it
+  // limits the sphere like any point; with max_point_depth_std_m = 1 it is ignored.
+  for (double max_std : {1e9, 1.0}) {
+    SphereMapConfig cfg;
+    cfg.max_point_depth_std_m = max_std;
+    cfg.new_sphere_samples = 0;
+    SphereMap map(cfg, FisheyeCamera{}, 2);
+    const uint64_t s = map.addSphere({0, 0, 6}, 3.0);
+    SlamPointsFrame f = wallFrame(18, 12, 3);
+    SlamPoint p;
+    p.track_id = 999;
+    p.p_W = Vec3(0.5, 0, 6.5);
+    p.depth_std_m = 3.0;
+    f.points.push_back(p);
+    map.update(f);
+    const bool limited = !map.spheres().count(s) || map.spheres().at(s).radius < 1.0;
+    EXPECT_EQ(limited, max_std > 2.0) << max_std;
+    EXPECT_EQ(map.obstaclesNear(p.p_W, 0.01).empty(), max_std < 2.0) << max_std;
+  }
+}
+
 }  // namespace
 }  // namespace msb
