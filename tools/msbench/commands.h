@@ -6,6 +6,8 @@ namespace msb {
 
 /// `msbench run SCENARIO.yaml --out DIR`: one closed-loop exploration mission.
 int runRunCommand(int argc, char** argv);
+/// `msbench sweep SWEEP.yaml --out DIR [--jobs N]`: many runs in parallel processes, resumable.
+int runSweepCommand(int argc, char** argv);
 /// `msbench fly FILE.yaml --out DIR`: a scripted waypoint flight with outputs.
 int runFlyCommand(int argc, char** argv);
 /// `msbench render-probe --world W --pose x,y,z,yaw --out F.png`: one fisheye frame.

@@ -1,0 +1,268 @@
+// msbench sweep: a sweep file's runs as separate `msbench run` processes, N at a time, into one
+// directory (docs/sweeps.md):
+//   DIR/sweep.json   the plan (file, its hash, the msbench build) and every run's status
+//   DIR/runs.csv     one row per run (status, A, box share, hashes, exit code or signal)
+//   DIR/runs/<id>/   the run's outputs (metrics.json present = complete)
+//   DIR/logs/<id>.log  its standard output and error
+// A run that fails (exit code, signal) is recorded with the tail of its log and the sweep goes
+// on. Re-running the same command skips complete runs and redoes the others; a changed sweep
+// file or msbench build is named and refused unless --accept-changes.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <fcntl.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "core/common/wall_time.h"
+#include "tools/msbench/cli_args.h"
+#include "tools/msbench/commands.h"
+#include "tools/msbench/common_io.h"
+#include "tools/msbench/interrupt.h"
+#include "tools/msbench/output_files.h"
+#include "tools/msbench/scenario_yaml.h"
+#include "tools/msbench/sweep_plan.h"
+#include "tools/msbench/yaml_reader.h"
+
+namespace msb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// What became of one run.
+struct RunState {
+  std::string status = "pending";  // pending | complete | failed
+  int exit_code = 0, signal = 0;
+  std::string log_tail;
+  nlohmann::json metrics;          // the run's metrics.json (complete runs)
+};
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string tail(const std::string& text, int lines) {
+  size_t pos = text.size();
+  for (int k = 0; k <= lines && pos > 0; ++k) {
+    const size_t nl = text.rfind('\n', pos - 1);
+    if (nl == std::string::npos) return text;
+    pos = nl;
+  }
+  return text.substr(pos + 1);
+}
+
+// The build a sweep's results come from.
+std::string buildId() {
+  const auto v = versionInfo();
+  return v.value("msbench", std::string("?")) + "+" + v.value("git_revision", std::string("?"));
+}
+
+// Starts `msbench run` for one run; stdout and stderr go to its log. Returns the child's pid.
+pid_t startRun(const SweepRun& run, const fs::path& out, const fs::path& log) {
+  std::vector<std::string> args = {"msbench", "run", run.scenario, "--seed", std::to_string(run.seed)};
+  for (const auto& [k, v] : run.sets) args.insert(args.end(), {"--set", k + "=" + v});
+  args.insert(args.end(), {"--out", out.string(), "--overwrite", "--quiet"});
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) dup2(fd, 1), dup2(fd, 2), close(fd);
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+std::string csvRow(const SweepRun& r, const RunState& s, const std::vector<std::string>& axes) {
+  std::ostringstream o;
+  o << r.id;
+  for (const auto& a : axes) o << "," << r.labels.at(a);
+  const auto& m = s.metrics;
+  auto num = [&](const nlohmann::json& j) { return j.is_number() ? std::to_string(j.get<double>()) : std::string(); };
+  o << "," << r.seed << "," << s.status << "," << (m.is_object() ? m.value("status", "") : "") << ","
+    << (m.is_object() ? num(m["coverage"]["area_m2"]) : "") << ","
+    << (m.is_object() ? num(m["coverage"]["box_share"]) : "") << ","
+    << (m.is_object() ? num(m["sim_time_s"]) : "") << "," << (m.is_object() ? num(m["wall_time_s"]) : "") << ","
+    << (m.is_object() ? m.value("determinism_hash", "") : "") << "," << s.exit_code << "," << s.signal << "\n";
+  return o.str();
+}
+
+// Writes sweep.json and runs.csv (atomically) for the current states.
+void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<RunState>& states, int jobs) {
+  nlohmann::json runs = nlohmann::json::array();
+  std::string csv = "id";
+  for (const auto& a : plan.axes) csv += "," + a;
+  csv += ",seed,status,run_status,area_m2,box_share,sim_time_s,wall_time_s,determinism_hash,exit_code,signal\n";
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    const SweepRun& r = plan.runs[i];
+    const RunState& s = states[i];
+    nlohmann::json j = {{"id", r.id}, {"seed", r.seed}, {"scenario", r.scenario}, {"labels", r.labels},
+                        {"status", s.status}};
+    nlohmann::json sets = nlohmann::json::array();
+    for (const auto& [k, v] : r.sets) sets.push_back(k + "=" + v);
+    j["sets"] = sets;
+    if (s.status == "failed") j["failure"] = {{"exit_code", s.exit_code}, {"signal", s.signal}, {"log_tail", s.log_tail}};
+    if (s.metrics.is_object()) j["area_m2"] = s.metrics["coverage"]["area_m2"], j["run_status"] = s.metrics["status"];
+    runs.push_back(j);
+    csv += csvRow(r, s, plan.axes);
+  }
+  const nlohmann::json index = {{"sweep_file", plan.file}, {"sweep_file_hash", plan.file_hash}, {"build", buildId()},
+                                {"versions", versionInfo()}, {"jobs", jobs}, {"axes", plan.axes}, {"runs", runs}};
+  writeFileAtomic(dir / "sweep.json", index.dump(2) + "\n");
+  writeFileAtomic(dir / "runs.csv", csv);
+}
+
+}  // namespace
+
+int runSweepCommand(int argc, char** argv) {
+  ArgParser args("msbench sweep",
+                 "Run a sweep file's runs (base scenario x axes x seeds) as separate processes, N at a\n"
+                 "time, into DIR: sweep.json and runs.csv (index), runs/<id>/ (outputs), logs/<id>.log.\n"
+                 "Re-running resumes: complete runs are skipped, failed or unfinished ones redone.");
+  args.positional("SWEEP.yaml", "sweep file (see scenarios/sweeps/)")
+      .option("out", "", "sweep directory", false)
+      .option("jobs", "1", "runs at a time (processes)")
+      .flag("list", "print the run ids in order and exit")
+      .flag("accept-changes", "resume although the sweep file or the msbench build changed");
+  if (!args.parse(argc, argv)) return kExitOk;
+  const SweepPlan plan = loadSweepPlan(args.get("SWEEP.yaml"));
+  if (args.has("list")) {
+    for (const auto& r : plan.runs) std::printf("%s\n", r.id.c_str());
+    return kExitOk;
+  }
+  if (args.get("out").empty()) throw UsageError("--out DIR is required (except with --list)");
+  const long jobs = args.getInt("jobs");
+  if (jobs < 1 || jobs > 256) throw UsageError("--jobs must be in [1, 256]");
+  // Every run's scenario must load before anything starts (unknown keys, bad values: exit 2).
+  for (const auto& r : plan.runs) {
+    std::vector<std::string> sets;
+    for (const auto& [k, v] : r.sets) sets.push_back(k + "=" + v);
+    try {
+      loadScenario(r.scenario, sets);
+    } catch (const std::exception& e) {
+      throw FileConfigError(plan.file + ": run " + r.id + ": " + e.what());
+    }
+  }
+  // The directory: new, or a sweep of the same file and build (resume).
+  const fs::path dir = args.get("out");
+  if (fs::exists(dir / "sweep.json")) {
+    const auto old = nlohmann::json::parse(readText(dir / "sweep.json"), nullptr, false);
+    if (!old.is_object()) throw UsageError(dir.string() + "/sweep.json is unreadable: not a sweep directory?");
+    std::vector<std::string> changes;
+    if (old.value("sweep_file_hash", "") != plan.file_hash) changes.push_back("the sweep file changed (" + plan.file + ")");
+    if (old.value("build", "") != buildId())
+      changes.push_back("the msbench build changed (" + old.value("build", "?") + " -> " + buildId() + ")");
+    if (!changes.empty() && !args.has("accept-changes")) {
+      std::string msg = "cannot resume " + dir.string() + ":";
+      for (const auto& c : changes) msg += " " + c + ";";
+      throw UsageError(msg + " use a new --out, or --accept-changes to mix results");
+    }
+    for (const auto& c : changes) std::fprintf(stderr, "sweep: resuming although %s\n", c.c_str());
+  } else if (fs::exists(dir) && !fs::is_empty(dir)) {
+    throw UsageError(dir.string() + " exists and is not a sweep directory (no sweep.json)");
+  }
+  fs::create_directories(dir / "runs");
+  fs::create_directories(dir / "logs");
+
+  // Complete runs are skipped.
+  std::vector<RunState> states(plan.runs.size());
+  std::vector<size_t> todo;
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
+    if (fs::exists(m)) {
+      states[i].status = "complete";
+      states[i].metrics = nlohmann::json::parse(readText(m), nullptr, false);
+    } else {
+      todo.push_back(i);
+    }
+  }
+  writeIndex(dir, plan, states, int(jobs));
+  const size_t skipped = plan.runs.size() - todo.size();
+  std::fprintf(stderr, "sweep %s: %zu runs (%zu complete, %zu to run), %ld at a time -> %s\n", plan.file.c_str(),
+               plan.runs.size(), skipped, todo.size(), jobs, dir.string().c_str());
+
+  // The pool: start runs in order, N at a time; record each as it ends.
+  std::map<pid_t, size_t> running;
+  size_t next = 0, failed = 0, done = 0;
+  const auto t0 = WallClock::now();
+  auto progress = [&]() {
+    const double elapsed = secondsSince(t0);
+    const double eta = done > 0 ? elapsed / double(done) * double(todo.size() - done) : 0.0;
+    std::fprintf(stderr, "sweep: %zu done, %zu running, %zu failed of %zu (%zu skipped); %.0f s elapsed%s\n",
+                 done, running.size(), failed, todo.size(), skipped, elapsed,
+                 done > 0 ? (", ETA " + std::to_string(int(eta)) + " s").c_str() : "");
+  };
+  bool interrupted = false;
+  while ((next < todo.size() && !interrupted) || !running.empty()) {
+    while (!interrupted && next < todo.size() && running.size() < size_t(jobs)) {
+      const size_t i = todo[next++];
+      const SweepRun& r = plan.runs[i];
+      running[startRun(r, dir / "runs" / r.id, dir / "logs" / (r.id + ".log"))] = i;
+    }
+    int wstatus = 0;
+    const pid_t pid = waitpid(-1, &wstatus, WNOHANG);
+    if (pid <= 0) {
+      try {
+        throwIfInterrupted();
+      } catch (const Interrupted&) {
+        if (!interrupted) {
+          interrupted = true;
+          for (const auto& [p, i] : running) kill(p, SIGTERM);  // each run cleans up its own outputs
+        }
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      continue;
+    }
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const size_t i = it->second;
+    running.erase(it);
+    RunState& s = states[i];
+    const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
+    s.exit_code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 0;
+    s.signal = WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
+    if (WIFEXITED(wstatus) && s.exit_code == 0 && fs::exists(m)) {
+      s.status = "complete";
+      s.metrics = nlohmann::json::parse(readText(m), nullptr, false);
+    } else if (interrupted) {
+      s.status = "pending";  // stopped by us: redone on resume
+    } else {
+      s.status = "failed";
+      s.log_tail = tail(readText(dir / "logs" / (plan.runs[i].id + ".log")), 5);
+      ++failed;
+      std::fprintf(stderr, "sweep: run %s failed (%s %d); see %s\n", plan.runs[i].id.c_str(),
+                   s.signal ? "signal" : "exit code", s.signal ? s.signal : s.exit_code,
+                   (dir / "logs" / (plan.runs[i].id + ".log")).c_str());
+    }
+    ++done;
+    writeIndex(dir, plan, states, int(jobs));
+    progress();
+  }
+  writeIndex(dir, plan, states, int(jobs));
+  if (interrupted) throwIfInterrupted();  // rethrows: exit 130/143
+  size_t complete = 0;
+  for (const auto& s : states) complete += s.status == "complete";
+  std::printf("sweep: %zu of %zu runs complete, %zu failed -> %s\n", complete, plan.runs.size(), failed,
+              (dir / "runs.csv").c_str());
+  return failed ? kExitRuntime : kExitOk;
+}
+
+}  // namespace msb
