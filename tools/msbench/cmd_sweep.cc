@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -141,6 +142,8 @@ int runSweepCommand(int argc, char** argv) {
       .option("out", "", "sweep directory", false)
       .option("jobs", "1", "runs at a time (processes)")
       .flag("list", "print the run ids in order and exit")
+      .option("task-index", "", "run only run K of the list (0-based; default $SLURM_ARRAY_TASK_ID if set)")
+      .flag("emit-slurm", "print an sbatch script that runs the sweep as a job array, and exit")
       .flag("accept-changes", "resume although the sweep file or the msbench build changed");
   if (!args.parse(argc, argv)) return kExitOk;
   const SweepPlan plan = loadSweepPlan(args.get("SWEEP.yaml"));
@@ -149,6 +152,30 @@ int runSweepCommand(int argc, char** argv) {
     return kExitOk;
   }
   if (args.get("out").empty()) throw UsageError("--out DIR is required (except with --list)");
+  if (args.has("emit-slurm")) {
+    // One array task per run, one core each; afterwards a plain `sweep` call writes the index.
+    const std::string exe = fs::canonical("/proc/self/exe").string();
+    const fs::path out = fs::absolute(args.get("out"));
+    std::printf("#!/bin/bash\n#SBATCH --job-name=msbench-sweep\n#SBATCH --array=0-%zu\n#SBATCH --cpus-per-task=1\n"
+                "#SBATCH --output=%s/slurm-%%A_%%a.out\n"
+                "export LP_NUM_THREADS=1\n'%s' sweep '%s' --out '%s' --task-index \"$SLURM_ARRAY_TASK_ID\"\n"
+                "# when all tasks are done: '%s' sweep '%s' --out '%s'   (writes sweep.json and runs.csv)\n",
+                plan.runs.size() - 1, out.c_str(), exe.c_str(), plan.file.c_str(), out.c_str(), exe.c_str(),
+                plan.file.c_str(), out.c_str());
+    return kExitOk;
+  }
+  // Distributed: exactly one run of the list (a Slurm array task); no index is written (tasks
+  // run concurrently); a later plain call skips the complete runs and writes it.
+  std::optional<size_t> task;
+  std::string task_text = args.get("task-index");
+  if (task_text.empty() && std::getenv("SLURM_ARRAY_TASK_ID")) task_text = std::getenv("SLURM_ARRAY_TASK_ID");
+  if (!task_text.empty()) {
+    char* end = nullptr;
+    const long k = std::strtol(task_text.c_str(), &end, 10);
+    if (*end || k < 0 || size_t(k) >= plan.runs.size())
+      throw UsageError("--task-index must be in [0, " + std::to_string(plan.runs.size() - 1) + "], got '" + task_text + "'");
+    task = size_t(k);
+  }
   const long jobs = args.getInt("jobs");
   if (jobs < 1 || jobs > 256) throw UsageError("--jobs must be in [1, 256]");
   // Every run's scenario must load before anything starts (unknown keys, bad values: exit 2).
@@ -163,7 +190,10 @@ int runSweepCommand(int argc, char** argv) {
   }
   // The directory: new, or a sweep of the same file and build (resume).
   const fs::path dir = args.get("out");
-  if (fs::exists(dir / "sweep.json")) {
+  if (task) {
+    fs::create_directories(dir / "runs");
+    fs::create_directories(dir / "logs");
+  } else if (fs::exists(dir / "sweep.json")) {
     const auto old = nlohmann::json::parse(readText(dir / "sweep.json"), nullptr, false);
     if (!old.is_object()) throw UsageError(dir.string() + "/sweep.json is unreadable: not a sweep directory?");
     std::vector<std::string> changes;
@@ -176,7 +206,7 @@ int runSweepCommand(int argc, char** argv) {
       throw UsageError(msg + " use a new --out, or --accept-changes to mix results");
     }
     for (const auto& c : changes) std::fprintf(stderr, "sweep: resuming although %s\n", c.c_str());
-  } else if (fs::exists(dir) && !fs::is_empty(dir)) {
+  } else if (fs::exists(dir) && !fs::is_empty(dir) && !fs::exists(dir / "runs")) {
     throw UsageError(dir.string() + " exists and is not a sweep directory (no sweep.json)");
   }
   fs::create_directories(dir / "runs");
@@ -187,6 +217,7 @@ int runSweepCommand(int argc, char** argv) {
   std::vector<size_t> todo;
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
+    if (task && i != *task) continue;  // another task's run
     if (fs::exists(m)) {
       states[i].status = "complete";
       states[i].metrics = nlohmann::json::parse(readText(m), nullptr, false);
@@ -194,8 +225,8 @@ int runSweepCommand(int argc, char** argv) {
       todo.push_back(i);
     }
   }
-  writeIndex(dir, plan, states, int(jobs));
-  const size_t skipped = plan.runs.size() - todo.size();
+  if (!task) writeIndex(dir, plan, states, int(jobs));
+  const size_t skipped = (task ? 1 : plan.runs.size()) - todo.size();
   std::fprintf(stderr, "sweep %s: %zu runs (%zu complete, %zu to run), %ld at a time -> %s\n", plan.file.c_str(),
                plan.runs.size(), skipped, todo.size(), jobs, dir.string().c_str());
 
@@ -253,11 +284,15 @@ int runSweepCommand(int argc, char** argv) {
                    (dir / "logs" / (plan.runs[i].id + ".log")).c_str());
     }
     ++done;
-    writeIndex(dir, plan, states, int(jobs));
+    if (!task) writeIndex(dir, plan, states, int(jobs));
     progress();
   }
-  writeIndex(dir, plan, states, int(jobs));
+  if (!task) writeIndex(dir, plan, states, int(jobs));
   if (interrupted) throwIfInterrupted();  // rethrows: exit 130/143
+  if (task) {
+    std::printf("sweep task %zu: run %s %s\n", *task, plan.runs[*task].id.c_str(), states[*task].status.c_str());
+    return states[*task].status == "complete" ? kExitOk : kExitRuntime;
+  }
   size_t complete = 0;
   for (const auto& s : states) complete += s.status == "complete";
   std::printf("sweep: %zu of %zu runs complete, %zu failed -> %s\n", complete, plan.runs.size(), failed,

@@ -181,5 +181,29 @@ TEST(Sweep, AKilledSweepResumesToTheSameResults) {
   for (const auto& [id, row] : a) EXPECT_EQ(b.at(id)[8], row[8]) << id;  // determinism hash
 }
 
+TEST(Sweep, TaskIndexRunsOneRunAndAPlainCallWritesTheIndex) {
+  // As Slurm array tasks would: each task runs its own run into the shared layout, without an
+  // index; a plain call afterwards skips them all and writes sweep.json and runs.csv.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "task");
+  const fs::path f = writeSweep(d, "set: {duration_s: 2}\nseeds: 2\n");
+  const fs::path out = d / "out";
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --task-index 1", d / "log1"), 0) << readText(d / "log1");
+  EXPECT_TRUE(fs::exists(out / "runs" / "s2" / "metrics.json"));
+  EXPECT_FALSE(fs::exists(out / "runs" / "s1"));
+  EXPECT_FALSE(fs::exists(out / "sweep.json"));
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --task-index 2", d / "log2"), 2);
+  EXPECT_EQ(std::system(("SLURM_ARRAY_TASK_ID=0 '" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() +
+                         "' > '" + (d / "log3").string() + "' 2>&1").c_str()), 0);
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log4"), 0);
+  EXPECT_NE(readText(d / "log4").find("2 complete, 0 to run"), std::string::npos) << readText(d / "log4");
+  const auto r = rows(out);
+  EXPECT_EQ(r.at("s1")[2], "complete");
+  EXPECT_EQ(r.at("s2")[2], "complete");
+  // The job-array script names the array size and the task index.
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --emit-slurm", d / "log5"), 0);
+  EXPECT_NE(readText(d / "log5").find("#SBATCH --array=0-1"), std::string::npos) << readText(d / "log5");
+  EXPECT_NE(readText(d / "log5").find("--task-index \"$SLURM_ARRAY_TASK_ID\""), std::string::npos);
+}
+
 }  // namespace
 }  // namespace msb
