@@ -10,6 +10,17 @@
 namespace msb {
 namespace {
 
+// A camera frame holding a copy of a grey-scale image.
+CameraFrame frameOf(const cv::Mat& img, int64_t tick) {
+  CameraFrame f;
+  f.tick = tick;
+  f.width = img.cols;
+  f.height = img.rows;
+  const cv::Mat c = img.clone();
+  f.pixels.assign(c.datastart, c.dataend);
+  return f;
+}
+
 // Smoothed random noise (corners everywhere), shifted by (dx, dy) pixels.
 CameraFrame texturedFrame(int w, int h, double dx, double dy, int64_t tick) {
   RngStream rng(5, "tracker_texture");
@@ -23,13 +34,7 @@ CameraFrame texturedFrame(int w, int h, double dx, double dy, int64_t tick) {
   cv::Mat shifted;
   const cv::Mat M = (cv::Mat_<double>(2, 3) << 1, 0, dx, 0, 1, dy);
   cv::warpAffine(big, shifted, M, big.size(), cv::INTER_LINEAR);
-  CameraFrame f;
-  f.tick = tick;
-  f.width = w;
-  f.height = h;
-  const cv::Mat roi = shifted(cv::Rect(100, 100, w, h)).clone();
-  f.pixels.assign(roi.datastart, roi.dataend);
-  return f;
+  return frameOf(shifted(cv::Rect(100, 100, w, h)), tick);
 }
 
 TEST(KltFeatureTracker, DetectsUpToTheLimitOnAGridAndFollowsAShift) {
@@ -87,12 +92,7 @@ CameraFrame noiseFrame(int w, int h, uint64_t seed, int64_t tick) {
   cv::Mat img(h, w, CV_8U);
   for (int v = 0; v < h; ++v)
     for (int u = 0; u < w; ++u) img.at<uint8_t>(v, u) = uint8_t(rng.uniformInt(256));
-  CameraFrame f;
-  f.tick = tick;
-  f.width = w;
-  f.height = h;
-  f.pixels.assign(img.datastart, img.dataend);
-  return f;
+  return frameOf(img, tick);
 }
 
 TEST(KltFeatureTracker, DetectionWithoutTrackingCountsAsLost) {
@@ -123,12 +123,7 @@ CameraFrame markerFrame(const FisheyeCamera& cam, const std::vector<Vec3>& pts, 
     cv::rectangle(img, c - cv::Point(1, 1), c + cv::Point(1, 1), cv::Scalar(90), cv::FILLED);
   }
   cv::GaussianBlur(img, img, cv::Size(0, 0), 1.0);
-  CameraFrame f;
-  f.tick = tick;
-  f.width = img.cols;
-  f.height = img.rows;
-  f.pixels.assign(img.datastart, img.dataend);
-  return f;
+  return frameOf(img, tick);
 }
 
 TEST(KltFeatureTracker, RansacDropsTracksThatBreakTheEpipolarGeometry) {
