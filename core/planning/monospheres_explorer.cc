@@ -303,12 +303,21 @@ SphereLinks MonoSpheresExplorer::linkParts() const {
   auto pairKey = [&](uint64_t a, uint64_t b) {
     return std::make_pair(std::min(part.at(a), part.at(b)), std::max(part.at(a), part.at(b)));
   };
-  // (a) Narrow gaps between spheres of different parts.
+  // (a) Narrow gaps between spheres of different parts. Every pair of parts has a part other
+  // than the largest in it, so only the spheres outside the largest part are scanned (usually a
+  // few fragments beside one big part); pairs found from both ends are merged below.
+  std::map<uint64_t, size_t> part_size;
+  for (const auto& [id, label] : part) ++part_size[label];
+  uint64_t largest = 0;
+  for (const auto& [label, n] : part_size)
+    if (!largest || n > part_size.at(largest)) largest = label;
   for (const auto& [a, label] : part) {
+    if (label == largest) continue;
     const Sphere& sa = map_.spheres().at(a);
     for (uint64_t b : map_.spheresNear(sa.centre, sa.radius + pc.link_gap_m)) {
-      if (b <= a || !part.count(b) || part.at(b) == label) continue;
-      candidates[pairKey(a, b)].push_back({(map_.spheres().at(b).centre - sa.centre).norm(), a, b, 1, 0});
+      if (!part.count(b) || part.at(b) == label) continue;
+      candidates[pairKey(a, b)].push_back(
+          {(map_.spheres().at(b).centre - sa.centre).norm(), std::min(a, b), std::max(a, b), 1, 0});
     }
   }
   // (b) Where the vehicle's trail leaves one part and enters another.
