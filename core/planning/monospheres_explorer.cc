@@ -10,6 +10,16 @@ namespace msb {
 namespace {
 constexpr double kDeg = M_PI / 180.0;
 
+// True if `ok` holds at every sample of the segment a→b: n + 1 evenly spaced points (ends
+// included), n = ceil(|b − a| / step) ≥ 1.
+template <class Pred>
+bool everySample(const Vec3& a, const Vec3& b, double step, Pred ok) {
+  const int n = std::max(1, int(std::ceil((b - a).norm() / step)));
+  for (int i = 0; i <= n; ++i)
+    if (!ok(Vec3(a + (double(i) / n) * (b - a)))) return false;
+  return true;
+}
+
 // Cuts a waypoint list at arc length `max_len` from `from` (the cut point keeps no heading
 // unless the cut falls exactly on a waypoint).
 std::vector<Waypoint> cutAt(const Vec3& from, const std::vector<Waypoint>& w, double max_len) {
@@ -119,14 +129,11 @@ std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {
 }
 
 bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
-  const double len = (b - a).norm();
-  const int n = std::max(1, int(std::ceil(len / 0.3)));
-  for (int i = 0; i <= n; ++i) {
-    const Vec3 x = a + (double(i) / n) * (b - a);
-    if (map_.spheresNear(x, -config_.planner.shortcut_depth_m).empty()) return false;  // not deep inside
-    if (map_.anyObstacleNear(x, config_.planner.check_clearance_m)) return false;
-  }
-  return true;
+  // Every sample deep inside a sphere and clear of obstacle points.
+  return everySample(a, b, 0.3, [&](const Vec3& x) {
+    return !map_.spheresNear(x, -config_.planner.shortcut_depth_m).empty() &&
+           !map_.anyObstacleNear(x, config_.planner.check_clearance_m);
+  });
 }
 
 bool MonoSpheresExplorer::approaches(const Vec3& x, const Vec3& here) const {
@@ -138,11 +145,7 @@ bool MonoSpheresExplorer::approaches(const Vec3& x, const Vec3& here) const {
 }
 
 bool MonoSpheresExplorer::segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const {
-  const double len = (b - a).norm();
-  const int n = std::max(1, int(std::ceil(len / 0.3)));
-  for (int i = 0; i <= n; ++i)
-    if (approaches(a + (double(i) / n) * (b - a), here)) return false;
-  return true;
+  return everySample(a, b, 0.3, [&](const Vec3& x) { return !approaches(x, here); });
 }
 
 bool MonoSpheresExplorer::pathBlocked(const std::vector<Vec3>& pts) const {
@@ -271,11 +274,7 @@ std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleS
 }
 
 bool MonoSpheresExplorer::keepsClearance(const Vec3& a, const Vec3& b) const {
-  const double len = (b - a).norm();
-  const int n = std::max(1, int(std::ceil(len / 0.3)));
-  for (int i = 0; i <= n; ++i)
-    if (map_.anyObstacleNear(a + (double(i) / n) * (b - a), config_.planner.check_clearance_m)) return false;
-  return true;
+  return everySample(a, b, 0.3, [&](const Vec3& x) { return !map_.anyObstacleNear(x, config_.planner.check_clearance_m); });
 }
 
 bool MonoSpheresExplorer::nearTrail(const Vec3& x, size_t from, size_t to) const {
@@ -344,15 +343,11 @@ SphereLinks MonoSpheresExplorer::linkParts() const {
       if (tests++ >= pc.link_tests_per_pair) break;
       const Vec3 &ca = map_.spheres().at(c.a).centre, &cb = map_.spheres().at(c.b).centre;
       if (!keepsClearance(ca, cb)) continue;
-      if (c.from <= c.to) {  // trail link: every sample outside the spheres near the trail
-        const int n = std::max(1, int(std::ceil((cb - ca).norm() / 0.5)));
-        bool along = true;
-        for (int i = 0; i <= n && along; ++i) {
-          const Vec3 x = ca + (double(i) / n) * (cb - ca);
-          along = !map_.spheresNear(x, 0.0).empty() || nearTrail(x, c.from, c.to);
-        }
-        if (!along) continue;
-      }
+      // A trail link: every sample outside the spheres lies near the trail.
+      if (c.from <= c.to && !everySample(ca, cb, 0.5, [&](const Vec3& x) {
+            return !map_.spheresNear(x, 0.0).empty() || nearTrail(x, c.from, c.to);
+          }))
+        continue;
       links[c.a].push_back(c.b);
       links[c.b].push_back(c.a);
       break;

@@ -112,10 +112,7 @@ int runFlyCommand(int argc, char** argv) {
   }
   const FlightResult& r = loop.finish();
 
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream cfg;
-  cfg << in.rdbuf();
-  writeFileAtomic(out.staging() / "config.yaml", cfg.str());
+  writeFileAtomic(out.staging() / "config.yaml", readFileText(file));
   writeFileAtomic(out.staging() / "trajectory.csv", trajectoryCsv(r.trajectory));
   writeFileAtomic(out.staging() / "imu.csv", imuCsv(r.imu));
   nlohmann::json metrics = flightMetrics(spec, r);

@@ -15,10 +15,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <thread>
 
@@ -47,13 +45,6 @@ struct RunState {
   std::string log_tail;
   nlohmann::json metrics;          // the run's metrics.json (complete runs)
 };
-
-std::string readText(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::string tail(const std::string& text, int lines) {
   size_t pos = text.size();
@@ -194,7 +185,7 @@ int runSweepCommand(int argc, char** argv) {
     fs::create_directories(dir / "runs");
     fs::create_directories(dir / "logs");
   } else if (fs::exists(dir / "sweep.json")) {
-    const auto old = nlohmann::json::parse(readText(dir / "sweep.json"), nullptr, false);
+    const auto old = nlohmann::json::parse(readFileText(dir / "sweep.json"), nullptr, false);
     if (!old.is_object()) throw UsageError(dir.string() + "/sweep.json is unreadable: not a sweep directory?");
     std::vector<std::string> changes;
     if (old.value("sweep_file_hash", "") != plan.file_hash) changes.push_back("the sweep file changed (" + plan.file + ")");
@@ -220,7 +211,7 @@ int runSweepCommand(int argc, char** argv) {
     if (task && i != *task) continue;  // another task's run
     if (fs::exists(m)) {
       states[i].status = "complete";
-      states[i].metrics = nlohmann::json::parse(readText(m), nullptr, false);
+      states[i].metrics = nlohmann::json::parse(readFileText(m), nullptr, false);
     } else {
       todo.push_back(i);
     }
@@ -272,12 +263,12 @@ int runSweepCommand(int argc, char** argv) {
     s.signal = WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
     if (WIFEXITED(wstatus) && s.exit_code == 0 && fs::exists(m)) {
       s.status = "complete";
-      s.metrics = nlohmann::json::parse(readText(m), nullptr, false);
+      s.metrics = nlohmann::json::parse(readFileText(m), nullptr, false);
     } else if (interrupted) {
       s.status = "pending";  // stopped by us: redone on resume
     } else {
       s.status = "failed";
-      s.log_tail = tail(readText(dir / "logs" / (plan.runs[i].id + ".log")), 5);
+      s.log_tail = tail(readFileText(dir / "logs" / (plan.runs[i].id + ".log")), 5);
       ++failed;
       std::fprintf(stderr, "sweep: run %s failed (%s %d); see %s\n", plan.runs[i].id.c_str(),
                    s.signal ? "signal" : "exit code", s.signal ? s.signal : s.exit_code,

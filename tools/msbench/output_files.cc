@@ -6,11 +6,19 @@
 
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <stdexcept>
 
 namespace msb {
 
 namespace fs = std::filesystem;
+
+std::string readFileText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
 
 void writeFileAtomic(const fs::path& path, const std::string& bytes) {
   const fs::path tmp = path.string() + ".tmp" + std::to_string(::getpid());

@@ -8,6 +8,9 @@
 
 namespace msb {
 
+/// The whole file as bytes (empty if it cannot be read).
+std::string readFileText(const std::filesystem::path& path);
+
 /// Writes `bytes` to `path` through a temporary file in the same directory and a rename.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& bytes);
 

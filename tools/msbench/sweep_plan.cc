@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "core/common/rng.h"
+#include "tools/msbench/common_io.h"
+#include "tools/msbench/output_files.h"
 #include "tools/msbench/yaml_reader.h"
 
 namespace msb {
@@ -123,16 +124,8 @@ SweepPlan loadSweepPlan(const std::string& path) {
   const YAML::Node root = loadYamlFile(path);
   SweepPlan plan;
   plan.file = fs::absolute(path).lexically_normal().string();
-  {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : ss.str()) h = (h ^ c) * 1099511628211ull;
-    std::ostringstream hex;
-    hex << std::hex << h;
-    plan.file_hash = hex.str();
-  }
+  const std::string bytes = readFileText(path);
+  plan.file_hash = hexHash(fnv1a64(bytes.data(), bytes.size()));
   const fs::path dir = fs::path(plan.file).parent_path();
   try {
     MapReader r(root, "");
