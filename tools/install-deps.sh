@@ -9,6 +9,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-video-dev
   libopencv-features2d-dev libopencv-calib3d-dev
   libcgal-dev libeigen3-dev libyaml-cpp-dev libgtest-dev liboctomap-dev nlohmann-json3-dev
+  python3-matplotlib  # figures of `msbench report` (tools/report_figures.py)
 )
 
 # Collect the packages not yet installed.

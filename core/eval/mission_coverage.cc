@@ -41,6 +41,7 @@ void MissionCoverage::sample(double t_s, double distance_m, const std::vector<Ex
   c.area_box_m2 = double(columns_.countInside(box_.min.head<2>(), box_.max.head<2>())) * cell * cell;
   c.area_gt_m2 = columns_gt_.areaM2();
   c.distance_m = distance_m;
+  if (!box_explorable_.empty()) c.box_share = double(exploredExplorableColumns()) / double(box_explorable_.size());
   samples_.push_back(c);
 }
 

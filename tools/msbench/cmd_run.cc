@@ -122,12 +122,12 @@ int runRunCommand(int argc, char** argv) {
   }
 
   if (recorder) recorder->close();
-  const nlohmann::json metrics = missionMetrics(spec, r);
+  const nlohmann::json metrics = missionMetrics(spec, r, truth ? &*truth : nullptr);
   writeFileAtomic(out.staging() / "coverage.csv", coverageCsv(r.coverage));
   writeFileAtomic(out.staging() / "trajectory.csv", trajectoryCsv(r.flight.trajectory));
   writeFileAtomic(out.staging() / "timing.csv", timingCsv(r));
   if (spec.mission.write_map_ply) writeFileAtomic(out.staging() / "map.ply", mapPly(r.final_map));
-  writeTopdown(out.staging() / "topdown.png", r);
+  writeTopdown(out.staging() / "topdown.png", r, truth ? &*truth : nullptr);
   writeFileAtomic(out.staging() / "metrics.json", metrics.dump(2) + "\n");
   out.commit();
 

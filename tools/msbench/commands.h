@@ -8,6 +8,10 @@ namespace msb {
 int runRunCommand(int argc, char** argv);
 /// `msbench sweep SWEEP.yaml --out DIR [--jobs N]`: many runs in parallel processes, resumable.
 int runSweepCommand(int argc, char** argv);
+/// `msbench report DIR [--out R]`: Table I layout, CSV and figures of a sweep directory.
+int runReportCommand(int argc, char** argv);
+/// `msbench regress DIR --against GOLDEN [--update]`: coverage regression against stored results.
+int runRegressCommand(int argc, char** argv);
 /// `msbench fly FILE.yaml --out DIR`: a scripted waypoint flight with outputs.
 int runFlyCommand(int argc, char** argv);
 /// `msbench render-probe --world W --pose x,y,z,yaw --out F.png`: one fisheye frame.

@@ -14,6 +14,12 @@ namespace msb {
 /// Versions of the libraries a result depends on (MuJoCo, OpenCV, Eigen, msbench git revision).
 nlohmann::json versionInfo();
 
+/// The machine a result comes from, for deciding whether two results must agree bit for bit
+/// (docs/regression.md): CPU model, a hash of its flags, compiler, MuJoCo, OpenCV and the GL
+/// renderer (`gl_description`, e.g. "llvmpipe ... / 4.5 (Compat...) Mesa 22.3.6"), and "id", a
+/// hash of all of them.
+nlohmann::json machineFingerprint(const std::string& gl_description);
+
 /// PNG bytes of a grey-scale frame.
 std::string encodePng(const CameraFrame& frame);
 

@@ -25,6 +25,8 @@ struct Command {
 constexpr Command kCommands[] = {
     {"run", msb::runRunCommand, "run one exploration mission from a scenario; write results"},
     {"sweep", msb::runSweepCommand, "run a sweep file's runs (axes x seeds) in parallel processes; resumable"},
+    {"report", msb::runReportCommand, "Table I layout, CSV and figures of a sweep directory"},
+    {"regress", msb::runRegressCommand, "compare a sweep with a golden (exact on the same machine, else a band)"},
     {"fly", msb::runFlyCommand, "fly a scripted waypoint list in a world; write results"},
     {"vio-eval", msb::runVioEvalCommand, "fly with tracker + SLAM points, evaluate against truth"},
     {"map-replay", msb::runMapReplayCommand, "run the mapper over a recorded perception log"},

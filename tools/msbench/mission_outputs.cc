@@ -23,7 +23,17 @@ nlohmann::json stagesJson(const StageTimes& s, double per) {
 }
 }  // namespace
 
-nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r) {
+namespace {
+// The ground-truth shape a MuJoCo geom name belongs to (null if unknown).
+const Shape* shapeNamed(const WorldTruth* truth, const std::string& geom) {
+  if (!truth) return nullptr;
+  for (const Shape& s : truth->shapes())
+    if (s.name == geom) return &s;
+  return nullptr;
+}
+}  // namespace
+
+nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, const WorldTruth* truth) {
   const FlightResult& f = r.flight;
   nlohmann::json j;
   j["name"] = spec.name;
@@ -53,6 +63,10 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r) 
     j["collision"] = {{"t_s", c.t_s}, {"vehicle_position_m", vec(c.vehicle_position_m)},
                       {"contact_position_m", vec(c.contact_position_m)}, {"vehicle_geom", c.vehicle_geom},
                       {"world_geom", c.world_geom}};
+    // The object hit and what it looks like to the front end (report: collisions by kind).
+    const Shape* hit = shapeNamed(truth, c.world_geom);
+    j["collision"]["object"] = hit ? nlohmann::json(hit->object.empty() ? hit->name : hit->object) : nlohmann::json(nullptr);
+    j["collision"]["kind"] = hit ? nlohmann::json(obstacleKindName(hit->kind)) : nlohmann::json(nullptr);
   } else {
     j["collision"] = nullptr;
   }
@@ -77,6 +91,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r) 
   j["peak_rss_mb"] = peakRssMb();
   j["counters"] = r.counters;
   j["versions"] = versionInfo();
+  j["machine"] = machineFingerprint(f.gl_description);
   j["trajectory_hash"] = hexHash(f.trajectory_hash);
   j["map_hash"] = hexHash(r.map_hash);
   j["determinism_hash"] = hexHash(r.run_hash);
@@ -85,11 +100,11 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r) 
 
 std::string coverageCsv(const std::vector<CoverageSample>& samples) {
   std::ostringstream o;
-  o << "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m\n";
+  o << "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share\n";
   char line[160];
   for (const auto& c : samples) {
-    std::snprintf(line, sizeof(line), "%.3f,%.2f,%.2f,%.2f,%.3f\n", c.t_s, c.area_m2, c.area_box_m2, c.area_gt_m2,
-                  c.distance_m);
+    std::snprintf(line, sizeof(line), "%.3f,%.2f,%.2f,%.2f,%.3f,%.4f\n", c.t_s, c.area_m2, c.area_box_m2, c.area_gt_m2,
+                  c.distance_m, c.box_share);
     o << line;
   }
   return o.str();
@@ -130,7 +145,54 @@ std::string mapPly(const ExplorerSnapshot& snap) {
   return ply.str();
 }
 
-void writeTopdown(const std::filesystem::path& file, const MissionResult& r) {
+namespace {
+
+// Ground-truth obstacles (not the ground) as faint footprints, coloured by kind: textured grey,
+// textureless orange, thin magenta (drawn at least 2 px wide so rods stay visible).
+template <class ToPixel>
+void drawTruthFootprints(cv::Mat& img, const WorldTruth& truth, ToPixel px) {
+  cv::Mat layer = img.clone();
+  for (const Shape& sh : truth.shapes()) {
+    if (sh.kind == ObstacleKind::kGround || sh.type == ShapeType::kHalfSpace) continue;
+    const cv::Scalar colour = sh.kind == ObstacleKind::kTextureless ? cv::Scalar(60, 150, 245)
+                              : sh.kind == ObstacleKind::kThin     ? cv::Scalar(200, 0, 200)
+                                                                   : cv::Scalar(120, 120, 120);
+    std::vector<cv::Point> outline;
+    if (sh.type == ShapeType::kBox) {
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 corner((k & 1 ? 1 : -1) * sh.size.x(), (k & 2 ? 1 : -1) * sh.size.y(), (k & 4 ? 1 : -1) * sh.size.z());
+        outline.push_back(px(sh.pose * corner));
+      }
+    } else {
+      // Cylinders (rim points at both ends) and spheres (their equator).
+      const double radius = sh.size.x(), half = sh.type == ShapeType::kCylinder ? sh.size.z() : 0.0;
+      for (int k = 0; k < 24; ++k) {
+        const double a = 2.0 * M_PI * k / 24;
+        for (double end : {-half, half}) {
+          const Vec3 local = sh.type == ShapeType::kSphere ? Vec3(radius * std::cos(a), radius * std::sin(a), 0)
+                                                           : Vec3(radius * std::cos(a), radius * std::sin(a), end);
+          outline.push_back(sh.type == ShapeType::kSphere ? px(sh.pose.translation() + local) : px(sh.pose * local));
+        }
+      }
+    }
+    std::vector<cv::Point> hull;
+    cv::convexHull(outline, hull);
+    cv::fillConvexPoly(layer, hull, colour, cv::LINE_AA);
+    if (sh.kind == ObstacleKind::kThin) cv::polylines(layer, hull, true, colour, 2, cv::LINE_AA);
+  }
+  cv::addWeighted(layer, 0.3, img, 0.7, 0, img);
+}
+
+// A round step for grid lines and the scale bar: about a sixth of the extent.
+double niceStepM(double extent_m) {
+  for (double s : {1.0, 2.0, 5.0, 10.0, 20.0, 25.0, 50.0, 100.0, 200.0, 500.0})
+    if (extent_m / s <= 8) return s;
+  return 1000.0;
+}
+
+}  // namespace
+
+void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth) {
   // Extent: the box, the trajectory and the map.
   Vec2 lo = r.exploration_box.min.head<2>(), hi = r.exploration_box.max.head<2>();
   if (!(hi.array() > lo.array()).all() || (hi - lo).norm() > 1e5) lo = hi = Vec2::Zero();
@@ -141,11 +203,24 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r) {
   for (const auto& t : r.flight.trajectory) grow(t.position_m.head<2>(), 5), grow(t.est_position_m.head<2>(), 5);
   for (const auto& d : r.final_map.free_space) grow(d.centre.head<2>(), d.radius);
   const double mpp = std::max({0.05, (hi.x() - lo.x()) / 1600.0, (hi.y() - lo.y()) / 1600.0});
-  const int header = 70;  // legend band above the map
+  const int header = 88;  // legend band above the map
   const int w = std::max(640, int((hi.x() - lo.x()) / mpp) + 1), h = int((hi.y() - lo.y()) / mpp) + 1 + header;
   cv::Mat img(h, w, CV_8UC3, cv::Scalar(255, 255, 255));
   auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), header + int((hi.y() - p.y()) / mpp)); };
   auto px2 = [&](const Vec2& p) { return px(Vec3(p.x(), p.y(), 0)); };
+  if (truth) drawTruthFootprints(img, *truth, px);
+  // Metre grid (faint) with labels along the left and top edges of the map.
+  const double step = niceStepM(std::max(hi.x() - lo.x(), hi.y() - lo.y()));
+  for (double x = std::ceil(lo.x() / step) * step; x <= hi.x(); x += step) {
+    cv::line(img, px2(Vec2(x, lo.y())), px2(Vec2(x, hi.y())), cv::Scalar(225, 225, 225), 1);
+    cv::putText(img, std::to_string(int(std::lround(x))), px2(Vec2(x, hi.y())) + cv::Point(2, 12),
+                cv::FONT_HERSHEY_SIMPLEX, 0.35, cv::Scalar(110, 110, 110), 1, cv::LINE_AA);
+  }
+  for (double y = std::ceil(lo.y() / step) * step; y <= hi.y(); y += step) {
+    cv::line(img, px2(Vec2(lo.x(), y)), px2(Vec2(hi.x(), y)), cv::Scalar(225, 225, 225), 1);
+    cv::putText(img, std::to_string(int(std::lround(y))), px2(Vec2(lo.x(), y)) + cv::Point(2, -3),
+                cv::FONT_HERSHEY_SIMPLEX, 0.35, cv::Scalar(110, 110, 110), 1, cv::LINE_AA);
+  }
 
   // Explored columns (light green squares around their nodes), spheres (blue, translucent).
   const double half = 0.5 * r.columns.cellM();
@@ -204,6 +279,15 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r) {
   cv::putText(img, spheres ? "orange arrows: viewpoints, grey: visited, red: true path, orange: estimate, blue: last path"
                            : "red: true path, orange: estimate, blue: last path",
               cv::Point(8, 60), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+  if (truth)
+    cv::putText(img, "faint: true obstacles (grey textured, orange textureless, magenta thin); grid and labels in metres",
+                cv::Point(8, 78), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+  // Scale bar (bottom right) and the grid's unit.
+  const int bar = int(step / mpp), bx = w - bar - 20, by = h - 16;
+  cv::rectangle(img, cv::Point(bx - 6, by - 22), cv::Point(w - 8, h - 4), cv::Scalar(255, 255, 255), -1);
+  cv::line(img, cv::Point(bx, by), cv::Point(bx + bar, by), cv::Scalar(0, 0, 0), 3);
+  cv::putText(img, std::to_string(int(step)) + " m", cv::Point(bx, by - 7), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   std::vector<uchar> png;
   cv::imencode(".png", img, png);
   writeFileAtomic(file, std::string(png.begin(), png.end()));

@@ -7,12 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/geometry/world_truth.h"
 #include "tools/loop/mission.h"
 
 namespace msb {
 
-/// metrics.json content.
-nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r);
+/// metrics.json content. `truth` (generated worlds, may be null) names the collided object and
+/// its kind (textured, textureless, thin, ground).
+nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, const WorldTruth* truth);
 /// coverage.csv text (t, A unbounded, A in box, A true frame, distance).
 std::string coverageCsv(const std::vector<CoverageSample>& samples);
 /// timing.csv text: cumulative wall time per stage every 10 simulated seconds.
@@ -20,7 +22,9 @@ std::string timingCsv(const MissionResult& r);
 /// map.ply text: free-space spheres (kind 0, radius), obstacle points (1), frontiers (2).
 std::string mapPly(const ExplorerSnapshot& snap);
 /// Writes the top-down picture: explored columns, spheres, obstacle points, frontiers,
-/// viewpoints and visited markers, the true and estimated trajectories, the box, a collision.
-void writeTopdown(const std::filesystem::path& file, const MissionResult& r);
+/// viewpoints and visited markers, the true and estimated trajectories, the box, a collision;
+/// under them (faint) the ground-truth obstacles by kind when `truth` is given; axes in metres
+/// and a scale bar.
+void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth);
 
 }  // namespace msb

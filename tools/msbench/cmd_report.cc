@@ -1,0 +1,89 @@
+// msbench report: the report of a sweep directory (docs/sweeps.md, "Reports"): report.md (the
+// Table I layout and more), table.csv, report_runs.csv, and the figures (coverage over time per
+// world, a gallery of top-down maps) drawn by the embedded Python script when python3 with
+// matplotlib is available.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "tools/msbench/cli_args.h"
+#include "tools/msbench/commands.h"
+#include "tools/msbench/output_files.h"
+#include "tools/msbench/sweep_report.h"
+
+namespace msb {
+
+extern const char* const kReportFiguresScript;  // tools/report_figures.py, embedded at build time
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// A Python interpreter that has matplotlib (Debian's python3-matplotlib installs it for
+// /usr/bin/python3, which a user's own python3 on PATH may not see), or "".
+std::string pythonWithMatplotlib() {
+  for (const char* candidate : {"/usr/bin/python3", "python3"}) {
+    const std::string cmd = std::string(candidate) + " -c 'import matplotlib' >/dev/null 2>&1";
+    if (std::system(cmd.c_str()) == 0) return candidate;
+  }
+  return "";
+}
+
+}  // namespace
+
+int runReportCommand(int argc, char** argv) {
+  ArgParser args("msbench report",
+                 "Report of a sweep directory: report.md (the paper's Table I layout with its figures\n"
+                 "beside, box share, time to 50/90 % of the box, A per 100 m, longest time without\n"
+                 "gain, collisions by object kind, RTF), table.csv, and figures (coverage over time\n"
+                 "per world, a gallery of top-down maps) if python3 with matplotlib is available.");
+  args.positional("DIR", "sweep directory (from msbench sweep)")
+      .option("out", "", "report directory (default DIR/report; an earlier report there is replaced)")
+      .flag("no-figures", "write the Markdown and CSV files only");
+  if (!args.parse(argc, argv)) return kExitOk;
+  const fs::path dir = args.get("DIR");
+  if (!fs::is_directory(dir)) throw UsageError(dir.string() + ": not a directory");
+  SweepResults results;
+  try {
+    results = loadSweepResults(dir);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(e.what());
+  }
+  const fs::path out = args.get("out").empty() ? dir / "report" : fs::path(args.get("out"));
+  const std::vector<ReportRow> rows = reportRows(results);
+
+  StagedOutputDir staged(out, /*overwrite=*/true);
+  writeFileAtomic(staged.staging() / "report.md", reportMarkdown(results, rows));
+  writeFileAtomic(staged.staging() / "table.csv", reportTableCsv(results, rows));
+  writeFileAtomic(staged.staging() / "report_runs.csv", reportRunsCsv(results));
+  writeFileAtomic(staged.staging() / "make_figures.py", kReportFiguresScript);
+
+  // Figures: into the staging directory, so the report appears whole or not at all.
+  std::string figures = "figures: skipped (--no-figures)";
+  if (!args.has("no-figures")) {
+    const std::string python = pythonWithMatplotlib();
+    if (python.empty()) {
+      figures = "figures: skipped, python3 with matplotlib not found; install it (apt-get install "
+                "python3-matplotlib) and run: /usr/bin/python3 " + (out / "make_figures.py").string() + " " + out.string();
+    } else {
+      const std::string cmd = python + " " + shellQuote((staged.staging() / "make_figures.py").string()) + " " +
+                              shellQuote(staged.staging().string()) + " >/dev/null";
+      if (std::system(cmd.c_str()) != 0)
+        throw std::runtime_error("the figure script failed: " + cmd);
+      figures = "figures: coverage_<world>.png, gallery.png";
+    }
+  }
+  staged.commit();
+  std::printf("report: %zu rows from %zu runs -> %s (report.md, table.csv); %s\n", rows.size(), results.runs.size(),
+              out.c_str(), figures.c_str());
+  return kExitOk;
+}
+
+}  // namespace msb
