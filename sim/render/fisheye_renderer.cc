@@ -197,6 +197,26 @@ void FisheyeRenderer::buildFacesAndLut() {
   cv::convertMaps(map_x, map_y, map_xy_, map_interp_, CV_16SC2);
 }
 
+void FisheyeRenderer::cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0, double tx1, double ty0,
+                                 double ty1) {
+  // The frustum's side planes in the face frame (inward normals through the eye): x >= tx0 z,
+  // x <= tx1 z, y >= ty0 z, y <= ty1 z; and the half-space in front of the eye.
+  const Vec3 normals[5] = {Vec3(1, 0, -tx0).normalized(), Vec3(-1, 0, tx1).normalized(),
+                           Vec3(0, 1, -ty0).normalized(), Vec3(0, -1, ty1).normalized(), Vec3(0, 0, 1)};
+  int kept = 0;
+  for (const mjvGeom& g : scene_geoms_) {
+    bool visible = true;
+    if (g.modelrbound > 0) {
+      const Vec3 p = R_W_F.transpose() * (Vec3(g.pos[0], g.pos[1], g.pos[2]) - eye);
+      // Margin: float positions and bounds.
+      const double r = 1.001 * double(g.modelrbound) + 1e-3;
+      for (const Vec3& nrm : normals) visible = visible && nrm.dot(p) >= -r;
+    }
+    if (visible) scene_.geoms[kept++] = g;
+  }
+  scene_.ngeom = kept;
+}
+
 void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame* frame,
                              RenderTiming* timing) {
   RenderTiming t;
@@ -204,6 +224,7 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
   context_->makeCurrent();
   mjv_updateScene(model_, const_cast<mjData*>(data), &options_, nullptr, &free_camera_,
                   mjCAT_ALL, &scene_);
+  if (config_.cull_per_face) scene_geoms_.assign(scene_.geoms, scene_.geoms + scene_.ngeom);
   t.scene_ms = msSince(t0);
 
   // Render every face rectangle into its atlas viewport with an off-centre frustum.
@@ -229,6 +250,7 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
       cam.frustum_near = n;
       cam.frustum_far = static_cast<float>(config_.far_clip_m);
     }
+    if (config_.cull_per_face) cullToFace(R_W_F, pos, f.tan_x0, x1, f.tan_y0, y1);
     mjr_render(mjrRect{f.atlas_x, f.atlas_y, f.width, f.height}, &scene_, &mjr_context_);
   }
   glFinish();

@@ -13,6 +13,11 @@
 // Resolution: at the image centre the fisheye needs fx pixels per radian; a face gives f_face at
 // its centre and 2·f_face at its edges. face_focal_ratio = 1 never undersamples; smaller ratios
 // trade sharpness near the image centre for speed (see bench-sim).
+//
+// Per-face culling: the cost of a face is dominated by the geoms submitted, not by its pixels
+// (docs/performance.md), so each face draws only the geoms whose bounding sphere (the model's
+// rbound) meets its frustum; planes (no bound) are always drawn. Nothing casts shadows or
+// reflects, and the order of the remaining geoms is kept, so the pixels are the same.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -49,6 +54,8 @@ struct FisheyeRendererConfig {
   bool sky = true;                  ///< draw the world's sky planes (outdoor worlds; else black)
   bool sun = true;                  ///< use the world's directional lights (outdoor worlds' sun)
   double sun_ambient = 0.55;        ///< headlight ambient when the sun is on
+  bool cull_per_face = true;        ///< draw in each face only geoms whose bounding sphere meets
+                                    ///< its frustum (same pixels, fewer draw calls)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -93,6 +100,9 @@ class FisheyeRenderer final : public FrameRenderer {
 
  private:
   void buildFacesAndLut();
+  // Leaves in scene_ only the geoms of scene_geoms_ that may be seen in a face (its frame in the
+  // world, the eye, its tangent bounds).
+  void cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0, double tx1, double ty0, double ty1);
 
   FisheyeRendererConfig config_;
   FisheyeCamera camera_;
@@ -107,6 +117,8 @@ class FisheyeRenderer final : public FrameRenderer {
   int atlas_width_ = 0, atlas_height_ = 0;
   cv::Mat map_xy_, map_interp_;   // fixed-point lookup table (CV_16SC2 + CV_16UC1)
   cv::Mat atlas_raw_, atlas_grey_, fisheye_;
+  std::vector<mjvGeom> scene_geoms_;  // the full scene of a frame, culled per face into scene_
+
 };
 
 }  // namespace msb

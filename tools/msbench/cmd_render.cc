@@ -94,7 +94,10 @@ int runBenchSimCommand(int argc, char** argv) {
       .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length")
       .flag("red-only", "read back the red channel only (grey-scale worlds)")
       .flag("no-sky", "leave the sky black (render.sky: false)")
-      .flag("no-sun", "no sun, ambient light only (render.sun: false)");
+      .flag("no-sun", "no sun, ambient light only (render.sun: false)")
+      .flag("no-cull", "draw every geom in every cube face (render.cull_per_face: false)")
+      .flag("compare-cull", "time per-face culling on and off side by side, frame by frame, and check\n"
+                            "that both give the same pixels");
   if (!args.parse(argc, argv)) return kExitOk;
   const std::string world = resolveWorld(args.get("world")).world_xml;
   const long steps = args.getInt("steps"), frames = args.getInt("frames");
@@ -126,30 +129,56 @@ int runBenchSimCommand(int argc, char** argv) {
     rcfg.read_red_channel_only = args.has("red-only");
     rcfg.sky = !args.has("no-sky");
     rcfg.sun = !args.has("no-sun");
+    rcfg.cull_per_face = !args.has("no-cull");
     QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
     rsim.beginTick();
-    FisheyeRenderer renderer(rcfg, camera, rsim.model());
-    CameraFrame frame;
-    RenderTiming sum, t;
-    std::vector<double> totals;
+    // One renderer, or two (culling on and off) rendering every frame alternately.
+    const bool compare = args.has("compare-cull");
+    std::vector<std::unique_ptr<FisheyeRenderer>> renderers;
+    renderers.push_back(std::make_unique<FisheyeRenderer>(rcfg, camera, rsim.model()));
+    if (compare) {
+      FisheyeRendererConfig other = rcfg;
+      other.cull_per_face = !rcfg.cull_per_face;
+      renderers.push_back(std::make_unique<FisheyeRenderer>(other, camera, rsim.model()));
+    }
+    std::vector<RenderTiming> sums(renderers.size());
+    std::vector<std::vector<double>> totals(renderers.size());
+    std::vector<CameraFrame> frames_out(renderers.size());
+    long different = 0;
+    RenderTiming t;
     for (long i = 0; i < frames + 2; ++i) {
       const Pose T_W_B = poseFromXyzYaw(p0, i * 6.0 * M_PI / 180.0);
-      renderer.render(rsim.data(), T_W_B * camera.T_B_C(), &frame, &t);
-      if (i < 2) continue;  // warm-up
-      sum.scene_ms += t.scene_ms, sum.render_ms += t.render_ms;
-      sum.readback_ms += t.readback_ms, sum.remap_ms += t.remap_ms;
-      totals.push_back(t.totalMs());
+      for (size_t k = 0; k < renderers.size(); ++k) {
+        renderers[k]->render(rsim.data(), T_W_B * camera.T_B_C(), &frames_out[k], &t);
+        if (i < 2) continue;  // warm-up
+        RenderTiming& sum = sums[k];
+        sum.scene_ms += t.scene_ms, sum.render_ms += t.render_ms;
+        sum.readback_ms += t.readback_ms, sum.remap_ms += t.remap_ms;
+        totals[k].push_back(t.totalMs());
+      }
+      if (compare && frames_out[0].pixels != frames_out[1].pixels) ++different;
     }
-    std::sort(totals.begin(), totals.end());
     const double n = static_cast<double>(frames);
-    std::printf("fisheye %dx%d: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
-                "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
-                "atlas %dx%d\n",
-                camera.width(), camera.height(), sum.totalMs() / n, 1000.0 * n / sum.totalMs(),
-                totals[totals.size() / 2], sum.scene_ms / n, sum.render_ms / n,
-                sum.readback_ms / n, sum.remap_ms / n, renderer.renderedPixels(),
-                static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
-                renderer.atlasSize().height);
+    for (size_t k = 0; k < renderers.size(); ++k) {
+      const FisheyeRenderer& renderer = *renderers[k];
+      const RenderTiming& sum = sums[k];
+      std::sort(totals[k].begin(), totals[k].end());
+      std::printf("fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
+                  "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
+                  "atlas %dx%d\n",
+                  camera.width(), camera.height(),
+                  compare ? ((k == 0) == rcfg.cull_per_face ? " culled" : " not culled") : "",
+                  sum.totalMs() / n, 1000.0 * n / sum.totalMs(), totals[k][totals[k].size() / 2], sum.scene_ms / n,
+                  sum.render_ms / n, sum.readback_ms / n, sum.remap_ms / n, renderer.renderedPixels(),
+                  static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
+                  renderer.atlasSize().height);
+    }
+    if (compare)
+      std::printf("fisheye %dx%d: culled / not culled time %.2f; frames with different pixels: %ld of %ld\n",
+                  camera.width(), camera.height(),
+                  (rcfg.cull_per_face ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
+                  different, frames);
+    const FisheyeRenderer& renderer = *renderers[0];
     if (scale == 1.0) std::printf("gl: %s\n", renderer.description().c_str());
   }
   return kExitOk;

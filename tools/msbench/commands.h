@@ -24,6 +24,8 @@ int runMapReplayCommand(int argc, char** argv);
 int runBenchMapCommand(int argc, char** argv);
 /// `msbench world list|build|show`: the benchmark worlds.
 int runWorldCommand(int argc, char** argv);
+/// `msbench bench-loop [--world W]`: closed-loop cost per stage of a fixed mission.
+int runBenchLoopCommand(int argc, char** argv);
 /// `msbench bench-sim`: physics and rendering throughput figures.
 int runBenchSimCommand(int argc, char** argv);
 

@@ -32,6 +32,7 @@ constexpr Command kCommands[] = {
     {"map-replay", msb::runMapReplayCommand, "run the mapper over a recorded perception log"},
     {"bench-map", msb::runBenchMapCommand, "mapper time per update on a perception log"},
     {"render-probe", msb::runRenderProbeCommand, "render one fisheye frame from a pose"},
+    {"bench-loop", msb::runBenchLoopCommand, "closed-loop cost per stage (per simulated s and per frame)"},
     {"bench-sim", msb::runBenchSimCommand, "physics steps/s and fisheye frame cost"},
     {"world", msb::runWorldCommand, "list, build (into the cache) and show the worlds"},
 };

@@ -131,6 +131,7 @@ void readRender(MapReader r, FisheyeRendererConfig& c) {
   r.read("sky", c.sky);
   r.read("sun", c.sun);
   r.read("sun_ambient", c.sun_ambient);
+  r.read("cull_per_face", c.cull_per_face);
   r.finish();
 }
 

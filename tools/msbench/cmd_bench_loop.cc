@@ -1,0 +1,84 @@
+// msbench bench-loop: the closed loop's cost per stage, per simulated second and per frame, for
+// a fixed mission (a world's scenario, seed and duration: deterministic, so the same flight for
+// the same build), one core. The figure to compare before and after a performance change
+// (docs/performance.md). Writes nothing.
+#include <cstdio>
+
+#include "core/common/wall_time.h"
+#include "core/geometry/world_truth.h"
+#include "tools/loop/mission.h"
+#include "tools/msbench/cli_args.h"
+#include "tools/msbench/commands.h"
+#include "tools/msbench/common_io.h"
+#include "tools/msbench/interrupt.h"
+#include "tools/msbench/scenario_yaml.h"
+#include "tools/msbench/world_registry.h"
+
+namespace msb {
+
+int runBenchLoopCommand(int argc, char** argv) {
+  const std::vector<std::string> sets = takeRepeatedOption(argc, argv, "set");
+  ArgParser args("msbench bench-loop",
+                 "Closed-loop cost per stage (wall ms per simulated second and per frame), real-time\n"
+                 "factor and peak memory of a fixed mission: scenarios/missions/<WORLD>.yaml (or a\n"
+                 "scenario file), its seed, --duration simulated seconds. Run it pinned to one core:\n"
+                 "LP_NUM_THREADS=1 taskset -c 1 msbench bench-loop --world urban. --set KEY=VALUE\n"
+                 "overrides a scenario key (e.g. render.cull_per_face=false).");
+  args.option("world", "urban", "world: its mission scenarios/missions/<WORLD>.yaml")
+      .option("scenario", "", "a scenario file instead of --world")
+      .option("duration", "60", "simulated seconds")
+      .option("seed", "1", "seed");
+  if (!args.parse(argc, argv)) return kExitOk;
+  const std::string file = !args.get("scenario").empty()
+                               ? args.get("scenario")
+                               : std::string(MSB_MISSIONS_DIR) + "/" + args.get("world") + ".yaml";
+  std::vector<std::string> all_sets = sets;
+  all_sets.push_back("duration_s=" + args.get("duration"));
+  all_sets.push_back("seed=" + args.get("seed"));
+  all_sets.push_back("mission.progress=false");
+  ScenarioSpec spec = loadScenario(file, all_sets);
+  std::optional<BuiltWorld> built = resolveFlightWorld(file, spec.flight);
+  Aabb box;
+  box.min = Vec3::Constant(-1e6);
+  box.max = Vec3::Constant(1e6);
+  std::optional<WorldTruth> truth;
+  if (built) {
+    if (spec.start_from_world) {
+      spec.flight.start_position_m = built->generated.start.translation();
+      spec.flight.start_yaw_rad = yawOf(built->generated.start.linear());
+    }
+    box = built->generated.exploration_box;
+    truth.emplace(built->generated.shapes);
+  }
+  if (spec.exploration_box) box = *spec.exploration_box;
+  Mission mission(spec, box, truth ? &*truth : nullptr);
+  while (mission.running()) {
+    throwIfInterrupted();
+    mission.step();
+  }
+  const MissionResult r = mission.finish();
+  const FlightResult& f = r.flight;
+  const double sim = std::max(f.sim_time_s, 1e-9), frames = std::max<double>(f.frames_rendered, 1);
+  const StageTimes& s = r.stages;
+  const double total = f.wall_time_s * 1000.0;
+  const double known = s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
+  std::printf("bench-loop %s seed %s: %.0f s simulated, %ld frames, %s; wall %.1f s, RTF %.2f, peak RSS %.0f MiB\n",
+              spec.name.c_str(), args.get("seed").c_str(), f.sim_time_s, long(f.frames_rendered), f.status.c_str(),
+              f.wall_time_s, f.realTimeFactor(), peakRssMb());
+  std::printf("%-14s %12s %12s %8s\n", "stage", "ms/sim-s", "ms/frame", "share");
+  auto row = [&](const char* name, double ms) {
+    std::printf("%-14s %12.1f %12.2f %7.1f%%\n", name, ms / sim, ms / frames, 100.0 * ms / std::max(total, 1e-9));
+  };
+  row("render", s.render_ms);
+  row("tracker", s.tracker_ms);
+  row("triangulation", s.triangulation_ms);
+  row("map", s.map_ms);
+  row("planning", s.planning_ms);
+  row("metric", s.metric_ms);
+  row("other", total - known);
+  row("total", total);
+  std::printf("determinism hash %s (same build and machine: the same flight)\n", hexHash(r.run_hash).c_str());
+  return kExitOk;
+}
+
+}  // namespace msb
