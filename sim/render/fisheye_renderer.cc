@@ -1,6 +1,7 @@
 #include "sim/render/fisheye_renderer.h"
 
 #include <GL/gl.h>
+#include <GL/glext.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,7 @@ void FisheyeRendererConfig::validate(ConfigChecker& c) const {
   c.positive("near_clip_m", near_clip_m);
   c.require(far_clip_m > near_clip_m, "far_clip_m", "must exceed near_clip_m");
   c.inRange("max_visible_geom_group", max_visible_geom_group, 0, mjNGROUP - 1);
+  c.nested("conditions", conditions);
 }
 
 namespace {
@@ -73,7 +75,55 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   // world-fixed direction is the same in every cube face, so it adds no seams.
   // Worlds without lights (caves) keep the bright ambient headlight.
   for (int l = 0; l < model_->nlight; ++l) model_->light_active[l] = config_.sun ? 1 : 0;
-  const double ambient = config_.sun && model_->nlight > 0 ? config_.sun_ambient : config_.ambient;
+  const RenderConditions& cond = config_.conditions;
+  const double ambient = !std::isnan(cond.ambient)               ? cond.ambient
+                         : config_.sun && model_->nlight > 0 ? config_.sun_ambient
+                                                             : config_.ambient;
+  // Conditions: the sun's direction (applied to the scene's lights every frame), intensity and
+  // colour; the sky's grey level; fog (docs/conditions.md).
+  for (int l = 0; l < model_->nlight; ++l) {
+    if (!model_->light_directional[l]) continue;
+    if (!std::isnan(cond.sun_elevation_deg) || !std::isnan(cond.sun_azimuth_deg)) {
+      const Vec3 to_sun = -Vec3(model_->light_dir[3 * l], model_->light_dir[3 * l + 1], model_->light_dir[3 * l + 2]).normalized();
+      const double e = std::isnan(cond.sun_elevation_deg) ? std::asin(to_sun.z()) : cond.sun_elevation_deg * M_PI / 180;
+      const double a = std::isnan(cond.sun_azimuth_deg) ? std::atan2(to_sun.y(), to_sun.x()) : cond.sun_azimuth_deg * M_PI / 180;
+      sun_direction_ = -Vec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double intensity = std::isnan(cond.sun_intensity) ? model_->light_diffuse[3 * l + k] : cond.sun_intensity;
+      model_->light_diffuse[3 * l + k] = static_cast<float>(intensity * cond.sun_colour[k]);
+    }
+  }
+  if (!std::isnan(cond.sky_brightness)) {
+    // Self-lit sky planes: emission 1 plus the ambient and the sun's diffuse term, which differs
+    // from plane to plane (their normals differ); each plane's colour is scaled so that the sum
+    // is the grey level on every plane, without seams.
+    Vec3 to_sun = Vec3::Zero(), sun_diffuse = Vec3::Zero();
+    for (int l = 0; l < model_->nlight; ++l) {
+      if (!model_->light_directional[l] || !model_->light_active[l]) continue;
+      to_sun = sun_direction_ ? Vec3(-*sun_direction_)
+                              : Vec3(-Vec3(model_->light_dir[3 * l], model_->light_dir[3 * l + 1], model_->light_dir[3 * l + 2]).normalized());
+      sun_diffuse = Vec3(model_->light_diffuse[3 * l], model_->light_diffuse[3 * l + 1], model_->light_diffuse[3 * l + 2]);
+    }
+    for (int g = 0; g < model_->ngeom; ++g) {
+      if (model_->geom_group[g] != kSkyGeomGroup) continue;
+      const mjtNum* q = model_->geom_quat + 4 * g;  // w, x, y, z: the plane faces its local +z
+      const Vec3 normal(2 * (q[1] * q[3] + q[0] * q[2]), 2 * (q[2] * q[3] - q[0] * q[1]), 1 - 2 * (q[1] * q[1] + q[2] * q[2]));
+      const double lit = std::max(0.0, normal.dot(to_sun));
+      float* rgba = model_->geom_rgba + 4 * g;
+      for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(cond.sky_brightness / (1.0 + ambient + lit * sun_diffuse[k]));
+      // A geom colour other than MuJoCo's default overrides its material's; emission stays 1.
+      if (model_->geom_matid[g] >= 0) model_->mat_emission[model_->geom_matid[g]] = 1.0f;
+    }
+  }
+  if (cond.fog_end_m > 0) {
+    // MuJoCo's fog distances are fractions of the model extent; GL fog is linear in eye depth.
+    const double extent = std::max(model_->stat.extent, 1e-6);
+    model_->vis.map.fogstart = static_cast<float>(cond.fog_start_m / extent);
+    model_->vis.map.fogend = static_cast<float>(cond.fog_end_m / extent);
+    for (int k = 0; k < 3; ++k) model_->vis.rgba.fog[k] = static_cast<float>(cond.fog_colour[k]);
+    model_->vis.rgba.fog[3] = 1.0f;
+  }
   for (int i = 0; i < 3; ++i) {
     model_->vis.headlight.ambient[i] = static_cast<float>(ambient);
     model_->vis.headlight.diffuse[i] = 0.0f;
@@ -93,6 +143,9 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   if (mjr_context_.offWidth < atlas_width_ || mjr_context_.offHeight < atlas_height_)
     throw std::runtime_error("MuJoCo off-screen buffer smaller than the face atlas");
   mjr_setBuffer(mjFB_OFFSCREEN, &mjr_context_);
+  // Fog by distance from the eye, not by depth along each cube face's axis (which would differ
+  // between faces and leave seams); MuJoCo sets the rest of the fog state on every render.
+  if (cond.fog_end_m > 0) glFogi(GL_FOG_DISTANCE_MODE_NV, GL_EYE_RADIAL_NV);
 
   mjv_defaultOption(&options_);
   // Geom groups 0-2 are the visible world; 3 is the vehicle, 4 collision-only geoms.
@@ -107,6 +160,7 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   for (int f = 0; f < mjNRNDFLAG; ++f) scene_.flags[f] = 0;
   scene_.flags[mjRND_CULL_FACE] = 1;
   scene_.flags[mjRND_SKYBOX] = 0;
+  scene_.flags[mjRND_FOG] = cond.fog_end_m > 0 ? 1 : 0;
 }
 
 FisheyeRenderer::~FisheyeRenderer() {
@@ -224,6 +278,10 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
   context_->makeCurrent();
   mjv_updateScene(model_, const_cast<mjData*>(data), &options_, nullptr, &free_camera_,
                   mjCAT_ALL, &scene_);
+  if (sun_direction_)
+    for (int i = 0; i < scene_.nlight; ++i)
+      if (scene_.lights[i].directional && !scene_.lights[i].headlight)
+        for (int k = 0; k < 3; ++k) scene_.lights[i].dir[k] = static_cast<float>((*sun_direction_)[k]);
   if (config_.cull_per_face) scene_geoms_.assign(scene_.geoms, scene_.geoms + scene_.ngeom);
   t.scene_ms = msSince(t0);
 

@@ -24,6 +24,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@
 #include "core/common/messages.h"
 #include "sim/render/frame_renderer.h"
 #include "sim/render/gl_context.h"
+#include "sim/render/render_conditions.h"
 
 namespace msb {
 
@@ -54,6 +56,7 @@ struct FisheyeRendererConfig {
   bool sky = true;                  ///< draw the world's sky planes (outdoor worlds; else black)
   bool sun = true;                  ///< use the world's directional lights (outdoor worlds' sun)
   double sun_ambient = 0.55;        ///< headlight ambient when the sun is on
+  RenderConditions conditions;      ///< light and visibility (docs/conditions.md)
   bool cull_per_face = true;        ///< draw in each face only geoms whose bounding sphere meets
                                     ///< its frustum (same pixels, fewer draw calls)
 
@@ -117,6 +120,7 @@ class FisheyeRenderer final : public FrameRenderer {
   int atlas_width_ = 0, atlas_height_ = 0;
   cv::Mat map_xy_, map_interp_;   // fixed-point lookup table (CV_16SC2 + CV_16UC1)
   cv::Mat atlas_raw_, atlas_grey_, fisheye_;
+  std::optional<Vec3> sun_direction_;  // world direction of the sun's light, if conditions set it
   std::vector<mjvGeom> scene_geoms_;  // the full scene of a frame, culled per face into scene_
 
 };

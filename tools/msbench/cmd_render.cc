@@ -57,7 +57,9 @@ int runRenderProbeCommand(int argc, char** argv) {
       .option("scale", "1", "image scale: 1 (752x480) or 0.5 (376x240)")
       .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length")
       .flag("no-sky", "leave the sky black (render.sky: false)")
-      .flag("no-sun", "no sun, ambient light only (render.sun: false)");
+      .flag("no-sun", "no sun, ambient light only (render.sun: false)")
+      .option("conditions", "default", "light and visibility preset (docs/conditions.md): default, noon,\n"
+                                        "low_sun, dusk, overcast, haze, fog, dusk_haze");
   if (!args.parse(argc, argv)) return kExitOk;
   const Vec4 pose = parsePose(args.get("pose"));
   FisheyeCameraConfig cam_cfg;
@@ -66,6 +68,9 @@ int runRenderProbeCommand(int argc, char** argv) {
   render_cfg.face_focal_ratio = args.getDouble("face-focal-ratio");
   render_cfg.sky = !args.has("no-sky");
   render_cfg.sun = !args.has("no-sun");
+  const auto conditions = conditionsPreset(args.get("conditions"));
+  if (!conditions) throw UsageError("--conditions: unknown preset '" + args.get("conditions") + "'");
+  render_cfg.conditions = *conditions;
   const std::string world = resolveWorld(args.get("world")).world_xml;
   checkOutputFile(args.get("out"), args.has("overwrite"), "out");
 

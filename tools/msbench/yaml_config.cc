@@ -135,6 +135,33 @@ void readRender(MapReader r, FisheyeRendererConfig& c) {
   r.finish();
 }
 
+// conditions: {preset: NAME, <field>: value, ...}: a named preset, then overrides.
+void readConditions(MapReader r, RenderConditions& c) {
+  std::string preset;
+  if (r.read("preset", preset)) {
+    const auto p = conditionsPreset(preset);
+    if (!p) {
+      std::string names;
+      for (const auto& n : conditionsPresetNames()) names += (names.empty() ? "" : ", ") + n;
+      throw ConfigError(r.keyName("preset"), "unknown preset '" + preset + "' (known: " + names + ")");
+    }
+    c = *p;
+  }
+  r.read("sun_elevation_deg", c.sun_elevation_deg);
+  r.read("sun_azimuth_deg", c.sun_azimuth_deg);
+  r.read("sun_intensity", c.sun_intensity);
+  r.read("sun_colour", c.sun_colour);
+  r.read("ambient", c.ambient);
+  r.read("sky_brightness", c.sky_brightness);
+  r.read("fog_start_m", c.fog_start_m);
+  r.read("fog_end_m", c.fog_end_m);
+  r.read("fog_colour", c.fog_colour);
+  r.finish();
+  ConfigChecker checker(r.keyName("") + ".");
+  c.validate(checker);
+  if (!checker.issues().empty()) throw ConfigError(checker.issues());
+}
+
 void readCameraStream(MapReader r, CameraStreamConfig& c) {
   r.read("enabled", c.enabled);
   r.read("rate_hz", c.rate_hz);
@@ -238,6 +265,7 @@ void readFlightKeys(MapReader& r, const fs::path& dir, FlightSpec& s) {
   if (r.has("imu")) readImu(r.sub("imu"), s.imu);
   if (r.has("camera")) readCamera(r.sub("camera"), s.camera);
   if (r.has("render")) readRender(r.sub("render"), s.render);
+  if (r.has("conditions")) readConditions(r.sub("conditions"), s.render.conditions);
   if (r.has("camera_stream")) readCameraStream(r.sub("camera_stream"), s.camera_stream);
   if (r.has("vio_drift")) readVioDrift(r.sub("vio_drift"), s.vio_drift);
   if (r.has("perception")) readPerception(r.sub("perception"), s.perception);

@@ -146,6 +146,9 @@ class MapReader {
     }
   }
   void convert(const YAML::Node& n, const std::string& key, Vec3& out) const { numbers<3>(n, key, out); }
+  void convert(const YAML::Node& n, const std::string& key, std::array<double, 3>& out) const {
+    numbers<3>(n, key, out);
+  }
   void convert(const YAML::Node& n, const std::string& key, std::array<double, 4>& out) const {
     numbers<4>(n, key, out);
   }
