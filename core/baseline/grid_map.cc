@@ -27,6 +27,25 @@ void GridMapConfig::validate(ConfigChecker& c) const {
   c.inRange("prob_miss", prob_miss, 0.0, 0.5);
   c.inRange("clamp_min", clamp_min, 0.0, 0.5);
   c.inRange("clamp_max", clamp_max, 0.5, 1.0);
+  c.require(insertion == "standard" || insertion == "confidence_weighted", "insertion",
+            "must be standard or confidence_weighted (got '" + insertion + "')");
+  c.nonNegative("confidence_depth_gain_per_m", confidence_depth_gain_per_m);
+}
+
+double extrinsicQuality(const Vec3& a, const Vec3& b, const Vec3& d) {
+  const double na = a.norm(), nb = b.norm(), nd = d.norm();
+  if (na < 1e-12 || nb < 1e-12 || nd < 1e-12) return 0.0;  // no baseline: no depth
+  const double h_ab = std::max(a.dot(b) / (na * nb), 0.0);                              // Eq. 3-4
+  const double s_ad = a.dot(d) / (na * nd), s_bd = b.dot(d) / (nb * nd);               // Eq. 5-6
+  const double r_ad = std::sqrt(std::max(0.0, 1 - s_ad * s_ad)), r_bd = std::sqrt(std::max(0.0, 1 - s_bd * s_bd));  // 7-8
+  return std::min({h_ab, r_ad, r_bd});                                                 // Eq. 9
+}
+
+double confidenceWeight(const SlamPoint& p, const Pose& T_W_C, double depth_gain_per_m) {
+  const Vec3 a = p.T_W_anchor.linear().col(2), b = T_W_C.linear().col(2);
+  const Vec3 d = T_W_C.translation() - p.T_W_anchor.translation();
+  const double depth_confidence = std::max(1.0 - depth_gain_per_m * 2.0 * p.depth_std_m / 100.0, 0.0);  // Eq. 10
+  return extrinsicQuality(a, b, d) * depth_confidence;
 }
 
 GridMap::GridMap(const GridMapConfig& config)
@@ -39,48 +58,72 @@ GridMap::GridMap(const GridMapConfig& config)
 
 GridUpdateStats GridMap::insert(const SlamPointsFrame& frame) {
   std::vector<Vec3> pts;
+  std::vector<double> weights;
   pts.reserve(frame.points.size());
-  for (const auto& p : frame.points) pts.push_back(p.p_W);
-  return insertScan(frame.T_W_C.translation(), pts);
+  for (const auto& p : frame.points) {
+    pts.push_back(p.p_W);
+    if (config_.weighted()) weights.push_back(confidenceWeight(p, frame.T_W_C, config_.confidence_depth_gain_per_m));
+  }
+  return insertScan(frame.T_W_C.translation(), pts, weights);
 }
 
-GridUpdateStats GridMap::insertScan(const Vec3& origin, const std::vector<Vec3>& points) {
+GridUpdateStats GridMap::insertScan(const Vec3& origin, const std::vector<Vec3>& points,
+                                    const std::vector<double>& weights) {
   GridUpdateStats st;
-  std::vector<uint64_t> free_keys, occupied_keys;
+  // (key, weight) pairs; with standard insertion every weight is 1.
+  std::vector<std::pair<uint64_t, double>> free_keys, occupied_keys;
   octomap::KeyRay ray;
   const octomap::point3d o = toPoint(origin);
-  for (const Vec3& p : points) {
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3& p = points[i];
     if (!p.allFinite()) continue;
+    const double w = weights.empty() ? 1.0 : weights[i];
     ++st.points;
+    st.weight_sum += w;
     const double d = (p - origin).norm();
-    if (d < 1e-6) continue;
+    if (d < 1e-6 || w <= 0.0) continue;
     // Occupied end cell within range; free cells along the ray up to the free-ray length.
     octomap::OcTreeKey end_key;
     if (d <= config_.max_range_m && tree_->coordToKeyChecked(toPoint(p), end_key))
-      occupied_keys.push_back(packKey(end_key));
+      occupied_keys.push_back({packKey(end_key), w});
     const double free_len = std::min(d, config_.free_ray_length_m);
     const Vec3 free_end = origin + (free_len / d) * (p - origin);
     if (tree_->computeRayKeys(o, toPoint(free_end), ray))
-      for (const auto& k : ray) free_keys.push_back(packKey(k));
+      for (const auto& k : ray) free_keys.push_back({packKey(k), w});
     // A ray cut short of its point also clears the cell it ends in.
     if (free_len < d) {
       octomap::OcTreeKey k;
-      if (tree_->coordToKeyChecked(toPoint(free_end), k)) free_keys.push_back(packKey(k));
+      if (tree_->coordToKeyChecked(toPoint(free_end), k)) free_keys.push_back({packKey(k), w});
     }
   }
-  // Sorted, unique; occupied wins over free within one scan.
-  auto tidy = [](std::vector<uint64_t>& v) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
+  // Sorted by key, one entry per key with its largest weight; occupied wins over free within
+  // one scan.
+  auto tidy = [](std::vector<std::pair<uint64_t, double>>& v) {
+    std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) {
+      return a.first != b.first ? a.first < b.first : a.second > b.second;
+    });
+    v.erase(std::unique(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first == b.first; }), v.end());
   };
   tidy(free_keys);
   tidy(occupied_keys);
-  std::vector<uint64_t> only_free;
+  std::vector<std::pair<uint64_t, double>> only_free;
   only_free.reserve(free_keys.size());
-  std::set_difference(free_keys.begin(), free_keys.end(), occupied_keys.begin(), occupied_keys.end(),
-                      std::back_inserter(only_free));
-  for (uint64_t k : only_free) tree_->updateNode(unpackKey(k), false, true);
-  for (uint64_t k : occupied_keys) tree_->updateNode(unpackKey(k), true, true);
+  size_t j = 0;
+  for (const auto& f : free_keys) {
+    while (j < occupied_keys.size() && occupied_keys[j].first < f.first) ++j;
+    if (j < occupied_keys.size() && occupied_keys[j].first == f.first) continue;
+    only_free.push_back(f);
+  }
+  // Standard: OctoMap's own hit/miss update; weighted: the log-odds scaled by the weight.
+  const float l_hit = octomap::logodds(config_.prob_hit), l_miss = octomap::logodds(config_.prob_miss);
+  for (const auto& [k, w] : only_free) {
+    if (config_.weighted()) tree_->updateNode(unpackKey(k), float(w) * l_miss, true);
+    else tree_->updateNode(unpackKey(k), false, true);
+  }
+  for (const auto& [k, w] : occupied_keys) {
+    if (config_.weighted()) tree_->updateNode(unpackKey(k), float(w) * l_hit, true);
+    else tree_->updateNode(unpackKey(k), true, true);
+  }
   tree_->updateInnerOccupancy();
   st.free_cells = int(only_free.size());
   st.occupied_cells = int(occupied_keys.size());

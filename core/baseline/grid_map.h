@@ -7,9 +7,19 @@
 //   - a cell hit by some point in the scan is not also cleared by another ray of the scan.
 // Insertion is our own loop over OctoMap's ray keys in sorted key order (not insertPointCloud),
 // so the result never depends on threads or hash-set order.
+//
+// insertion = confidence_weighted (Buck et al., "fuzzy" voxel map updates; docs/baseline.md):
+// every point's occupied and free updates are its log-odds scaled by a weight in [0, 1], the
+// product of the extrinsic quality of its two views (Eq. 3-9: the look directions A of the
+// anchor camera and B of the current camera and their baseline D; Q = min(max(cos AB, 0),
+// sin AD, sin BD)) and a depth confidence max(1 - a·2σ_depth/100, 0) (Eq. 10 with the spread of
+// the depth estimate taken as ±σ). OctoMap accepts a log-odds value per update, so the weight
+// scales it directly: the continuous limit of the paper's α-cut workaround (inserting a point
+// once per confidence threshold it passes, N_t thresholds, each with l/N_t).
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <octomap/OcTree.h>
@@ -29,7 +39,11 @@ struct GridMapConfig {
   double prob_miss = 0.4;
   double clamp_min = 0.1192;
   double clamp_max = 0.971;
+  std::string insertion = "standard";  ///< standard | confidence_weighted
+  double confidence_depth_gain_per_m = 5.0;  ///< a of Eq. 10 (confidence 0 at 2σ = 100/a m)
 
+  /// True for confidence-weighted insertion.
+  bool weighted() const { return insertion == "confidence_weighted"; }
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
@@ -44,7 +58,18 @@ struct GridLeaf {
 /// Counts of one map update.
 struct GridUpdateStats {
   int points = 0, occupied_cells = 0, free_cells = 0;
+  double weight_sum = 0;  ///< sum of the points' weights (= points for standard insertion)
 };
+
+/// Extrinsic quality of two views (Buck et al. Eq. 3-9): look directions a and b of the two
+/// cameras, baseline d between them. 1 = aligned views moved sideways; 0 = views apart by 90°
+/// or more, or moved along a look direction.
+double extrinsicQuality(const Vec3& a, const Vec3& b, const Vec3& d);
+
+/// A SLAM point's insertion weight in [0, 1]: extrinsic quality of its anchor view and the
+/// current view (optical axes, baseline between the camera centres) times the depth confidence
+/// max(1 - gain·2σ/100, 0).
+double confidenceWeight(const SlamPoint& p, const Pose& T_W_C, double depth_gain_per_m);
 
 /// OctoMap occupancy grid.
 class GridMap {
@@ -54,8 +79,10 @@ class GridMap {
 
   /// Inserts one frame of SLAM points as a scan from the frame's estimated camera position.
   GridUpdateStats insert(const SlamPointsFrame& frame);
-  /// Inserts points as a scan from `origin` (tests).
-  GridUpdateStats insertScan(const Vec3& origin, const std::vector<Vec3>& points);
+  /// Inserts points as a scan from `origin`; `weights` (empty = all 1) scale each point's
+  /// log-odds updates (a cell touched by several rays takes the largest weight).
+  GridUpdateStats insertScan(const Vec3& origin, const std::vector<Vec3>& points,
+                             const std::vector<double>& weights = {});
 
   /// Occupancy of the cell containing p: +1 occupied, 0 free, −1 unknown.
   int occupancy(const Vec3& p) const;

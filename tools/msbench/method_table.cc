@@ -146,6 +146,8 @@ MethodChoice readGridRandom(MapReader& m) {
     r.read("prob_miss", c.map.prob_miss);
     r.read("clamp_min", c.map.clamp_min);
     r.read("clamp_max", c.map.clamp_max);
+    r.read("insertion", c.map.insertion);
+    r.read("confidence_depth_gain_per_m", c.map.confidence_depth_gain_per_m);
     r.finish();
   }
   if (m.has("planner")) {

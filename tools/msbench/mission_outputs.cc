@@ -70,6 +70,19 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   } else {
     j["collision"] = nullptr;
   }
+  // Map accuracy against the ground truth (VIO frame, so drift counts against it): obstacle
+  // elements (points, occupied cells) within 0.5 m of a true surface; free elements (spheres,
+  // free cells) whose centre lies outside every obstacle.
+  if (truth && (!r.final_map.obstacles.empty() || !r.final_map.free_space.empty())) {
+    size_t near = 0, free_ok = 0;
+    for (const auto& p : r.final_map.obstacles) near += std::fabs(truth->distance(p, 5.0)) <= 0.5;
+    for (const auto& d : r.final_map.free_space) free_ok += truth->distance(d.centre, 5.0) > 0.0;
+    auto share = [](size_t k, size_t n) { return n ? nlohmann::json(double(k) / double(n)) : nlohmann::json(nullptr); };
+    j["map_accuracy"] = {{"obstacles", r.final_map.obstacles.size()},
+                         {"obstacles_near_surface_share", share(near, r.final_map.obstacles.size())},
+                         {"free_elements", r.final_map.free_space.size()},
+                         {"free_really_free_share", share(free_ok, r.final_map.free_space.size())}};
+  }
   j["vio_lost_at_s"] = f.vio_lost_at_s >= 0 ? nlohmann::json(f.vio_lost_at_s) : nlohmann::json(nullptr);
   j["distance_flown_m"] = f.distance_flown_m;
   j["final_drift_m"] = f.final_drift_m;

@@ -2,6 +2,8 @@
 // and the coverage of free leaves, exact on hand-built trees (also after pruning).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/baseline/grid_explorer.h"
 #include "core/baseline/grid_map.h"
 
@@ -40,6 +42,72 @@ TEST(GridMap, AHitInTheScanIsNotClearedByAnotherRay) {
   map.insertScan(Vec3(0.25, 0.25, 2.25), {Vec3(3.25, 0.25, 2.25), Vec3(8.25, 0.25, 2.25)});
   EXPECT_EQ(map.occupancy(Vec3(3.25, 0.25, 2.25)), 1);
   EXPECT_EQ(map.occupancy(Vec3(8.25, 0.25, 2.25)), 1);
+}
+
+TEST(GridMap, ExtrinsicQualityRanksSidewaysMotionAboveMotionAlongTheView) {
+  // Buck et al.'s ordering (their Fig. 1): aligned views moved sideways (excellent) > moved
+  // partly sideways (good) > moved along the look direction (poor); views 90° apart: bad.
+  const Vec3 look(0, 0, 1);
+  const double sideways = extrinsicQuality(look, look, Vec3(1, 0, 0));
+  const double oblique = extrinsicQuality(look, look, Vec3(1, 0, 1));
+  const double along = extrinsicQuality(look, look, Vec3(0, 0, 1));
+  const double apart = extrinsicQuality(look, Vec3(1, 0, 0), Vec3(1, 0, 0));
+  EXPECT_DOUBLE_EQ(sideways, 1.0);
+  EXPECT_NEAR(oblique, std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(along, 0.0, 1e-12);
+  EXPECT_NEAR(apart, 0.0, 1e-12);
+  EXPECT_GT(sideways, oblique);
+  EXPECT_GT(oblique, along);
+  EXPECT_EQ(extrinsicQuality(look, look, Vec3::Zero()), 0.0);  // no baseline, no depth
+}
+
+// A SLAM point seen first from `anchor`, now from `now` (both looking along +x).
+SlamPoint pointSeenFrom(const Vec3& p, const Vec3& anchor, double depth_std_m) {
+  SlamPoint s;
+  s.p_W = p;
+  s.depth_std_m = depth_std_m;
+  s.T_W_anchor = Pose::Identity();
+  s.T_W_anchor.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // optical z along world +x
+  s.T_W_anchor.translation() = anchor;
+  return s;
+}
+
+TEST(GridMap, ConfidenceWeightsScaleTheLogOddsUpdates) {
+  Pose now = Pose::Identity();
+  now.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  now.translation() = Vec3(0.25, 1.25, 2.25);
+  // Moved 1 m sideways: quality 1; a precise point keeps weight 1, an uncertain far one less.
+  const SlamPoint precise = pointSeenFrom(Vec3(6.25, 0.25, 2.25), Vec3(0.25, 0.25, 2.25), 0.0);
+  const SlamPoint uncertain = pointSeenFrom(Vec3(6.25, 0.25, 2.25), Vec3(0.25, 0.25, 2.25), 6.0);
+  EXPECT_DOUBLE_EQ(confidenceWeight(precise, now, 5.0), 1.0);
+  EXPECT_NEAR(confidenceWeight(uncertain, now, 5.0), 0.4, 1e-12);  // 1 - 5·12/100
+  // Moved along the view: no weight, whatever the depth.
+  Pose ahead = now;
+  ahead.translation() = Vec3(1.25, 0.25, 2.25);
+  EXPECT_NEAR(confidenceWeight(precise, ahead, 5.0), 0.0, 1e-12);
+  // In the map: the occupied cell of a weighted point gets weight x OctoMap's hit log-odds,
+  // the free cells weight x the miss log-odds; standard insertion the full values.
+  GridMapConfig cfg;
+  cfg.insertion = "confidence_weighted";
+  GridMap weighted(cfg), standard(GridMapConfig{});
+  SlamPointsFrame frame;
+  frame.T_W_C = now;
+  frame.points = {uncertain};
+  weighted.insert(frame);
+  standard.insert(frame);
+  const float l_hit = octomap::logodds(0.7), l_miss = octomap::logodds(0.4);
+  const auto* occ_w = weighted.tree().search(octomap::point3d(6.25f, 0.25f, 2.25f));
+  const auto* occ_s = standard.tree().search(octomap::point3d(6.25f, 0.25f, 2.25f));
+  ASSERT_TRUE(occ_w && occ_s);
+  EXPECT_NEAR(occ_w->getLogOdds(), 0.4f * l_hit, 1e-5);
+  EXPECT_NEAR(occ_s->getLogOdds(), l_hit, 1e-5);
+  const auto* free_w = weighted.tree().search(octomap::point3d(3.25f, 0.75f, 2.25f));
+  ASSERT_TRUE(free_w);
+  EXPECT_NEAR(free_w->getLogOdds(), 0.4f * l_miss, 1e-5);
+  // Bad settings name their key.
+  GridMapConfig bad;
+  bad.insertion = "fuzzy";
+  EXPECT_THROW(GridMap{bad}, ConfigError);
 }
 
 TEST(GridMap, CoverageFromFreeLeavesIsExactAlsoAfterPruning) {
