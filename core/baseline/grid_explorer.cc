@@ -141,15 +141,9 @@ std::optional<PathCommand> GridExplorer::explore(const VehicleState& s) {
   return command(s, std::move(w));
 }
 
-void GridExplorer::markCoverage(ColumnCoverage& coverage) const {
-  for (const GridLeaf& leaf : map_.leaves(false)) coverage.markSquare(leaf.centre.head<2>(), 0.5 * leaf.size_m);
-}
+void GridExplorer::markCoverage(ColumnCoverage& coverage) const { markFreeLeaves(map_, coverage); }
 
-std::vector<ExplorerSnapshot::Disk> GridExplorer::freeSpace() const {
-  std::vector<ExplorerSnapshot::Disk> out;
-  for (const GridLeaf& leaf : map_.leaves(false)) out.push_back({leaf.id, leaf.centre, 0.5 * leaf.size_m});
-  return out;
-}
+std::vector<ExplorerSnapshot::Disk> GridExplorer::freeSpace() const { return freeLeavesAsDisks(map_); }
 
 ExplorerSnapshot GridExplorer::snapshot() const {
   ExplorerSnapshot snap;

@@ -158,4 +158,14 @@ std::vector<GridLeaf> GridMap::leaves(bool occupied) const {
   return out;
 }
 
+void markFreeLeaves(const GridMap& map, ColumnCoverage& coverage) {
+  for (const GridLeaf& leaf : map.leaves(false)) coverage.markSquare(leaf.centre.head<2>(), 0.5 * leaf.size_m);
+}
+
+std::vector<ExplorerSnapshot::Disk> freeLeavesAsDisks(const GridMap& map) {
+  std::vector<ExplorerSnapshot::Disk> out;
+  for (const GridLeaf& leaf : map.leaves(false)) out.push_back({leaf.id, leaf.centre, 0.5 * leaf.size_m});
+  return out;
+}
+
 }  // namespace msb

@@ -27,6 +27,8 @@
 #include "core/common/aabb.h"
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
+#include "core/eval/column_coverage.h"
+#include "core/eval/map_snapshot.h"
 
 namespace msb {
 
@@ -101,5 +103,12 @@ class GridMap {
   GridMapConfig config_;
   std::unique_ptr<octomap::OcTree> tree_;
 };
+
+/// Marks the columns under the xy footprint of every free leaf (its real size after pruning):
+/// the coverage of the grid-based methods.
+void markFreeLeaves(const GridMap& map, ColumnCoverage& coverage);
+
+/// Free leaves as disks (id, centre, half the leaf size) for the metric and pictures.
+std::vector<ExplorerSnapshot::Disk> freeLeavesAsDisks(const GridMap& map);
 
 }  // namespace msb

@@ -26,4 +26,16 @@ MethodChoice gridRandomMethod(const GridExplorerConfig& config) {
   return m;
 }
 
+MethodChoice starDiscoveryMethod(const StarDiscoveryConfig& config) {
+  const StarDiscoveryConfig c = checkValid(config);
+  MethodChoice m;
+  m.type = "star_discovery";
+  m.config = c;
+  m.switches = {{"unknown_is_occupied", c.planner.unknown_is_occupied}};
+  m.make = [c](const FisheyeCamera&, const ExplorerContext& context) {
+    return std::make_unique<StarDiscoveryExplorer>(c, context);
+  };
+  return m;
+}
+
 }  // namespace msb

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/baseline/grid_explorer.h"
+#include "core/baseline/star_discovery_explorer.h"
 #include "core/camera/fisheye_camera.h"
 #include "core/planning/explorer.h"
 #include "core/planning/monospheres_explorer.h"
@@ -30,5 +31,7 @@ struct MethodChoice {
 MethodChoice monospheresMethod(const MonoSpheresConfig& config = {});
 /// The grid baseline (`grid_random`): OctoMap, random goals, grid A*.
 MethodChoice gridRandomMethod(const GridExplorerConfig& config = {});
+/// Star discovery (von Stumberg et al.) on the grid baseline's map.
+MethodChoice starDiscoveryMethod(const StarDiscoveryConfig& config = {});
 
 }  // namespace msb

@@ -134,31 +134,59 @@ MethodChoice readMonoSpheres(MapReader& m) {
   return monospheresMethod(c);
 }
 
-// The grid baseline: OctoMap insertion, A*, goals.
-MethodChoice readGridRandom(MapReader& m) {
-  GridExplorerConfig c;
+// The OctoMap map and grid planner keys shared by the grid-based methods.
+void readGridMapAndPlanner(MapReader& m, GridMapConfig& map, GridPlannerConfig& planner) {
   if (m.has("map")) {
     MapReader r = m.sub("map");
-    r.read("resolution_m", c.map.resolution_m);
-    r.read("max_range_m", c.map.max_range_m);
-    r.read("free_ray_length_m", c.map.free_ray_length_m);
-    r.read("prob_hit", c.map.prob_hit);
-    r.read("prob_miss", c.map.prob_miss);
-    r.read("clamp_min", c.map.clamp_min);
-    r.read("clamp_max", c.map.clamp_max);
-    r.read("insertion", c.map.insertion);
-    r.read("confidence_depth_gain_per_m", c.map.confidence_depth_gain_per_m);
+    r.read("resolution_m", map.resolution_m);
+    r.read("max_range_m", map.max_range_m);
+    r.read("free_ray_length_m", map.free_ray_length_m);
+    r.read("prob_hit", map.prob_hit);
+    r.read("prob_miss", map.prob_miss);
+    r.read("clamp_min", map.clamp_min);
+    r.read("clamp_max", map.clamp_max);
+    r.read("insertion", map.insertion);
+    r.read("confidence_depth_gain_per_m", map.confidence_depth_gain_per_m);
     r.finish();
   }
   if (m.has("planner")) {
     MapReader r = m.sub("planner");
-    r.read("clearance_m", c.planner.clearance_m);
-    r.read("unknown_is_occupied", c.planner.unknown_is_occupied);
-    r.read("escape_radius_m", c.planner.escape_radius_m);
-    r.read("escape_clearance_m", c.planner.escape_clearance_m);
-    r.read("max_expansions", c.planner.max_expansions);
+    r.read("clearance_m", planner.clearance_m);
+    r.read("unknown_is_occupied", planner.unknown_is_occupied);
+    r.read("escape_radius_m", planner.escape_radius_m);
+    r.read("escape_clearance_m", planner.escape_clearance_m);
+    r.read("max_expansions", planner.max_expansions);
     r.finish();
   }
+}
+
+// Star discovery: the grid map and planner, the star and global-step parameters.
+MethodChoice readStarDiscovery(MapReader& m) {
+  StarDiscoveryConfig c;
+  readGridMapAndPlanner(m, c.map, c.planner);
+  m.read("rays", c.rays);
+  m.read("heights", c.heights);
+  m.read("height_step_m", c.height_step_m);
+  m.read("max_ray_m", c.max_ray_m);
+  m.read("min_ray_m", c.min_ray_m);
+  m.read("candidates", c.candidates);
+  m.read("los_range_m", c.los_range_m);
+  m.read("look_around_step_deg", c.look_around_step_deg);
+  m.read("replan_period_s", c.replan_period_s);
+  m.read("transit_timeout_s", c.transit_timeout_s);
+  m.read("check_ahead_m", c.check_ahead_m);
+  m.read("check_clearance_m", c.check_clearance_m);
+  m.read("takeoff_altitude_m", c.takeoff_altitude_m);
+  m.read("start_forward_m", c.start_forward_m);
+  m.finish();
+  validateMethod(c);
+  return starDiscoveryMethod(c);
+}
+
+// The grid baseline: OctoMap insertion, A*, goals.
+MethodChoice readGridRandom(MapReader& m) {
+  GridExplorerConfig c;
+  readGridMapAndPlanner(m, c.map, c.planner);
   m.read("goal_period_s", c.goal_period_s);
   m.read("goal_timeout_s", c.goal_timeout_s);
   m.read("goal_square_m", c.goal_square_m);
@@ -182,6 +210,8 @@ const std::vector<MethodEntry>& methodTable() {
       {"monospheres", "MonoSpheres: sphere map, frontier viewpoints, sphere-graph A* (the paper's method)",
        readMonoSpheres},
       {"grid_random", "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)", readGridRandom},
+      {"star_discovery", "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
+       readStarDiscovery},
   };
   return table;
 }

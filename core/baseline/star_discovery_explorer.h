@@ -1,0 +1,134 @@
+// Star discovery (von Stumberg et al., "Autonomous exploration with a low-cost quadcopter using
+// semi-dense monocular SLAM", §IV-B/C; `method.type: star_discovery`; docs/baseline.md), on the
+// same OctoMap map and traversability grid as the grid baseline:
+//   1. take off like every method, then a look-around: a full turn on the spot;
+//   2. a star discovery from the current position: m rays at equal angles, each marched through
+//      the traversability grid (occupied and unknown cells inflated by the planner's clearance)
+//      to its farthest traversable cell, up to max_ray_m, at l heights around the origin; the
+//      height with the largest total ray length wins. The vehicle flies every ray out and back
+//      with its heading 90° to the motion (lateral motion gives parallax and closes the
+//      "indentations" of unknown space next to textureless surfaces);
+//   3. a global step: free, traversable cells not in line of sight of any earlier star origin are
+//      "interesting"; among `candidates` random cells of the largest 26-connected component of
+//      interesting cells, the one allowing the largest star is flown to (grid A*, re-planned
+//      every replan_period_s, with the grid baseline's predicted-path check), then step 2 again.
+// With no interesting cell left, the next origin is the traversable cell farthest from every
+// earlier origin (our addition: the paper's dense semi-dense maps leave interesting cells; a
+// sparse map's free space is mostly rays from the camera positions, all in sight of them);
+// with none reachable, the vehicle holds its position.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/baseline/grid_map.h"
+#include "core/baseline/grid_path_planner.h"
+#include "core/common/rng.h"
+#include "core/planning/explorer.h"
+#include "core/planning/takeoff.h"
+
+namespace msb {
+
+/// Star discovery settings (the paper's where it gives them).
+struct StarDiscoveryConfig {
+  GridMapConfig map;                  ///< OctoMap insertion (as the grid baseline)
+  GridPlannerConfig planner;          ///< traversability (inflation = clearance_m) and A*
+  int rays = 8;                       ///< m: rays per star, at equal angles
+  int heights = 3;                    ///< l: heights tried around the origin ...
+  double height_step_m = 0.5;         ///< ... this far apart
+  double max_ray_m = 15.0;            ///< a ray ends here at the latest
+  double min_ray_m = 1.0;             ///< shorter rays are not flown
+  int candidates = 10;                ///< random interesting cells compared per global step
+  double los_range_m = 30.0;          ///< line of sight from an origin reaches this far
+  double look_around_step_deg = 90.0; ///< the look-around turns in steps of this
+  double replan_period_s = 1.0;       ///< transit paths re-planned this often
+  double transit_timeout_s = 60.0;    ///< a target not reached by then is given up
+  double check_ahead_m = 5.0;         ///< predicted-path check length ...
+  double check_clearance_m = 1.0;     ///< ... and clearance from occupied cells
+  double takeoff_altitude_m = 2.0;    ///< climb above the start
+  double start_forward_m = 4.0;       ///< then fly this far ahead
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// One planned star: its origin and the end of every ray kept (in flight order).
+struct Star {
+  Vec3 origin = Vec3::Zero();
+  std::vector<Vec3> ends;
+  double size_m = 0.0;  ///< total ray length
+};
+
+/// The star from `origin`: for each of the config's heights, rays marched through the planner's
+/// traversable cells (inside its box); the height with the largest total length.
+Star planStar(const GridPathPlanner& planner, const Vec3& origin, const StarDiscoveryConfig& config);
+
+/// Dense free / blocked state of a box's cells for line-of-sight tests (cells of the map's
+/// resolution aligned with the octree): free = known free in the map.
+class LineOfSightGrid {
+ public:
+  /// Samples the map's occupancy at every cell centre of `box`.
+  LineOfSightGrid(const GridMap& map, const Aabb& box);
+  /// True if the straight segment a -> b crosses only free cells (sampled every half cell).
+  bool clear(const Vec3& a, const Vec3& b) const;
+  /// True if the cell containing p is known free.
+  bool free(const Vec3& p) const;
+
+ private:
+  bool cellOf(const Vec3& p, int* i, int* j, int* k) const;
+  double res_;
+  Vec3 origin_;
+  int nx_ = 0, ny_ = 0, nz_ = 0;
+  std::vector<uint8_t> free_;
+};
+
+/// Interesting cells: centres of traversable, known-free cells of `box` not in line of sight
+/// (within `range_m`) of any of `origins`, in cell order.
+std::vector<Vec3> interestingCells(const GridMap& map, const GridPathPlanner& planner, const Aabb& box,
+                                   const std::vector<Vec3>& origins, double range_m);
+
+/// The largest 26-connected component of cells (centres on a grid of `resolution_m`); ties:
+/// the one holding the earliest cell.
+std::vector<Vec3> largestComponent(const std::vector<Vec3>& cells, double resolution_m);
+
+/// The star discovery explorer.
+class StarDiscoveryExplorer : public Explorer {
+ public:
+  /// Throws ConfigError.
+  StarDiscoveryExplorer(const StarDiscoveryConfig& config, const ExplorerContext& context);
+  std::string type() const override { return "star_discovery"; }
+  void observe(const SlamPointsFrame& frame) override;
+  std::optional<PathCommand> plan(const VehicleState& vehicle) override;
+  void markCoverage(ColumnCoverage& coverage) const override;
+  ExplorerSnapshot snapshot() const override;
+  std::vector<ExplorerSnapshot::Disk> freeSpace() const override;
+  std::map<std::string, double> counters() const override;
+  /// The map (tests).
+  GridMap& mutableMap() { return map_; }
+
+ private:
+  enum class Phase { kTakeoff, kLookAround, kStar, kGlobal, kTransit, kDone };
+  PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
+  std::optional<PathCommand> startStar(const VehicleState& s);
+  std::optional<PathCommand> chooseNextOrigin(const VehicleState& s);
+  bool pathBlocked(const Vec3& from) const;
+  void rebuildPlanner();
+
+  StarDiscoveryConfig config_;
+  ExplorerContext context_;
+  GridMap map_;
+  GridPathPlanner planner_;
+  RngStream candidate_rng_;
+  TakeoffSequence takeoff_;
+  Phase phase_ = Phase::kTakeoff;
+  bool map_changed_ = true, sent_ = false;
+  std::vector<Vec3> origins_;
+  std::optional<Vec3> target_;
+  double last_plan_s_ = -1e9, transit_since_s_ = 0;
+  std::vector<Vec3> last_path_;
+  std::map<std::string, double> counters_;
+};
+
+}  // namespace msb
