@@ -71,19 +71,7 @@ std::optional<PathCommand> GridExplorer::plan(const VehicleState& s) {
 }
 
 bool GridExplorer::pathBlocked(const Vec3& from) const {
-  // Samples every 0.25 m along the first check_ahead_m of the last path, from the vehicle on.
-  if (last_path_.size() < 2) return false;
-  double s = 0;
-  Vec3 a = from;
-  for (size_t i = 1; i < last_path_.size() && s < config_.check_ahead_m; ++i) {
-    const Vec3 b = last_path_[i];
-    const double len = (b - a).norm();
-    for (double t = 0.25; t <= len && s + t <= config_.check_ahead_m; t += 0.25)
-      if (map_.occupiedWithin(a + t / len * (b - a), config_.check_clearance_m)) return true;
-    s += len;
-    a = b;
-  }
-  return false;
+  return pathNearOccupied(map_, last_path_, from, config_.check_ahead_m, config_.check_clearance_m);
 }
 
 std::optional<PathCommand> GridExplorer::explore(const VehicleState& s) {

@@ -162,6 +162,22 @@ void markFreeLeaves(const GridMap& map, ColumnCoverage& coverage) {
   for (const GridLeaf& leaf : map.leaves(false)) coverage.markSquare(leaf.centre.head<2>(), 0.5 * leaf.size_m);
 }
 
+bool pathNearOccupied(const GridMap& map, const std::vector<Vec3>& path, const Vec3& from, double ahead_m,
+                      double clearance_m) {
+  if (path.size() < 2) return false;
+  double s = 0;
+  Vec3 a = from;
+  for (size_t i = 1; i < path.size() && s < ahead_m; ++i) {
+    const Vec3 b = path[i];
+    const double len = (b - a).norm();
+    for (double t = 0.25; t <= len && s + t <= ahead_m; t += 0.25)
+      if (map.occupiedWithin(a + t / len * (b - a), clearance_m)) return true;
+    s += len;
+    a = b;
+  }
+  return false;
+}
+
 std::vector<ExplorerSnapshot::Disk> freeLeavesAsDisks(const GridMap& map) {
   std::vector<ExplorerSnapshot::Disk> out;
   for (const GridLeaf& leaf : map.leaves(false)) out.push_back({leaf.id, leaf.centre, 0.5 * leaf.size_m});

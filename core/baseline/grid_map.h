@@ -108,6 +108,12 @@ class GridMap {
 /// the coverage of the grid-based methods.
 void markFreeLeaves(const GridMap& map, ColumnCoverage& coverage);
 
+/// The grid methods' predicted-path check: true if the first `ahead_m` of the polyline
+/// from -> path[1] -> ... (path[0] is where it was sent from) come within `clearance_m` of an
+/// occupied cell, sampled every 0.25 m.
+bool pathNearOccupied(const GridMap& map, const std::vector<Vec3>& path, const Vec3& from, double ahead_m,
+                      double clearance_m);
+
 /// Free leaves as disks (id, centre, half the leaf size) for the metric and pictures.
 std::vector<ExplorerSnapshot::Disk> freeLeavesAsDisks(const GridMap& map);
 

@@ -37,20 +37,9 @@ int runBenchLoopCommand(int argc, char** argv) {
   all_sets.push_back("seed=" + args.get("seed"));
   all_sets.push_back("mission.progress=false");
   ScenarioSpec spec = loadScenario(file, all_sets);
-  std::optional<BuiltWorld> built = resolveFlightWorld(file, spec.flight);
-  Aabb box;
-  box.min = Vec3::Constant(-1e6);
-  box.max = Vec3::Constant(1e6);
-  std::optional<WorldTruth> truth;
-  if (built) {
-    if (spec.start_from_world) {
-      spec.flight.start_position_m = built->generated.start.translation();
-      spec.flight.start_yaw_rad = yawOf(built->generated.start.linear());
-    }
-    box = built->generated.exploration_box;
-    truth.emplace(built->generated.shapes);
-  }
-  if (spec.exploration_box) box = *spec.exploration_box;
+  MissionWorld world = prepareMissionWorld(file, spec);
+  const Aabb& box = world.box;
+  std::optional<WorldTruth>& truth = world.truth;
   Mission mission(spec, box, truth ? &*truth : nullptr);
   while (mission.running()) {
     throwIfInterrupted();

@@ -63,20 +63,9 @@ int runRunCommand(int argc, char** argv) {
   if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
   ScenarioSpec spec = loadScenario(file, all_sets);
   const YAML::Node tree = loadScenarioTree(file, all_sets);
-  std::optional<BuiltWorld> built = resolveFlightWorld(file, spec.flight);
-  Aabb box;
-  box.min = Vec3::Constant(-1e6);
-  box.max = Vec3::Constant(1e6);
-  std::optional<WorldTruth> truth;
-  if (built) {
-    if (spec.start_from_world) {
-      spec.flight.start_position_m = built->generated.start.translation();
-      spec.flight.start_yaw_rad = yawOf(built->generated.start.linear());
-    }
-    box = built->generated.exploration_box;
-    truth.emplace(built->generated.shapes);
-  }
-  if (spec.exploration_box) box = *spec.exploration_box;
+  MissionWorld world = prepareMissionWorld(file, spec);
+  const Aabb& box = world.box;
+  std::optional<WorldTruth>& truth = world.truth;
   if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record");
   // Build the mission (world model, renderer, method) before any output exists: a world that
   // does not compile is bad input (exit 2) and leaves nothing behind.

@@ -189,4 +189,20 @@ std::optional<BuiltWorld> resolveFlightWorld(const std::string& file, FlightSpec
   }
 }
 
+MissionWorld prepareMissionWorld(const std::string& file, ScenarioSpec& spec) {
+  MissionWorld w;
+  w.box.min = Vec3::Constant(-1e6);
+  w.box.max = Vec3::Constant(1e6);
+  if (std::optional<BuiltWorld> built = resolveFlightWorld(file, spec.flight)) {
+    if (spec.start_from_world) {
+      spec.flight.start_position_m = built->generated.start.translation();
+      spec.flight.start_yaw_rad = yawOf(built->generated.start.linear());
+    }
+    w.box = built->generated.exploration_box;
+    w.truth.emplace(built->generated.shapes);
+  }
+  if (spec.exploration_box) w.box = *spec.exploration_box;
+  return w;
+}
+
 }  // namespace msb

@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "sim/world/world_cache.h"
+#include "core/geometry/world_truth.h"
 #include "tools/loop/flight_spec.h"
+#include "tools/loop/scenario_spec.h"
 
 namespace msb {
 
@@ -44,5 +46,16 @@ ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed 
 /// Resolves the world named in flight file `file` (spec.world_name, if any) into
 /// spec.world_path; an unknown name is a FileConfigError naming the file and key.
 std::optional<BuiltWorld> resolveFlightWorld(const std::string& file, FlightSpec& spec);
+
+/// A mission's world as the runner needs it: the exploration box and, for generated worlds,
+/// the ground truth.
+struct MissionWorld {
+  Aabb box;                          ///< the scenario's box, else the world's, else unbounded
+  std::optional<WorldTruth> truth;   ///< generated worlds only
+};
+
+/// Resolves the scenario's world (resolveFlightWorld), sets the start pose from a generated
+/// world when the scenario asks for it, and returns the box and the ground truth.
+MissionWorld prepareMissionWorld(const std::string& file, ScenarioSpec& spec);
 
 }  // namespace msb
