@@ -153,9 +153,16 @@ bool ClosedLoop::perceive() {
   record_.tracks = &tracks_;
   record_.points = &points_;
   if (setup_.explorer) pending_points_ = points_;
+  // Perception statistics (records only).
+  const int tracked = trackedFromPrevious(tracks_);
+  if (result_.perception_frames++ > 0) {
+    result_.tracked_sum += tracked;
+    result_.tracked_min = result_.tracked_min < 0 ? tracked : std::min(result_.tracked_min, tracked);
+    result_.frames_few_tracks += tracked < spec_.perception.lost_min_tracks;
+  }
   // Tracking loss: too few features tracked from the previous frame (new detections do not
   // count) for lost_after_s.
-  if (trackedFromPrevious(tracks_) < spec_.perception.lost_min_tracks) {
+  if (tracked < spec_.perception.lost_min_tracks) {
     if (few_tracks_since_ < 0) few_tracks_since_ = record_.tick;
   } else {
     few_tracks_since_ = -1;

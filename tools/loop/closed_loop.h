@@ -56,6 +56,10 @@ struct FlightResult {
   double distance_flown_m = 0.0;          ///< ground truth, summed every tick
   double final_drift_m = 0.0;             ///< |estimated − true position| at the end
   double vio_lost_at_s = -1.0;            ///< when tracking was declared lost
+  int perception_frames = 0;              ///< frames the feature source processed
+  double tracked_sum = 0.0;               ///< features tracked from the previous frame, summed
+  int tracked_min = -1;                   ///< fewest tracked in a frame (after the first)
+  int frames_few_tracks = 0;              ///< frames below perception.lost_min_tracks
   bool path_finished = false;
   std::string gl_description;             ///< what rendered the frames
   uint64_t trajectory_hash = 0;           ///< FNV-1a over the trajectory rows

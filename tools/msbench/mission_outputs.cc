@@ -85,6 +85,10 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   }
   j["vio_lost_at_s"] = f.vio_lost_at_s >= 0 ? nlohmann::json(f.vio_lost_at_s) : nlohmann::json(nullptr);
   j["distance_flown_m"] = f.distance_flown_m;
+  j["perception"] = {{"frames", f.perception_frames},
+                     {"tracked_mean", f.perception_frames > 1 ? f.tracked_sum / (f.perception_frames - 1) : 0.0},
+                     {"tracked_min", f.tracked_min},
+                     {"frames_few_tracks", f.frames_few_tracks}};
   j["final_drift_m"] = f.final_drift_m;
   j["frames_rendered"] = f.frames_rendered;
   j["wall_time_s"] = f.wall_time_s;

@@ -232,11 +232,12 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
       << kind("textured") << " | " << other << " | " << meanCell(r.rtf, r.complete, 2) << " |\n";
   }
   // Every run, with its collision.
-  o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | collision |\n| --- | --- | --- | --- | --- | --- |\n";
+  o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | tracked (mean) | drift (m) | collision |\n"
+       "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const ReportRun& r : results.runs) {
     const nlohmann::json& m = r.metrics;
     if (!m.is_object()) {
-      o << "| " << r.id << " | " << r.status << " | — | — | — | — |\n";
+      o << "| " << r.id << " | " << r.status << " | — | — | — | — | — | — |\n";
       continue;
     }
     std::string hit = "—";
@@ -248,7 +249,9 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     const auto& cov = m["coverage"];
     o << "| " << r.id << " | " << m.value("status", std::string("?")) << " | " << fixed(number(cov, "area_m2"), 0)
       << " | " << (cov.is_object() && cov.contains("box_share") && cov["box_share"].is_number() ? fixed(cov["box_share"].get<double>(), 2) : "—")
-      << " | " << fixed(number(m, "sim_time_s"), 0) << " | " << hit << " |\n";
+      << " | " << fixed(number(m, "sim_time_s"), 0) << " | "
+      << (m.contains("perception") ? fixed(number(m["perception"], "tracked_mean"), 0) : "—") << " | "
+      << fixed(number(m, "final_drift_m"), 2) << " | " << hit << " |\n";
   }
   return o.str();
 }
