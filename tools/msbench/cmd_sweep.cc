@@ -47,6 +47,7 @@ struct RunState {
 };
 
 std::string tail(const std::string& text, int lines) {
+  if (text.empty()) return text;  // a run killed before it wrote anything
   size_t pos = text.size();
   for (int k = 0; k <= lines && pos > 0; ++k) {
     const size_t nl = text.rfind('\n', pos - 1);

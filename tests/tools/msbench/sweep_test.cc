@@ -145,6 +145,42 @@ exclude: [{variant: broken, seed: 2}]
   EXPECT_NE(readText(d / "log3").find("the sweep file changed"), std::string::npos) << readText(d / "log3");
 }
 
+TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
+  // Three runs one at a time; the second is killed with SIGKILL while it runs (as the kernel's
+  // OOM killer or a crash would end it): recorded failed with the signal, the others complete.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "signal");
+  const fs::path f = writeSweep(d, "set: {duration_s: 12}\nseeds: 3\n");
+  const fs::path out = d / "out";
+  const std::string cmd = "'" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() + "' > '" +
+                          (d / "log").string() + "' 2>&1 & echo $!";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_TRUE(p);
+  int sweep_pid = 0;
+  ASSERT_EQ(fscanf(p, "%d", &sweep_pid), 1);
+  pclose(p);
+  // Wait for run s2 to start, then kill it (its command line names its output directory).
+  const std::string pattern = (out / "runs" / "s2").string();
+  bool killed = false;
+  for (int i = 0; i < 1200 && !killed; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    // "[-]-out": the regular expression matches the run's "--out" but not this shell's own
+    // command line, which holds the pattern too.
+    killed = std::system(("pkill -KILL -f -- '[-]-out " + pattern + " ' > /dev/null 2>&1").c_str()) == 0;
+  }
+  ASSERT_TRUE(killed) << readText(d / "log");
+  // The sweep (a background shell job) is not our child: wait for its last line.
+  for (int i = 0; i < 1200 && readText(d / "log").find("runs complete") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const auto r = rows(out);
+  ASSERT_EQ(r.size(), 3u) << readText(d / "log");
+  EXPECT_EQ(r.at("s1")[2], "complete");
+  EXPECT_EQ(r.at("s2")[2], "failed");
+  EXPECT_EQ(r.at("s2")[10], "9");  // signal
+  EXPECT_EQ(r.at("s3")[2], "complete");
+  EXPECT_NE(readText(d / "log").find("2 of 3 runs complete, 1 failed"), std::string::npos) << readText(d / "log");
+  EXPECT_FALSE(fs::exists(out / "runs" / "s2" / "metrics.json"));
+}
+
 TEST(Sweep, UnknownKeysInAVariantRefuseTheWholeSweepBeforeAnyRun) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "unknown");
   const fs::path f = writeSweep(d, "axes: [{name: v, variants: {x: {method.switches.warp: true}}}]\n");
