@@ -20,6 +20,7 @@ void StarDiscoveryConfig::validate(ConfigChecker& c) const {
   c.inRange("look_around_step_deg", look_around_step_deg, 10.0, 180.0);
   c.positive("replan_period_s", replan_period_s);
   c.positive("transit_timeout_s", transit_timeout_s);
+  c.positive("retry_period_s", retry_period_s);
   c.nonNegative("check_ahead_m", check_ahead_m);
   c.nonNegative("check_clearance_m", check_clearance_m);
   c.inRange("takeoff_altitude_m", takeoff_altitude_m, 0.3, 50.0);
@@ -159,7 +160,7 @@ StarDiscoveryExplorer::StarDiscoveryExplorer(const StarDiscoveryConfig& config, 
       planner_(config.planner, context.exploration_box, config.map.resolution_m),
       candidate_rng_(context.seed, "star_candidates"),
       takeoff_(context.start, config.takeoff_altitude_m, config.start_forward_m) {
-  for (const char* k : {"stars", "star_rays", "global_steps", "fallback_steps", "interesting_cells", "transits_reached",
+  for (const char* k : {"stars", "star_rays", "global_steps", "fallback_steps", "holds", "interesting_cells", "transits_reached",
                         "transits_failed", "blocked_stops", "paths_sent", "map_points"})
     counters_[k] = 0;
 }
@@ -231,7 +232,9 @@ std::optional<PathCommand> StarDiscoveryExplorer::chooseNextOrigin(const Vehicle
       if (nearest >= 2.0 * config_.min_ray_m) ranked.push_back({nearest, c});
     }
     if (ranked.empty()) {
-      phase_ = Phase::kDone;  // nowhere to go: hold
+      ++counters_["holds"];  // nowhere to go yet: hold, look again later
+      phase_ = Phase::kHold;
+      hold_until_s_ = s.t_s + config_.retry_period_s;
       return command(s, {{s.reference.position_m, std::nullopt}});
     }
   }
@@ -247,10 +250,17 @@ std::optional<PathCommand> StarDiscoveryExplorer::chooseNextOrigin(const Vehicle
     for (size_t i = 1; i < path->points.size(); ++i) w.push_back({path->points[i], std::nullopt});
     return command(s, std::move(w));
   }
-  // No candidate reachable: mark this spot as seen (an origin) and look again next step.
+  // No candidate reachable: a star from here if this spot is not an origin yet, else hold and
+  // look again after retry_period_s (the map may have grown).
   ++counters_["transits_failed"];
-  origins_.push_back(s.reference.position_m);
-  return startStar(s);
+  const Vec3 here = s.reference.position_m;
+  const bool known = std::any_of(origins_.begin(), origins_.end(),
+                                 [&](const Vec3& o) { return (o - here).norm() < config_.min_ray_m; });
+  if (!known) return startStar(s);
+  ++counters_["holds"];
+  phase_ = Phase::kHold;
+  hold_until_s_ = s.t_s + config_.retry_period_s;
+  return command(s, {{here, std::nullopt}});
 }
 
 std::optional<PathCommand> StarDiscoveryExplorer::plan(const VehicleState& s) {
@@ -310,7 +320,8 @@ std::optional<PathCommand> StarDiscoveryExplorer::plan(const VehicleState& s) {
       for (size_t i = 1; i < path->points.size(); ++i) w.push_back({path->points[i], std::nullopt});
       return command(s, std::move(w));
     }
-    case Phase::kDone:
+    case Phase::kHold:
+      if (s.t_s >= hold_until_s_ && s.path_finished) return chooseNextOrigin(s);
       return std::nullopt;
   }
   return std::nullopt;

@@ -15,7 +15,8 @@
 // With no interesting cell left, the next origin is the traversable cell farthest from every
 // earlier origin (our addition: the paper's dense semi-dense maps leave interesting cells; a
 // sparse map's free space is mostly rays from the camera positions, all in sight of them);
-// with none reachable, the vehicle holds its position.
+// with none reachable, a star from the current spot if it is not an origin yet, else the
+// vehicle holds its position and looks again after retry_period_s.
 #pragma once
 
 #include <map>
@@ -45,6 +46,7 @@ struct StarDiscoveryConfig {
   double look_around_step_deg = 90.0; ///< the look-around turns in steps of this
   double replan_period_s = 1.0;       ///< transit paths re-planned this often
   double transit_timeout_s = 60.0;    ///< a target not reached by then is given up
+  double retry_period_s = 5.0;        ///< with no reachable candidate: hold, look again after this
   double check_ahead_m = 5.0;         ///< predicted-path check length ...
   double check_clearance_m = 1.0;     ///< ... and clearance from occupied cells
   double takeoff_altitude_m = 2.0;    ///< climb above the start
@@ -109,7 +111,7 @@ class StarDiscoveryExplorer : public Explorer {
   GridMap& mutableMap() { return map_; }
 
  private:
-  enum class Phase { kTakeoff, kLookAround, kStar, kGlobal, kTransit, kDone };
+  enum class Phase { kTakeoff, kLookAround, kStar, kGlobal, kTransit, kHold };
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
   std::optional<PathCommand> startStar(const VehicleState& s);
   std::optional<PathCommand> chooseNextOrigin(const VehicleState& s);
@@ -126,7 +128,7 @@ class StarDiscoveryExplorer : public Explorer {
   bool map_changed_ = true, sent_ = false;
   std::vector<Vec3> origins_;
   std::optional<Vec3> target_;
-  double last_plan_s_ = -1e9, transit_since_s_ = 0;
+  double last_plan_s_ = -1e9, transit_since_s_ = 0, hold_until_s_ = 0;
   std::vector<Vec3> last_path_;
   std::map<std::string, double> counters_;
 };

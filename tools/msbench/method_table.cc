@@ -174,6 +174,7 @@ MethodChoice readStarDiscovery(MapReader& m) {
   m.read("look_around_step_deg", c.look_around_step_deg);
   m.read("replan_period_s", c.replan_period_s);
   m.read("transit_timeout_s", c.transit_timeout_s);
+  m.read("retry_period_s", c.retry_period_s);
   m.read("check_ahead_m", c.check_ahead_m);
   m.read("check_clearance_m", c.check_clearance_m);
   m.read("takeoff_altitude_m", c.takeoff_altitude_m);
