@@ -9,6 +9,8 @@ namespace msb {
 void GridPlannerConfig::validate(ConfigChecker& c) const {
   c.nonNegative("clearance_m", clearance_m);
   c.nonNegative("escape_clearance_m", escape_clearance_m);
+  c.require(unknown_clearance_m >= 0.0 || unknown_clearance_m == -1.0, "unknown_clearance_m",
+            "must be ≥ 0 (or -1: the same as clearance_m)");
   c.nonNegative("escape_radius_m", escape_radius_m);
   c.inRange("max_expansions", max_expansions, 1000, 100000000);
 }
@@ -52,18 +54,20 @@ void GridPathPlanner::rebuild(const GridMap& map) {
   std::fill(blocked_.begin(), blocked_.end(), 0);
   // Offsets of the cells whose centres lie within a distance of a cell centre, with the flags
   // they get: kBlocked within the clearance, kBlocked | kHard within the escape clearance.
-  const double hard_m = std::min(config_.escape_clearance_m, config_.clearance_m);
-  const double reach = config_.clearance_m;
-  const int r = int(std::floor(reach / res_ + 1e-9));
-  std::vector<std::array<int, 4>> offsets;
-  for (int dz = -r; dz <= r; ++dz)
-    for (int dy = -r; dy <= r; ++dy)
-      for (int dx = -r; dx <= r; ++dx) {
-        const double d = res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
-        const int flags = (d <= config_.clearance_m + 1e-9 ? kBlocked : 0) |
-                          (d <= hard_m + 1e-9 ? kBlocked | kHard : 0);
-        if (flags) offsets.push_back({dx, dy, dz, flags});
-      }
+  auto offsetsWithin = [&](double clearance_m) {
+    const double hard_m = std::min(config_.escape_clearance_m, clearance_m);
+    const int r = int(std::floor(clearance_m / res_ + 1e-9));
+    std::vector<std::array<int, 4>> offsets;
+    for (int dz = -r; dz <= r; ++dz)
+      for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx) {
+          const double d = res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
+          const int flags = (d <= clearance_m + 1e-9 ? kBlocked : 0) | (d <= hard_m + 1e-9 ? kBlocked | kHard : 0);
+          if (flags) offsets.push_back({dx, dy, dz, flags});
+        }
+    return offsets;
+  };
+  const std::vector<std::array<int, 4>> offsets = offsetsWithin(config_.clearance_m);
   // Every occupied cell (a pruned leaf covers several) blocks its neighbourhood.
   const Vec3 margin = Vec3::Constant(config_.clearance_m + res_);
   for (const GridLeaf& leaf : map.leaves(true)) {
@@ -106,6 +110,8 @@ void GridPathPlanner::rebuild(const GridMap& map) {
               known[size_t(index(i, j, k))] = 1;
           }
     }
+    const std::vector<std::array<int, 4>> unknown_offsets =
+        offsetsWithin(config_.unknown_clearance_m < 0 ? config_.clearance_m : config_.unknown_clearance_m);
     std::vector<uint8_t> dilated = blocked_;
     for (int k = 0; k < nz_; ++k)
       for (int j = 0; j < ny_; ++j)
@@ -119,7 +125,7 @@ void GridPathPlanner::rebuild(const GridMap& map) {
             border = a >= 0 && b >= 0 && c >= 0 && a < nx_ && b < ny_ && c < nz_ && known[size_t(index(a, b, c))];
           }
           if (!border) continue;
-          for (const auto& o : offsets) {
+          for (const auto& o : unknown_offsets) {
             const int a = i + o[0], b = j + o[1], c = k + o[2];
             if (a < 0 || b < 0 || c < 0 || a >= nx_ || b >= ny_ || c >= nz_) continue;
             dilated[size_t(index(a, b, c))] |= uint8_t(o[3]);

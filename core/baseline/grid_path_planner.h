@@ -2,7 +2,8 @@
 // box, aligned with the OctoMap cells, rebuilt from the map before planning. A cell is blocked
 // when its centre lies within `clearance_m` of an occupied cell's centre; with
 // `unknown_is_occupied` (the default; the paper: "the same distance from obstacles and unknown
-// space as MonoSpheres") also when it is unknown or within `clearance_m` of an unknown cell.
+// space as MonoSpheres") also when it is unknown or within `unknown_clearance_m` (by default
+// `clearance_m`) of an unknown cell.
 // With it off, unknown space is traversable (what our design notes record of the reference
 // code; measured to crash into unseen walls and ceilings within a minute, docs/baseline.md). A* (26-neighbour moves, Euclidean heuristic, ties broken by cell index) searches
 // from the vehicle's cell; when the goal cannot be reached it returns the path to the reached
@@ -27,6 +28,8 @@ namespace msb {
 struct GridPlannerConfig {
   double clearance_m = 1.5;          ///< distance kept from occupied cells
   bool unknown_is_occupied = true;   ///< unknown cells and their clearance blocked (the paper; false: traversable)
+  double unknown_clearance_m = -1.0; ///< distance kept from unknown cells when they are blocked (< 0: clearance_m;
+                                     ///< 0: only known free cells, star discovery's rule)
   double escape_radius_m = 2.0;      ///< from a blocked start, blocked cells this close are passable ...
   double escape_clearance_m = 0.75;  ///< ... unless this close to an occupied cell
   int max_expansions = 500000;       ///< A* node budget per search

@@ -3,8 +3,8 @@
 // same OctoMap map and traversability grid as the grid baseline:
 //   1. take off like every method, then a look-around: a full turn on the spot;
 //   2. a star discovery from the current position: m rays at equal angles, each marched through
-//      the traversability grid (occupied and unknown cells inflated by the planner's clearance)
-//      to its farthest traversable cell, up to max_ray_m, at l heights around the origin; the
+//      the traversability grid (known free cells, occupied ones inflated by the planner's
+//      clearance; unknown cells are not traversable but not inflated) to its farthest traversable cell, up to max_ray_m, at l heights around the origin; the
 //      height with the largest total ray length wins. The vehicle flies every ray out and back
 //      with its heading 90° to the motion (lateral motion gives parallax and closes the
 //      "indentations" of unknown space next to textureless surfaces);
@@ -35,7 +35,9 @@ namespace msb {
 /// Star discovery settings (the paper's where it gives them).
 struct StarDiscoveryConfig {
   GridMapConfig map;                  ///< OctoMap insertion (as the grid baseline)
-  GridPlannerConfig planner;          ///< traversability (inflation = clearance_m) and A*
+  /// Traversability and A*: occupied cells inflated by clearance_m; only known free cells are
+  /// traversable, unknown ones are not inflated (the paper: "inflation of the occupied voxels").
+  GridPlannerConfig planner{.clearance_m = 1.5, .unknown_is_occupied = true, .unknown_clearance_m = 0.0};
   int rays = 8;                       ///< m: rays per star, at equal angles
   int heights = 3;                    ///< l: heights tried around the origin ...
   double height_step_m = 0.5;         ///< ... this far apart

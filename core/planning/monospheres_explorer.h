@@ -62,6 +62,9 @@ struct MonoSpheresPlannerConfig {
   double replan_period_s = 0.4;             ///< how often the path is re-sent
   double check_ahead_m = 5.0;               ///< predicted-trajectory check length ...
   double check_clearance_m = 1.0;           ///< ... and clearance from obstacle points
+  bool allow_moving_away = true;            ///< a sample inside the clearance passes if it is farther from
+                                            ///< that point than the vehicle (approach rule); false = any
+                                            ///< point inside the clearance blocks (DESIGN's strict rule)
   int max_blocked_steps = 5;                ///< consecutive blocked steps fail the goal
   int max_route_repairs = 8;                ///< searches per step, each blocking one too-close edge
   double blocked_edge_timeout_s = 30.0;     ///< a graph edge found too close to obstacles stays blocked this long
@@ -140,6 +143,7 @@ class MonoSpheresExplorer : public Explorer {
   bool segmentFree(const Vec3& a, const Vec3& b) const;   // inside the sphere union and clear
   // True if x lies within the clearance of an obstacle point and closer to it than `here` (the
   // vehicle): a vehicle already too close to a point (e.g. a spurious one) may always move away.
+  // With allow_moving_away = false, any point within the clearance counts.
   bool approaches(const Vec3& x, const Vec3& here) const;
   bool segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const;  // no sample approaches
   bool pathBlocked(const std::vector<Vec3>& pts) const;

@@ -80,6 +80,7 @@ void readPlanner(MapReader r, MonoSpheresPlannerConfig& c) {
   r.read("replan_period_s", c.replan_period_s);
   r.read("check_ahead_m", c.check_ahead_m);
   r.read("check_clearance_m", c.check_clearance_m);
+  r.read("allow_moving_away", c.allow_moving_away);
   r.read("max_blocked_steps", c.max_blocked_steps);
   r.read("max_route_repairs", c.max_route_repairs);
   r.read("blocked_edge_timeout_s", c.blocked_edge_timeout_s);
@@ -155,6 +156,7 @@ void readGridMapAndPlanner(MapReader& m, GridMapConfig& map, GridPlannerConfig& 
     r.read("unknown_is_occupied", planner.unknown_is_occupied);
     r.read("escape_radius_m", planner.escape_radius_m);
     r.read("escape_clearance_m", planner.escape_clearance_m);
+    r.read("unknown_clearance_m", planner.unknown_clearance_m);
     r.read("max_expansions", planner.max_expansions);
     r.finish();
   }

@@ -104,6 +104,30 @@ TEST(GridPathPlanner, UnknownIsOccupiedKeepsTheClearanceFromUnknownSpace) {
   EXPECT_NEAR(edge->points.back().y(), 2.25, 1e-9);
 }
 
+TEST(GridPathPlanner, UnknownClearanceZeroAllowsEveryKnownFreeCellAwayFromObstacles) {
+  // The slab of known free space above, with unknown_clearance_m = 0 (star discovery's rule):
+  // the cell next to the unknown side is traversable, the unknown cell beyond it is not.
+  GridMap map(GridMapConfig{});
+  for (double z = 0.25; z < 4.0; z += 0.5)
+    for (double y = -3.75; y < 4.0; y += 0.5) map.insertScan(Vec3(0.25, y, z), {Vec3(14.1, y, z)});
+  GridPlannerConfig star;
+  star.unknown_is_occupied = true;
+  star.unknown_clearance_m = 0.0;
+  GridPathPlanner planner(star, kBox, 0.5);
+  planner.rebuild(map);
+  EXPECT_TRUE(planner.traversable(Vec3(8.25, 3.75, 2.25)));
+  EXPECT_FALSE(planner.traversable(Vec3(8.25, 4.25, 2.25)));
+  const auto edge = planner.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 3.75, 2.25));
+  ASSERT_TRUE(edge);
+  EXPECT_TRUE(edge->reaches_goal);
+  // The default (-1) keeps clearance_m from unknown cells, as before.
+  GridPlannerConfig paper;
+  GridPathPlanner planner2(paper, kBox, 0.5);
+  planner2.rebuild(map);
+  EXPECT_FALSE(planner2.traversable(Vec3(8.25, 3.75, 2.25)));
+  EXPECT_TRUE(planner2.traversable(Vec3(8.25, 2.25, 2.25)));
+}
+
 TEST(GridPathPlanner, AnUnreachableGoalGivesTheClosestReachableCell) {
   const GridMap map = wallMap();
   GridPathPlanner planner(traversableUnknown(), kBox, 0.5);

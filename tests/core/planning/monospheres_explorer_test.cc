@@ -15,6 +15,7 @@ constexpr double kStartZ = 0.05;
 // An explorer whose start is the origin (on the ground), heading +x, in a large box.
 struct Fixture {
   explicit Fixture(bool vpb = true) : explorer(config(vpb), FisheyeCamera(FisheyeCameraConfig{}), context()) {}
+  explicit Fixture(const MonoSpheresConfig& c) : explorer(c, FisheyeCamera(FisheyeCameraConfig{}), context()) {}
   static MonoSpheresConfig config(bool vpb) {
     MonoSpheresConfig c;
     c.planner.viewpoints.vpb = vpb;
@@ -207,6 +208,27 @@ TEST(MonoSpheresExplorer, ReturnToFreeSpaceRefusesABlockedSegment) {
     EXPECT_TRUE(cmd->waypoints[0].position_m.isApprox(blocked ? Vec3(0, 0, 2) : centre)) << blocked;
     EXPECT_EQ(f.counter("returns_to_free_space"), blocked ? 0.0 : 1.0);
     EXPECT_EQ(f.counter("returns_refused"), blocked ? 1.0 : 0.0);
+  }
+}
+
+TEST(MonoSpheresExplorer, MovingAwayFromAPointInsideTheClearanceIsAllowedOnlyUnderTheApproachRule) {
+  // The vehicle 2 m outside the only sphere with an obstacle point 0.5 m behind it: the return
+  // to the sphere moves away from the point. The approach rule lets it go; the strict rule
+  // (allow_moving_away = false) refuses every segment starting inside the clearance.
+  for (bool moving_away : {true, false}) {
+    MonoSpheresConfig c;
+    c.planner.allow_moving_away = moving_away;
+    Fixture f(c);
+    SphereMap& m = f.explorer.mutableMap();
+    const Vec3 centre(4, 0, 2);
+    m.addSphere(centre, 2.0);
+    m.addObstacle({-0.5, 0, 2}, 3.0);
+    f.skipTakeoff();
+    const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    ASSERT_TRUE(cmd);
+    ASSERT_EQ(cmd->waypoints.size(), 1u);
+    EXPECT_TRUE(cmd->waypoints[0].position_m.isApprox(moving_away ? centre : Vec3(0, 0, 2))) << moving_away;
+    EXPECT_EQ(f.counter("returns_refused"), moving_away ? 0.0 : 1.0);
   }
 }
 
