@@ -136,7 +136,7 @@ bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
   });
 }
 
-bool MonoSpheresExplorer::approaches(const Vec3& x, const Vec3& here) const {
+bool MonoSpheresExplorer::tooClose(const Vec3& x, const Vec3& here) const {
   for (uint64_t id : map_.obstaclesNear(x, config_.planner.check_clearance_m)) {
     if (!config_.planner.allow_moving_away) return true;
     const Vec3& o = map_.obstacles().at(id).position;
@@ -146,18 +146,18 @@ bool MonoSpheresExplorer::approaches(const Vec3& x, const Vec3& here) const {
 }
 
 bool MonoSpheresExplorer::segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const {
-  return everySample(a, b, 0.3, [&](const Vec3& x) { return !approaches(x, here); });
+  return everySample(a, b, 0.3, [&](const Vec3& x) { return !tooClose(x, here); });
 }
 
 bool MonoSpheresExplorer::pathBlocked(const std::vector<Vec3>& pts) const {
-  // Samples along the first check_ahead_m of the path (see approaches()).
+  // Samples along the first check_ahead_m of the path (see tooClose()).
   if (pts.empty()) return false;
   double s = 0;
   for (size_t i = 1; i < pts.size() && s < config_.planner.check_ahead_m; ++i) {
     const Vec3 a = pts[i - 1], b = pts[i];
     const double len = (b - a).norm();
     for (double t = 0; t < len && s + t < config_.planner.check_ahead_m; t += 0.25)
-      if (approaches(a + t / len * (b - a), pts.front())) return true;
+      if (tooClose(a + t / len * (b - a), pts.front())) return true;
     s += len;
   }
   return false;
@@ -252,7 +252,7 @@ EdgeFilter MonoSpheresExplorer::passable() const {
 
 std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleState& s) {
   // Outside the known free space: return to the deepest sphere within return_range_m whose
-  // centre can be reached along a segment that does not approach an obstacle point; if none
+  // centre can be reached along a segment whose samples keep the clearance (tooClose); if none
   // can, stop where the vehicle is.
   const auto& pc = config_.planner;
   if (s.t_s - last_send_s_ < pc.replan_period_s) return std::nullopt;

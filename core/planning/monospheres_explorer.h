@@ -27,9 +27,9 @@
 // Without a goal while cut off in a small pocket of the graph, or for 5 s without any goal, the
 // vehicle bridges straight to the nearest sphere outside its part of the graph within
 // bridge_range_m. A bridge may cross space without spheres (that is its purpose) but no sample
-// of it may come within check_clearance_m of an obstacle point, unless it moves away from a point
-// the vehicle is already closer to. The return to free space (outside every sphere) obeys the
-// same rule; if no nearby sphere can be reached that way, the vehicle stops.
+// of it may come within check_clearance_m of an obstacle point (with allow_moving_away: unless it
+// moves away from a point the vehicle is already closer to). The return to free space (outside
+// every sphere) obeys the same rule; if no nearby sphere can be reached that way, the vehicle stops.
 // Before exploring: take off vertically and fly a short straight stretch forward, so that the
 // first points get parallax.
 #pragma once
@@ -62,9 +62,9 @@ struct MonoSpheresPlannerConfig {
   double replan_period_s = 0.4;             ///< how often the path is re-sent
   double check_ahead_m = 5.0;               ///< predicted-trajectory check length ...
   double check_clearance_m = 1.0;           ///< ... and clearance from obstacle points
-  bool allow_moving_away = true;            ///< a sample inside the clearance passes if it is farther from
-                                            ///< that point than the vehicle (approach rule); false = any
-                                            ///< point inside the clearance blocks (DESIGN's strict rule)
+  bool allow_moving_away = false;           ///< true: a sample inside the clearance passes if it is farther
+                                            ///< from that point than the vehicle (the former "approach
+                                            ///< rule"); false: any point inside the clearance blocks
   int max_blocked_steps = 5;                ///< consecutive blocked steps fail the goal
   int max_route_repairs = 8;                ///< searches per step, each blocking one too-close edge
   double blocked_edge_timeout_s = 30.0;     ///< a graph edge found too close to obstacles stays blocked this long
@@ -141,11 +141,10 @@ class MonoSpheresExplorer : public Explorer {
   std::optional<uint64_t> chooseGoal(const VehicleState& s, const SphereCostField& field);
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
   bool segmentFree(const Vec3& a, const Vec3& b) const;   // inside the sphere union and clear
-  // True if x lies within the clearance of an obstacle point and closer to it than `here` (the
-  // vehicle): a vehicle already too close to a point (e.g. a spurious one) may always move away.
-  // With allow_moving_away = false, any point within the clearance counts.
-  bool approaches(const Vec3& x, const Vec3& here) const;
-  bool segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const;  // no sample approaches
+  // True if x lies within the clearance of an obstacle point; with allow_moving_away only if x is
+  // also closer to it than `here` (the vehicle), so a vehicle already too close may move away.
+  bool tooClose(const Vec3& x, const Vec3& here) const;
+  bool segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const;  // no sample too close
   bool pathBlocked(const std::vector<Vec3>& pts) const;
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
   void failGoal(double t_s, const char* reason);
