@@ -49,7 +49,7 @@ struct FeatureTrackerConfig {
   int grid_rows = 3;
   int fast_threshold = 15;           ///< FAST intensity threshold
   double min_distance_px = 20.0;     ///< between features
-  int klt_window_px = 21;            ///< LK window side
+  int klt_window_px = 15;            ///< LK window side (OpenVINS TrackKLT: 15×15)
   int klt_pyramid_levels = 3;        ///< pyramid levels above the base
   int klt_max_iterations = 30;
   double fb_max_error_px = 1.0;      ///< forward–backward consistency threshold
