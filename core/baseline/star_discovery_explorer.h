@@ -4,8 +4,9 @@
 //   1. take off like every method, then a look-around: a full turn on the spot;
 //   2. a star discovery from the current position: m rays at equal angles, each marched through
 //      the traversability grid (known free cells, occupied ones inflated by the planner's
-//      clearance; unknown cells are not traversable but not inflated) to its farthest traversable cell, up to max_ray_m, at l heights around the origin; the
-//      height with the largest total ray length wins. The vehicle flies every ray out and back
+//      clearance; unknown cells are not traversable but not inflated) to its farthest
+//      traversable cell, up to max_ray_m, at l heights around the origin; the height with the
+//      largest total ray length wins. The vehicle flies every ray out and back
 //      with its heading 90° to the motion (lateral motion gives parallax and closes the
 //      "indentations" of unknown space next to textureless surfaces);
 //   3. a global step: free, traversable cells not in line of sight of any earlier star origin are

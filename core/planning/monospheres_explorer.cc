@@ -137,8 +137,8 @@ bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
 }
 
 bool MonoSpheresExplorer::tooClose(const Vec3& x, const Vec3& here) const {
+  if (!config_.planner.allow_moving_away) return map_.anyObstacleNear(x, config_.planner.check_clearance_m);
   for (uint64_t id : map_.obstaclesNear(x, config_.planner.check_clearance_m)) {
-    if (!config_.planner.allow_moving_away) return true;
     const Vec3& o = map_.obstacles().at(id).position;
     if ((x - o).norm() < (here - o).norm() - 1e-6) return true;
   }
