@@ -62,9 +62,9 @@ struct MonoSpheresPlannerConfig {
   double replan_period_s = 0.4;             ///< how often the path is re-sent
   double check_ahead_m = 5.0;               ///< predicted-trajectory check length ...
   double check_clearance_m = 1.0;           ///< ... and clearance from obstacle points
-  bool allow_moving_away = false;           ///< true: a sample inside the clearance passes if it is farther
-                                            ///< from that point than the vehicle (the former "approach
-                                            ///< rule"); false: any point inside the clearance blocks
+  bool allow_moving_away = true;            ///< true: a sample inside the clearance passes if it is farther
+                                            ///< from that point than the vehicle (the "approach rule");
+                                            ///< false: any point inside the clearance blocks (the design)
   int max_blocked_steps = 5;                ///< consecutive blocked steps fail the goal
   int max_route_repairs = 8;                ///< searches per step, each blocking one too-close edge
   double blocked_edge_timeout_s = 30.0;     ///< a graph edge found too close to obstacles stays blocked this long
