@@ -57,6 +57,7 @@ void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
   c.require(max_blocked_steps >= 1, "max_blocked_steps", "must be ≥ 1");
   c.require(max_route_repairs >= 1, "max_route_repairs", "must be ≥ 1");
   c.positive("blocked_edge_timeout_s", blocked_edge_timeout_s);
+  c.inRange("escape_margin_m", escape_margin_m, 0.0, 5.0);
   c.require(bridge_below_reachable >= 0, "bridge_below_reachable", "must be ≥ 0");
   c.positive("bridge_range_m", bridge_range_m);
   c.positive("bridge_after_idle_s", bridge_after_idle_s);
@@ -100,7 +101,7 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
   for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress",
                         "goals_failed_unreachable", "goals_failed_blocked", "goals_global", "blocked_stops",
                         "paths_sent", "idle_turns", "returns_to_free_space", "returns_refused", "edges_blocked", "bridges",
-                        "relaxed_steps", "links_used"})
+                        "relaxed_steps", "links_used", "clearance_escapes"})
     counters_[k] = 0;
 }
 
@@ -147,6 +148,36 @@ bool MonoSpheresExplorer::tooClose(const Vec3& x, const Vec3& here) const {
 
 bool MonoSpheresExplorer::segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const {
   return everySample(a, b, 0.3, [&](const Vec3& x) { return !tooClose(x, here); });
+}
+
+std::optional<Vec3> MonoSpheresExplorer::clearanceEscape(const Vec3& here) const {
+  // Away from the points within the clearance, each weighted by how deep inside it is, far
+  // enough to leave the nearest one's clearance (plus a margin); the segment may not approach
+  // any point it passes (the approach rule, whatever allow_moving_away says: escaping happens
+  // inside a clearance by definition).
+  const double clearance = config_.planner.check_clearance_m;
+  const std::vector<uint64_t> near = map_.obstaclesNear(here, clearance);
+  if (near.empty()) return std::nullopt;
+  Vec3 dir = Vec3::Zero();
+  double d_min = clearance;
+  for (uint64_t id : near) {
+    const Vec3 away = here - map_.obstacles().at(id).position;
+    const double d = away.norm();
+    if (d < 1e-6) continue;
+    dir += away / d * (clearance - d);
+    d_min = std::min(d_min, d);
+  }
+  if (dir.norm() < 1e-6) return std::nullopt;
+  const Vec3 target = here + dir.normalized() * (clearance - d_min + config_.planner.escape_margin_m);
+  const bool clear = everySample(here, target, 0.1, [&](const Vec3& x) {
+    for (uint64_t id : map_.obstaclesNear(x, clearance)) {
+      const Vec3& o = map_.obstacles().at(id).position;
+      if ((x - o).norm() < (here - o).norm() - 1e-6) return false;
+    }
+    return true;
+  });
+  if (!clear) return std::nullopt;
+  return target;
 }
 
 bool MonoSpheresExplorer::pathBlocked(const std::vector<Vec3>& pts) const {
@@ -472,6 +503,14 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   const double remaining = pathLength(route);
   if (remaining < best_remaining_m_ - 0.5) best_remaining_m_ = remaining, last_progress_s_ = s.t_s;
   if (pathBlocked(route)) {
+    // Already inside an obstacle point's clearance (the point appeared after the vehicle got
+    // there): every route that starts even slightly towards it is blocked, so holding here
+    // would fail goal after goal. Back away from the points instead and re-plan from there.
+    if (auto away = clearanceEscape(s.reference.position_m)) {
+      ++counters_["clearance_escapes"];
+      blocked_steps_ = 0;
+      return command(s, {{*away, std::nullopt}});
+    }
     ++counters_["blocked_stops"];
     if (++blocked_steps_ >= pc.max_blocked_steps) {
       failGoal(s.t_s, "blocked");

@@ -14,7 +14,9 @@
 //      the route (vehicle → sphere centres → viewpoint) is shortcut inside the sphere union,
 //      given headings (FFF or goal heading), cut at the carrot (15 m) and sent every
 //      replan period, unless the first 5 m pass closer than 1 m to an obstacle point
-//      (then stop and re-plan) or FFF first needs a turn in place towards the route.
+//      (then stop and re-plan; if the vehicle itself is inside that 1 m, it first backs away
+//      from the points to escape_margin_m beyond it) or FFF first needs a turn in place
+//      towards the route.
 // Parts of the graph joined by links: spheres shrink and vanish as drifted or new points arrive,
 // so a tunnel the vehicle flew through can lose its spheres and cut the graph in parts, leaving
 // frontiers in other parts out of reach. Each step, parts are linked by straight segments between
@@ -68,6 +70,7 @@ struct MonoSpheresPlannerConfig {
   int max_blocked_steps = 5;                ///< consecutive blocked steps fail the goal
   int max_route_repairs = 8;                ///< searches per step, each blocking one too-close edge
   double blocked_edge_timeout_s = 30.0;     ///< a graph edge found too close to obstacles stays blocked this long
+  double escape_margin_m = 0.3;             ///< a blocked vehicle inside a clearance backs out this far beyond it
   int bridge_below_reachable = 10;          ///< without a goal and fewer reachable spheres than this ...
   double bridge_range_m = 15.0;             ///< ... fly straight to the nearest other sphere within this range
   double bridge_after_idle_s = 5.0;         ///< ... or after this long without any goal
@@ -146,6 +149,9 @@ class MonoSpheresExplorer : public Explorer {
   bool tooClose(const Vec3& x, const Vec3& here) const;
   bool segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const;  // no sample too close
   bool pathBlocked(const std::vector<Vec3>& pts) const;
+  // Where to back away to when `here` lies inside an obstacle point's clearance (none: not
+  // inside, or the way out approaches another point).
+  std::optional<Vec3> clearanceEscape(const Vec3& here) const;
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
   void failGoal(double t_s, const char* reason);
 

@@ -84,6 +84,7 @@ void readPlanner(MapReader r, MonoSpheresPlannerConfig& c) {
   r.read("max_blocked_steps", c.max_blocked_steps);
   r.read("max_route_repairs", c.max_route_repairs);
   r.read("blocked_edge_timeout_s", c.blocked_edge_timeout_s);
+  r.read("escape_margin_m", c.escape_margin_m);
   r.read("bridge_below_reachable", c.bridge_below_reachable);
   r.read("bridge_range_m", c.bridge_range_m);
   r.read("bridge_after_idle_s", c.bridge_after_idle_s);

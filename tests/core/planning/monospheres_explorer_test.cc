@@ -232,6 +232,41 @@ TEST(MonoSpheresExplorer, MovingAwayFromAPointInsideTheClearanceIsAllowedOnlyUnd
   }
 }
 
+TEST(MonoSpheresExplorer, AVehicleInsideAClearanceBacksAwayInsteadOfHolding) {
+  // The vehicle at (4, 2.2, 2) inside the corridor's second sphere, an obstacle point 0.82 m
+  // from it (it appeared after the vehicle got there). The route starts towards the sphere's
+  // centre, past the point: blocked. Holding would block every goal the same way, so the
+  // vehicle backs away from the point to escape_margin_m beyond the clearance. With a second
+  // point on the way out, it holds (a blocked stop).
+  for (bool exit_blocked : {false, true}) {
+    Fixture f;
+    f.corridorWithFrontiers();
+    ASSERT_GE(f.frontiers, 10);
+    SphereMap& m = f.explorer.mutableMap();
+    const Vec3 p(4, 2.2, 2), o(4.2, 1.4, 2);
+    m.addObstacle(o, 3.0);
+    const Vec3 away = (p - o).normalized();
+    if (exit_blocked) m.addObstacle(p + 1.2 * away, 3.0);
+    f.skipTakeoff();
+    const auto cmd = f.explorer.plan(Fixture::at(p, 0.0, 1.0));
+    ASSERT_TRUE(cmd);
+    ASSERT_NE(f.explorer.goal(), 0u);
+    ASSERT_EQ(cmd->waypoints.size(), 1u);
+    const Vec3 target = cmd->waypoints[0].position_m;
+    if (exit_blocked) {
+      EXPECT_TRUE(target.isApprox(p));
+      EXPECT_EQ(f.counter("blocked_stops"), 1.0);
+      EXPECT_EQ(f.counter("clearance_escapes"), 0.0);
+    } else {
+      const MonoSpheresPlannerConfig pc;
+      EXPECT_NEAR((target - o).norm(), pc.check_clearance_m + pc.escape_margin_m, 1e-9);
+      EXPECT_GT((target - p).dot(away), 0.99 * (target - p).norm());  // straight away from the point
+      EXPECT_EQ(f.counter("clearance_escapes"), 1.0);
+      EXPECT_EQ(f.counter("blocked_stops"), 0.0);
+    }
+  }
+}
+
 // Two parts of the graph: a chain along +x around the vehicle, and beyond a gap of `gap` m a
 // second chain with frontiers at its far end.
 struct TwoParts : Fixture {
