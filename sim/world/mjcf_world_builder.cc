@@ -22,7 +22,68 @@ std::string quat(const Mat3& R) {
   return num(q.w()) + " " + num(q.x()) + " " + num(q.y()) + " " + num(q.z());
 }
 
+// A box's surface: 6 quads, each with its own 4 vertices (flat shading), counter-clockwise
+// from outside.
+void boxSurface(const Pose& T, const Vec3& half, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& f) {
+  const std::array<std::array<int, 2>, 4> corners = {{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (int sign : {1, -1}) {
+      const int base = int(v.size());
+      std::array<int, 4> order = {0, 1, 2, 3};
+      if (sign < 0) order = {3, 2, 1, 0};
+      for (int k : order) {
+        Vec3 local = Vec3::Zero();
+        local[axis] = sign * half[axis];
+        local[a] = corners[k][0] * half[a];
+        local[b] = corners[k][1] * half[b];
+        v.push_back(T * local);
+      }
+      f.push_back({base, base + 1, base + 2});
+      f.push_back({base, base + 2, base + 3});
+    }
+  }
+}
+
+// A cylinder's surface along T's z: an n-sided prism (side vertices shared around, so the side
+// is shaded smoothly) and two cap fans with their own vertices.
+void cylinderSurface(const Pose& T, double radius, double half_height, int n, std::vector<Vec3>& v,
+                     std::vector<std::array<int, 3>>& f) {
+  const int side = int(v.size());
+  for (int k = 0; k < n; ++k) {
+    const double ang = 2 * M_PI * k / n;
+    for (double z : {-half_height, half_height}) v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
+  }
+  for (int k = 0; k < n; ++k) {
+    const int a = side + 2 * k, b = side + 2 * ((k + 1) % n);  // bottom vertices; +1 = top
+    f.push_back({a, b, b + 1});
+    f.push_back({a, b + 1, a + 1});
+  }
+  for (double z : {-half_height, half_height}) {
+    const int centre = int(v.size());
+    v.push_back(T * Vec3(0, 0, z));
+    const int ring = int(v.size());
+    for (int k = 0; k < n; ++k) {
+      const double ang = 2 * M_PI * k / n;
+      v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
+    }
+    for (int k = 0; k < n; ++k) {
+      const int a = ring + k, b = ring + (k + 1) % n;
+      if (z > 0) f.push_back({centre, a, b});
+      else f.push_back({centre, b, a});
+    }
+  }
+}
+
 }  // namespace
+
+void MjcfWorldBuilder::mergeSurface(const Look& look, const std::vector<Vec3>& v,
+                                    const std::vector<std::array<int, 3>>& faces) {
+  MergedMesh& m = merged_[{look.merge_group, material(look)}];
+  const int base = int(m.vertices.size());
+  m.vertices.insert(m.vertices.end(), v.begin(), v.end());
+  for (const auto& t : faces) m.faces.push_back({base + t[0], base + t[1], base + t[2]});
+}
 
 std::string MjcfWorldBuilder::material(const Look& look) {
   switch (look.type) {
@@ -56,7 +117,7 @@ std::string MjcfWorldBuilder::collisionGeom(const Shape& s, const Look& look,
   else if (s.type == ShapeType::kCylinder) g << num(s.size.x()) << " " << num(s.size.z());
   else g << num(s.size.x());
   g << "\"";
-  if (look.type == Look::kTextured || look.type == Look::kHidden)
+  if (look.type == Look::kTextured || look.type == Look::kHidden || merged(look))
     g << " group=\"" << geom_groups::kCollisionOnly << "\" rgba=\"0.5 0.5 0.5 1\"";
   else g << " group=\"" << geom_groups::kRendered << "\" material=\"" << mat << "\"";
   g << "/>\n";
@@ -87,6 +148,12 @@ void MjcfWorldBuilder::addBox(const std::string& name, const std::string& object
   const std::string mat = material(look);
   bodies_ << collisionGeom(s, look, mat);
   shapes_.push_back(s);
+  if (merged(look)) {
+    std::vector<Vec3> v;
+    std::vector<std::array<int, 3>> f;
+    boxSurface(T, half, v, f);
+    mergeSurface(look, v, f);
+  }
   if (look.type == Look::kTextured) {
     if (!look.top_texture.empty()) textures_.insert(look.top_texture);
     addBoxMesh(name + "_vis", T, half, look.texture, look.top_texture);
@@ -143,6 +210,12 @@ void MjcfWorldBuilder::addCylinder(const std::string& name, const std::string& o
   const std::string mat = material(look);
   bodies_ << collisionGeom(s, look, mat);
   shapes_.push_back(s);
+  if (merged(look)) {
+    std::vector<Vec3> v;
+    std::vector<std::array<int, 3>> f;
+    cylinderSurface(T, radius, half_height, radius > 0.5 ? 24 : 12, v, f);
+    mergeSurface(look, v, f);
+  }
   if (look.type != Look::kTextured) return;
 
   // Visual prism with N sides (texture wraps around the circumference) and two cap fans.
@@ -245,11 +318,24 @@ std::string MjcfWorldBuilder::mjcf() const {
   }
   // Outdoors, a sun: a world-fixed directional light (used with the renderer's `sun` switch),
   // so faces of different orientation differ in brightness, as under Gazebo's sun.
-  os << assets_.str() << "  </asset>\n  <worldbody>\n";
+  // Merged meshes of flat parts (no texture coordinates: one uniform material each).
+  std::ostringstream merged_assets, merged_geoms;
+  for (const auto& [key, m] : merged_) {
+    const std::string name = key.first + "_" + key.second;
+    merged_assets << "    <mesh name=\"" << name << "\" vertex=\"";
+    for (size_t i = 0; i < m.vertices.size(); ++i) merged_assets << (i ? " " : "") << vec(m.vertices[i]);
+    merged_assets << "\" face=\"";
+    for (size_t i = 0; i < m.faces.size(); ++i)
+      merged_assets << (i ? " " : "") << m.faces[i][0] << " " << m.faces[i][1] << " " << m.faces[i][2];
+    merged_assets << "\"/>\n";
+    merged_geoms << "    <geom name=\"" << name << "\" type=\"mesh\" mesh=\"" << name << "\" material=\"" << key.second
+                 << "\" contype=\"0\" conaffinity=\"0\" group=\"" << geom_groups::kVisualMesh << "\"/>\n";
+  }
+  os << assets_.str() << merged_assets.str() << "  </asset>\n  <worldbody>\n";
   if (outdoor_)
     os << "    <light name=\"sun\" directional=\"true\" castshadow=\"false\" pos=\"0 0 60\" "
           "dir=\"0.62 0.47 -0.63\" diffuse=\"0.45 0.45 0.45\" specular=\"0 0 0\" ambient=\"0 0 0\"/>\n";
-  os << bodies_.str() << "  </worldbody>\n</mujoco>\n";
+  os << bodies_.str() << merged_geoms.str() << "  </worldbody>\n</mujoco>\n";
   return os.str();
 }
 

@@ -7,6 +7,9 @@
 //    then hidden (geom group 4) and the mesh (group 1) never collides;
 //  - flat: the collision geom itself rendered in a uniform grey (textureless surfaces);
 //  - cube: the collision geom rendered with a cube-mapped texture (spheres, e.g. canopies).
+// A flat look may name a merge group (Look::mergedInto): the collision geom is then hidden and
+// its surface joins one visual mesh per (group, grey level), so an object built from many flat
+// parts (a vehicle) costs the renderer a few draws instead of one per part.
 #pragma once
 
 #include <array>
@@ -34,14 +37,21 @@ struct Look {
   std::string texture;  ///< pattern name (textured, cube)
   double grey = 0.5;    ///< intensity in [0, 1] (flat)
   std::string top_texture;  ///< textured boxes: a different pattern on the top face (roofs)
+  std::string merge_group;  ///< flat boxes and cylinders: drawn as part of this group's mesh
 
   static Look textured(std::string t, std::string top = "") {
-    return {kTextured, std::move(t), 0.5, std::move(top)};
+    return {kTextured, std::move(t), 0.5, std::move(top), ""};
   }
-  static Look flat(double g) { return {kFlat, "", g, ""}; }
-  static Look cube(std::string t) { return {kCube, std::move(t), 0.5, ""}; }
+  static Look flat(double g) { return {kFlat, "", g, "", ""}; }
+  static Look cube(std::string t) { return {kCube, std::move(t), 0.5, "", ""}; }
   /// Collision only; the look comes from separate visual slabs (e.g. cave rock skins).
-  static Look hidden() { return {kHidden, "", 0.5, ""}; }
+  static Look hidden() { return {kHidden, "", 0.5, "", ""}; }
+  /// This look, drawn as part of the merge group's mesh (flat looks only).
+  Look mergedInto(std::string group) const {
+    Look l = *this;
+    l.merge_group = std::move(group);
+    return l;
+  }
 };
 
 /// Accumulates solids; produces MJCF text and shapes.
@@ -78,13 +88,17 @@ class MjcfWorldBuilder {
   const std::set<std::string>& texturesUsed() const { return textures_; }
   /// Number of collision and visual-only geoms.
   int collisionGeoms() const { return int(shapes_.size()); }
-  int visualGeoms() const { return visual_geoms_; }
+  int visualGeoms() const { return visual_geoms_ + int(merged_.size()); }
 
  private:
   std::string material(const Look& look);
   void addMesh(const std::string& name, const std::vector<Vec3>& v, const std::vector<Vec2>& uv,
                const std::vector<std::array<int, 3>>& faces, const std::string& material);
   std::string collisionGeom(const Shape& s, const Look& look, const std::string& material);
+  // Appends a solid's triangles to its merge group's mesh (flat looks with a merge group).
+  void mergeSurface(const Look& look, const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& faces);
+  // A flat look drawn as part of a merged mesh.
+  static bool merged(const Look& look) { return look.type == Look::kFlat && !look.merge_group.empty(); }
   void addBoxMesh(const std::string& name, const Pose& T, const Vec3& half, const std::string& texture,
                   const std::string& top_texture = "");
 
@@ -93,6 +107,11 @@ class MjcfWorldBuilder {
   std::set<std::string> textures_, cube_textures_;
   std::map<int, std::string> flat_materials_;  // grey level (0..255) -> material
   std::ostringstream assets_, bodies_;
+  struct MergedMesh {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> faces;
+  };
+  std::map<std::pair<std::string, std::string>, MergedMesh> merged_;  // (group, material) → mesh
   int visual_geoms_ = 0;
   bool outdoor_ = false;
 };

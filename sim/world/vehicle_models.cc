@@ -44,12 +44,15 @@ bool isVehicleKind(const std::string& kind) {
 void buildVehicle(const std::string& kind, const std::string& id, const Pose& base, const Vec3& size,
                   RngStream& detail, MjcfWorldBuilder& b) {
   const VehicleShape v = shapeOf(kind);
+  // Every part is drawn as part of one mesh per grey level of this vehicle (a few draws instead
+  // of one per part); the parts stay separate collision geoms.
+  auto flat = [&id](double grey) { return Look::flat(grey).mergedInto(id); };
   const double L = size.x(), W = size.y(), H = size.z();
   const double paint = detail.uniform(v.paint_min, v.paint_max);
   const double rw = v.wheel_radius * H, clearance = 0.45 * rw;
   const double body_top = v.body_top * H;
-  const Look body = Look::flat(paint), dark = Look::flat(0.07), rim = Look::flat(0.75);
-  const Look light = Look::flat(0.97), rear_light = Look::flat(0.28), bumper = Look::flat(0.18);
+  const Look body = flat(paint), dark = flat(0.07), rim = flat(0.75);
+  const Look light = flat(0.97), rear_light = flat(0.28), bumper = flat(0.18);
 
   // Lower body (from the ground clearance to the belt line) and the upper box (cabin, bus
   // body, ambulance box, fire-truck cab).
@@ -57,7 +60,7 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
            Vec3(0.5 * L, 0.5 * W, 0.5 * (body_top - clearance)), kPaint, body);
   const double cl = v.cabin_length * L, cw = v.cabin_width * W, cx = v.cabin_offset * L;
   b.addBox(id + "_upper", id, at(base, Vec3(cx, 0, 0.5 * (body_top + H))), Vec3(0.5 * cl, 0.5 * cw, 0.5 * (H - body_top)),
-           kPaint, kind == "ambulance" ? Look::flat(std::min(1.0, paint + 0.05)) : body);
+           kPaint, kind == "ambulance" ? flat(std::min(1.0, paint + 0.05)) : body);
 
   // Windows: dark panes standing 2 cm proud of the upper box's sides and front.
   const double win_h = kind == "bus" ? 0.45 * (H - body_top) : 0.6 * (H - body_top);
@@ -84,9 +87,9 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
     // A dark band along the box and a light bar on the cab.
     for (int side : {-1, 1})
       b.addBox(id + "_band" + (side > 0 ? "l" : "r"), id, at(base, Vec3(cx, side * (0.5 * cw + 0.01), body_top + 0.15 * H)),
-               Vec3(0.45 * cl, 0.02, 0.06 * H), kPaint, Look::flat(0.25));
+               Vec3(0.45 * cl, 0.02, 0.06 * H), kPaint, flat(0.25));
     b.addBox(id + "_lightbar", id, at(base, Vec3(front_x + 0.1 * L, 0, 0.5 * (body_top + H) + 0.02)),
-             Vec3(0.06 * L, 0.35 * W, 0.05), kPaint, Look::flat(0.6));
+             Vec3(0.06 * L, 0.35 * W, 0.05), kPaint, flat(0.6));
   }
   if (kind == "fire_truck") {
     // A ladder on the rear deck: two rails and rungs, and equipment lockers on the sides.
@@ -101,7 +104,7 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
       for (int k = 0; k < 3; ++k)
         b.addBox(id + "_locker" + (side > 0 ? "l" : "r") + std::to_string(k), id,
                  at(base, Vec3(-0.35 * L + k * 0.22 * L, side * (0.5 * W + 0.01), 0.5 * (clearance + body_top))),
-                 Vec3(0.09 * L, 0.02, 0.32 * (body_top - clearance)), kPaint, Look::flat(std::min(1.0, paint + 0.35)));
+                 Vec3(0.09 * L, 0.02, 0.32 * (body_top - clearance)), kPaint, flat(std::min(1.0, paint + 0.35)));
   }
 
   // Tyres (axis along y) with rims standing out of the body's sides.

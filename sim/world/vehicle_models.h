@@ -2,7 +2,8 @@
 // compositions of primitives — body panels in flat paint (textureless), dark windows, tyres with
 // light rims, bumpers and lights — each part a collision geom, so the collision shape follows
 // the vehicle. The paint is textureless as in the reference's Gazebo models; the structure
-// (window edges, wheel arches, lights) is what a corner detector can find.
+// (window edges, wheel arches, lights) is what a corner detector can find. The parts are drawn
+// as one mesh per grey level of each vehicle (MjcfWorldBuilder merge groups).
 #pragma once
 
 #include <string>

@@ -9,6 +9,7 @@
 
 #include "core/common/rng.h"
 #include "sim/physics/quadrotor_sim.h"
+#include "sim/world/vehicle_models.h"
 #include "sim/world/world_cache.h"
 #include "tools/msbench/world_registry.h"
 
@@ -156,6 +157,35 @@ TEST(Worlds, UnknownObjectKindIsAConfigError) {
   WorldSpec s = spec("sparse");
   s.objects[0].kind = "dragon";
   EXPECT_THROW(generateWorld(s), ConfigError);
+}
+
+TEST(Worlds, AVehicleIsDrawnAsOneMeshPerGreyLevelWithItsPartsAsHiddenCollisionGeoms) {
+  // A bus (dark windows and tyres, light rims, paint, bumpers, lights): every part stays a
+  // collision geom (its own ground-truth shape), hidden from the camera; the drawing is one
+  // mesh per grey level, which compiles in MuJoCo.
+  MjcfWorldBuilder b("one_bus");
+  RngStream detail(1, "detail");
+  buildVehicle("bus", "bus_0", Pose::Identity(), Vec3(11, 2.5, 3.2), detail, b);
+  const std::string xml = b.mjcf();
+  auto count = [&xml](const std::string& needle) {
+    int n = 0;
+    for (size_t at = xml.find(needle); at != std::string::npos; at = xml.find(needle, at + 1)) ++n;
+    return n;
+  };
+  const int parts = b.collisionGeoms();
+  EXPECT_GT(parts, 25);
+  EXPECT_EQ(count("group=\"" + std::to_string(geom_groups::kCollisionOnly) + "\""), parts);
+  EXPECT_EQ(count("group=\"" + std::to_string(geom_groups::kRendered) + "\""), 0);
+  const int meshes = count("type=\"mesh\"");
+  EXPECT_EQ(meshes, b.visualGeoms());
+  EXPECT_GE(meshes, 5);  // paint, dark, rim, bumper, lights
+  EXPECT_LE(meshes, 7);
+  const fs::path dir = tempCache("bus");
+  fs::create_directories(dir);
+  const fs::path file = dir / "bus.xml";
+  std::ofstream(file) << xml;
+  QuadrotorSim sim(PhysicsConfig{}, file.string(), poseFromXyzYaw(Vec3(0, 20, 1), 0));
+  EXPECT_EQ(sim.geomCount(), parts + meshes + 5);
 }
 
 }  // namespace
