@@ -138,6 +138,9 @@ class SphereMap {
   std::optional<uint64_t> tryAddFrontier(const Vec3& x);
   /// Drops frontiers that are no longer valid; returns how many.
   int revalidateFrontiers();
+  /// The id the next new frontier will get (ids only grow: a frontier with a smaller id existed
+  /// before this call).
+  uint64_t nextFrontierId() const { return next_frontier_; }
   /// True if every sphere can reach every other through overlaps.
   bool connected() const;
   /// Ids (ascending) of spheres whose ball comes within `reach` of p: |c − p| ≤ r + reach.

@@ -410,7 +410,7 @@ void MonoSpheresExplorer::checkActiveGoal(const VehicleState& s, const SphereCos
   const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
   if ((v.position - p).norm() <= pc.reach_distance_m &&
       std::abs(wrapAngle(v.yaw_rad - yaw)) <= pc.reach_angle_deg * kDeg) {
-    viewpoints_.markReached(goal_, p, yaw);
+    viewpoints_.markReached(goal_, p, yaw, map_.nextFrontierId());
     goal_ = 0;
     ++counters_["goals_reached"];
   } else if (!field.cost.count(v.sphere)) {
@@ -562,6 +562,13 @@ std::map<std::string, double> MonoSpheresExplorer::counters() const {
   c["viewpoints"] = double(viewpoints_.viewpoints().size());
   c["visited_markers"] = double(viewpoints_.markers().size());
   c["viewpoints_passed"] = double(viewpoints_.passedCount());
+  const CandidateRejections& r = viewpoints_.rejections();
+  c["candidates_outside_box"] = double(r.outside);
+  c["candidates_visited"] = double(r.visited);
+  c["candidates_blocked"] = double(r.blocked);
+  c["candidates_no_frontier"] = double(r.no_frontier);
+  c["candidates_low_value"] = double(r.low_value);
+  c["candidates_dominated"] = double(r.dominated);
   c["links"] = 0;
   for (const auto& [id, list] : links_) c["links"] += 0.5 * double(list.size());
   // Frontiers in the shell of a sphere the vehicle could reach at the last planning step.

@@ -29,11 +29,12 @@ bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double di
 ViewpointSet::ViewpointSet(const ViewpointConfig& config, uint64_t seed)
     : config_(checkValid(config)), rng_(seed, "viewpoints") {}
 
-int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw) const {
+int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_t min_frontier_id) const {
   const Vec3 axis(std::cos(yaw), std::sin(yaw), 0.0);
   const double cos_fov = std::cos(config_.fov_half_angle_deg * kDeg);
   int n = 0;
   for (uint64_t id : map.frontiersNear(p, config_.frontier_range_m)) {
+    if (id < min_frontier_id) continue;  // older than a close visited marker (vpb_new_frontiers)
     const Frontier& f = map.frontiers().at(id);
     const Vec3 ray = f.position - p;
     const double d = ray.norm();
@@ -45,18 +46,23 @@ int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw) const {
   return n;
 }
 
-bool ViewpointSet::blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id) const {
+ViewpointSet::Block ViewpointSet::blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id,
+                                          uint64_t* min_frontier_id) const {
   const double d = config_.block_distance_m, a = config_.block_angle_deg * kDeg;
   if (config_.vpb)
-    for (const auto& m : markers_)
-      if (posesClose(p, yaw, m.position, m.yaw_rad, d, a)) return true;
+    for (const auto& m : markers_) {
+      if (!posesClose(p, yaw, m.position, m.yaw_rad, d, a)) continue;
+      if (!config_.vpb_new_frontiers) return Block::kMarker;
+      *min_frontier_id = std::max(*min_frontier_id, m.frontier_watermark);
+    }
   if (goal_id) {
     const auto it = viewpoints_.find(goal_id);
-    if (it != viewpoints_.end() && posesClose(p, yaw, it->second.position, it->second.yaw_rad, d, a)) return true;
+    if (it != viewpoints_.end() && posesClose(p, yaw, it->second.position, it->second.yaw_rad, d, a))
+      return Block::kGoalOrFailed;
   }
   for (const auto& [q, until] : blacklist_)
-    if (t_s < until && (p - q).norm() <= config_.blacklist_radius_m) return true;
-  return false;
+    if (t_s < until && (p - q).norm() <= config_.blacklist_radius_m) return Block::kGoalOrFailed;
+  return Block::kNone;
 }
 
 int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reachable, const Vec3& vehicle,
@@ -74,7 +80,7 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
       v.value = value(map, v.position, v.yaw_rad);
       keep = v.value >= min_value;
       if (keep && config_.vpb && posesClose(vehicle, vehicle_yaw, v.position, v.yaw_rad, d, a)) {
-        markers_.push_back({vehicle, vehicle_yaw});
+        markers_.push_back({vehicle, vehicle_yaw, map.nextFrontierId()});
         ++passed_;
         keep = false;
       }
@@ -90,10 +96,20 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     const uint64_t sphere = reachable[rng_.uniformInt(reachable.size())];
     const double yaw = rng_.uniform(-M_PI, M_PI);
     const Vec3 p = map.spheres().at(sphere).centre;
-    if (allowed && !allowed(p)) continue;
-    if (blocked(p, yaw, t_s, goal_id)) continue;
-    const int val = value(map, p, yaw);
-    if (val < min_value) continue;
+    if (allowed && !allowed(p)) {
+      ++rejected_.outside;
+      continue;
+    }
+    uint64_t newer_than = 0;
+    if (const Block b = blocked(p, yaw, t_s, goal_id, &newer_than); b != Block::kNone) {
+      ++(b == Block::kMarker ? rejected_.visited : rejected_.blocked);
+      continue;
+    }
+    const int val = value(map, p, yaw, newer_than);
+    if (val < min_value) {
+      ++(newer_than > 0 ? rejected_.visited : val > 0 ? rejected_.low_value : rejected_.no_frontier);
+      continue;
+    }
     // Near an existing viewpoint: the better one stays (keeps the set sparse).
     bool dominated = false;
     std::vector<uint64_t> replaced;
@@ -102,7 +118,10 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
       if (v.value >= val || id == goal_id) dominated = true;
       else replaced.push_back(id);
     }
-    if (dominated) continue;
+    if (dominated) {
+      ++rejected_.dominated;
+      continue;
+    }
     for (uint64_t id : replaced) viewpoints_.erase(id);
     viewpoints_[next_id_] = {next_id_, p, yaw, val, sphere};
     ++next_id_;
@@ -111,9 +130,9 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
   return added;
 }
 
-void ViewpointSet::markReached(uint64_t id, const Vec3& vehicle, double vehicle_yaw) {
+void ViewpointSet::markReached(uint64_t id, const Vec3& vehicle, double vehicle_yaw, uint64_t frontier_watermark) {
   viewpoints_.erase(id);
-  if (config_.vpb) markers_.push_back({vehicle, vehicle_yaw});
+  if (config_.vpb) markers_.push_back({vehicle, vehicle_yaw, frontier_watermark});
 }
 
 void ViewpointSet::markFailed(uint64_t id, double t_s) {

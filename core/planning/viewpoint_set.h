@@ -25,6 +25,7 @@ struct ViewpointConfig {
   int min_value = 7;                  ///< viewpoints seeing fewer frontiers are dropped
   int relaxed_min_value = 2;          ///< used instead while the set is empty and the planner idles
   bool vpb = true;                    ///< visited-viewpoint blocking
+  bool vpb_new_frontiers = false;     ///< markers block only frontiers older than themselves
   double block_distance_m = 7.0;      ///< VPB / blocking radius
   double block_angle_deg = 60.0;      ///< VPB / blocking heading difference
   double blacklist_radius_m = 2.0;    ///< failed goals block new viewpoints this close ...
@@ -47,6 +48,19 @@ struct Viewpoint {
 struct VisitedMarker {
   Vec3 position = Vec3::Zero();
   double yaw_rad = 0.0;
+  uint64_t frontier_watermark = 0;  ///< frontiers with this id or above appeared after the visit
+};
+
+/// Why sampled candidates were not kept, counted over the whole run (diagnostics: an idle
+/// explorer with frontiers left shows here whether VPB markers, the value threshold or the box
+/// kept it from new viewpoints).
+struct CandidateRejections {
+  long outside = 0;      ///< centre outside the exploration box
+  long visited = 0;      ///< near a visited marker (VPB)
+  long blocked = 0;      ///< near the active goal or a recently failed goal
+  long no_frontier = 0;  ///< sees no frontier
+  long low_value = 0;    ///< sees some frontiers, fewer than the minimum value
+  long dominated = 0;    ///< a nearby viewpoint with at least its value exists
 };
 
 /// True if pose (p, yaw) is within `distance` and `angle` of pose (q, qyaw).
@@ -58,8 +72,8 @@ class ViewpointSet {
   /// Throws ConfigError if invalid. `seed` seeds the "viewpoints" stream.
   ViewpointSet(const ViewpointConfig& config, uint64_t seed);
 
-  /// Frontiers visible from (p, yaw) with a level camera.
-  int value(const SphereMap& map, const Vec3& p, double yaw) const;
+  /// Frontiers visible from (p, yaw) with a level camera (only those with id ≥ min_frontier_id).
+  int value(const SphereMap& map, const Vec3& p, double yaw, uint64_t min_frontier_id = 0) const;
 
   /// One planning step: re-values the existing viewpoints (dropping those whose sphere is gone,
   /// unreachable or below the minimum value), applies VPB for the vehicle pose (the active goal
@@ -70,8 +84,9 @@ class ViewpointSet {
              double vehicle_yaw, double t_s, uint64_t goal_id,
              const std::function<bool(const Vec3&)>& allowed, bool relaxed = false);
 
-  /// Removes a viewpoint (reached goal): leaves a marker at the vehicle pose if VPB is on.
-  void markReached(uint64_t id, const Vec3& vehicle, double vehicle_yaw);
+  /// Removes a viewpoint (reached goal): leaves a marker at the vehicle pose if VPB is on;
+  /// `frontier_watermark` = the map's next frontier id at that moment.
+  void markReached(uint64_t id, const Vec3& vehicle, double vehicle_yaw, uint64_t frontier_watermark);
   /// Removes a viewpoint that could not be reached and blacklists its position.
   void markFailed(uint64_t id, double t_s);
 
@@ -81,9 +96,14 @@ class ViewpointSet {
   const std::vector<VisitedMarker>& markers() const { return markers_; }
   /// Viewpoints removed by VPB so far (passed, not targeted).
   int passedCount() const { return passed_; }
+  /// Candidates not kept so far, by reason.
+  const CandidateRejections& rejections() const { return rejected_; }
 
  private:
-  bool blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id) const;
+  enum class Block { kNone, kMarker, kGoalOrFailed };
+  // Why a candidate pose is blocked. With vpb_new_frontiers, markers do not block: they raise
+  // *min_frontier_id to the newest close marker's watermark instead.
+  Block blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id, uint64_t* min_frontier_id) const;
 
   ViewpointConfig config_;
   RngStream rng_;
@@ -92,6 +112,7 @@ class ViewpointSet {
   std::vector<std::pair<Vec3, double>> blacklist_;  // position, until
   uint64_t next_id_ = 1;
   int passed_ = 0;
+  CandidateRejections rejected_;
 };
 
 }  // namespace msb

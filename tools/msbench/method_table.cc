@@ -54,6 +54,7 @@ void readViewpoints(MapReader r, ViewpointConfig& c) {
   r.read("block_angle_deg", c.block_angle_deg);
   r.read("blacklist_radius_m", c.blacklist_radius_m);
   r.read("blacklist_duration_s", c.blacklist_duration_s);
+  r.read("vpb_new_frontiers", c.vpb_new_frontiers);
   r.finish();
 }
 

@@ -58,6 +58,47 @@ TEST(ViewpointSet, PassingAViewpointBlocksItsNeighbourhood) {
       EXPECT_FALSE(posesClose(v.position, v.yaw_rad, m.position, m.yaw_rad, 7.0, M_PI / 3));
 }
 
+TEST(ViewpointSet, WithNewFrontierBlockingMarkersLetNewerFrontiersThrough) {
+  // Frontiers on the lower half of the patch; the vehicle passes a viewpoint (a marker). Then
+  // frontiers appear on the upper half. Plain VPB keeps the marker's neighbourhood closed; with
+  // vpb_new_frontiers candidates there are valued on the newer frontiers only, so they return
+  // once enough new ones appear, and not before.
+  for (bool new_frontiers : {false, true}) {
+    SphereMap map{SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1};
+    const uint64_t sphere = map.addSphere({0, 0, 2}, 3.0);
+    int old_count = 0, new_count = 0;
+    for (double y : {-2.4, -0.8})
+      for (double z : {0.4, 2.0, 3.6}) old_count += bool(map.tryAddFrontier({4.2, y, z}));
+    ViewpointConfig cfg;
+    cfg.min_value = 4;
+    ASSERT_GE(old_count, cfg.min_value);
+    cfg.vpb_new_frontiers = new_frontiers;
+    ViewpointSet vs(cfg, 3);
+    auto all = [](const Vec3&) { return true; };
+    vs.update(map, {sphere}, {100, 100, 2}, 0.0, 0.0, 0, all);
+    ASSERT_FALSE(vs.viewpoints().empty());
+    const Viewpoint first = vs.viewpoints().begin()->second;
+    vs.update(map, {sphere}, first.position, first.yaw_rad, 1.0, 0, all);
+    ASSERT_EQ(vs.markers().size(), 1u);
+    const VisitedMarker marker = vs.markers().front();
+    auto nearMarker = [&] {
+      int n = 0;
+      for (const auto& [id, v] : vs.viewpoints())
+        n += posesClose(v.position, v.yaw_rad, marker.position, marker.yaw_rad, 7.0, M_PI / 3);
+      return n;
+    };
+    // The only sphere is at the marker: nothing new near it either way.
+    for (int k = 0; k < 3; ++k) vs.update(map, {sphere}, {100, 100, 2}, 0.0, 2.0 + k, 0, all);
+    EXPECT_EQ(nearMarker(), 0) << new_frontiers;
+    for (double y : {0.8, 2.4})
+      for (double z : {0.4, 2.0, 3.6}) new_count += bool(map.tryAddFrontier({4.2, y, z}));
+    ASSERT_GE(new_count, cfg.min_value);
+    for (int k = 0; k < 3; ++k) vs.update(map, {sphere}, {100, 100, 2}, 0.0, 5.0 + k, 0, all);
+    EXPECT_EQ(nearMarker() > 0, new_frontiers) << new_frontiers;
+    for (const auto& [id, v] : vs.viewpoints()) EXPECT_LE(v.value, old_count + new_count);
+  }
+}
+
 TEST(ViewpointSet, WithoutVpbViewpointsSurvivePassing) {
   Scene s;
   auto all = [](const Vec3&) { return true; };
@@ -76,7 +117,7 @@ TEST(ViewpointSet, WithoutVpbViewpointsSurvivePassing) {
   EXPECT_TRUE(near_again);
   // Reached goals are removed either way; failed goals are blacklisted.
   const uint64_t id = vs.viewpoints().begin()->first;
-  vs.markReached(id, first.position, first.yaw_rad);
+  vs.markReached(id, first.position, first.yaw_rad, s.map.nextFrontierId());
   EXPECT_FALSE(vs.viewpoints().count(id));
   EXPECT_TRUE(vs.markers().empty());
 }
