@@ -14,6 +14,7 @@ namespace msb {
 
 void SphereMapConfig::validate(ConfigChecker& c) const {
   c.inRange("dbof_alpha", dbof_alpha, 0.0, 10.0);
+  c.inRange("dbof_age_per_m", dbof_age_per_m, 0.0, 10.0);
   c.require(r_max_m > r_min_m && r_min_m > 0, "r_max_m", "needs 0 < r_min_m < r_max_m");
   c.inRange("new_sphere_samples", new_sphere_samples, 0, 100000);
   c.positive("max_sample_range_m", max_sample_range_m);
@@ -137,7 +138,7 @@ double SphereMap::frontierObstacleReach() const {
 
 uint64_t SphereMap::addObstacle(const Vec3& p, double d_min) {
   const uint64_t id = next_obstacle_++;
-  obstacles_[id] = {id, p, d_min};
+  obstacles_[id] = {id, p, d_min, flown_m_};
   markDirty(p, frontierObstacleReach());
   obstacle_grid_.insert(id, p);
   return id;
@@ -218,6 +219,8 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   const SlamPointsFrame& frame = filter ? filtered : frame_in;
   const Vec3 cam = frame.T_W_C.translation();
   const Pose T_C_W = frame.T_W_C.inverse();
+  if (last_camera_) flown_m_ += (cam - *last_camera_).norm();
+  last_camera_ = cam;
 
   // 1. Input: points in front of the camera.
   std::vector<Vec3> input;
@@ -263,7 +266,8 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   for (uint64_t id : obstacle_grid_.inBox(real_lo, real_hi)) {
     const ObstaclePoint& o = obstacles_.at(id);
     if (!real_pf.contains(o.position)) continue;
-    if ((o.position - cam).norm() < alpha * o.d_min) {
+    const double d_eff = o.d_min + config_.dbof_age_per_m * (flown_m_ - o.flown_at_m);
+    if ((o.position - cam).norm() < alpha * d_eff) {
       eraseObstacle(id);
       ++st.deleted_obstacles;
     } else {

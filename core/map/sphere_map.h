@@ -8,7 +8,10 @@
 //   3. OVDE (switch `ovde`): active virtual points outside the real points' hull extend P_f
 //      for the sphere steps; DBOF keeps using the real-points P_f (virtual points never delete)
 //   5. DBOF: an obstacle point x inside P_f is deleted iff |x − c| < α·d_min(x), otherwise it
-//      is protected (it constrains spheres); dbof = false means α = 0 (nothing deleted)
+//      is protected (it constrains spheres); dbof = false means α = 0 (nothing deleted). With
+//      dbof_age_per_m = β > 0 (off by default) d_min is read as d_min + β·(path flown since the
+//      point was measured): in a drifting frame an old point's position error grows with the
+//      flight, not only with its measuring distance, and the point ages out of protection.
 //   6. sphere update near P_f:
 //        r ← min( c ∈ P_f ? max(r, d(c, ∂P_f)) : r,  d(c, X_in ∪ X_p),  r_max )
 //      (X_in: all of this frame's points, X_p: protected points); spheres with r < r_min are deleted
@@ -54,6 +57,7 @@ struct SphereMapConfig {
   OpenAreaDepthConfig ovde_params;   ///< its parameters
   bool dbof = true;                  ///< distance-based obstacle filtering
   double dbof_alpha = 1.1;           ///< deletion factor α
+  double dbof_age_per_m = 0.0;       ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
   double r_max_m = 10.0;             ///< sphere radius cap
   double r_min_m = 1.6;              ///< spheres below are deleted / not created
   int new_sphere_samples = 150;      ///< samples per update
@@ -91,6 +95,7 @@ struct ObstaclePoint {
   uint64_t id = 0;
   Vec3 position = Vec3::Zero();
   double d_min = 0.0;
+  double flown_at_m = 0.0;  ///< the camera's path length (estimate frame) when it was measured
 };
 
 /// A frontier: the boundary of known free space, with the direction towards the free side.
@@ -197,6 +202,8 @@ class SphereMap {
   std::vector<std::pair<Vec3, double>> dirty_;  // regions changed since the last re-validation
   PointGrid frontier_grid_{2.0};
   uint64_t next_sphere_ = 1, next_obstacle_ = 1, next_frontier_ = 1;
+  double flown_m_ = 0.0;                       // camera path length over the updates (estimate frame)
+  std::optional<Vec3> last_camera_;
 };
 
 }  // namespace msb

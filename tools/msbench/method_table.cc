@@ -20,6 +20,7 @@ void readOvde(MapReader r, OpenAreaDepthConfig& c) {
 void readSphereMapKeys(MapReader& r, SphereMapConfig& c) {
   if (r.has("ovde_params")) readOvde(r.sub("ovde_params"), c.ovde_params);
   r.read("dbof_alpha", c.dbof_alpha);
+  r.read("dbof_age_per_m", c.dbof_age_per_m);
   r.read("r_max_m", c.r_max_m);
   r.read("max_point_depth_std_m", c.max_point_depth_std_m);
   r.read("r_min_m", c.r_min_m);

@@ -77,6 +77,29 @@ TEST(SphereMapRules, DbofDeletesPointsSeenAgainFromCloserAndProtectsTheOthers) {
   EXPECT_EQ(keep.update(wallFrame(15, 10)).deleted_obstacles, 0);
 }
 
+TEST(SphereMapRules, DbofAgingLetsAPointMeasuredLongAgoBeDeleted) {
+  // The protected point of the test above (measured from 5 m, seen again from 8 m). With
+  // dbof_age_per_m = 0.05 it counts as measured from 5 m + 0.05 per metre flown since: still
+  // protected right away, deleted after the camera has flown 60 m elsewhere and come back.
+  const FisheyeCamera cam;
+  auto shifted = [](SlamPointsFrame f, const Vec3& t) {
+    f.T_W_C.translation() += t;
+    for (auto& p : f.points) p.p_W += t;
+    return f;
+  };
+  for (double age : {0.0, 0.05})
+    for (bool fly : {false, true}) {
+      SphereMapConfig cfg;
+      cfg.dbof_age_per_m = age;
+      SphereMap map(cfg, cam, 1);
+      const uint64_t id = map.addObstacle({2, 0, 7.75}, 5.0);
+      if (fly)
+        for (double x : {0.0, 30.0, 60.0, 90.0}) map.update(shifted(wallFrame(15, 10), Vec3(1000 + x, 0, 0)));
+      map.update(wallFrame(15, 10));
+      EXPECT_EQ(map.obstacles().count(id) == 0, age > 0 && fly) << age << " " << fly;
+    }
+}
+
 TEST(SphereMapRules, SparsificationNeverDisconnectsTheGraph) {
   const FisheyeCamera cam;
   SphereMap map(SphereMapConfig{}, cam, 1);
