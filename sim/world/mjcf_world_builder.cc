@@ -23,12 +23,15 @@ std::string quat(const Mat3& R) {
 }
 
 // A box's surface: 6 quads, each with its own 4 vertices (flat shading), counter-clockwise
-// from outside.
-void boxSurface(const Pose& T, const Vec3& half, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& f) {
+// from outside; without the top face if `skip_top`. With `uv` (tile size `tile` m), texture
+// coordinates in tiles: world-scale metres along each face.
+void boxSurface(const Pose& T, const Vec3& half, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& f,
+                bool skip_top = false, std::vector<Vec2>* uv = nullptr, double tile = 1.0) {
   const std::array<std::array<int, 2>, 4> corners = {{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
   for (int axis = 0; axis < 3; ++axis) {
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;
     for (int sign : {1, -1}) {
+      if (axis == 2 && sign > 0 && skip_top) continue;
       const int base = int(v.size());
       std::array<int, 4> order = {0, 1, 2, 3};
       if (sign < 0) order = {3, 2, 1, 0};
@@ -38,6 +41,7 @@ void boxSurface(const Pose& T, const Vec3& half, std::vector<Vec3>& v, std::vect
         local[a] = corners[k][0] * half[a];
         local[b] = corners[k][1] * half[b];
         v.push_back(T * local);
+        if (uv) uv->emplace_back((corners[k][0] + 1) * half[a] / tile, (corners[k][1] + 1) * half[b] / tile);
       }
       f.push_back({base, base + 1, base + 2});
       f.push_back({base, base + 2, base + 3});
@@ -168,32 +172,11 @@ void MjcfWorldBuilder::addVisualSlab(const std::string& name, const Pose& T, con
 
 void MjcfWorldBuilder::addBoxMesh(const std::string& name, const Pose& T, const Vec3& half,
                                   const std::string& texture, const std::string& top_texture) {
-  // Visual mesh: 6 quads with texture coordinates in tiles, counter-clockwise from outside.
-  const double tile = textureTileMeters(texture);
+  // Visual mesh: 6 quads with texture coordinates in tiles (the top one separately for roofs).
   std::vector<Vec3> v;
   std::vector<Vec2> uv;
   std::vector<std::array<int, 3>> f;
-  const std::array<std::array<int, 2>, 4> corners = {{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
-  for (int axis = 0; axis < 3; ++axis) {
-    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-    for (int sign : {1, -1}) {
-      if (axis == 2 && sign > 0 && !top_texture.empty()) continue;  // separate roof mesh below
-      const int base = int(v.size());
-      std::array<int, 4> order = {0, 1, 2, 3};
-      if (sign < 0) order = {3, 2, 1, 0};
-      for (int k : order) {
-        Vec3 local = Vec3::Zero();
-        local[axis] = sign * half[axis];
-        local[a] = corners[k][0] * half[a];
-        local[b] = corners[k][1] * half[b];
-        v.push_back(T * local);
-        // Texture coordinates: world-scale metres along the face, in tiles.
-        uv.emplace_back((corners[k][0] + 1) * half[a] / tile, (corners[k][1] + 1) * half[b] / tile);
-      }
-      f.push_back({base, base + 1, base + 2});
-      f.push_back({base, base + 2, base + 3});
-    }
-  }
+  boxSurface(T, half, v, f, !top_texture.empty(), &uv, textureTileMeters(texture));
   addMesh(name, v, uv, f, "mat_" + texture);
   if (!top_texture.empty()) {
     // The top face alone, as a thin slab of the roof pattern flush with the box's top.
