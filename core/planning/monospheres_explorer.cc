@@ -137,13 +137,17 @@ bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
   });
 }
 
-bool MonoSpheresExplorer::tooClose(const Vec3& x, const Vec3& here) const {
-  if (!config_.planner.allow_moving_away) return map_.anyObstacleNear(x, config_.planner.check_clearance_m);
+bool MonoSpheresExplorer::approachesPoint(const Vec3& x, const Vec3& here) const {
   for (uint64_t id : map_.obstaclesNear(x, config_.planner.check_clearance_m)) {
     const Vec3& o = map_.obstacles().at(id).position;
     if ((x - o).norm() < (here - o).norm() - 1e-6) return true;
   }
   return false;
+}
+
+bool MonoSpheresExplorer::tooClose(const Vec3& x, const Vec3& here) const {
+  if (!config_.planner.allow_moving_away) return map_.anyObstacleNear(x, config_.planner.check_clearance_m);
+  return approachesPoint(x, here);
 }
 
 bool MonoSpheresExplorer::segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const {
@@ -169,14 +173,7 @@ std::optional<Vec3> MonoSpheresExplorer::clearanceEscape(const Vec3& here) const
   }
   if (dir.norm() < 1e-6) return std::nullopt;
   const Vec3 target = here + dir.normalized() * (clearance - d_min + config_.planner.escape_margin_m);
-  const bool clear = everySample(here, target, 0.1, [&](const Vec3& x) {
-    for (uint64_t id : map_.obstaclesNear(x, clearance)) {
-      const Vec3& o = map_.obstacles().at(id).position;
-      if ((x - o).norm() < (here - o).norm() - 1e-6) return false;
-    }
-    return true;
-  });
-  if (!clear) return std::nullopt;
+  if (!everySample(here, target, 0.1, [&](const Vec3& x) { return !approachesPoint(x, here); })) return std::nullopt;
   return target;
 }
 

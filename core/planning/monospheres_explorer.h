@@ -147,6 +147,8 @@ class MonoSpheresExplorer : public Explorer {
   // True if x lies within the clearance of an obstacle point; with allow_moving_away only if x is
   // also closer to it than `here` (the vehicle), so a vehicle already too close may move away.
   bool tooClose(const Vec3& x, const Vec3& here) const;
+  // True if x lies within the clearance of an obstacle point and closer to it than `here`.
+  bool approachesPoint(const Vec3& x, const Vec3& here) const;
   bool segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const;  // no sample too close
   bool pathBlocked(const std::vector<Vec3>& pts) const;
   // Where to back away to when `here` lies inside an obstacle point's clearance (none: not
