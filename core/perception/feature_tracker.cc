@@ -113,7 +113,19 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
     std::vector<float> err;
     const cv::TermCriteria crit(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations, 0.01);
     cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, err, win, config_.klt_pyramid_levels, crit);
-    cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1, p0_back, st_b, err, win, config_.klt_pyramid_levels, crit);
+    // Backward pass only for the points the forward pass tracked: LK solves every point on its
+    // own, so this gives the same results for them and skips the lost ones.
+    std::vector<size_t> forward_ok;
+    std::vector<cv::Point2f> p1_ok;
+    for (size_t i = 0; i < p0.size(); ++i)
+      if (st_f[i]) forward_ok.push_back(i), p1_ok.push_back(p1[i]);
+    std::vector<uchar> st_b_ok;
+    std::vector<cv::Point2f> p0_back_ok;
+    if (!p1_ok.empty())
+      cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1_ok, p0_back_ok, st_b_ok, err, win, config_.klt_pyramid_levels, crit);
+    st_b.assign(p0.size(), 0);
+    p0_back.assign(p0.size(), cv::Point2f());
+    for (size_t k = 0; k < forward_ok.size(); ++k) st_b[forward_ok[k]] = st_b_ok[k], p0_back[forward_ok[k]] = p0_back_ok[k];
     std::vector<Vec2> from, to;
     for (size_t i = 0; i < p0.size(); ++i) {
       if (!st_f[i] || !st_b[i]) continue;
@@ -173,8 +185,11 @@ void KltFeatureTracker::detect(const cv::Mat& img, std::vector<Track>& tracks, i
   }
   struct Candidate { cv::KeyPoint kp; int cell; };
   std::vector<Candidate> candidates;
+  // A cell already full stays full (counts only grow below), so its corners could never be
+  // taken: it is not searched.
   for (int cy = 0; cy < config_.grid_rows; ++cy)
     for (int cx = 0; cx < config_.grid_cols; ++cx) {
+      if (cell_count[cy * config_.grid_cols + cx] >= per_cell) continue;
       const int x0 = cx * img.cols / config_.grid_cols, x1 = (cx + 1) * img.cols / config_.grid_cols;
       const int y0 = cy * img.rows / config_.grid_rows, y1 = (cy + 1) * img.rows / config_.grid_rows;
       const cv::Rect roi(x0, y0, x1 - x0, y1 - y0);

@@ -265,6 +265,19 @@ void FisheyeRenderer::cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0,
       // Margin: float positions and bounds.
       const double r = 1.001 * double(g.modelrbound) + 1e-3;
       for (const Vec3& nrm : normals) visible = visible && nrm.dot(p) >= -r;
+    } else if (g.type == mjGEOM_PLANE && g.size[0] > 0 && g.size[1] > 0) {
+      // A finite plane (ground, sky) has no bound: it is drawn as its rectangle, which is
+      // dropped when all four corners lie outside one side of the frustum.
+      const Vec3 c = R_W_F.transpose() * (Vec3(g.pos[0], g.pos[1], g.pos[2]) - eye);
+      const Vec3 ax = R_W_F.transpose() * Vec3(g.mat[0], g.mat[3], g.mat[6]) * double(g.size[0]);
+      const Vec3 ay = R_W_F.transpose() * Vec3(g.mat[1], g.mat[4], g.mat[7]) * double(g.size[1]);
+      const double margin = 1e-3 * (1.0 + c.norm() + ax.norm() + ay.norm());
+      for (const Vec3& nrm : normals) {
+        bool all_outside = true;
+        for (const double sx : {-1.0, 1.0})
+          for (const double sy : {-1.0, 1.0}) all_outside = all_outside && nrm.dot(c + sx * ax + sy * ay) < -margin;
+        visible = visible && !all_outside;
+      }
     }
     if (visible) scene_.geoms[kept++] = g;
   }
@@ -290,6 +303,7 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
   const float n = static_cast<float>(config_.near_clip_m);
   const Mat3 R_W_C = T_W_C.linear();
   const Vec3 pos = T_W_C.translation();
+  drawn_geoms_ = 0;
   for (const auto& f : faces_) {
     const Mat3 R_W_F = R_W_C * f.R_C_F;
     const Vec3 fwd = R_W_F.col(2), up = -R_W_F.col(1);
@@ -309,6 +323,7 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
       cam.frustum_far = static_cast<float>(config_.far_clip_m);
     }
     if (config_.cull_per_face) cullToFace(R_W_F, pos, f.tan_x0, x1, f.tan_y0, y1);
+    drawn_geoms_ += scene_.ngeom;
     mjr_render(mjrRect{f.atlas_x, f.atlas_y, f.width, f.height}, &scene_, &mjr_context_);
   }
   glFinish();

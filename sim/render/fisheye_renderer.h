@@ -16,7 +16,7 @@
 //
 // Per-face culling: the cost of a face is dominated by the geoms submitted, not by its pixels
 // (docs/performance.md), so each face draws only the geoms whose bounding sphere (the model's
-// rbound) meets its frustum; planes (no bound) are always drawn. Nothing casts shadows or
+// rbound) meets its frustum, and finite planes (ground, sky) whose rectangle does. Nothing casts shadows or
 // reflects, and the order of the remaining geoms is kept, so the pixels are the same.
 #pragma once
 
@@ -100,6 +100,8 @@ class FisheyeRenderer final : public FrameRenderer {
   cv::Size atlasSize() const { return {atlas_width_, atlas_height_}; }
   /// Total rendered face pixels per frame.
   long renderedPixels() const;
+  /// Geoms drawn in the last frame, summed over its cube faces.
+  long drawnGeomsLastFrame() const { return drawn_geoms_; }
 
  private:
   void buildFacesAndLut();
@@ -122,6 +124,7 @@ class FisheyeRenderer final : public FrameRenderer {
   cv::Mat atlas_raw_, atlas_grey_, fisheye_;
   std::optional<Vec3> sun_direction_;  // world direction of the sun's light, if conditions set it
   std::vector<mjvGeom> scene_geoms_;  // the full scene of a frame, culled per face into scene_
+  long drawn_geoms_ = 0;              // geoms drawn in the last frame, over all faces
 
 };
 

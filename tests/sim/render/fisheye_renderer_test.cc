@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "sim/physics/quadrotor_sim.h"
 
@@ -171,6 +172,38 @@ TEST(FisheyeRenderer, RendersAreBitIdenticalAcrossRepeatsAndInstances) {
   }
   Scene again(world, T);
   EXPECT_EQ(again.render().pixels, first);
+}
+
+TEST(FisheyeRenderer, PerFaceCullingDropsPlanesOutOfViewAndKeepsThePixels) {
+  // A closed room of finite planes (floor, ceiling, four walls), alone and with a few boxes.
+  const std::string room =
+      "<geom type='plane' size='10 10 1' rgba='0.3 0.3 0.3 1'/>"
+      "<geom type='plane' size='10 10 1' pos='0 0 8' euler='180 0 0' rgba='0.8 0.8 0.8 1'/>"
+      "<geom type='plane' size='10 4 1' pos='10 0 4' euler='0 -90 0' rgba='0.5 0.5 0.5 1'/>"
+      "<geom type='plane' size='4 10 1' pos='-10 0 4' euler='0 90 0' rgba='0.6 0.6 0.6 1'/>"
+      "<geom type='plane' size='10 4 1' pos='0 10 4' euler='90 0 0' rgba='0.4 0.4 0.4 1'/>"
+      "<geom type='plane' size='10 4 1' pos='0 -10 4' euler='-90 0 0' rgba='0.7 0.7 0.7 1'/>";
+  std::string boxes;
+  for (int i = 0; i < 6; ++i)
+    boxes += "<geom type='box' size='0.5 0.5 1' pos='" + std::to_string(-7 + 3 * i) + " " +
+             std::to_string(i % 2 ? 6 : -6) + " 1' rgba='0.9 0.9 0.9 1'/>";
+  FisheyeRendererConfig off;
+  off.cull_per_face = false;
+  for (const auto& [name, body, geoms] : {std::tuple{"room", room, 6L}, std::tuple{"room_boxes", room + boxes, 12L}}) {
+    const std::string world = writeWorld(name, "", body);
+    for (const double yaw : {0.0, 1.1, 2.5, -2.0}) {
+      const Pose T = poseFromXyzYaw(Vec3(1, -2, 2), yaw);
+      Scene culled(world, T), all(world, T, 1.0, off);
+      const CameraFrame a = culled.render(), b = all.render();
+      EXPECT_EQ(a.pixels, b.pixels) << name << " yaw " << yaw;
+      // Without culling every geom is drawn in every face. With it, in the planes-only room,
+      // the up face does not draw the floor, the down face not the ceiling and the front face
+      // not the wall behind the camera.
+      const long faces = long(all.renderer->faces().size());
+      EXPECT_EQ(all.renderer->drawnGeomsLastFrame(), geoms * faces);
+      EXPECT_LE(culled.renderer->drawnGeomsLastFrame(), geoms * faces - 3) << name << " yaw " << yaw;
+    }
+  }
 }
 
 std::string readBytes(const std::string& path) {
