@@ -11,8 +11,10 @@
 // seams; with ambient-only lighting, shading does not depend on the face either.
 //
 // Resolution: at the image centre the fisheye needs fx pixels per radian; a face gives f_face at
-// its centre and 2·f_face at its edges. face_focal_ratio = 1 never undersamples; smaller ratios
-// trade sharpness near the image centre for speed (see bench-sim).
+// its centre and 2·f_face at its edges. face_focal_ratio = 1 matches the front and up/down faces
+// to the fisheye (within 5 %); near θ = 90° the fisheye's tangential resolution is 1.65·fx, so
+// the side faces are up to 1.65× coarser there (docs/performance.md). Smaller ratios trade
+// sharpness for speed (see bench-sim).
 //
 // Per-face culling: the cost of a face is dominated by the geoms submitted, not by its pixels
 // (docs/performance.md), so each face draws only the geoms whose bounding sphere (the model's
