@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <vector>
 
 #include "core/common/clock.h"
 #include "core/common/wall_time.h"
@@ -20,6 +21,43 @@
 namespace msb {
 
 namespace {
+
+// Pixels whose four neighbours are inside the field of view (where sharpness is measured).
+std::vector<uint8_t> innerFovMask(const FisheyeCamera& camera) {
+  const int W = camera.width(), H = camera.height();
+  std::vector<uint8_t> in(size_t(W) * H, 0), inner(size_t(W) * H, 0);
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) in[size_t(v) * W + u] = camera.pixelInFov(Vec2(u, v)) ? 1 : 0;
+  for (int v = 1; v + 1 < H; ++v)
+    for (int u = 1; u + 1 < W; ++u) {
+      const size_t i = size_t(v) * W + u;
+      inner[i] = in[i - 1] && in[i + 1] && in[i - W] && in[i + W];
+    }
+  return inner;
+}
+
+// Sharpness of a frame: mean of |I(u+1,v) − I(u−1,v)| + |I(u,v+1) − I(u,v−1)| over half, over the
+// mask's pixels (inside the field of view: the black outside would dominate).
+double meanGradient(const CameraFrame& f, const std::vector<uint8_t>& mask) {
+  double sum = 0.0;
+  long n = 0;
+  const size_t W = size_t(f.width);
+  for (size_t i = 0; i < f.pixels.size() && i < mask.size(); ++i) {
+    if (!mask[i]) continue;
+    sum += 0.5 * (std::abs(int(f.pixels[i + 1]) - int(f.pixels[i - 1])) +
+                  std::abs(int(f.pixels[i + W]) - int(f.pixels[i - W])));
+    ++n;
+  }
+  return n ? sum / double(n) : 0.0;
+}
+
+// Mean absolute grey-level difference of two frames of the same size.
+double meanAbsDifference(const CameraFrame& a, const CameraFrame& b) {
+  if (a.pixels.size() != b.pixels.size() || a.pixels.empty()) return 0.0;
+  double sum = 0.0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) sum += std::abs(int(a.pixels[i]) - int(b.pixels[i]));
+  return sum / double(a.pixels.size());
+}
 
 // Parses "x,y,z,yaw_deg".
 Vec4 parsePose(const std::string& s) {
@@ -101,8 +139,11 @@ int runBenchSimCommand(int argc, char** argv) {
       .flag("no-sky", "leave the sky black (render.sky: false)")
       .flag("no-sun", "no sun, ambient light only (render.sun: false)")
       .flag("no-cull", "draw every geom in every cube face (render.cull_per_face: false)")
+      .flag("no-trilinear", "nearest mip level per texture sample (render.trilinear_textures: false)")
       .flag("compare-cull", "time per-face culling on and off side by side, frame by frame, and check\n"
-                            "that both give the same pixels");
+                            "that both give the same pixels")
+      .flag("compare-textures", "time trilinear and nearest-mip texture filtering side by side, frame\n"
+                                "by frame, with the mean pixel difference and each one's sharpness");
   if (!args.parse(argc, argv)) return kExitOk;
   const std::string world = resolveWorld(args.get("world")).world_xml;
   const long steps = args.getInt("steps"), frames = args.getInt("frames");
@@ -135,17 +176,25 @@ int runBenchSimCommand(int argc, char** argv) {
     rcfg.sky = !args.has("no-sky");
     rcfg.sun = !args.has("no-sun");
     rcfg.cull_per_face = !args.has("no-cull");
+    rcfg.trilinear_textures = !args.has("no-trilinear");
     QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
     rsim.beginTick();
-    // One renderer, or two (culling on and off) rendering every frame alternately.
-    const bool compare = args.has("compare-cull");
+    // One renderer, or two (culling or trilinear filtering on and off) rendering every frame
+    // alternately.
+    const bool compare_cull = args.has("compare-cull"), compare_tex = args.has("compare-textures");
+    if (compare_cull && compare_tex) throw UsageError("--compare-cull and --compare-textures exclude each other");
+    const bool compare = compare_cull || compare_tex;
     std::vector<std::unique_ptr<FisheyeRenderer>> renderers;
     renderers.push_back(std::make_unique<FisheyeRenderer>(rcfg, camera, rsim.model()));
     if (compare) {
       FisheyeRendererConfig other = rcfg;
-      other.cull_per_face = !rcfg.cull_per_face;
+      if (compare_cull) other.cull_per_face = !rcfg.cull_per_face;
+      if (compare_tex) other.trilinear_textures = !rcfg.trilinear_textures;
       renderers.push_back(std::make_unique<FisheyeRenderer>(other, camera, rsim.model()));
     }
+    std::vector<double> sharpness(renderers.size(), 0.0);
+    const std::vector<uint8_t> inner_fov = innerFovMask(camera);
+    double abs_difference = 0.0;
     std::vector<RenderTiming> sums(renderers.size());
     std::vector<std::vector<double>> totals(renderers.size());
     std::vector<CameraFrame> frames_out(renderers.size());
@@ -160,25 +209,36 @@ int runBenchSimCommand(int argc, char** argv) {
         sum.scene_ms += t.scene_ms, sum.render_ms += t.render_ms;
         sum.readback_ms += t.readback_ms, sum.remap_ms += t.remap_ms;
         totals[k].push_back(t.totalMs());
+        sharpness[k] += meanGradient(frames_out[k], inner_fov);
       }
+      if (i < 2) continue;
       if (compare && frames_out[0].pixels != frames_out[1].pixels) ++different;
+      if (compare) abs_difference += meanAbsDifference(frames_out[0], frames_out[1]);
     }
     const double n = static_cast<double>(frames);
     for (size_t k = 0; k < renderers.size(); ++k) {
       const FisheyeRenderer& renderer = *renderers[k];
       const RenderTiming& sum = sums[k];
       std::sort(totals[k].begin(), totals[k].end());
+      const bool first = k == 0;
+      const char* label = compare_cull ? (first == rcfg.cull_per_face ? " culled" : " not culled")
+                          : compare_tex ? (first == rcfg.trilinear_textures ? " trilinear" : " nearest mip")
+                                        : "";
       std::printf("fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
                   "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
-                  "atlas %dx%d\n",
-                  camera.width(), camera.height(),
-                  compare ? ((k == 0) == rcfg.cull_per_face ? " culled" : " not culled") : "",
+                  "atlas %dx%d, face focal ratio %.2f, sharpness (mean |gradient| in the FoV) %.3f\n",
+                  camera.width(), camera.height(), label,
                   sum.totalMs() / n, 1000.0 * n / sum.totalMs(), totals[k][totals[k].size() / 2], sum.scene_ms / n,
                   sum.render_ms / n, sum.readback_ms / n, sum.remap_ms / n, renderer.renderedPixels(),
                   static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
-                  renderer.atlasSize().height);
+                  renderer.atlasSize().height, rcfg.face_focal_ratio, sharpness[k] / n);
     }
-    if (compare)
+    if (compare_tex)
+      std::printf("fisheye %dx%d: nearest mip / trilinear time %.2f; mean |pixel difference| %.3f grey levels\n",
+                  camera.width(), camera.height(),
+                  (rcfg.trilinear_textures ? sums[1].totalMs() / sums[0].totalMs() : sums[0].totalMs() / sums[1].totalMs()),
+                  abs_difference / n);
+    if (compare_cull)
       std::printf("fisheye %dx%d: culled / not culled time %.2f; frames with different pixels: %ld of %ld\n",
                   camera.width(), camera.height(),
                   (rcfg.cull_per_face ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),

@@ -132,6 +132,7 @@ void readRender(MapReader r, FisheyeRendererConfig& c) {
   r.read("sun", c.sun);
   r.read("sun_ambient", c.sun_ambient);
   r.read("cull_per_face", c.cull_per_face);
+  r.read("trilinear_textures", c.trilinear_textures);
   r.finish();
 }
 

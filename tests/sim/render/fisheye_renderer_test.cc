@@ -206,6 +206,38 @@ TEST(FisheyeRenderer, PerFaceCullingDropsPlanesOutOfViewAndKeepsThePixels) {
   }
 }
 
+TEST(FisheyeRendererTextures, NearestMipFilteringChangesTexturedPixelsSlightlyAndKeepsSharpness) {
+  // The textured test world, both texture filters, same pose.
+  const std::string world = std::string(MSB_SOURCE_DIR) + "/worlds/test/world.xml";
+  const Pose T = poseFromXyzYaw(Vec3(1, 0.5, 1.6), 0.7);
+  FisheyeRendererConfig trilinear;
+  trilinear.trilinear_textures = true;
+  FisheyeRendererConfig nearest_mip;
+  nearest_mip.trilinear_textures = false;
+  Scene a(world, T, 1.0, trilinear), b(world, T, 1.0, nearest_mip);
+  const CameraFrame fa = a.render(), fb = b.render();
+  ASSERT_EQ(fa.pixels.size(), fb.pixels.size());
+  // Gradient sum over the image's interior rows and columns (black outside the FoV is 0 in both).
+  const auto gradient = [](const CameraFrame& f) {
+    double g = 0;
+    for (int v = 1; v + 1 < f.height; ++v)
+      for (int u = 1; u + 1 < f.width; ++u) g += std::abs(at(f, u + 1, v) - at(f, u - 1, v)) + std::abs(at(f, u, v + 1) - at(f, u, v - 1));
+    return g;
+  };
+  long differing = 0;
+  double abs_sum = 0;
+  for (size_t i = 0; i < fa.pixels.size(); ++i) {
+    const int d = std::abs(int(fa.pixels[i]) - int(fb.pixels[i]));
+    differing += d > 0;
+    abs_sum += d;
+  }
+  // The switch takes effect (textured surfaces change) ...
+  EXPECT_GT(differing, 1000);
+  // ... by little on average, and the image is not blurrier.
+  EXPECT_LT(abs_sum / double(fa.pixels.size()), 3.0);
+  EXPECT_GT(gradient(fb), 0.97 * gradient(fa));
+}
+
 std::string readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream ss;
