@@ -18,8 +18,9 @@
 //
 // Per-face culling: the cost of a face is dominated by the geoms submitted, not by its pixels
 // (docs/performance.md), so each face draws only the geoms whose bounding sphere (the model's
-// rbound) meets its frustum, and finite planes (ground, sky) whose rectangle does. Nothing casts shadows or
-// reflects, and the order of the remaining geoms is kept, so the pixels are the same.
+// rbound) meets its frustum, and the finite planes (ground, sky) whose rectangle does. Nothing
+// casts shadows or reflects, and the order of the remaining geoms is kept, so the pixels are the
+// same.
 #pragma once
 
 #include <mujoco/mujoco.h>

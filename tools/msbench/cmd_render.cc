@@ -139,7 +139,7 @@ int runBenchSimCommand(int argc, char** argv) {
       .flag("no-sky", "leave the sky black (render.sky: false)")
       .flag("no-sun", "no sun, ambient light only (render.sun: false)")
       .flag("no-cull", "draw every geom in every cube face (render.cull_per_face: false)")
-      .flag("no-trilinear", "nearest mip level per texture sample (render.trilinear_textures: false)")
+      .flag("trilinear", "blend two mip levels per texture sample (render.trilinear_textures: true)")
       .flag("compare-cull", "time per-face culling on and off side by side, frame by frame, and check\n"
                             "that both give the same pixels")
       .flag("compare-textures", "time trilinear and nearest-mip texture filtering side by side, frame\n"
@@ -176,7 +176,7 @@ int runBenchSimCommand(int argc, char** argv) {
     rcfg.sky = !args.has("no-sky");
     rcfg.sun = !args.has("no-sun");
     rcfg.cull_per_face = !args.has("no-cull");
-    rcfg.trilinear_textures = !args.has("no-trilinear");
+    rcfg.trilinear_textures = args.has("trilinear");
     QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
     rsim.beginTick();
     // One renderer, or two (culling or trilinear filtering on and off) rendering every frame
