@@ -407,7 +407,7 @@ void MonoSpheresExplorer::checkActiveGoal(const VehicleState& s, const SphereCos
   const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
   if ((v.position - p).norm() <= pc.reach_distance_m &&
       std::abs(wrapAngle(v.yaw_rad - yaw)) <= pc.reach_angle_deg * kDeg) {
-    viewpoints_.markReached(goal_, p, yaw, map_.nextFrontierId());
+    viewpoints_.markReached(goal_, map_, p, yaw);
     goal_ = 0;
     ++counters_["goals_reached"];
   } else if (!field.cost.count(v.sphere)) {
@@ -559,6 +559,7 @@ std::map<std::string, double> MonoSpheresExplorer::counters() const {
   c["viewpoints"] = double(viewpoints_.viewpoints().size());
   c["visited_markers"] = double(viewpoints_.markers().size());
   c["viewpoints_passed"] = double(viewpoints_.passedCount());
+  c["frontiers_retired"] = double(viewpoints_.retiredFrontiers(map_));
   const CandidateRejections& r = viewpoints_.rejections();
   c["candidates_outside_box"] = double(r.outside);
   c["candidates_visited"] = double(r.visited);

@@ -20,6 +20,9 @@ void ViewpointConfig::validate(ConfigChecker& c) const {
   c.inRange("block_angle_deg", block_angle_deg, 0.0, 180.0);
   c.nonNegative("blacklist_radius_m", blacklist_radius_m);
   c.nonNegative("blacklist_duration_s", blacklist_duration_s);
+  c.require(frontier_view_limit >= 0, "frontier_view_limit", "must be ≥ 0 (0 = off)");
+  c.require(frontier_view_limit == 0 || !vpb_new_frontiers, "frontier_view_limit",
+            "cannot be combined with vpb_new_frontiers (both replace pose blocking)");
 }
 
 bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double distance_m, double angle_rad) {
@@ -29,27 +32,82 @@ bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double di
 ViewpointSet::ViewpointSet(const ViewpointConfig& config, uint64_t seed)
     : config_(checkValid(config)), rng_(seed, "viewpoints") {}
 
-int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_t min_frontier_id) const {
+std::vector<uint64_t> ViewpointSet::visibleFrontiers(const SphereMap& map, const Vec3& p, double yaw) const {
   const Vec3 axis(std::cos(yaw), std::sin(yaw), 0.0);
   const double cos_fov = std::cos(config_.fov_half_angle_deg * kDeg);
-  int n = 0;
+  std::vector<uint64_t> ids;
   for (uint64_t id : map.frontiersNear(p, config_.frontier_range_m)) {
-    if (id < min_frontier_id) continue;  // older than a close visited marker (vpb_new_frontiers)
     const Frontier& f = map.frontiers().at(id);
     const Vec3 ray = f.position - p;
     const double d = ray.norm();
     if (d < 1e-6) continue;
     if (ray.dot(axis) < cos_fov * d) continue;  // outside the useful field of view
     if (f.normal.dot(ray) >= 0) continue;       // seen from its unknown side
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_t min_frontier_id) const {
+  // With the view limit: markers close to this pose, whose frontiers do not count here.
+  std::vector<const VisitedMarker*> close;
+  const int limit = config_.frontier_view_limit;
+  if (limit > 0)
+    for (const auto& m : markers_)
+      if (posesClose(p, yaw, m.position, m.yaw_rad, config_.block_distance_m, config_.block_angle_deg * kDeg))
+        close.push_back(&m);
+  int n = 0;
+  for (uint64_t id : visibleFrontiers(map, p, yaw)) {
+    if (id < min_frontier_id) continue;  // older than a close visited marker (vpb_new_frontiers)
+    if (limit > 0) {
+      if (views(id) >= limit) continue;  // retired
+      if (std::any_of(close.begin(), close.end(), [id](const VisitedMarker* m) {
+            return std::binary_search(m->seen.begin(), m->seen.end(), id);
+          }))
+        continue;  // already looked at from about here
+    }
     ++n;
   }
   return n;
 }
 
+int ViewpointSet::views(uint64_t frontier_id) const {
+  const auto it = views_.find(frontier_id);
+  return it == views_.end() ? 0 : it->second;
+}
+
+int ViewpointSet::retiredFrontiers(const SphereMap& map) const {
+  if (config_.frontier_view_limit <= 0) return 0;
+  int n = 0;
+  for (const auto& [id, count] : views_) n += count >= config_.frontier_view_limit && map.frontiers().count(id);
+  return n;
+}
+
+void ViewpointSet::addMarker(const SphereMap& map, const Vec3& vehicle, double vehicle_yaw) {
+  VisitedMarker marker{vehicle, vehicle_yaw, map.nextFrontierId(), {}};
+  if (config_.frontier_view_limit > 0) {
+    marker.seen = visibleFrontiers(map, vehicle, vehicle_yaw);  // ascending (frontiersNear)
+    std::sort(marker.seen.begin(), marker.seen.end());
+    for (uint64_t id : marker.seen) {
+      // A second look from about the same place is not another view.
+      bool counted = false;
+      for (const auto& m : markers_)
+        if (posesClose(vehicle, vehicle_yaw, m.position, m.yaw_rad, config_.block_distance_m,
+                       config_.block_angle_deg * kDeg) &&
+            std::binary_search(m.seen.begin(), m.seen.end(), id)) {
+          counted = true;
+          break;
+        }
+      if (!counted) ++views_[id];
+    }
+  }
+  markers_.push_back(std::move(marker));
+}
+
 ViewpointSet::Block ViewpointSet::blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id,
                                           uint64_t* min_frontier_id) const {
   const double d = config_.block_distance_m, a = config_.block_angle_deg * kDeg;
-  if (config_.vpb)
+  if (config_.vpb && config_.frontier_view_limit == 0)  // with the view limit markers block frontiers
     for (const auto& m : markers_) {
       if (!posesClose(p, yaw, m.position, m.yaw_rad, d, a)) continue;
       if (!config_.vpb_new_frontiers) return Block::kMarker;
@@ -80,7 +138,7 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
       v.value = value(map, v.position, v.yaw_rad);
       keep = v.value >= min_value;
       if (keep && config_.vpb && posesClose(vehicle, vehicle_yaw, v.position, v.yaw_rad, d, a)) {
-        markers_.push_back({vehicle, vehicle_yaw, map.nextFrontierId()});
+        addMarker(map, vehicle, vehicle_yaw);
         ++passed_;
         keep = false;
       }
@@ -88,6 +146,9 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     it = keep ? std::next(it) : viewpoints_.erase(it);
   }
   std::erase_if(blacklist_, [&](const auto& b) { return t_s >= b.second; });
+  // Views of frontiers the map has dropped are forgotten (ids are never reused).
+  std::erase_if(views_, [&](const auto& e) { return !map.frontiers().count(e.first); });
+  for (auto& m : markers_) std::erase_if(m.seen, [&](uint64_t id) { return !map.frontiers().count(id); });
 
   // New candidates at reachable sphere centres with a random yaw.
   int added = 0;
@@ -107,7 +168,10 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     }
     const int val = value(map, p, yaw, newer_than);
     if (val < min_value) {
-      ++(newer_than > 0 ? rejected_.visited : val > 0 ? rejected_.low_value : rejected_.no_frontier);
+      // Refused because of visits: a newer-than bound, or retired frontiers it would otherwise see.
+      const bool by_visits = newer_than > 0 || (config_.frontier_view_limit > 0 &&
+                                                int(visibleFrontiers(map, p, yaw).size()) >= min_value);
+      ++(by_visits ? rejected_.visited : val > 0 ? rejected_.low_value : rejected_.no_frontier);
       continue;
     }
     // Near an existing viewpoint: the better one stays (keeps the set sparse).
@@ -130,9 +194,9 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
   return added;
 }
 
-void ViewpointSet::markReached(uint64_t id, const Vec3& vehicle, double vehicle_yaw, uint64_t frontier_watermark) {
+void ViewpointSet::markReached(uint64_t id, const SphereMap& map, const Vec3& vehicle, double vehicle_yaw) {
   viewpoints_.erase(id);
-  if (config_.vpb) markers_.push_back({vehicle, vehicle_yaw, frontier_watermark});
+  if (config_.vpb) addMarker(map, vehicle, vehicle_yaw);
 }
 
 void ViewpointSet::markFailed(uint64_t id, double t_s) {

@@ -56,6 +56,7 @@ void readViewpoints(MapReader r, ViewpointConfig& c) {
   r.read("blacklist_radius_m", c.blacklist_radius_m);
   r.read("blacklist_duration_s", c.blacklist_duration_s);
   r.read("vpb_new_frontiers", c.vpb_new_frontiers);
+  r.read("frontier_view_limit", c.frontier_view_limit);
   r.finish();
 }
 

@@ -1,6 +1,7 @@
 // Viewpoint value (field of view, range, facing) and visited-viewpoint blocking.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/planning/viewpoint_set.h"
@@ -99,6 +100,84 @@ TEST(ViewpointSet, WithNewFrontierBlockingMarkersLetNewerFrontiersThrough) {
   }
 }
 
+TEST(ViewpointSet, WithAFrontierViewLimitFrontiersRetireAfterThatManyLooks) {
+  // frontier_view_limit = 2: near a marker only the frontiers it did not see count; a frontier
+  // seen from two markers that are not close to each other counts nowhere. Passing viewpoint
+  // after viewpoint therefore ends: the frontiers that survive being looked at retire. Frontiers
+  // that appear elsewhere afterwards are worth viewpoints again.
+  Scene s;
+  auto all = [](const Vec3&) { return true; };
+  ViewpointConfig cfg;
+  cfg.frontier_view_limit = 2;
+  ViewpointSet vs(cfg, 3);
+  const Vec3 far(100, 100, 2);
+  const double block = cfg.block_angle_deg * M_PI / 180.0;
+  // The value rule written out: visible, not retired, not seen from a close marker.
+  auto expectedValue = [&](const Viewpoint& v) {
+    int n = 0;
+    for (const auto& [fid, f] : s.map.frontiers()) {
+      const Vec3 ray = f.position - v.position;
+      const Vec3 axis(std::cos(v.yaw_rad), std::sin(v.yaw_rad), 0);
+      if (ray.norm() > cfg.frontier_range_m || ray.dot(axis) < 0.5 * ray.norm() || f.normal.dot(ray) >= 0) continue;
+      if (vs.views(fid) >= 2) continue;
+      bool seen_close = false;
+      for (const auto& m : vs.markers())
+        seen_close |= posesClose(v.position, v.yaw_rad, m.position, m.yaw_rad, cfg.block_distance_m, block) &&
+                      std::count(m.seen.begin(), m.seen.end(), fid) > 0;
+      n += !seen_close;
+    }
+    return n;
+  };
+  vs.update(s.map, {s.sphere}, far, 0.0, 0.0, 0, all);
+  ASSERT_FALSE(vs.viewpoints().empty());
+  int passes = 0;
+  bool retired_after_two = false;
+  while (!vs.viewpoints().empty() && passes < 20) {
+    for (const auto& [id, v] : vs.viewpoints()) {
+      EXPECT_EQ(v.value, expectedValue(v)) << "pass " << passes;
+      EXPECT_GE(v.value, cfg.min_value);
+    }
+    const Viewpoint v = vs.viewpoints().begin()->second;
+    vs.update(s.map, {s.sphere}, v.position, v.yaw_rad, 1.0 + passes, 0, all);  // pass it: a marker
+    ++passes;
+    EXPECT_FALSE(vs.viewpoints().count(v.id));
+    ASSERT_EQ(vs.markers().size(), size_t(passes));
+    EXPECT_FALSE(vs.markers().back().seen.empty());
+    if (passes == 1) {
+      EXPECT_EQ(vs.retiredFrontiers(s.map), 0);  // one look retires nothing
+    }
+    if (passes == 2) retired_after_two = vs.retiredFrontiers(s.map) > 0;
+    for (int k = 0; k < 3; ++k) vs.update(s.map, {s.sphere}, far, 0.0, 1.5 + passes + 0.1 * k, 0, all);
+  }
+  EXPECT_TRUE(vs.viewpoints().empty()) << "still viewpoints after " << passes << " passes";
+  EXPECT_GE(passes, 2);
+  EXPECT_TRUE(retired_after_two || passes > 2);
+  EXPECT_GE(vs.retiredFrontiers(s.map), 1);
+  for (const auto& [id, f] : s.map.frontiers()) EXPECT_LE(vs.views(id), 2);
+  EXPECT_GT(vs.rejections().visited, 0);  // refused for frontiers already looked at
+  // New frontiers behind the sphere (normals +x): viewpoints facing them appear.
+  int behind = 0;
+  for (double y = -4; y <= 4; y += 1.6)
+    for (double z = -1; z <= 5; z += 1.6) behind += bool(s.map.tryAddFrontier({-4.5, y, z}));
+  ASSERT_GE(behind, 7);
+  bool facing_back = false;
+  for (int k = 0; k < 5; ++k) vs.update(s.map, {s.sphere}, far, 0.0, 30.0 + k, 0, all);
+  for (const auto& [id, v] : vs.viewpoints()) {
+    facing_back |= std::abs(v.yaw_rad) > M_PI / 2;
+    EXPECT_EQ(v.value, expectedValue(v));
+  }
+  EXPECT_TRUE(facing_back);
+}
+
+TEST(ViewpointSet, FrontierViewLimitIsValidated) {
+  ViewpointConfig cfg;
+  cfg.frontier_view_limit = -1;
+  EXPECT_THROW(ViewpointSet(cfg, 1), ConfigError);
+  cfg.frontier_view_limit = 1;
+  cfg.vpb_new_frontiers = true;
+  EXPECT_THROW(ViewpointSet(cfg, 1), ConfigError);
+}
+
 TEST(ViewpointSet, WithoutVpbViewpointsSurvivePassing) {
   Scene s;
   auto all = [](const Vec3&) { return true; };
@@ -117,7 +196,7 @@ TEST(ViewpointSet, WithoutVpbViewpointsSurvivePassing) {
   EXPECT_TRUE(near_again);
   // Reached goals are removed either way; failed goals are blacklisted.
   const uint64_t id = vs.viewpoints().begin()->first;
-  vs.markReached(id, first.position, first.yaw_rad, s.map.nextFrontierId());
+  vs.markReached(id, s.map, first.position, first.yaw_rad);
   EXPECT_FALSE(vs.viewpoints().count(id));
   EXPECT_TRUE(vs.markers().empty());
 }
