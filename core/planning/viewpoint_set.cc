@@ -32,19 +32,19 @@ bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double di
 ViewpointSet::ViewpointSet(const ViewpointConfig& config, uint64_t seed)
     : config_(checkValid(config)), rng_(seed, "viewpoints") {}
 
+bool ViewpointSet::sees(const Vec3& p, double yaw, const Frontier& f) const {
+  const Vec3 ray = f.position - p;
+  const double d = ray.norm();
+  if (d < 1e-6 || d > config_.frontier_range_m) return false;
+  if (ray.dot(Vec3(std::cos(yaw), std::sin(yaw), 0.0)) < std::cos(config_.fov_half_angle_deg * kDeg) * d)
+    return false;                    // outside the useful field of view
+  return f.normal.dot(ray) < 0;      // not from its unknown side
+}
+
 std::vector<uint64_t> ViewpointSet::visibleFrontiers(const SphereMap& map, const Vec3& p, double yaw) const {
-  const Vec3 axis(std::cos(yaw), std::sin(yaw), 0.0);
-  const double cos_fov = std::cos(config_.fov_half_angle_deg * kDeg);
   std::vector<uint64_t> ids;
-  for (uint64_t id : map.frontiersNear(p, config_.frontier_range_m)) {
-    const Frontier& f = map.frontiers().at(id);
-    const Vec3 ray = f.position - p;
-    const double d = ray.norm();
-    if (d < 1e-6) continue;
-    if (ray.dot(axis) < cos_fov * d) continue;  // outside the useful field of view
-    if (f.normal.dot(ray) >= 0) continue;       // seen from its unknown side
-    ids.push_back(id);
-  }
+  for (uint64_t id : map.frontiersNear(p, config_.frontier_range_m))
+    if (sees(p, yaw, map.frontiers().at(id))) ids.push_back(id);
   return ids;
 }
 
@@ -60,10 +60,9 @@ int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_
   for (uint64_t id : visibleFrontiers(map, p, yaw)) {
     if (id < min_frontier_id) continue;  // older than a close visited marker (vpb_new_frontiers)
     if (limit > 0) {
-      if (views(id) >= limit) continue;  // retired
-      if (std::any_of(close.begin(), close.end(), [id](const VisitedMarker* m) {
-            return std::binary_search(m->seen.begin(), m->seen.end(), id);
-          }))
+      if (views(map, id) >= limit) continue;  // retired: looked at often enough
+      const Frontier& f = map.frontiers().at(id);
+      if (std::any_of(close.begin(), close.end(), [&](const VisitedMarker* m) { return sees(m->position, m->yaw_rad, f); }))
         continue;  // already looked at from about here
     }
     ++n;
@@ -71,37 +70,20 @@ int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_
   return n;
 }
 
-int ViewpointSet::views(uint64_t frontier_id) const {
-  const auto it = views_.find(frontier_id);
-  return it == views_.end() ? 0 : it->second;
+int ViewpointSet::views(const SphereMap& map, uint64_t id) const {
+  if (config_.frontier_view_limit <= 0) return 0;
+  const Frontier& f = map.frontiers().at(id);
+  ViewCount& c = views_[id];
+  for (; c.checked < markers_.size(); ++c.checked)
+    c.views += sees(markers_[c.checked].position, markers_[c.checked].yaw_rad, f);
+  return c.views;
 }
 
 int ViewpointSet::retiredFrontiers(const SphereMap& map) const {
   if (config_.frontier_view_limit <= 0) return 0;
   int n = 0;
-  for (const auto& [id, count] : views_) n += count >= config_.frontier_view_limit && map.frontiers().count(id);
+  for (const auto& [id, f] : map.frontiers()) n += views(map, id) >= config_.frontier_view_limit;
   return n;
-}
-
-void ViewpointSet::addMarker(const SphereMap& map, const Vec3& vehicle, double vehicle_yaw) {
-  VisitedMarker marker{vehicle, vehicle_yaw, map.nextFrontierId(), {}};
-  if (config_.frontier_view_limit > 0) {
-    marker.seen = visibleFrontiers(map, vehicle, vehicle_yaw);  // ascending (frontiersNear)
-    std::sort(marker.seen.begin(), marker.seen.end());
-    for (uint64_t id : marker.seen) {
-      // A second look from about the same place is not another view.
-      bool counted = false;
-      for (const auto& m : markers_)
-        if (posesClose(vehicle, vehicle_yaw, m.position, m.yaw_rad, config_.block_distance_m,
-                       config_.block_angle_deg * kDeg) &&
-            std::binary_search(m.seen.begin(), m.seen.end(), id)) {
-          counted = true;
-          break;
-        }
-      if (!counted) ++views_[id];
-    }
-  }
-  markers_.push_back(std::move(marker));
 }
 
 ViewpointSet::Block ViewpointSet::blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id,
@@ -138,7 +120,7 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
       v.value = value(map, v.position, v.yaw_rad);
       keep = v.value >= min_value;
       if (keep && config_.vpb && posesClose(vehicle, vehicle_yaw, v.position, v.yaw_rad, d, a)) {
-        addMarker(map, vehicle, vehicle_yaw);
+        markers_.push_back({vehicle, vehicle_yaw, map.nextFrontierId()});
         ++passed_;
         keep = false;
       }
@@ -146,9 +128,8 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     it = keep ? std::next(it) : viewpoints_.erase(it);
   }
   std::erase_if(blacklist_, [&](const auto& b) { return t_s >= b.second; });
-  // Views of frontiers the map has dropped are forgotten (ids are never reused).
+  // View counts of frontiers the map has dropped are forgotten (ids are never reused).
   std::erase_if(views_, [&](const auto& e) { return !map.frontiers().count(e.first); });
-  for (auto& m : markers_) std::erase_if(m.seen, [&](uint64_t id) { return !map.frontiers().count(id); });
 
   // New candidates at reachable sphere centres with a random yaw.
   int added = 0;
@@ -196,7 +177,7 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
 
 void ViewpointSet::markReached(uint64_t id, const SphereMap& map, const Vec3& vehicle, double vehicle_yaw) {
   viewpoints_.erase(id);
-  if (config_.vpb) addMarker(map, vehicle, vehicle_yaw);
+  if (config_.vpb) markers_.push_back({vehicle, vehicle_yaw, map.nextFrontierId()});
 }
 
 void ViewpointSet::markFailed(uint64_t id, double t_s) {

@@ -26,10 +26,11 @@ struct ViewpointConfig {
   int relaxed_min_value = 2;          ///< used instead while the set is empty and the planner idles
   bool vpb = true;                    ///< visited-viewpoint blocking
   bool vpb_new_frontiers = false;     ///< markers block only frontiers older than themselves
-  /// > 0: VPB per frontier instead of per pose. A marker remembers the frontiers visible from it
-  /// (the value test at its pose); near a marker only the frontiers it did not see count, and a
-  /// frontier seen from this many markers (not close to each other) no longer counts anywhere: it
-  /// survived being looked at from that many places. 0 = plain VPB (a marker blocks its poses).
+  /// > 0: VPB per frontier instead of per pose. A frontier is "seen" from a marker if it passes
+  /// the value test at the marker's pose (by position: frontier ids churn as the map changes).
+  /// Near a marker only the frontiers it does not see count, and a frontier seen from this many
+  /// markers counts nowhere: it survived being looked at that often. 0 = plain VPB (a marker
+  /// blocks the poses near it).
   int frontier_view_limit = 0;
   double block_distance_m = 7.0;      ///< VPB / blocking radius
   double block_angle_deg = 60.0;      ///< VPB / blocking heading difference
@@ -54,7 +55,6 @@ struct VisitedMarker {
   Vec3 position = Vec3::Zero();
   double yaw_rad = 0.0;
   uint64_t frontier_watermark = 0;  ///< frontiers with this id or above appeared after the visit
-  std::vector<uint64_t> seen;       ///< frontiers visible from it, ascending (frontier_view_limit)
 };
 
 /// Why sampled candidates were not kept, counted over the whole run (diagnostics: an idle
@@ -91,8 +91,8 @@ class ViewpointSet {
              double vehicle_yaw, double t_s, uint64_t goal_id,
              const std::function<bool(const Vec3&)>& allowed, bool relaxed = false);
 
-  /// Removes a viewpoint (reached goal): leaves a marker at the vehicle pose if VPB is on
-  /// (counting a view of every frontier visible from there, for frontier_view_limit).
+  /// Removes a viewpoint (reached goal): leaves a marker at the vehicle pose if VPB is on (with
+  /// the map's next frontier id as its watermark).
   void markReached(uint64_t id, const SphereMap& map, const Vec3& vehicle, double vehicle_yaw);
   /// Removes a viewpoint that could not be reached and blacklists its position.
   void markFailed(uint64_t id, double t_s);
@@ -105,8 +105,8 @@ class ViewpointSet {
   int passedCount() const { return passed_; }
   /// Candidates not kept so far, by reason.
   const CandidateRejections& rejections() const { return rejected_; }
-  /// Markers (not close to each other) a frontier was visible from (0 if none or the limit is off).
-  int views(uint64_t frontier_id) const;
+  /// Markers from which frontier `id` of `map` is visible (frontier_view_limit; 0 if it is off).
+  int views(const SphereMap& map, uint64_t id) const;
   /// Frontiers of `map` seen from frontier_view_limit markers or more (0 if the limit is off).
   int retiredFrontiers(const SphereMap& map) const;
 
@@ -115,17 +115,22 @@ class ViewpointSet {
   // Why a candidate pose is blocked. With vpb_new_frontiers, markers do not block: they raise
   // *min_frontier_id to the newest close marker's watermark instead.
   Block blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id, uint64_t* min_frontier_id) const;
-  // Ids of the frontiers visible from (p, yaw): within range, in the field of view, facing.
+  // True if frontier f passes the value test from pose (p, yaw): in range, in view, facing.
+  bool sees(const Vec3& p, double yaw, const Frontier& f) const;
+  // Ids of the frontiers visible from (p, yaw).
   std::vector<uint64_t> visibleFrontiers(const SphereMap& map, const Vec3& p, double yaw) const;
-  // Leaves a marker at the vehicle pose; with the view limit it counts a view of each frontier
-  // seen from it that no close earlier marker saw.
-  void addMarker(const SphereMap& map, const Vec3& vehicle, double vehicle_yaw);
 
   ViewpointConfig config_;
   RngStream rng_;
   std::map<uint64_t, Viewpoint> viewpoints_;
   std::vector<VisitedMarker> markers_;
-  std::map<uint64_t, int> views_;  // frontier id → markers it was visible from (view limit)
+  // Frontier id → markers it is visible from, counted over markers_[0, checked) (a frontier
+  // keeps its position, so each marker is tested once per frontier).
+  struct ViewCount {
+    int views = 0;
+    size_t checked = 0;
+  };
+  mutable std::map<uint64_t, ViewCount> views_;
   std::vector<std::pair<Vec3, double>> blacklist_;  // position, until
   uint64_t next_id_ = 1;
   int passed_ = 0;
