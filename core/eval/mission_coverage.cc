@@ -28,6 +28,12 @@ size_t MissionCoverage::exploredExplorableColumns() const {
   return n;
 }
 
+size_t MissionCoverage::trueFrameExploredExplorableColumns() const {
+  size_t n = 0;
+  for (const ColumnIndex& c : columns_gt_.columns()) n += box_explorable_.count(c);
+  return n;
+}
+
 void MissionCoverage::sample(double t_s, double distance_m, const std::vector<ExplorerSnapshot::Disk>& free_space) {
   // True-frame columns: each element keeps the correction of the moment it was first seen.
   for (const auto& d : free_space) {

@@ -44,6 +44,9 @@ class MissionCoverage {
   int boxExplorableColumns() const { return int(box_explorable_.size()); }
   /// Explored columns (VIO frame) that are explorable columns of the box: box_share's numerator.
   size_t exploredExplorableColumns() const;
+  /// True-frame explored columns that are explorable columns of the box: what share of the
+  /// real box the mission has seen, with each free-space element placed where it truly was.
+  size_t trueFrameExploredExplorableColumns() const;
 
  private:
   Aabb box_;

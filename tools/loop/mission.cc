@@ -84,6 +84,7 @@ MissionResult Mission::finish() {
   r.exploration_box = coverage_.box();
   r.box_explorable_columns = coverage_.boxExplorableColumns();
   r.box_explored_explorable_columns = int(coverage_.exploredExplorableColumns());
+  r.box_true_frame_explored_explorable_columns = int(coverage_.trueFrameExploredExplorableColumns());
   r.longest_no_gain = longestIntervalWithoutGain(r.coverage);
   r.map_hash = hashSnapshot(r.final_map);
   r.run_hash = hashMission(r.flight.trajectory_hash, r.map_hash, r.columns, r.coverage);

@@ -38,6 +38,7 @@ struct MissionResult {
   Aabb exploration_box;
   int box_explorable_columns = 0;          ///< 0 if the world has no ground truth
   int box_explored_explorable_columns = 0; ///< explored columns among those (box_share numerator)
+  int box_true_frame_explored_explorable_columns = 0;  ///< the same with true-frame columns
   NoGainInterval longest_no_gain;          ///< longest stretch without coverage gain
   uint64_t map_hash = 0;                   ///< FNV-1a over the final map snapshot
   uint64_t run_hash = 0;                   ///< trajectory + map + coverage

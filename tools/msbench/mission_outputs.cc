@@ -53,6 +53,9 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
       {"box_explored_explorable_columns", r.box_explored_explorable_columns},
       {"box_share", r.box_explorable_columns ? nlohmann::json(double(r.box_explored_explorable_columns) / r.box_explorable_columns)
                                              : nlohmann::json(nullptr)},
+      {"box_share_true_frame", r.box_explorable_columns
+                                   ? nlohmann::json(double(r.box_true_frame_explored_explorable_columns) / r.box_explorable_columns)
+                                   : nlohmann::json(nullptr)},
       {"longest_no_gain_s", r.longest_no_gain.lengthS()},
       {"longest_no_gain_from_s", r.longest_no_gain.start_s},
       {"area_true_frame_m2", r.columns_gt.areaM2()},

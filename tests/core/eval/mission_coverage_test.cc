@@ -22,6 +22,27 @@ TEST(MissionCoverage, BoxShareCountsOnlyExplorableColumns) {
   EXPECT_EQ(half.exploredExplorableColumns(), 1u);
 }
 
+TEST(MissionCoverage, TrueFrameBoxShareUsesTheCorrectionOfFirstSight) {
+  // The only explorable column is node (4, 0) at x = 10 m. An element seen at the VIO origin
+  // while the estimate is 10 m off truth lies, in truth, at x = 10: the VIO-frame count misses
+  // it, the true-frame count has it.
+  const Aabb box{Vec3(-5, -5, 0), Vec3(15, 5, 5)};
+  MissionCoverage cov(box, {{4, 0}});
+  Pose T_true_est = Pose::Identity();
+  T_true_est.translation() = Vec3(10, 0, 0);
+  cov.setTrueFromEstimate(T_true_est);
+  cov.columns().markDisk(Vec2(0, 0), 1.0);
+  cov.sample(1.0, 0.0, {{7, Vec3(0, 0, 1), 1.0}});
+  EXPECT_EQ(cov.exploredExplorableColumns(), 0u);
+  EXPECT_EQ(cov.trueFrameExploredExplorableColumns(), 1u);
+  // The drift is corrected later: the element keeps its first correction, a new element at the
+  // origin is placed at the origin (not explorable), so the count stays 1.
+  cov.setTrueFromEstimate(Pose::Identity());
+  cov.sample(2.0, 0.0, {{7, Vec3(0, 0, 1), 1.0}, {8, Vec3(0, 0, 1), 1.0}});
+  EXPECT_EQ(cov.trueFrameExploredExplorableColumns(), 1u);
+  EXPECT_EQ(cov.trueFrameColumns().columns().size(), 2u);
+}
+
 TEST(MissionCoverage, LongestIntervalWithoutGain) {
   auto at = [](double t, double a) {
     CoverageSample s;
