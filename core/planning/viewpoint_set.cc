@@ -22,7 +22,7 @@ void ViewpointConfig::validate(ConfigChecker& c) const {
   c.nonNegative("blacklist_duration_s", blacklist_duration_s);
   c.require(frontier_view_limit >= 0, "frontier_view_limit", "must be ≥ 0 (0 = off)");
   c.require(frontier_view_limit == 0 || !vpb_new_frontiers, "frontier_view_limit",
-            "cannot be combined with vpb_new_frontiers (both replace pose blocking)");
+            "cannot be combined with vpb_new_frontiers (both replace pose blocking); set it to 0 to use vpb_new_frontiers");
 }
 
 bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double distance_m, double angle_rad) {

@@ -30,8 +30,9 @@ struct ViewpointConfig {
   /// the value test at the marker's pose (by position: frontier ids churn as the map changes).
   /// Near a marker only the frontiers it does not see count, and a frontier seen from this many
   /// markers counts nowhere: it survived being looked at that often. 0 = plain VPB (a marker
-  /// blocks the poses near it).
-  int frontier_view_limit = 0;
+  /// blocks the poses near it). Default 2: measured better in the cave, not worse elsewhere
+  /// (docs/planner.md). Without vpb there are no markers, so it has no effect.
+  int frontier_view_limit = 2;
   double block_distance_m = 7.0;      ///< VPB / blocking radius
   double block_angle_deg = 60.0;      ///< VPB / blocking heading difference
   double blacklist_radius_m = 2.0;    ///< failed goals block new viewpoints this close ...

@@ -36,9 +36,12 @@ TEST(ViewpointSet, ValueCountsVisibleFacingFrontiers) {
 }
 
 TEST(ViewpointSet, PassingAViewpointBlocksItsNeighbourhood) {
+  // Plain (pose) VPB, the paper's rule: frontier_view_limit 0.
   Scene s;
   auto all = [](const Vec3&) { return true; };
-  ViewpointSet vs(ViewpointConfig{}, 3);
+  ViewpointConfig plain;
+  plain.frontier_view_limit = 0;
+  ViewpointSet vs(plain, 3);
   const Vec3 far(100, 100, 2);
   vs.update(s.map, {s.sphere}, far, 0.0, 0.0, 0, all);
   ASSERT_FALSE(vs.viewpoints().empty());
@@ -73,6 +76,7 @@ TEST(ViewpointSet, WithNewFrontierBlockingMarkersLetNewerFrontiersThrough) {
     ViewpointConfig cfg;
     cfg.min_value = 4;
     ASSERT_GE(old_count, cfg.min_value);
+    cfg.frontier_view_limit = 0;  // plain VPB, with or without the newer-frontier rule
     cfg.vpb_new_frontiers = new_frontiers;
     ViewpointSet vs(cfg, 3);
     auto all = [](const Vec3&) { return true; };
