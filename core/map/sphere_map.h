@@ -59,7 +59,7 @@ struct SphereMapConfig {
   double dbof_alpha = 1.1;           ///< deletion factor α
   double dbof_age_per_m = 0.0;       ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
   double r_max_m = 10.0;             ///< sphere radius cap
-  double r_min_m = 1.6;              ///< spheres below are deleted / not created
+  double r_min_m = 1.4;              ///< spheres below are deleted / not created (paper: 1.6; docs/deviations.md)
   int new_sphere_samples = 150;      ///< samples per update
   double max_sample_range_m = 20.0;  ///< sampling along rays is capped here
   double max_point_range_m = 20.0;   ///< SLAM points farther are not inserted as obstacles

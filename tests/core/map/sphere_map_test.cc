@@ -213,7 +213,7 @@ TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
   for (const auto& [id, s] : a.spheres()) {
     EXPECT_TRUE(pf.contains(s.centre));
     EXPECT_LE(s.radius, pf.distance(s.centre) + 1e-9);  // fully inside P_f
-    EXPECT_GE(s.radius, 1.6);
+    EXPECT_GE(s.radius, SphereMapConfig{}.r_min_m);
     const auto& o = b.spheres().at(id);
     EXPECT_EQ(o.centre, s.centre);
     EXPECT_EQ(o.radius, s.radius);

@@ -12,7 +12,10 @@ namespace {
 SphereMap emptyMap() { return SphereMap(SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1); }
 
 TEST(SafetyCost, PenaltyShape) {
-  const SafetyCostConfig cfg;
+  // The shape with the paper's r_min 1.6 m (the default is 1.4: full penalty there instead).
+  EXPECT_DOUBLE_EQ(narrownessPenalty(SafetyCostConfig{}.r_min_m, SafetyCostConfig{}), 1.0);
+  SafetyCostConfig cfg;
+  cfg.r_min_m = 1.6;
   EXPECT_DOUBLE_EQ(narrownessPenalty(1.6, cfg), 1.0);
   EXPECT_DOUBLE_EQ(narrownessPenalty(8.0, cfg), 0.0);
   EXPECT_DOUBLE_EQ(narrownessPenalty(10.0, cfg), 0.0);
