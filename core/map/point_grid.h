@@ -1,7 +1,9 @@
 // A uniform hash grid of ids at 3D positions, for radius and box queries. Queries return ids
-// sorted ascending, so results never depend on hash-table iteration order.
+// sorted ascending, so results never depend on hash-table iteration order. Each cell keeps the
+// positions with the ids, so distance tests need no lookup in the owner's containers.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -24,8 +26,9 @@ class PointGrid {
   std::vector<uint64_t> inBox(const Vec3& lo, const Vec3& hi) const;
   /// Ids whose cells intersect the cube around p of half-size r (superset of the ball).
   std::vector<uint64_t> near(const Vec3& p, double r) const { return inBox(p.array() - r, p.array() + r); }
-  /// True if `pred(id)` holds for some id whose cell intersects the cube around p of half-size
-  /// r. Unordered, allocation-free: for existence tests only (results never depend on order).
+  /// True if `pred(id, position)` holds for some id whose cell intersects the cube around p of
+  /// half-size r. Unordered, allocation-free: for existence tests only (results never depend
+  /// on order).
   template <class Pred>
   bool anyNear(const Vec3& p, double r, Pred pred) const {
     const Vec3 lo = p.array() - r, hi = p.array() + r;
@@ -34,19 +37,60 @@ class PointGrid {
         for (int64_t z = cellOf(lo.z()); z <= cellOf(hi.z()); ++z) {
           const auto it = cells_.find(key(x, y, z));
           if (it == cells_.end()) continue;
-          for (uint64_t id : it->second)
-            if (pred(id)) return true;
+          for (const Entry& e : it->second)
+            if (pred(e.id, e.position)) return true;
         }
     return false;
+  }
+  /// Ids (ascending) for which `pred(id, position)` holds, among those whose cells intersect
+  /// the cube around p of half-size r.
+  template <class Pred>
+  std::vector<uint64_t> select(const Vec3& p, double r, Pred pred) const {
+    std::vector<uint64_t> out;
+    visitBox(p.array() - r, p.array() + r, [&](const Entry& e) {
+      if (pred(e.id, e.position)) out.push_back(e.id);
+    });
+    std::sort(out.begin(), out.end());
+    return out;
   }
   /// Number of ids.
   size_t size() const { return size_; }
 
  private:
+  struct Entry {
+    uint64_t id;
+    Vec3 position;
+  };
+  // Calls f(entry) for every entry whose cell intersects [lo, hi] (in no particular order).
+  template <class F>
+  void visitBox(const Vec3& lo, const Vec3& hi, F f) const {
+    const int64_t x0 = cellOf(lo.x()), x1 = cellOf(hi.x()), y0 = cellOf(lo.y()), y1 = cellOf(hi.y());
+    const int64_t z0 = cellOf(lo.z()), z1 = cellOf(hi.z());
+    const long cells = (x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1);
+    if (cells > long(cells_.size()) * 4) {
+      // Large box: scan the occupied cells instead of the box's cells.
+      for (const auto& [k, entries] : cells_) {
+        const int64_t x = int64_t(k & kAxisMask) - kAxisOffset, y = int64_t((k >> 21) & kAxisMask) - kAxisOffset;
+        const int64_t z = int64_t((k >> 42) & kAxisMask) - kAxisOffset;
+        if (x >= x0 && x <= x1 && y >= y0 && y <= y1 && z >= z0 && z <= z1)
+          for (const Entry& e : entries) f(e);
+      }
+      return;
+    }
+    for (int64_t x = x0; x <= x1; ++x)
+      for (int64_t y = y0; y <= y1; ++y)
+        for (int64_t z = z0; z <= z1; ++z) {
+          const auto it = cells_.find(key(x, y, z));
+          if (it != cells_.end())
+            for (const Entry& e : it->second) f(e);
+        }
+  }
+  static constexpr uint64_t kAxisMask = (1ULL << 21) - 1;  // 21 bits per axis (±1M cells)
+  static constexpr int64_t kAxisOffset = 1 << 20;
   static uint64_t key(int64_t x, int64_t y, int64_t z);
   int64_t cellOf(double v) const { return int64_t(std::floor(v / cell_)); }
   double cell_;
-  std::unordered_map<uint64_t, std::vector<uint64_t>> cells_;
+  std::unordered_map<uint64_t, std::vector<Entry>> cells_;
   size_t size_ = 0;
 };
 

@@ -154,10 +154,8 @@ void SphereMap::eraseObstacle(uint64_t id) {
 bool SphereMap::insertObstacle(const Vec3& p, double d) {
   const double rho = config_.obstacle_spacing_m;
   std::vector<uint64_t> within;
-  for (uint64_t j : obstacle_grid_.near(p, rho)) {
-    const ObstaclePoint& o = obstacles_.at(j);
-    if ((o.position - p).norm() >= rho) continue;
-    if (o.d_min <= d) return false;  // an existing point was measured from closer (or as close)
+  for (uint64_t j : obstacle_grid_.select(p, rho, [&](uint64_t, const Vec3& q) { return (q - p).norm() < rho; })) {
+    if (obstacles_.at(j).d_min <= d) return false;  // an existing point was measured from closer (or as close)
     within.push_back(j);
   }
   for (uint64_t j : within) eraseObstacle(j);  // measured from farther: replaced
@@ -175,21 +173,15 @@ std::vector<uint64_t> SphereMap::spheresNear(const Vec3& p, double reach) const 
 }
 
 std::vector<uint64_t> SphereMap::obstaclesNear(const Vec3& p, double r) const {
-  std::vector<uint64_t> out;
-  for (uint64_t id : obstacle_grid_.near(p, r))
-    if ((obstacles_.at(id).position - p).norm() <= r) out.push_back(id);
-  return out;
+  return obstacle_grid_.select(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
 }
 
 std::vector<uint64_t> SphereMap::frontiersNear(const Vec3& p, double r) const {
-  std::vector<uint64_t> out;
-  for (uint64_t id : frontier_grid_.near(p, r))
-    if ((frontiers_.at(id).position - p).norm() <= r) out.push_back(id);
-  return out;
+  return frontier_grid_.select(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
 }
 
 bool SphereMap::anyObstacleNear(const Vec3& p, double r) const {
-  return obstacle_grid_.anyNear(p, r, [&](uint64_t id) { return (obstacles_.at(id).position - p).norm() <= r; });
+  return obstacle_grid_.anyNear(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
 }
 
 bool SphereMap::connected() const {

@@ -200,7 +200,7 @@ class SphereMap {
   PointGrid obstacle_grid_{2.0};
   std::map<uint64_t, Frontier> frontiers_;
   std::vector<std::pair<Vec3, double>> dirty_;  // regions changed since the last re-validation
-  PointGrid frontier_grid_{2.0};
+  PointGrid frontier_grid_{8.0};  // coarse: frontiers are sparse and queries reach 1.5–13 m (docs/performance.md)
   uint64_t next_sphere_ = 1, next_obstacle_ = 1, next_frontier_ = 1;
   double flown_m_ = 0.0;                       // camera path length over the updates (estimate frame)
   std::optional<Vec3> last_camera_;

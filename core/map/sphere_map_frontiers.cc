@@ -10,12 +10,12 @@ namespace msb {
 std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) const {
   const auto& c = config_;
   // Spacing from other frontiers and from every obstacle point.
-  if (obstacle_grid_.anyNear(x, c.frontier_obstacle_gap_m, [&](uint64_t j) {
-        return (obstacles_.at(j).position - x).norm() < c.frontier_obstacle_gap_m;
+  if (obstacle_grid_.anyNear(x, c.frontier_obstacle_gap_m, [&](uint64_t, const Vec3& q) {
+        return (q - x).norm() < c.frontier_obstacle_gap_m;
       }))
     return std::nullopt;
-  if (frontier_grid_.anyNear(x, c.frontier_spacing_m, [&](uint64_t j) {
-        return j != self && (frontiers_.at(j).position - x).norm() < c.frontier_spacing_m;
+  if (frontier_grid_.anyNear(x, c.frontier_spacing_m, [&](uint64_t j, const Vec3& q) {
+        return j != self && (q - x).norm() < c.frontier_spacing_m;
       }))
     return std::nullopt;
   // Outside every sphere, inside the shell of at least one; collect the shell spheres' centres.
@@ -33,8 +33,8 @@ std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) cons
       bool blocked = false;
       for (double t = c.frontier_obstacle_gap_m; t <= d - s.radius + 0.3 && !blocked; t += 0.2) {
         const Vec3 y = x + t * dir;
-        blocked = obstacle_grid_.anyNear(y, c.obstacle_spacing_m, [&](uint64_t k) {
-          return (obstacles_.at(k).position - y).norm() < c.obstacle_spacing_m;
+        blocked = obstacle_grid_.anyNear(y, c.obstacle_spacing_m, [&](uint64_t, const Vec3& q) {
+          return (q - y).norm() < c.obstacle_spacing_m;
         });
       }
       if (blocked) continue;
