@@ -1,5 +1,6 @@
 #include "sim/render/fisheye_renderer.h"
 
+#define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
 
@@ -152,7 +153,9 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
       glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     }
   }
+  if (config_.single_channel_textures) storeGreyTexturesAsLuminance();
   mjr_setBuffer(mjFB_OFFSCREEN, &mjr_context_);
+  if (config_.framebuffer_per_face) makeFaceFramebuffers();
   // Fog by distance from the eye, not by depth along each cube face's axis (which would differ
   // between faces and leave seams); MuJoCo sets the rest of the fog state on every render.
   if (cond.fog_end_m > 0) glFogi(GL_FOG_DISTANCE_MODE_NV, GL_EYE_RADIAL_NV);
@@ -175,8 +178,91 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
 
 FisheyeRenderer::~FisheyeRenderer() {
   context_->makeCurrent();  // GL objects belong to this renderer's context
+  if (!face_fbo_.empty()) {
+    glDeleteFramebuffers(GLsizei(face_fbo_.size()), face_fbo_.data());
+    glDeleteRenderbuffers(GLsizei(face_colour_rb_.size()), face_colour_rb_.data());
+    glDeleteRenderbuffers(GLsizei(face_depth_rb_.size()), face_depth_rb_.data());
+  }
   mjr_freeContext(&mjr_context_);
   mjv_freeScene(&scene_);
+}
+
+void FisheyeRenderer::storeGreyTexturesAsLuminance() {
+  // MuJoCo uploads every texture as RGB with its mip chain. A grey texture (every texel of
+  // every level has R = G = B) is read back level by level and stored again as one-byte
+  // luminance with the same texel values: the sampler returns (L, L, L, 1) as before, from a
+  // quarter of the memory.
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  std::vector<uint8_t> rgb;
+  for (int i = 0; i < mjr_context_.ntexture; ++i) {
+    const bool cube = mjr_context_.textureType[i] != mjTEXTURE_2D;
+    const GLenum target = cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
+    glBindTexture(target, mjr_context_.texture[i]);
+    struct Level {
+      GLenum image_target;
+      int level, width, height;
+      std::vector<uint8_t> luminance;
+    };
+    std::vector<Level> levels;
+    bool grey = true;
+    for (int side = 0; side < (cube ? 6 : 1) && grey; ++side) {
+      const GLenum image_target = cube ? GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + side) : GL_TEXTURE_2D;
+      for (int level = 0; grey; ++level) {
+        GLint w = 0, h = 0;
+        glGetTexLevelParameteriv(image_target, level, GL_TEXTURE_WIDTH, &w);
+        glGetTexLevelParameteriv(image_target, level, GL_TEXTURE_HEIGHT, &h);
+        if (w <= 0 || h <= 0) break;
+        rgb.resize(size_t(w) * h * 3);
+        glGetTexImage(image_target, level, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+        Level l{image_target, level, w, h, std::vector<uint8_t>(size_t(w) * h)};
+        for (size_t p = 0; p < l.luminance.size() && grey; ++p) {
+          grey = rgb[3 * p] == rgb[3 * p + 1] && rgb[3 * p] == rgb[3 * p + 2];
+          l.luminance[p] = rgb[3 * p];
+        }
+        levels.push_back(std::move(l));
+      }
+    }
+    if (!grey || levels.empty()) continue;
+    for (const Level& l : levels)
+      glTexImage2D(l.image_target, l.level, GL_LUMINANCE8, l.width, l.height, 0, GL_LUMINANCE,
+                   GL_UNSIGNED_BYTE, l.luminance.data());
+    ++luminance_textures_;
+  }
+}
+
+void FisheyeRenderer::makeFaceFramebuffers() {
+  // MuJoCo clears the viewport it renders into with the scissor test on; Mesa turns a clear
+  // that does not cover the whole framebuffer into a drawn quad, which llvmpipe rasterises
+  // like any geometry (about a tenth of the frame). A framebuffer the size of the face makes
+  // the same clear a whole-buffer clear. Same formats as MuJoCo's off-screen buffer, so the
+  // same colour and depth precision.
+  GLint colour_format = GL_RGBA8, depth_format = GL_DEPTH24_STENCIL8;
+  glBindRenderbuffer(GL_RENDERBUFFER, mjr_context_.offColor);
+  glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_INTERNAL_FORMAT, &colour_format);
+  glBindRenderbuffer(GL_RENDERBUFFER, mjr_context_.offDepthStencil);
+  glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_INTERNAL_FORMAT, &depth_format);
+  const GLsizei n = GLsizei(faces_.size());
+  face_fbo_.resize(n), face_colour_rb_.resize(n), face_depth_rb_.resize(n);
+  glGenFramebuffers(n, face_fbo_.data());
+  glGenRenderbuffers(n, face_colour_rb_.data());
+  glGenRenderbuffers(n, face_depth_rb_.data());
+  for (GLsizei i = 0; i < n; ++i) {
+    glBindFramebuffer(GL_FRAMEBUFFER, face_fbo_[i]);
+    glBindRenderbuffer(GL_RENDERBUFFER, face_colour_rb_[i]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GLenum(colour_format), faces_[i].width, faces_[i].height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, face_colour_rb_[i]);
+    glBindRenderbuffer(GL_RENDERBUFFER, face_depth_rb_[i]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GLenum(depth_format), faces_[i].width, faces_[i].height);
+    const GLenum attachment = depth_format == GL_DEPTH24_STENCIL8 || depth_format == GL_DEPTH32F_STENCIL8
+                                  ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, face_depth_rb_[i]);
+    glDrawBuffer(GL_COLOR_ATTACHMENT0);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("GL: incomplete cube-face framebuffer");
+  }
+  mjr_restoreBuffer(&mjr_context_);
 }
 
 long FisheyeRenderer::renderedPixels() const {
@@ -258,7 +344,9 @@ void FisheyeRenderer::buildFacesAndLut() {
       map_y.at<float>(v, u) = static_cast<float>(f.atlas_y + (tan_y1 - pixel_tan[i].y()) * ff - 0.5);
     }
   }
-  cv::convertMaps(map_x, map_y, map_xy_, map_interp_, CV_16SC2);
+  cv::Mat map_xy, map_interp;
+  cv::convertMaps(map_x, map_y, map_xy, map_interp, CV_16SC2);
+  remap_ = FixedPointRemap(map_xy, map_interp, cv::Size(atlas_width_, atlas_height_));
 }
 
 void FisheyeRenderer::cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0, double tx1, double ty0,
@@ -334,28 +422,45 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
     }
     if (config_.cull_per_face) cullToFace(R_W_F, pos, f.tan_x0, x1, f.tan_y0, y1);
     drawn_geoms_ += scene_.ngeom;
-    mjr_render(mjrRect{f.atlas_x, f.atlas_y, f.width, f.height}, &scene_, &mjr_context_);
+    if (face_fbo_.empty()) {
+      mjr_render(mjrRect{f.atlas_x, f.atlas_y, f.width, f.height}, &scene_, &mjr_context_);
+    } else {
+      // mjr_render draws into the bound framebuffer and rebinds its own when done.
+      glBindFramebuffer(GL_FRAMEBUFFER, face_fbo_[&f - faces_.data()]);
+      mjr_render(mjrRect{0, 0, f.width, f.height}, &scene_, &mjr_context_);
+    }
   }
   glFinish();
   t.render_ms = msSince(t0);
 
-  // One read-back of the whole atlas.
+  // Read-back of the atlas: at once, or face by face into its place.
   t0 = WallClock::now();
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  if (config_.read_red_channel_only) {
-    atlas_grey_.create(atlas_height_, atlas_width_, CV_8UC1);
-    glReadPixels(0, 0, atlas_width_, atlas_height_, GL_RED, GL_UNSIGNED_BYTE, atlas_grey_.data);
+  const bool red_only = config_.read_red_channel_only;
+  cv::Mat& atlas = red_only ? atlas_grey_ : atlas_raw_;
+  if (atlas.rows != atlas_height_ || atlas.cols != atlas_width_) {
+    // Zero once: the gaps between faces are never drawn (per-face framebuffers) or cleared.
+    atlas = cv::Mat::zeros(atlas_height_, atlas_width_, red_only ? CV_8UC1 : CV_8UC4);
+  }
+  const GLenum format = red_only ? GL_RED : GL_RGBA;
+  if (face_fbo_.empty()) {
+    glReadPixels(0, 0, atlas_width_, atlas_height_, format, GL_UNSIGNED_BYTE, atlas.data);
   } else {
-    atlas_raw_.create(atlas_height_, atlas_width_, CV_8UC4);
-    glReadPixels(0, 0, atlas_width_, atlas_height_, GL_RGBA, GL_UNSIGNED_BYTE, atlas_raw_.data);
+    glPixelStorei(GL_PACK_ROW_LENGTH, atlas_width_);
+    for (size_t i = 0; i < faces_.size(); ++i) {
+      const CubeFace& f = faces_[i];
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, face_fbo_[i]);
+      glReadPixels(0, 0, f.width, f.height, format, GL_UNSIGNED_BYTE, atlas.ptr(f.atlas_y, f.atlas_x));
+    }
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    mjr_restoreBuffer(&mjr_context_);
   }
   t.readback_ms = msSince(t0);
 
   // Grey conversion and fisheye remap.
   t0 = WallClock::now();
   if (!config_.read_red_channel_only) cv::cvtColor(atlas_raw_, atlas_grey_, cv::COLOR_RGBA2GRAY);
-  cv::remap(atlas_grey_, fisheye_, map_xy_, map_interp_, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
-            cv::Scalar(0));
+  remap_.apply(atlas_grey_, fisheye_);
   frame->width = fisheye_.cols;
   frame->height = fisheye_.rows;
   frame->pixels.assign(fisheye_.datastart, fisheye_.dataend);

@@ -37,6 +37,7 @@
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
 #include "sim/render/frame_renderer.h"
+#include "sim/render/fixed_point_remap.h"
 #include "sim/render/gl_context.h"
 #include "sim/render/render_conditions.h"
 
@@ -65,6 +66,10 @@ struct FisheyeRendererConfig {
   bool trilinear_textures = false;  ///< true: blend two mip levels per texture sample (MuJoCo's
                                     ///< own setting); false: the nearest mip level, bilinear in
                                     ///< it (≈ 0.8× the frame, same sharpness and tracking)
+  bool single_channel_textures = true;  ///< keep grey textures as one byte per texel instead of
+                                        ///< MuJoCo's RGB (same texel values and pixels)
+  bool framebuffer_per_face = false;  ///< render each face into its own framebuffer, so that
+                                     ///< MuJoCo's clear covers a whole buffer (fast in llvmpipe)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -108,9 +113,15 @@ class FisheyeRenderer final : public FrameRenderer {
   long renderedPixels() const;
   /// Geoms drawn in the last frame, summed over its cube faces.
   long drawnGeomsLastFrame() const { return drawn_geoms_; }
+  /// Textures kept as one-byte luminance (grey textures, `single_channel_textures`).
+  int luminanceTextures() const { return luminance_textures_; }
 
  private:
   void buildFacesAndLut();
+  // Creates one framebuffer per face, with MuJoCo's off-screen colour and depth formats.
+  void makeFaceFramebuffers();
+  // Re-stores every grey texture (all levels R = G = B) as one-byte luminance.
+  void storeGreyTexturesAsLuminance();
   // Leaves in scene_ only the geoms of scene_geoms_ that may be seen in a face (its frame in the
   // world, the eye, its tangent bounds).
   void cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0, double tx1, double ty0, double ty1);
@@ -126,12 +137,14 @@ class FisheyeRenderer final : public FrameRenderer {
   double face_focal_px_ = 0;
   std::vector<CubeFace> faces_;
   int atlas_width_ = 0, atlas_height_ = 0;
-  cv::Mat map_xy_, map_interp_;   // fixed-point lookup table (CV_16SC2 + CV_16UC1)
+  FixedPointRemap remap_;          // atlas pixels to fisheye pixels (bilinear, fixed point)
   cv::Mat atlas_raw_, atlas_grey_, fisheye_;
   std::optional<Vec3> sun_direction_;  // world direction of the sun's light, if conditions set it
   std::vector<mjvGeom> scene_geoms_;  // the full scene of a frame, culled per face into scene_
   long drawn_geoms_ = 0;              // geoms drawn in the last frame, over all faces
-
+  int luminance_textures_ = 0;        // textures re-stored as one-byte luminance
+  // Per-face framebuffers (framebuffer_per_face): framebuffer, colour and depth renderbuffers.
+  std::vector<unsigned> face_fbo_, face_colour_rb_, face_depth_rb_;
 };
 
 }  // namespace msb

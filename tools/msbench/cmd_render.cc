@@ -143,7 +143,13 @@ int runBenchSimCommand(int argc, char** argv) {
       .flag("compare-cull", "time per-face culling on and off side by side, frame by frame, and check\n"
                             "that both give the same pixels")
       .flag("compare-textures", "time trilinear and nearest-mip texture filtering side by side, frame\n"
-                                "by frame, with the mean pixel difference and each one's sharpness");
+                                "by frame, with the mean pixel difference and each one's sharpness")
+      .flag("rgb-textures", "keep grey textures as RGB (render.single_channel_textures: false)")
+      .flag("compare-texture-format", "time one-byte and RGB grey textures side by side, frame by frame,\n"
+                                      "and check that both give the same pixels")
+      .flag("shared-framebuffer", "render all faces into one framebuffer (render.framebuffer_per_face: false)")
+      .flag("compare-framebuffers", "time one framebuffer per face and one shared by all faces side by side,\n"
+                                    "frame by frame, and check that both give the same pixels");
   if (!args.parse(argc, argv)) return kExitOk;
   const std::string world = resolveWorld(args.get("world")).world_xml;
   const long steps = args.getInt("steps"), frames = args.getInt("frames");
@@ -177,19 +183,26 @@ int runBenchSimCommand(int argc, char** argv) {
     rcfg.sun = !args.has("no-sun");
     rcfg.cull_per_face = !args.has("no-cull");
     rcfg.trilinear_textures = args.has("trilinear");
+    rcfg.framebuffer_per_face = !args.has("shared-framebuffer");
+    rcfg.single_channel_textures = !args.has("rgb-textures");
     QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
     rsim.beginTick();
     // One renderer, or two (culling or trilinear filtering on and off) rendering every frame
     // alternately.
     const bool compare_cull = args.has("compare-cull"), compare_tex = args.has("compare-textures");
-    if (compare_cull && compare_tex) throw UsageError("--compare-cull and --compare-textures exclude each other");
-    const bool compare = compare_cull || compare_tex;
+    const bool compare_fb = args.has("compare-framebuffers"), compare_format = args.has("compare-texture-format");
+    if (int(compare_cull) + int(compare_tex) + int(compare_fb) + int(compare_format) > 1)
+      throw UsageError("--compare-cull, --compare-textures, --compare-framebuffers and --compare-texture-format "
+                       "exclude each other");
+    const bool compare = compare_cull || compare_tex || compare_fb || compare_format;
     std::vector<std::unique_ptr<FisheyeRenderer>> renderers;
     renderers.push_back(std::make_unique<FisheyeRenderer>(rcfg, camera, rsim.model()));
     if (compare) {
       FisheyeRendererConfig other = rcfg;
       if (compare_cull) other.cull_per_face = !rcfg.cull_per_face;
       if (compare_tex) other.trilinear_textures = !rcfg.trilinear_textures;
+      if (compare_fb) other.framebuffer_per_face = !rcfg.framebuffer_per_face;
+      if (compare_format) other.single_channel_textures = !rcfg.single_channel_textures;
       renderers.push_back(std::make_unique<FisheyeRenderer>(other, camera, rsim.model()));
     }
     std::vector<double> sharpness(renderers.size(), 0.0);
@@ -223,7 +236,9 @@ int runBenchSimCommand(int argc, char** argv) {
       const bool first = k == 0;
       const char* label = compare_cull ? (first == rcfg.cull_per_face ? " culled" : " not culled")
                           : compare_tex ? (first == rcfg.trilinear_textures ? " trilinear" : " nearest mip")
-                                        : "";
+                          : compare_fb ? (first == rcfg.framebuffer_per_face ? " framebuffer per face" : " shared framebuffer")
+                          : compare_format ? (first == rcfg.single_channel_textures ? " one-byte textures" : " RGB textures")
+                                           : "";
       std::printf("fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
                   "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
                   "atlas %dx%d, face focal ratio %.2f, sharpness (mean |gradient| in the FoV) %.3f\n",
@@ -238,6 +253,18 @@ int runBenchSimCommand(int argc, char** argv) {
                   camera.width(), camera.height(),
                   (rcfg.trilinear_textures ? sums[1].totalMs() / sums[0].totalMs() : sums[0].totalMs() / sums[1].totalMs()),
                   abs_difference / n);
+    if (compare_format)
+      std::printf("fisheye %dx%d: one-byte / RGB textures time %.2f; frames with different pixels: %ld of %ld "
+                  "(%d of %d textures grey)\n",
+                  camera.width(), camera.height(),
+                  (rcfg.single_channel_textures ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
+                  different, frames, renderers[rcfg.single_channel_textures ? 0 : 1]->luminanceTextures(), rsim.model()->ntex);
+    if (compare_fb)
+      std::printf("fisheye %dx%d: per-face / shared framebuffer time %.2f; frames with different pixels: %ld of %ld; "
+                  "mean |pixel difference| %.4f grey levels\n",
+                  camera.width(), camera.height(),
+                  (rcfg.framebuffer_per_face ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
+                  different, frames, abs_difference / n);
     if (compare_cull)
       std::printf("fisheye %dx%d: culled / not culled time %.2f; frames with different pixels: %ld of %ld\n",
                   camera.width(), camera.height(),

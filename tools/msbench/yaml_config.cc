@@ -133,6 +133,8 @@ void readRender(MapReader r, FisheyeRendererConfig& c) {
   r.read("sun_ambient", c.sun_ambient);
   r.read("cull_per_face", c.cull_per_face);
   r.read("trilinear_textures", c.trilinear_textures);
+  r.read("framebuffer_per_face", c.framebuffer_per_face);
+  r.read("single_channel_textures", c.single_channel_textures);
   r.finish();
 }
 

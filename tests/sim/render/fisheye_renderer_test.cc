@@ -238,6 +238,56 @@ TEST(FisheyeRendererTextures, NearestMipFilteringChangesTexturedPixelsSlightlyAn
   EXPECT_GT(gradient(fb), 0.97 * gradient(fa));
 }
 
+TEST(FisheyeRendererTextures, GreyTexturesKeptAsOneBytePerTexelGiveTheSamePixels) {
+  // The textured test world (grey image textures) plus a coloured checker, which stays RGB.
+  const std::string world = std::string(MSB_SOURCE_DIR) + "/worlds/test/world.xml";
+  FisheyeRendererConfig rgb;
+  rgb.single_channel_textures = false;
+  for (const double yaw : {0.7, 2.6}) {
+    const Pose T = poseFromXyzYaw(Vec3(1, 0.5, 1.6), yaw);
+    Scene one_byte(world, T), kept_rgb(world, T, 1.0, rgb);
+    EXPECT_GT(one_byte.renderer->luminanceTextures(), 0);
+    EXPECT_EQ(one_byte.renderer->luminanceTextures(), one_byte.sim->model()->ntex);
+    EXPECT_EQ(kept_rgb.renderer->luminanceTextures(), 0);
+    EXPECT_EQ(one_byte.render().pixels, kept_rgb.render().pixels) << "yaw " << yaw;
+  }
+  const std::string coloured = writeWorld(
+      "coloured_checker",
+      "<texture name='c' type='2d' builtin='checker' rgb1='1 0 0' rgb2='0 0 1' width='64' height='64'/>"
+      "<material name='m' texture='c' texrepeat='4 4'/>",
+      "<geom type='plane' size='10 10 1' material='m'/><geom type='box' size='1 1 1' pos='3 0 1' material='m'/>");
+  const Pose T = poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
+  Scene a(coloured, T), b(coloured, T, 1.0, rgb);
+  EXPECT_EQ(a.renderer->luminanceTextures(), 0);
+  EXPECT_EQ(a.render().pixels, b.render().pixels);
+}
+
+TEST(FisheyeRenderer, AFramebufferPerFaceChangesPixelsOnlyByRounding) {
+  // Each face rendered into its own framebuffer (viewport at the origin) instead of a viewport
+  // of the shared atlas: the window coordinates of the vertices are rounded differently, so a
+  // few edge pixels may change; nothing else does.
+  const std::string world = std::string(MSB_SOURCE_DIR) + "/worlds/test/world.xml";
+  FisheyeRendererConfig shared, own;
+  shared.framebuffer_per_face = false;
+  own.framebuffer_per_face = true;
+  for (const double yaw : {0.0, 1.3, -2.2}) {
+    const Pose T = poseFromXyzYaw(Vec3(1.5, -0.5, 1.7), yaw);
+    Scene per_face(world, T, 1.0, own), one(world, T, 1.0, shared);
+    const CameraFrame a = per_face.render(), b = one.render();
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    long differing = 0;
+    double abs_sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+      const int d = std::abs(int(a.pixels[i]) - int(b.pixels[i]));
+      differing += d > 0;
+      abs_sum += d;
+    }
+    EXPECT_LT(double(differing) / double(a.pixels.size()), 0.01) << "yaw " << yaw;
+    EXPECT_LT(abs_sum / double(a.pixels.size()), 0.05) << "yaw " << yaw;
+    EXPECT_EQ(per_face.render().pixels, a.pixels);  // and it is deterministic
+  }
+}
+
 std::string readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream ss;
