@@ -68,7 +68,7 @@ struct FisheyeRendererConfig {
                                     ///< it (≈ 0.8× the frame, same sharpness and tracking)
   bool single_channel_textures = true;  ///< keep grey textures as one byte per texel instead of
                                         ///< MuJoCo's RGB (same texel values and pixels)
-  bool framebuffer_per_face = false;  ///< render each face into its own framebuffer, so that
+  bool framebuffer_per_face = true;   ///< render each face into its own framebuffer, so that
                                      ///< MuJoCo's clear covers a whole buffer (fast in llvmpipe)
 
   /// Records invalid fields.
