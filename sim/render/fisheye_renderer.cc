@@ -59,6 +59,26 @@ int faceOf(const std::vector<CubeFace>& faces, const Vec3& d) {
 
 }  // namespace
 
+bool modelRendersGrey(const mjModel* m) {
+  const auto grey3 = [](const float* c) { return c[0] == c[1] && c[0] == c[2]; };
+  for (int g = 0; g < m->ngeom; ++g)
+    if (!grey3(m->geom_rgba + 4 * g)) return false;
+  for (int i = 0; i < m->nmat; ++i)
+    if (!grey3(m->mat_rgba + 4 * i)) return false;
+  for (int i = 0; i < m->nskin; ++i)
+    if (!grey3(m->skin_rgba + 4 * i)) return false;
+  for (int l = 0; l < m->nlight; ++l)
+    if (!grey3(m->light_ambient + 3 * l) || !grey3(m->light_diffuse + 3 * l) || !grey3(m->light_specular + 3 * l))
+      return false;
+  const mjVisual& v = m->vis;
+  if (!grey3(v.headlight.ambient) || !grey3(v.headlight.diffuse) || !grey3(v.headlight.specular) ||
+      !grey3(v.rgba.fog) || !grey3(v.rgba.haze))
+    return false;
+  for (int i = 0; i + 2 < m->ntexdata; i += 3)
+    if (m->tex_rgb[i] != m->tex_rgb[i + 1] || m->tex_rgb[i] != m->tex_rgb[i + 2]) return false;
+  return true;
+}
+
 FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
                                  const FisheyeCamera& camera, mjModel* model)
     : config_(checkValid(config)), camera_(camera), model_(model) {
@@ -242,6 +262,13 @@ void FisheyeRenderer::makeFaceFramebuffers() {
   glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_INTERNAL_FORMAT, &colour_format);
   glBindRenderbuffer(GL_RENDERBUFFER, mjr_context_.offDepthStencil);
   glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_INTERNAL_FORMAT, &depth_format);
+  // A grey world renders R = G = B in every pixel (each channel is computed alike from equal
+  // inputs), so one channel holds the whole image: a quarter of the colour memory to shade,
+  // clear and read back, and no colour-to-grey conversion.
+  if (config_.single_channel_framebuffer && modelRendersGrey(model_)) {
+    colour_format = GL_R8;
+    single_channel_framebuffer_ = true;
+  }
   const GLsizei n = GLsizei(faces_.size());
   face_fbo_.resize(n), face_colour_rb_.resize(n), face_depth_rb_.resize(n);
   glGenFramebuffers(n, face_fbo_.data());
@@ -442,7 +469,7 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
   // Read-back of the atlas: at once, or face by face into its place.
   t0 = WallClock::now();
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  const bool red_only = config_.read_red_channel_only;
+  const bool red_only = config_.read_red_channel_only || single_channel_framebuffer_;
   cv::Mat& atlas = red_only ? atlas_grey_ : atlas_raw_;
   if (atlas.rows != atlas_height_ || atlas.cols != atlas_width_) {
     // Zero once: the gaps between faces are never drawn (per-face framebuffers) or cleared.
@@ -465,7 +492,7 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
 
   // Grey conversion and fisheye remap.
   t0 = WallClock::now();
-  if (!config_.read_red_channel_only) cv::cvtColor(atlas_raw_, atlas_grey_, cv::COLOR_RGBA2GRAY);
+  if (!red_only) cv::cvtColor(atlas_raw_, atlas_grey_, cv::COLOR_RGBA2GRAY);
   remap_.apply(atlas_grey_, fisheye_);
   frame->width = fisheye_.cols;
   frame->height = fisheye_.rows;

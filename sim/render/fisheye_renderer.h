@@ -70,10 +70,16 @@ struct FisheyeRendererConfig {
                                         ///< MuJoCo's RGB (same texel values and pixels)
   bool framebuffer_per_face = true;   ///< render each face into its own framebuffer, so that
                                      ///< MuJoCo's clear covers a whole buffer (fast in llvmpipe)
+  bool single_channel_framebuffer = true;  ///< with framebuffer_per_face, a one-channel colour
+                                           ///< buffer when the model renders grey (same pixels)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
+
+/// Whether every colour `m` can render is grey (R = G = B): geom, material and skin colours,
+/// lights, headlight, fog, haze and every texel. Such a model renders R = G = B in every pixel.
+bool modelRendersGrey(const mjModel* m);
 
 /// One cube face as rendered: orientation and its rectangle in face and atlas pixels.
 struct CubeFace {
@@ -115,6 +121,9 @@ class FisheyeRenderer final : public FrameRenderer {
   long drawnGeomsLastFrame() const { return drawn_geoms_; }
   /// Textures kept as one-byte luminance (grey textures, `single_channel_textures`).
   int luminanceTextures() const { return luminance_textures_; }
+  /// Whether faces render into one-channel colour buffers (`single_channel_framebuffer` and a
+  /// grey model).
+  bool singleChannelFramebuffer() const { return single_channel_framebuffer_; }
 
  private:
   void buildFacesAndLut();
@@ -143,6 +152,7 @@ class FisheyeRenderer final : public FrameRenderer {
   std::vector<mjvGeom> scene_geoms_;  // the full scene of a frame, culled per face into scene_
   long drawn_geoms_ = 0;              // geoms drawn in the last frame, over all faces
   int luminance_textures_ = 0;        // textures re-stored as one-byte luminance
+  bool single_channel_framebuffer_ = false;  // face colour buffers hold one channel (grey model)
   // Per-face framebuffers (framebuffer_per_face): framebuffer, colour and depth renderbuffers.
   std::vector<unsigned> face_fbo_, face_colour_rb_, face_depth_rb_;
 };

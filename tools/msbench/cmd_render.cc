@@ -149,7 +149,10 @@ int runBenchSimCommand(int argc, char** argv) {
                                       "and check that both give the same pixels")
       .flag("shared-framebuffer", "render all faces into one framebuffer (render.framebuffer_per_face: false)")
       .flag("compare-framebuffers", "time one framebuffer per face and one shared by all faces side by side,\n"
-                                    "frame by frame, and check that both give the same pixels");
+                                    "frame by frame, and check that both give the same pixels")
+      .flag("rgba-framebuffer", "keep RGBA face buffers in grey worlds (render.single_channel_framebuffer: false)")
+      .flag("compare-framebuffer-format", "time one-channel and RGBA face buffers side by side, frame by frame,\n"
+                                          "and check that both give the same pixels");
   if (!args.parse(argc, argv)) return kExitOk;
   const std::string world = resolveWorld(args.get("world")).world_xml;
   const long steps = args.getInt("steps"), frames = args.getInt("frames");
@@ -185,16 +188,18 @@ int runBenchSimCommand(int argc, char** argv) {
     rcfg.trilinear_textures = args.has("trilinear");
     rcfg.framebuffer_per_face = !args.has("shared-framebuffer");
     rcfg.single_channel_textures = !args.has("rgb-textures");
+    rcfg.single_channel_framebuffer = !args.has("rgba-framebuffer");
     QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
     rsim.beginTick();
     // One renderer, or two (culling or trilinear filtering on and off) rendering every frame
     // alternately.
     const bool compare_cull = args.has("compare-cull"), compare_tex = args.has("compare-textures");
     const bool compare_fb = args.has("compare-framebuffers"), compare_format = args.has("compare-texture-format");
-    if (int(compare_cull) + int(compare_tex) + int(compare_fb) + int(compare_format) > 1)
-      throw UsageError("--compare-cull, --compare-textures, --compare-framebuffers and --compare-texture-format "
-                       "exclude each other");
-    const bool compare = compare_cull || compare_tex || compare_fb || compare_format;
+    const bool compare_channels = args.has("compare-framebuffer-format");
+    if (int(compare_cull) + int(compare_tex) + int(compare_fb) + int(compare_format) + int(compare_channels) > 1)
+      throw UsageError("--compare-cull, --compare-textures, --compare-framebuffers, --compare-texture-format and "
+                       "--compare-framebuffer-format exclude each other");
+    const bool compare = compare_cull || compare_tex || compare_fb || compare_format || compare_channels;
     std::vector<std::unique_ptr<FisheyeRenderer>> renderers;
     renderers.push_back(std::make_unique<FisheyeRenderer>(rcfg, camera, rsim.model()));
     if (compare) {
@@ -203,6 +208,7 @@ int runBenchSimCommand(int argc, char** argv) {
       if (compare_tex) other.trilinear_textures = !rcfg.trilinear_textures;
       if (compare_fb) other.framebuffer_per_face = !rcfg.framebuffer_per_face;
       if (compare_format) other.single_channel_textures = !rcfg.single_channel_textures;
+      if (compare_channels) other.single_channel_framebuffer = !rcfg.single_channel_framebuffer;
       renderers.push_back(std::make_unique<FisheyeRenderer>(other, camera, rsim.model()));
     }
     std::vector<double> sharpness(renderers.size(), 0.0);
@@ -238,7 +244,8 @@ int runBenchSimCommand(int argc, char** argv) {
                           : compare_tex ? (first == rcfg.trilinear_textures ? " trilinear" : " nearest mip")
                           : compare_fb ? (first == rcfg.framebuffer_per_face ? " framebuffer per face" : " shared framebuffer")
                           : compare_format ? (first == rcfg.single_channel_textures ? " one-byte textures" : " RGB textures")
-                                           : "";
+                          : compare_channels ? (renderer.singleChannelFramebuffer() ? " one-channel framebuffer" : " RGBA framebuffer")
+                                             : "";
       std::printf("fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
                   "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
                   "atlas %dx%d, face focal ratio %.2f, sharpness (mean |gradient| in the FoV) %.3f\n",
@@ -265,6 +272,12 @@ int runBenchSimCommand(int argc, char** argv) {
                   camera.width(), camera.height(),
                   (rcfg.framebuffer_per_face ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
                   different, frames, abs_difference / n);
+    if (compare_channels)
+      std::printf("fisheye %dx%d: one-channel / RGBA framebuffer time %.2f; frames with different pixels: %ld of %ld "
+                  "(model renders grey: %s)\n",
+                  camera.width(), camera.height(),
+                  (rcfg.single_channel_framebuffer ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
+                  different, frames, renderers[rcfg.single_channel_framebuffer ? 0 : 1]->singleChannelFramebuffer() ? "yes" : "no");
     if (compare_cull)
       std::printf("fisheye %dx%d: culled / not culled time %.2f; frames with different pixels: %ld of %ld\n",
                   camera.width(), camera.height(),

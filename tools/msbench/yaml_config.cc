@@ -135,6 +135,7 @@ void readRender(MapReader r, FisheyeRendererConfig& c) {
   r.read("trilinear_textures", c.trilinear_textures);
   r.read("framebuffer_per_face", c.framebuffer_per_face);
   r.read("single_channel_textures", c.single_channel_textures);
+  r.read("single_channel_framebuffer", c.single_channel_framebuffer);
   r.finish();
 }
 

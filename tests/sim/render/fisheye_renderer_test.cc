@@ -262,6 +262,58 @@ TEST(FisheyeRendererTextures, GreyTexturesKeptAsOneBytePerTexelGiveTheSamePixels
   EXPECT_EQ(a.render().pixels, b.render().pixels);
 }
 
+TEST(FisheyeRendererFramebuffer, AOneChannelFramebufferGivesTheSamePixelsInAGreyWorld) {
+  // The grey test world, plain and in grey fog: one-channel face buffers against RGBA ones
+  // converted to grey.
+  const std::string world = std::string(MSB_SOURCE_DIR) + "/worlds/test/world.xml";
+  for (const bool fog : {false, true}) {
+    FisheyeRendererConfig one, rgba;
+    rgba.single_channel_framebuffer = false;
+    if (fog) {
+      one.conditions.fog_start_m = rgba.conditions.fog_start_m = 2.0;
+      one.conditions.fog_end_m = rgba.conditions.fog_end_m = 25.0;
+    }
+    for (const double yaw : {0.4, 2.9}) {
+      const Pose T = poseFromXyzYaw(Vec3(1, 0.5, 1.6), yaw);
+      Scene a(world, T, 1.0, one), b(world, T, 1.0, rgba);
+      EXPECT_TRUE(modelRendersGrey(a.sim->model()));
+      EXPECT_TRUE(a.renderer->singleChannelFramebuffer());
+      EXPECT_FALSE(b.renderer->singleChannelFramebuffer());
+      const CameraFrame fa = a.render(), fb = b.render();
+      EXPECT_EQ(fa.pixels, fb.pixels) << "fog " << fog << " yaw " << yaw;
+      long lit = 0;
+      for (const uint8_t p : fa.pixels) lit += p > 20;
+      EXPECT_GT(lit, long(fa.pixels.size() / 4));  // a real image, not an empty one
+    }
+  }
+}
+
+TEST(FisheyeRendererFramebuffer, AColouredWorldOrColouredFogKeepsRgbaFaceBuffers) {
+  // A coloured texture, a coloured fog or a coloured geom: the grey image needs all three
+  // channels, so the face buffers stay RGBA (and give the same pixels as asked for explicitly).
+  FisheyeRendererConfig rgba;
+  rgba.single_channel_framebuffer = false;
+  const std::string coloured = writeWorld(
+      "coloured_checker_fb",
+      "<texture name='c' type='2d' builtin='checker' rgb1='1 0 0' rgb2='0 0 1' width='64' height='64'/>"
+      "<material name='m' texture='c' texrepeat='4 4'/>",
+      "<geom type='plane' size='10 10 1' material='m'/><geom type='box' size='1 1 1' pos='3 0 1' material='m'/>");
+  const std::string red_box = writeWorld("red_box", "", "<geom type='plane' size='10 10 1'/>"
+                                                        "<geom type='box' size='1 1 1' pos='3 0 1' rgba='1 0 0 1'/>");
+  const Pose T = poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
+  for (const std::string& world : {coloured, red_box}) {
+    Scene a(world, T), b(world, T, 1.0, rgba);
+    EXPECT_FALSE(modelRendersGrey(a.sim->model())) << world;
+    EXPECT_FALSE(a.renderer->singleChannelFramebuffer()) << world;
+    EXPECT_EQ(a.render().pixels, b.render().pixels) << world;
+  }
+  FisheyeRendererConfig tinted_fog;
+  tinted_fog.conditions.fog_end_m = 25.0;
+  tinted_fog.conditions.fog_colour = {0.8, 0.7, 0.6};
+  Scene fogged(std::string(MSB_SOURCE_DIR) + "/worlds/test/world.xml", T, 1.0, tinted_fog);
+  EXPECT_FALSE(fogged.renderer->singleChannelFramebuffer());
+}
+
 TEST(FisheyeRenderer, AFramebufferPerFaceChangesPixelsOnlyByRounding) {
   // Each face rendered into its own framebuffer (viewport at the origin) instead of a viewport
   // of the shared atlas: the window coordinates of the vertices are rounded differently, so a
