@@ -56,6 +56,23 @@ struct Scene {
 
 uint8_t at(const CameraFrame& f, int u, int v) { return f.pixels[size_t(v) * f.width + u]; }
 
+// How two equally sized frames differ: the number of differing pixels and the mean |difference|.
+struct PixelDifference {
+  long differing = 0;
+  double mean_abs = 0;
+};
+PixelDifference difference(const CameraFrame& a, const CameraFrame& b) {
+  PixelDifference out;
+  double abs_sum = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    const int d = std::abs(int(a.pixels[i]) - int(b.pixels[i]));
+    out.differing += d > 0;
+    abs_sum += d;
+  }
+  out.mean_abs = a.pixels.empty() ? 0.0 : abs_sum / double(a.pixels.size());
+  return out;
+}
+
 TEST(FisheyeRenderer, BrightMarkersAppearWhereTheCameraModelPredicts) {
   // Directions in the camera frame: centre, off-axis, on face seams, near the FoV edge.
   const std::vector<Vec3> dirs = {
@@ -224,17 +241,11 @@ TEST(FisheyeRendererTextures, NearestMipFilteringChangesTexturedPixelsSlightlyAn
       for (int u = 1; u + 1 < f.width; ++u) g += std::abs(at(f, u + 1, v) - at(f, u - 1, v)) + std::abs(at(f, u, v + 1) - at(f, u, v - 1));
     return g;
   };
-  long differing = 0;
-  double abs_sum = 0;
-  for (size_t i = 0; i < fa.pixels.size(); ++i) {
-    const int d = std::abs(int(fa.pixels[i]) - int(fb.pixels[i]));
-    differing += d > 0;
-    abs_sum += d;
-  }
+  const PixelDifference d = difference(fa, fb);
   // The switch takes effect (textured surfaces change) ...
-  EXPECT_GT(differing, 1000);
+  EXPECT_GT(d.differing, 1000);
   // ... by little on average, and the image is not blurrier.
-  EXPECT_LT(abs_sum / double(fa.pixels.size()), 3.0);
+  EXPECT_LT(d.mean_abs, 3.0);
   EXPECT_GT(gradient(fb), 0.97 * gradient(fa));
 }
 
@@ -327,15 +338,9 @@ TEST(FisheyeRenderer, AFramebufferPerFaceChangesPixelsOnlyByRounding) {
     Scene per_face(world, T, 1.0, own), one(world, T, 1.0, shared);
     const CameraFrame a = per_face.render(), b = one.render();
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
-    long differing = 0;
-    double abs_sum = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-      const int d = std::abs(int(a.pixels[i]) - int(b.pixels[i]));
-      differing += d > 0;
-      abs_sum += d;
-    }
-    EXPECT_LT(double(differing) / double(a.pixels.size()), 0.01) << "yaw " << yaw;
-    EXPECT_LT(abs_sum / double(a.pixels.size()), 0.05) << "yaw " << yaw;
+    const PixelDifference d = difference(a, b);
+    EXPECT_LT(double(d.differing) / double(a.pixels.size()), 0.01) << "yaw " << yaw;
+    EXPECT_LT(d.mean_abs, 0.05) << "yaw " << yaw;
     EXPECT_EQ(per_face.render().pixels, a.pixels);  // and it is deterministic
   }
 }
