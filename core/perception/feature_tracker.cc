@@ -26,6 +26,19 @@ void FeatureTrackerConfig::validate(ConfigChecker& c) const {
   c.inRange("ransac_min_pairs", ransac_min_pairs, 5, 10000);
 }
 
+void dropOutsideWindowRange(const std::vector<cv::Point2f>& points, cv::Size window, cv::Size image,
+                            std::vector<uchar>& status) {
+  // OpenCV's arithmetic: the window corner in float, floored; NaN fails every comparison.
+  const float half_w = (window.width - 1) * 0.5f, half_h = (window.height - 1) * 0.5f;
+  for (size_t i = 0; i < points.size() && i < status.size(); ++i) {
+    if (!status[i]) continue;
+    const float x = std::floor(points[i].x - half_w), y = std::floor(points[i].y - half_h);
+    const bool inside = x >= float(-window.width) && x < float(image.width) && y >= float(-window.height) &&
+                        y < float(image.height);
+    if (!inside) status[i] = 0;
+  }
+}
+
 int trackedFromPrevious(const TrackFrame& f) {
   return int(std::count_if(f.tracks.begin(), f.tracks.end(), [](const Track& t) { return t.age >= 1; }));
 }
@@ -110,9 +123,11 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
     std::vector<cv::Point2f> p0, p1, p0_back;
     for (const auto& t : prev_tracks_) p0.emplace_back(float(t.pixel.x()), float(t.pixel.y()));
     std::vector<uchar> st_f, st_b;
-    std::vector<float> err;
     const cv::TermCriteria crit(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations, 0.01);
-    cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, err, win, config_.klt_pyramid_levels, crit);
+    // No error output: the tracker never reads it, and OpenCV would spend one more window pass
+    // per point on it. Its one side effect on the status is reproduced below.
+    cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, cv::noArray(), win, config_.klt_pyramid_levels, crit);
+    dropOutsideWindowRange(p1, win, img.size(), st_f);
     // Backward pass only for the points the forward pass tracked: LK solves every point on its
     // own, so this gives the same results for them and skips the lost ones.
     std::vector<size_t> forward_ok;
@@ -121,8 +136,10 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
       if (st_f[i]) forward_ok.push_back(i), p1_ok.push_back(p1[i]);
     std::vector<uchar> st_b_ok;
     std::vector<cv::Point2f> p0_back_ok;
-    if (!p1_ok.empty())
-      cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1_ok, p0_back_ok, st_b_ok, err, win, config_.klt_pyramid_levels, crit);
+    if (!p1_ok.empty()) {
+      cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1_ok, p0_back_ok, st_b_ok, cv::noArray(), win, config_.klt_pyramid_levels, crit);
+      dropOutsideWindowRange(p0_back_ok, win, img.size(), st_b_ok);
+    }
     st_b.assign(p0.size(), 0);
     p0_back.assign(p0.size(), cv::Point2f());
     for (size_t k = 0; k < forward_ok.size(); ++k) st_b[forward_ok[k]] = st_b_ok[k], p0_back[forward_ok[k]] = p0_back_ok[k];

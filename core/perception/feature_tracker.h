@@ -42,6 +42,13 @@ struct TrackFrame {
 /// features are all new has lost track, however many corners were detected).
 int trackedFromPrevious(const TrackFrame& f);
 
+/// Clears the status of every point whose final position lies where cv::calcOpticalFlowPyrLK's
+/// level-0 error pass would have found its window out of range (window corner floor(p − half
+/// window) below −window or at/after the image size, or not a number). Called after a KLT run
+/// without the error output, it leaves exactly the status the run with the error output gives.
+void dropOutsideWindowRange(const std::vector<cv::Point2f>& points, cv::Size window, cv::Size image,
+                            std::vector<uchar>& status);
+
 /// Tracker settings (OpenVINS-like defaults, docs/architecture.md §6).
 struct FeatureTrackerConfig {
   int max_tracks = 400;              ///< total tracks
