@@ -167,8 +167,13 @@ int runAndSignal(const std::string& args, int sig, const fs::path& log) {
 
 TEST(BadInput, InterruptsLeaveNothingBehind) {
   const Dir t("signals");
+  // The square is flown 40 times (~750 s simulated, more than the 600 s duration): the flight must
+  // still be running when the signal comes, however fast the machine (one square is ~19 s
+  // simulated, about 2 s of wall time without the tracker).
+  std::string square_40 = "[0, 0, 1]";
+  for (int i = 0; i < 40; ++i) square_40 += ", [10, 0, 1], [10, 10, 1], [0, 0, 1]";
   t.write("long.yaml", "world: w.xml\nduration_s: 600\ncamera_stream: {save_every_n: 0}\n"
-                       "trajectory: {waypoints: [[0, 0, 1], [10, 0, 1], [10, 10, 1], [0, 0, 1]]}\n");
+                       "trajectory: {waypoints: [" + square_40 + "]}\n");
   t.write("m.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: w.xml\n"
                     "start: {position: [0, 0, 0.05], yaw_deg: 0}\nexploration_box: {min: [-19, -19, 0], max: [19, 19, 4]}\n");
   EXPECT_EQ(runAndSignal("fly " + t.p("long.yaml") + " --out " + t.p("f"), SIGINT, t.d / "log"), 130) << t.log();
