@@ -121,7 +121,9 @@ std::string ArgParser::help() const {
   for (const auto& o : options_) {
     const std::string flag = "--" + o.name + (o.is_flag ? "" : " V");
     const std::string def = o.is_flag ? "off" : (o.required ? "(required)" : o.def);
-    os << "  " << std::left << std::setw(22) << flag << std::setw(14) << def << o.help << "\n";
+    // A name too long for its column keeps a space before the default.
+    os << "  " << std::left << std::setw(22) << (flag.size() < 22 ? flag : flag + " ") << std::setw(14) << def << o.help
+       << "\n";
   }
   os << "  " << std::left << std::setw(36) << "--help" << "show this help\n";
   return os.str();

@@ -127,6 +127,29 @@ int runRenderProbeCommand(int argc, char** argv) {
   return kExitOk;
 }
 
+namespace {
+
+// A renderer switch bench-sim can compare: its --compare-* flag, the config field, and the
+// labels of its two settings (each with a leading space).
+struct RendererSwitch {
+  const char* flag;
+  bool FisheyeRendererConfig::*field;
+  const char* label_on;
+  const char* label_off;
+  /// The label of a setting of the switch.
+  const char* label(bool on) const { return on ? label_on : label_off; }
+};
+const RendererSwitch kRendererSwitches[] = {
+    {"compare-cull", &FisheyeRendererConfig::cull_per_face, " culled", " not culled"},
+    {"compare-textures", &FisheyeRendererConfig::trilinear_textures, " trilinear", " nearest mip"},
+    {"compare-framebuffers", &FisheyeRendererConfig::framebuffer_per_face, " framebuffer per face", " shared framebuffer"},
+    {"compare-texture-format", &FisheyeRendererConfig::single_channel_textures, " one-byte textures", " RGB textures"},
+    {"compare-framebuffer-format", &FisheyeRendererConfig::single_channel_framebuffer, " one-channel framebuffer",
+     " RGBA framebuffer"},
+};
+
+}  // namespace
+
 int runBenchSimCommand(int argc, char** argv) {
   ArgParser args("msbench bench-sim",
                  "Measure physics steps/s (controlled hover) and fisheye frames/s with the\n"
@@ -157,6 +180,13 @@ int runBenchSimCommand(int argc, char** argv) {
   const std::string world = resolveWorld(args.get("world")).world_xml;
   const long steps = args.getInt("steps"), frames = args.getInt("frames");
   if (steps < 1 || frames < 1) throw UsageError("--steps and --frames must be >= 1");
+  const RendererSwitch* compared = nullptr;  // the switch of a --compare-* flag, if any
+  for (const RendererSwitch& sw : kRendererSwitches) {
+    if (!args.has(sw.flag)) continue;
+    if (compared) throw UsageError("the --compare-* flags exclude each other");
+    compared = &sw;
+  }
+  const bool compare = compared != nullptr;
 
   // Physics: a controlled hover at 2 m, controller every step.
   const Vec3 p0(0, 0, 2.0);
@@ -191,24 +221,12 @@ int runBenchSimCommand(int argc, char** argv) {
     rcfg.single_channel_framebuffer = !args.has("rgba-framebuffer");
     QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
     rsim.beginTick();
-    // One renderer, or two (culling or trilinear filtering on and off) rendering every frame
-    // alternately.
-    const bool compare_cull = args.has("compare-cull"), compare_tex = args.has("compare-textures");
-    const bool compare_fb = args.has("compare-framebuffers"), compare_format = args.has("compare-texture-format");
-    const bool compare_channels = args.has("compare-framebuffer-format");
-    if (int(compare_cull) + int(compare_tex) + int(compare_fb) + int(compare_format) + int(compare_channels) > 1)
-      throw UsageError("--compare-cull, --compare-textures, --compare-framebuffers, --compare-texture-format and "
-                       "--compare-framebuffer-format exclude each other");
-    const bool compare = compare_cull || compare_tex || compare_fb || compare_format || compare_channels;
+    // One renderer, or two that differ in the compared switch rendering every frame alternately.
     std::vector<std::unique_ptr<FisheyeRenderer>> renderers;
     renderers.push_back(std::make_unique<FisheyeRenderer>(rcfg, camera, rsim.model()));
     if (compare) {
       FisheyeRendererConfig other = rcfg;
-      if (compare_cull) other.cull_per_face = !rcfg.cull_per_face;
-      if (compare_tex) other.trilinear_textures = !rcfg.trilinear_textures;
-      if (compare_fb) other.framebuffer_per_face = !rcfg.framebuffer_per_face;
-      if (compare_format) other.single_channel_textures = !rcfg.single_channel_textures;
-      if (compare_channels) other.single_channel_framebuffer = !rcfg.single_channel_framebuffer;
+      other.*compared->field = !(rcfg.*compared->field);
       renderers.push_back(std::make_unique<FisheyeRenderer>(other, camera, rsim.model()));
     }
     std::vector<double> sharpness(renderers.size(), 0.0);
@@ -239,13 +257,7 @@ int runBenchSimCommand(int argc, char** argv) {
       const FisheyeRenderer& renderer = *renderers[k];
       const RenderTiming& sum = sums[k];
       std::sort(totals[k].begin(), totals[k].end());
-      const bool first = k == 0;
-      const char* label = compare_cull ? (first == rcfg.cull_per_face ? " culled" : " not culled")
-                          : compare_tex ? (first == rcfg.trilinear_textures ? " trilinear" : " nearest mip")
-                          : compare_fb ? (first == rcfg.framebuffer_per_face ? " framebuffer per face" : " shared framebuffer")
-                          : compare_format ? (first == rcfg.single_channel_textures ? " one-byte textures" : " RGB textures")
-                          : compare_channels ? (renderer.singleChannelFramebuffer() ? " one-channel framebuffer" : " RGBA framebuffer")
-                                             : "";
+      const char* label = !compare ? "" : compared->label((k == 0) == (rcfg.*compared->field));
       std::printf("fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
                   "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
                   "atlas %dx%d, face focal ratio %.2f, sharpness (mean |gradient| in the FoV) %.3f\n",
@@ -255,34 +267,20 @@ int runBenchSimCommand(int argc, char** argv) {
                   static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
                   renderer.atlasSize().height, rcfg.face_focal_ratio, sharpness[k] / n);
     }
-    if (compare_tex)
-      std::printf("fisheye %dx%d: nearest mip / trilinear time %.2f; mean |pixel difference| %.3f grey levels\n",
-                  camera.width(), camera.height(),
-                  (rcfg.trilinear_textures ? sums[1].totalMs() / sums[0].totalMs() : sums[0].totalMs() / sums[1].totalMs()),
-                  abs_difference / n);
-    if (compare_format)
-      std::printf("fisheye %dx%d: one-byte / RGB textures time %.2f; frames with different pixels: %ld of %ld "
-                  "(%d of %d textures grey)\n",
-                  camera.width(), camera.height(),
-                  (rcfg.single_channel_textures ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
-                  different, frames, renderers[rcfg.single_channel_textures ? 0 : 1]->luminanceTextures(), rsim.model()->ntex);
-    if (compare_fb)
-      std::printf("fisheye %dx%d: per-face / shared framebuffer time %.2f; frames with different pixels: %ld of %ld; "
-                  "mean |pixel difference| %.4f grey levels\n",
-                  camera.width(), camera.height(),
-                  (rcfg.framebuffer_per_face ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
-                  different, frames, abs_difference / n);
-    if (compare_channels)
-      std::printf("fisheye %dx%d: one-channel / RGBA framebuffer time %.2f; frames with different pixels: %ld of %ld "
-                  "(model renders grey: %s)\n",
-                  camera.width(), camera.height(),
-                  (rcfg.single_channel_framebuffer ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
-                  different, frames, renderers[rcfg.single_channel_framebuffer ? 0 : 1]->singleChannelFramebuffer() ? "yes" : "no");
-    if (compare_cull)
-      std::printf("fisheye %dx%d: culled / not culled time %.2f; frames with different pixels: %ld of %ld\n",
-                  camera.width(), camera.height(),
-                  (rcfg.cull_per_face ? sums[0].totalMs() / sums[1].totalMs() : sums[1].totalMs() / sums[0].totalMs()),
-                  different, frames);
+    if (compare) {
+      // Time of the default setting over the other, whichever renderer had which.
+      const bool default_value = FisheyeRendererConfig{}.*compared->field;
+      const size_t by_default = rcfg.*compared->field == default_value ? 0 : 1, on = rcfg.*compared->field ? 0 : 1;
+      std::printf("fisheye %dx%d: %s / %s time %.2f; frames with different pixels: %ld of %ld; "
+                  "mean |pixel difference| %.4f grey levels",
+                  camera.width(), camera.height(), compared->label(default_value) + 1, compared->label(!default_value) + 1,
+                  sums[by_default].totalMs() / sums[1 - by_default].totalMs(), different, frames, abs_difference / n);
+      if (compared->field == &FisheyeRendererConfig::single_channel_textures)
+        std::printf(" (%d of %d textures grey)", renderers[on]->luminanceTextures(), rsim.model()->ntex);
+      if (compared->field == &FisheyeRendererConfig::single_channel_framebuffer)
+        std::printf(" (model renders grey: %s)", renderers[on]->singleChannelFramebuffer() ? "yes" : "no");
+      std::printf("\n");
+    }
     const FisheyeRenderer& renderer = *renderers[0];
     if (scale == 1.0) std::printf("gl: %s\n", renderer.description().c_str());
   }
