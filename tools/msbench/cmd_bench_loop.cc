@@ -9,6 +9,7 @@
 #include "tools/loop/mission.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/crash_handler.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/scenario_yaml.h"
@@ -43,7 +44,8 @@ int runBenchLoopCommand(int argc, char** argv) {
   Mission mission(spec, box, truth ? &*truth : nullptr);
   while (mission.running()) {
     throwIfInterrupted();
-    mission.step();
+    const TickRecord& t = mission.step();
+    setCrashContext(t.tick, t.t_s);
   }
   const MissionResult r = mission.finish();
   const FlightResult& f = r.flight;

@@ -10,6 +10,7 @@
 #include "core/geometry/world_truth.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
@@ -99,6 +100,7 @@ int runFlyCommand(int argc, char** argv) {
   while (loop.running()) {
     throwIfInterrupted();
     const TickRecord& t = loop.step();
+    setCrashContext(t.tick, t.t_s);
     if (t.frame) {
       if (every > 0 && index % every == 0) {
         char name[64];

@@ -8,6 +8,7 @@
 #include "tools/loop/mission.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/mission_outputs.h"
@@ -92,6 +93,7 @@ int runRunCommand(int argc, char** argv) {
     while (mission.running()) {
       throwIfInterrupted();
       const TickRecord& t = mission.step();
+      setCrashContext(t.tick, t.t_s);
       if (recorder && t.points) recorder->write(*t.points, t.frame->T_W_C);
       if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
         printProgress(spec.name, spec.flight.duration_s, t.t_s, secondsSince(wall_start), mission.areaM2(),

@@ -13,6 +13,7 @@
 #include <fcntl.h>
 
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -43,6 +44,8 @@ struct RunState {
   std::string status = "pending";  // pending | complete | failed
   int exit_code = 0, signal = 0;
   std::string log_tail;
+  std::string last_progress;       // the run's last progress line, if it printed one
+  std::string fatal;               // the crash handler's line (signal, tick, simulated time)
   nlohmann::json metrics;          // the run's metrics.json (complete runs)
 };
 
@@ -57,6 +60,25 @@ std::string tail(const std::string& text, int lines) {
   return text.substr(pos + 1);
 }
 
+// The last line of `text` that contains `marker` ("" if none).
+std::string lastLineWith(const std::string& text, const std::string& marker) {
+  const size_t at = text.rfind(marker);
+  if (at == std::string::npos) return "";
+  const size_t begin = text.rfind('\n', at);
+  const size_t end = text.find('\n', at);
+  return text.substr(begin == std::string::npos ? 0 : begin + 1,
+                     (end == std::string::npos ? text.size() : end) - (begin == std::string::npos ? 0 : begin + 1));
+}
+
+// A run's outputs are complete when its metrics.json is readable and not the record of a run
+// that ended in an error (msbench run writes one then, and exits 1): those are redone.
+std::optional<nlohmann::json> completeMetrics(const fs::path& file) {
+  if (!fs::exists(file)) return std::nullopt;
+  nlohmann::json m = nlohmann::json::parse(readFileText(file), nullptr, false);
+  if (!m.is_object() || m.value("status", std::string()) == "error") return std::nullopt;
+  return m;
+}
+
 // The build a sweep's results come from.
 std::string buildId() {
   const auto v = versionInfo();
@@ -67,7 +89,9 @@ std::string buildId() {
 pid_t startRun(const SweepRun& run, const fs::path& out, const fs::path& log) {
   std::vector<std::string> args = {"msbench", "run", run.scenario, "--seed", std::to_string(run.seed)};
   for (const auto& [k, v] : run.sets) args.insert(args.end(), {"--set", k + "=" + v});
-  args.insert(args.end(), {"--out", out.string(), "--overwrite", "--quiet"});
+  // Not --quiet: the log keeps a progress line every 10 simulated seconds, so a failed run's log
+  // says how far it got.
+  args.insert(args.end(), {"--out", out.string(), "--overwrite"});
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
@@ -112,7 +136,12 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
     nlohmann::json sets = nlohmann::json::array();
     for (const auto& [k, v] : r.sets) sets.push_back(k + "=" + v);
     j["sets"] = sets;
-    if (s.status == "failed") j["failure"] = {{"exit_code", s.exit_code}, {"signal", s.signal}, {"log_tail", s.log_tail}};
+    if (s.status == "failed") {
+      j["failure"] = {{"exit_code", s.exit_code}, {"signal", s.signal}, {"log_tail", s.log_tail}};
+      if (s.signal) j["failure"]["signal_name"] = sigabbrev_np(s.signal) ? std::string("SIG") + sigabbrev_np(s.signal) : "?";
+      if (!s.last_progress.empty()) j["failure"]["last_progress"] = s.last_progress;
+      if (!s.fatal.empty()) j["failure"]["fatal"] = s.fatal;
+    }
     if (s.metrics.is_object()) j["area_m2"] = s.metrics["coverage"]["area_m2"], j["run_status"] = s.metrics["status"];
     runs.push_back(j);
     csv += csvRow(r, s, plan.axes);
@@ -210,9 +239,9 @@ int runSweepCommand(int argc, char** argv) {
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
     if (task && i != *task) continue;  // another task's run
-    if (fs::exists(m)) {
+    if (auto metrics = completeMetrics(m)) {
       states[i].status = "complete";
-      states[i].metrics = nlohmann::json::parse(readFileText(m), nullptr, false);
+      states[i].metrics = std::move(*metrics);
     } else {
       todo.push_back(i);
     }
@@ -262,14 +291,18 @@ int runSweepCommand(int argc, char** argv) {
     const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
     s.exit_code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 0;
     s.signal = WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
-    if (WIFEXITED(wstatus) && s.exit_code == 0 && fs::exists(m)) {
+    auto metrics = WIFEXITED(wstatus) && s.exit_code == 0 ? completeMetrics(m) : std::nullopt;
+    if (metrics) {
       s.status = "complete";
-      s.metrics = nlohmann::json::parse(readFileText(m), nullptr, false);
+      s.metrics = std::move(*metrics);
     } else if (interrupted) {
       s.status = "pending";  // stopped by us: redone on resume
     } else {
       s.status = "failed";
-      s.log_tail = tail(readFileText(dir / "logs" / (plan.runs[i].id + ".log")), 5);
+      const std::string log = readFileText(dir / "logs" / (plan.runs[i].id + ".log"));
+      s.log_tail = tail(log, 12);
+      s.last_progress = lastLineWith(log, ": t = ");
+      s.fatal = lastLineWith(log, ": fatal signal ");
       ++failed;
       std::fprintf(stderr, "sweep: run %s failed (%s %d); see %s\n", plan.runs[i].id.c_str(),
                    s.signal ? "signal" : "exit code", s.signal ? s.signal : s.exit_code,

@@ -13,6 +13,7 @@
 
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/common_io.h"
 #include "tools/msbench/output_files.h"
@@ -174,6 +175,7 @@ int runVioEvalCommand(int argc, char** argv) {
   while (loop.running()) {
     throwIfInterrupted();
     const TickRecord& t = loop.step();
+    setCrashContext(t.tick, t.t_s);
     if (t.points)
       evaluate({*t.frame, *t.tracks, *t.points, t.timing.tracker_ms, t.timing.triangulation_ms, t.timing.render_ms});
     progress.update(t, loop.physicsHz());

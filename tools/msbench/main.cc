@@ -11,6 +11,7 @@
 #include "core/common/config_check.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/yaml_config.h"
 
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
   // Single-threaded OpenCV inside a run (determinism; parallelism comes from processes).
   cv::setNumThreads(0);
   msb::installInterruptHandlers();
+  msb::installCrashHandler(argc > 1 ? argv[1] : "");
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     printUsage();
     return argc < 2 ? msb::kExitUsage : msb::kExitOk;

@@ -127,6 +127,7 @@ SweepResults loadSweepResults(const fs::path& dir) {
     run.seed = jr.value("seed", uint64_t(0));
     run.status = jr.value("status", std::string("pending"));
     if (jr.contains("labels")) run.labels = jr["labels"].get<std::map<std::string, std::string>>();
+    if (jr.contains("failure")) run.failure = jr["failure"];
     const fs::path rd = dir / "runs" / run.id;
     if (run.status == "complete" && fs::exists(rd / "metrics.json")) {
       run.metrics = nlohmann::json::parse(readFileText(rd / "metrics.json"), nullptr, false);
@@ -196,6 +197,23 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     (r.status == "complete" ? complete : r.status == "failed" ? failed : pending)++;
   o << results.runs.size() << " runs: " << complete << " complete, " << failed << " failed, " << pending
     << " not run. A = explored 2.5 m columns (m², unbounded, VIO frame, as the paper's Table I).\n\n";
+  // Failed runs first: a table with a hole in it must say so before anything else.
+  if (failed > 0) {
+    o << "## Failed runs\n\nThese runs have no result; the rows below average the others. Re-running the same "
+         "`msbench sweep` command redoes them.\n\n| run | ended by | last progress | fatal signal report | log |\n"
+         "| --- | --- | --- | --- | --- |\n";
+    for (const ReportRun& r : results.runs) {
+      if (r.status != "failed") continue;
+      const nlohmann::json& f = r.failure;
+      auto text = [&](const char* k) { return f.is_object() && f.contains(k) && f[k].is_string() ? f[k].get<std::string>() : std::string("—"); };
+      const int sig = f.is_object() ? f.value("signal", 0) : 0;
+      const std::string ended = sig ? "signal " + std::to_string(sig) + (f.contains("signal_name") ? " (" + text("signal_name") + ")" : "")
+                                    : "exit code " + std::to_string(f.is_object() ? f.value("exit_code", 0) : 0);
+      o << "| " << r.id << " | " << ended << " | " << text("last_progress") << " | " << text("fatal") << " | logs/" << r.id
+        << ".log |\n";
+    }
+    o << "\n";
+  }
   // The Table I layout first.
   o << "## Table I layout\n\n|";
   for (const auto& a : results.axes) o << " " << a << " |";

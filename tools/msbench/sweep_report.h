@@ -24,6 +24,7 @@ struct ReportRun {
   uint64_t seed = 0;
   std::string status;                         ///< the sweep's: complete | failed | pending
   nlohmann::json metrics;                     ///< metrics.json (complete runs)
+  nlohmann::json failure;                     ///< sweep.json's failure record (failed runs)
   std::vector<CoverageSample> coverage;       ///< coverage.csv (complete runs)
 };
 

@@ -146,8 +146,9 @@ exclude: [{variant: broken, seed: 2}]
 }
 
 TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
-  // Three runs one at a time; the second is killed with SIGKILL while it runs (as the kernel's
-  // OOM killer or a crash would end it): recorded failed with the signal, the others complete.
+  // Three runs one at a time; the second gets SIGSEGV once it has printed its first progress
+  // line (as a memory error would end it): recorded failed with the signal, the crash handler's
+  // line and the last progress line; the others complete.
   const fs::path d = msb_test::tempDir("msb_sweep_", "signal");
   const fs::path f = writeSweep(d, "set: {duration_s: 12}\nseeds: 3\n");
   const fs::path out = d / "out";
@@ -158,14 +159,16 @@ TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
   int sweep_pid = 0;
   ASSERT_EQ(fscanf(p, "%d", &sweep_pid), 1);
   pclose(p);
-  // Wait for run s2 to start, then kill it (its command line names its output directory).
+  // Wait for run s2's first progress line, then kill it (its command line names its output
+  // directory).
   const std::string pattern = (out / "runs" / "s2").string();
   bool killed = false;
   for (int i = 0; i < 1200 && !killed; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (readText(out / "logs" / "s2.log").find(": t = 10 / 12 s") == std::string::npos) continue;
     // "[-]-out": the regular expression matches the run's "--out" but not this shell's own
     // command line, which holds the pattern too.
-    killed = std::system(("pkill -KILL -f -- '[-]-out " + pattern + " ' > /dev/null 2>&1").c_str()) == 0;
+    killed = std::system(("pkill -SEGV -f -- '[-]-out " + pattern + " ' > /dev/null 2>&1").c_str()) == 0;
   }
   ASSERT_TRUE(killed) << readText(d / "log");
   // The sweep (a background shell job) is not our child: wait for its last line.
@@ -175,10 +178,36 @@ TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
   ASSERT_EQ(r.size(), 3u) << readText(d / "log");
   EXPECT_EQ(r.at("s1")[2], "complete");
   EXPECT_EQ(r.at("s2")[2], "failed");
-  EXPECT_EQ(r.at("s2")[10], "9");  // signal
+  EXPECT_EQ(r.at("s2")[10], "11");  // signal
   EXPECT_EQ(r.at("s3")[2], "complete");
   EXPECT_NE(readText(d / "log").find("2 of 3 runs complete, 1 failed"), std::string::npos) << readText(d / "log");
   EXPECT_FALSE(fs::exists(out / "runs" / "s2" / "metrics.json"));
+  const auto failure = nlohmann::json::parse(readText(out / "sweep.json"))["runs"][1]["failure"];
+  EXPECT_EQ(failure["signal_name"], "SIGSEGV") << failure.dump(2);
+  EXPECT_NE(failure.value("last_progress", "").find("t = 10 / 12 s"), std::string::npos) << failure.dump(2);
+  EXPECT_NE(failure.value("fatal", "").find("msbench run: fatal signal 11 (SIGSEGV) after tick "), std::string::npos)
+      << failure.dump(2);
+  // The report lists the failed run before the table.
+  ASSERT_EQ(run("report '" + out.string() + "' --no-figures", d / "log_report"), 0) << readText(d / "log_report");
+  const std::string report = readText(out / "report" / "report.md");
+  const size_t failed_at = report.find("## Failed runs"), table_at = report.find("## Table I layout");
+  ASSERT_NE(failed_at, std::string::npos) << report;
+  EXPECT_LT(failed_at, table_at);
+  EXPECT_NE(report.find("| s2 | signal 11 (SIGSEGV) |", failed_at), std::string::npos) << report;
+}
+
+TEST(Sweep, ARunThatRecordedAnErrorIsRedoneOnResume) {
+  // msbench run writes metrics.json with status "error" when a run fails with a caught error
+  // (and exits 1); a resumed sweep must redo that run, not count it complete.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "error");
+  const fs::path f = writeSweep(d, "set: {duration_s: 2}\nseeds: 2\n");
+  const fs::path out = d / "out";
+  ASSERT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log1"), 0) << readText(d / "log1");
+  const std::string hash = rows(out).at("s2")[8];
+  std::ofstream(out / "runs" / "s2" / "metrics.json") << R"({"status": "error", "error": "as a failed run writes it"})";
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log2"), 0) << readText(d / "log2");
+  EXPECT_NE(readText(d / "log2").find("1 complete, 1 to run"), std::string::npos) << readText(d / "log2");
+  EXPECT_EQ(rows(out).at("s2")[8], hash);
 }
 
 TEST(Sweep, UnknownKeysInAVariantRefuseTheWholeSweepBeforeAnyRun) {
