@@ -5,8 +5,9 @@
 namespace msb {
 
 void FisheyeCameraConfig::validate(ConfigChecker& c) const {
-  c.require(width_px >= 16, "width_px", "must be >= 16");
-  c.require(height_px >= 16, "height_px", "must be >= 16");
+  // Bounded: every frame is rendered, remapped and tracked at this size.
+  c.inRange("width_px", width_px, 16, 4096);
+  c.inRange("height_px", height_px, 16, 4096);
   c.positive("fx_px", fx_px);
   c.positive("fy_px", fy_px);
   c.inRange("cx_px", cx_px, 0.0, width_px);

@@ -1,6 +1,9 @@
 #include "sim/physics/quadrotor_sim.h"
 
+#include "sim/physics/mujoco_messages.h"
+
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -17,10 +20,16 @@ void PhysicsConfig::validate(ConfigChecker& c) const {
 namespace {
 
 std::string readFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw ConfigError("world", path + ": world file not found");
+  if (!fs::is_regular_file(path, ec)) throw ConfigError("world", path + ": not a regular file (a world is an MJCF file)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError("world", path + ": cannot open world file");
   std::ostringstream ss;
   ss << in.rdbuf();
+  // MuJoCo's virtual files must not be empty (its check is a fatal error, not a message).
+  if (ss.str().empty()) throw ConfigError("world", path + ": the world file is empty");
   return ss.str();
 }
 
@@ -29,12 +38,21 @@ std::string readFile(const std::string& path) {
 thread_local std::string g_mj_warning;
 void recordWarning(const char* msg) { g_mj_warning = msg; }
 
+// A geom as messages name it: 'name', or 'geom#id' when it has none.
+std::string quotedGeomName(const mjModel* m, int g) {
+  const char* name = mj_id2name(m, mjOBJ_GEOM, g);
+  std::string out = "'";
+  out += name ? std::string(name) : "geom#" + std::to_string(g);
+  return out + "'";
+}
+
 }  // namespace
 
 QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world_xml_path,
                            const Pose& start_T_W_B)
     : config_(checkValid(config)) {
   namespace fs = std::filesystem;
+  installMujocoHandlers();
   // The world file and a wrapper that includes it, both as virtual files in the world's
   // directory (relative texture and mesh paths resolve against the world file).
   const std::string world = readFile(world_xml_path);
@@ -60,7 +78,13 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
   auto* prev_warning = mju_user_warning;
   mju_user_warning = recordWarning;
   g_mj_warning.clear();
-  m_ = mj_loadXML((dir / wrapper_name).string().c_str(), vfs.get(), error, sizeof(error));
+  try {
+    m_ = mj_loadXML((dir / wrapper_name).string().c_str(), vfs.get(), error, sizeof(error));
+  } catch (const MujocoError& e) {
+    mju_user_warning = prev_warning;
+    mj_deleteVFS(vfs.get());
+    throw ConfigError("world", world_xml_path + ": MuJoCo error: " + e.what());
+  }
   mju_user_warning = prev_warning;
   mj_deleteVFS(vfs.get());
   if (!m_) throw ConfigError("world", world_xml_path + ": MuJoCo could not compile: " + error);
@@ -76,7 +100,13 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
     m_ = nullptr;
     throw ConfigError("world", world_xml_path + ": world MJCF must not set <option> (the simulator owns it)");
   }
-  d_ = mj_makeData(m_);
+  try {
+    d_ = mj_makeData(m_);
+  } catch (const MujocoError& e) {
+    mj_deleteModel(m_);
+    m_ = nullptr;
+    throw ConfigError("world", world_xml_path + ": MuJoCo error: " + e.what());
+  }
 
   // Cache addresses of the vehicle's state and IMU sensors (every lookup checked).
   body_id_ = mj_name2id(m_, mjOBJ_BODY, mjcf_names::kVehicleBody);
@@ -96,6 +126,70 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
   gyro_adr_ = m_->sensor_adr[gyro];
   start_z_ = start_T_W_B.translation().z();
   mj_forward(m_, d_);
+  try {
+    checkStartPose(world_xml_path);
+  } catch (...) {
+    mj_deleteData(d_);
+    mj_deleteModel(m_);
+    d_ = nullptr;
+    m_ = nullptr;
+    throw;
+  }
+}
+
+std::vector<GroundPlane> QuadrotorSim::groundPlanes() const {
+  // A colliding plane facing up. MuJoCo collides with a plane as a half-space (below it is
+  // inside the ground); its drawn size is the world's extent.
+  std::vector<GroundPlane> out;
+  for (int g = 0; g < m_->ngeom; ++g) {
+    if (m_->geom_type[g] != mjGEOM_PLANE || m_->geom_bodyid[g] == body_id_) continue;
+    if (m_->geom_contype[g] == 0 && m_->geom_conaffinity[g] == 0) continue;  // drawn only (sky)
+    const mjtNum* R = d_->geom_xmat + 9 * g;
+    if (R[8] < 0.999) continue;  // a wall or ceiling plane, not the ground
+    GroundPlane p;
+    p.name = quotedGeomName(m_, g);
+    p.centre = Vec3(d_->geom_xpos[3 * g], d_->geom_xpos[3 * g + 1], d_->geom_xpos[3 * g + 2]);
+    p.half_size = Vec2(m_->geom_size[3 * g], m_->geom_size[3 * g + 1]);
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::string QuadrotorSim::outsideTheWorld(const Vec3& p) const {
+  char text[256];
+  for (const GroundPlane& g : groundPlanes()) {
+    if (p.z() < g.centre.z()) {
+      std::snprintf(text, sizeof(text), "is below the ground plane %s (z = %g)", g.name.c_str(), g.centre.z());
+      return text;
+    }
+    const Vec2 d = (p.head<2>() - g.centre.head<2>()).cwiseAbs();
+    if ((g.half_size.array() > 0).all() && (d.array() > g.half_size.array()).any()) {
+      std::snprintf(text, sizeof(text), "is outside the world (its ground %s spans x in [%g, %g], y in [%g, %g])",
+                    g.name.c_str(), g.centre.x() - g.half_size.x(), g.centre.x() + g.half_size.x(),
+                    g.centre.y() - g.half_size.y(), g.centre.y() + g.half_size.y());
+      return text;
+    }
+  }
+  return "";
+}
+
+void QuadrotorSim::checkStartPose(const std::string& world_xml_path) const {
+  const Vec3 p(d_->qpos[qpos_adr_], d_->qpos[qpos_adr_ + 1], d_->qpos[qpos_adr_ + 2]);
+  char where[96];
+  std::snprintf(where, sizeof(where), "the start position (%g, %g, %g)", p.x(), p.y(), p.z());
+  if (const std::string why = outsideTheWorld(p); !why.empty())
+    throw ConfigError("start.position", std::string(where) + " of " + world_xml_path + " " + why);
+  // Inside an obstacle: the vehicle penetrates a world geom other than the ground.
+  for (int i = 0; i < d_->ncon; ++i) {
+    const mjContact& c = d_->contact[i];
+    if (c.dist >= 0.0) continue;
+    const bool v1 = m_->geom_bodyid[c.geom1] == body_id_, v2 = m_->geom_bodyid[c.geom2] == body_id_;
+    if (v1 == v2) continue;
+    const int wg = v1 ? c.geom2 : c.geom1;
+    if (m_->geom_type[wg] == mjGEOM_PLANE) continue;  // resting on the ground
+    throw ConfigError("start.position", std::string(where) + " puts the vehicle inside geom " +
+                                            quotedGeomName(m_, wg) + " of " + world_xml_path);
+  }
 }
 
 QuadrotorSim::~QuadrotorSim() {
@@ -166,6 +260,8 @@ Odometry QuadrotorSim::groundTruth() const {
 Vec4 QuadrotorSim::motorThrusts() const {
   return Vec4(d_->act[0], d_->act[1], d_->act[2], d_->act[3]);
 }
+
+std::map<std::string, int> QuadrotorSim::warningCounts() const { return mujocoWarningCounts(d_); }
 
 bool QuadrotorSim::diverged() const {
   for (int i = 0; i < m_->nq; ++i)

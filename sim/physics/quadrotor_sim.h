@@ -8,9 +8,11 @@
 
 #include <mujoco/mujoco.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
@@ -44,11 +46,20 @@ struct ImuTruth {
   Vec3 angular_rate_radps = Vec3::Zero();   ///< gyroscope truth
 };
 
+/// A world's ground: a colliding horizontal plane (MuJoCo collides with it as a half-space).
+struct GroundPlane {
+  std::string name;                 ///< the geom, quoted ('ground')
+  Vec3 centre = Vec3::Zero();       ///< its position (z = the ground's height)
+  Vec2 half_size = Vec2::Zero();    ///< its drawn extent (the world's); 0 = unbounded
+};
+
 /// MuJoCo quadrotor in a world. Owns mjModel and mjData; single-threaded.
 class QuadrotorSim {
  public:
   /// Loads the world MJCF file, adds the vehicle at `start_T_W_B` and compiles. Throws
-  /// std::runtime_error naming the file and MuJoCo's message on failure.
+  /// ConfigError (key `world`) naming the file and MuJoCo's message when the world does not load,
+  /// and ConfigError (key `start.position`) when the start pose lies below the ground, beyond
+  /// the ground plane's extent or inside a world geom.
   QuadrotorSim(const PhysicsConfig& config, const std::string& world_xml_path,
                const Pose& start_T_W_B);
   ~QuadrotorSim();
@@ -76,6 +87,13 @@ class QuadrotorSim {
   const std::optional<CollisionEvent>& collision() const { return collision_; }
   /// True if a non-finite state was detected (status `diverged`).
   bool diverged() const;
+  /// The world's ground planes.
+  std::vector<GroundPlane> groundPlanes() const;
+  /// Why `p` lies outside the world ("is below the ground plane 'ground' (z = 0)", "is outside
+  /// the world (its ground ... spans ...)"), or "" if it lies within it.
+  std::string outsideTheWorld(const Vec3& p) const;
+  /// MuJoCo's non-zero warning counters so far, by name (metrics.json `mujoco_warnings`).
+  std::map<std::string, int> warningCounts() const;
 
   /// MuJoCo model (the renderer may adjust visual settings only).
   mjModel* model() { return m_; }
@@ -89,6 +107,8 @@ class QuadrotorSim {
 
  private:
   std::optional<CollisionEvent> checkContacts();
+  // Refuses a start pose below the ground, beyond the ground's extent or inside a world geom.
+  void checkStartPose(const std::string& world_xml_path) const;
 
   PhysicsConfig config_;
   mjModel* m_ = nullptr;

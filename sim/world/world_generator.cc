@@ -1,6 +1,7 @@
 #include "sim/world/world_generator.h"
 #include "sim/world/vehicle_models.h"
 
+#include <cstdio>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -305,7 +306,23 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
           throw std::runtime_error("world '" + spec.name + "': could not place " + id +
                                    " (objects[" + std::to_string(gi) + "]) in its region");
       }
+      const size_t shapes_before = b.shapes().size();
       buildObject(g, id, xy, yaw, size, detail, b);
+      // The start area is kept free of every object, fixed ones too: the nearest surface of what
+      // was just built (probed at several heights above the start) lies outside the clearance.
+      if (g.at) {
+        double d = 1e9;
+        for (size_t k = shapes_before; k < b.shapes().size(); ++k)
+          for (double z : {0.05, 0.5, 2.0, 4.0})
+            d = std::min(d, b.shapes()[k].signedDistance(Vec3(start_xy.x(), start_xy.y(), z)));
+        if (d < spec.start_clearance_m) {
+          char why[200];
+          std::snprintf(why, sizeof(why), "%s at (%g, %g) comes within %.2f m of the start (%g, %g): inside the start "
+                        "clearance of %g m", id.c_str(), xy.x(), xy.y(), std::max(d, 0.0), start_xy.x(), start_xy.y(),
+                        spec.start_clearance_m);
+          throw ConfigError("objects[" + std::to_string(gi) + "].at", why);
+        }
+      }
     }
   }
 

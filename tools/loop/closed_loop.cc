@@ -48,7 +48,13 @@ ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
       wall_start_(WallClock::now()) {
   if (spec.perception.enabled) slam_ = std::make_unique<SlamPointEstimator>(spec.slam_points, camera_);
   if (renderer_) result_.gl_description = renderer_->description();
-  if (!setup_.explorer) trajectory_.setPath(spec.waypoints);
+  if (!setup_.explorer) {
+    // A scripted path stays inside the world (above its ground, within its extent).
+    for (size_t i = 0; i < spec.waypoints.size(); ++i)
+      if (const std::string why = sim_.outsideTheWorld(spec.waypoints[i].position_m); !why.empty())
+        throw ConfigError("trajectory.waypoints[" + std::to_string(i) + "]", "the waypoint " + why);
+    trajectory_.setPath(spec.waypoints);
+  }
 
   // Integer schedules of every stage.
   const int hz = spec.physics.physics_hz;
@@ -257,6 +263,7 @@ const FlightResult& ClosedLoop::finish() {
   result_.path_finished = finished_tick_ >= 0;
   result_.tracking_rms_m = err_count_ ? std::sqrt(err_sq_sum_ / double(err_count_)) : 0.0;
   result_.trajectory_hash = hashTrajectory(result_.trajectory);
+  result_.mujoco_warnings = sim_.warningCounts();
   result_.wall_time_s = secondsSince(wall_start_);
   return result_;
 }

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -62,6 +63,7 @@ struct FlightResult {
   int frames_few_tracks = 0;              ///< frames below perception.lost_min_tracks
   bool path_finished = false;
   std::string gl_description;             ///< what rendered the frames
+  std::map<std::string, int> mujoco_warnings;  ///< MuJoCo's warning counters (non-zero ones)
   uint64_t trajectory_hash = 0;           ///< FNV-1a over the trajectory rows
 
   /// Simulated seconds per wall-clock second.

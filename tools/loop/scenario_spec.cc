@@ -16,9 +16,16 @@ void ScenarioSpec::validate(ConfigChecker& c) const {
   flight.validate(c);
   c.require(flight.perception.enabled, "perception.enabled", "must be true for a mission");
   c.require(flight.camera_stream.enabled, "camera_stream.enabled", "must be true for a mission");
-  if (exploration_box)
-    c.require((exploration_box->max.array() > exploration_box->min.array()).all(), "exploration_box",
-              "max must exceed min on every axis");
+  c.require(flight.waypoints.empty(), "trajectory.waypoints",
+            "a mission's path comes from its method; waypoints are for scripted flights (msbench fly)");
+  if (exploration_box) {
+    // At least one metric column across (2.5 m) and 1 m high; at most 10 km.
+    const Vec3 size = exploration_box->max - exploration_box->min;
+    c.require(size.x() >= 2.5 && size.y() >= 2.5 && size.z() >= 1.0, "exploration_box",
+              "must be at least 2.5 m x 2.5 m (one coverage column) and 1 m high, got " + std::to_string(size.x()) +
+                  " x " + std::to_string(size.y()) + " x " + std::to_string(size.z()) + " m");
+    c.require(size.maxCoeff() <= 10000.0, "exploration_box", "must be at most 10 km on every axis");
+  }
   c.nested("mission", mission);
 }
 

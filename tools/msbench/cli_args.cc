@@ -104,6 +104,14 @@ long ArgParser::getInt(const std::string& name) const {
   return long(v);
 }
 
+long ArgParser::getIntIn(const std::string& name, long lo, long hi) const {
+  const long v = getInt(name);
+  if (v < lo || v > hi)
+    throw UsageError("--" + name + ": must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
+                     std::to_string(v) + ")");
+  return v;
+}
+
 bool ArgParser::given(const std::string& name) const { return given_.count(name) > 0; }
 
 bool ArgParser::has(const std::string& name) const { return values_.count(name) > 0; }
@@ -135,7 +143,8 @@ std::vector<std::string> takeRepeatedOption(int& argc, char** argv, const std::s
   int w = 0;
   for (int i = 0; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == flag && i + 1 < argc) values.push_back(argv[++i]);
+    if (a == flag && i + 1 >= argc) throw UsageError(flag + " needs a value (" + flag + " KEY=VALUE)");
+    if (a == flag) values.push_back(argv[++i]);
     else if (a.rfind(prefix, 0) == 0) values.push_back(a.substr(prefix.size()));
     else argv[w++] = argv[i];
   }

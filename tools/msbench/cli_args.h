@@ -42,6 +42,8 @@ class ArgParser {
   double getDoubleIn(const std::string& name, double lo, double hi) const;
   /// Integer value; throws UsageError naming the option if not an integer.
   long getInt(const std::string& name) const;
+  /// Integer value that must lie in [lo, hi]; throws UsageError naming the option.
+  long getIntIn(const std::string& name, long lo, long hi) const;
   /// True if the option was given on the command line (not defaulted).
   bool given(const std::string& name) const;
   /// True if the flag was given.

@@ -41,7 +41,7 @@ int runBenchLoopCommand(int argc, char** argv) {
   MissionWorld world = prepareMissionWorld(file, spec);
   const Aabb& box = world.box;
   std::optional<WorldTruth>& truth = world.truth;
-  Mission mission(spec, box, truth ? &*truth : nullptr);
+  Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });
   while (mission.running()) {
     throwIfInterrupted();
     const TickRecord& t = mission.step();

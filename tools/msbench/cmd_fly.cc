@@ -64,6 +64,7 @@ nlohmann::json flightMetrics(const FlightSpec& spec, const FlightResult& r) {
                                 {"total", t.totalMs() / n}};
   }
   j["gl"] = r.gl_description;
+  j["mujoco_warnings"] = r.mujoco_warnings;
   j["versions"] = versionInfo();
   return j;
 }
@@ -88,7 +89,7 @@ int runFlyCommand(int argc, char** argv) {
   // The loop (world model, renderer) before any output exists: a bad world writes nothing.
   LoopSetup setup;
   setup.truth = truth ? &*truth : nullptr;
-  ClosedLoop loop(spec, setup);
+  ClosedLoop loop = buildNamingFile(file, [&] { return ClosedLoop(spec, setup); });
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   fs::create_directories(out.staging() / "frames");
 

@@ -77,6 +77,13 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
 }
 
 
+// A log to replay: read and checked, with at least one frame.
+PerceptionLog readReplayableLog(const std::string& path) {
+  PerceptionLog log = PerceptionLog::read(path);
+  if (log.frames.empty()) throw FileConfigError(path + ": the log holds a header and no frames: nothing to replay");
+  return log;
+}
+
 // The camera of a log, from its header (errors name the log file).
 FisheyeCamera cameraFromHeader(const std::string& path, const nlohmann::json& h) {
   FisheyeCameraConfig c;
@@ -111,7 +118,7 @@ int runMapReplayCommand(int argc, char** argv) {
   uint64_t seed;
   std::string why;
   if (!parseUnsigned(args.get("seed"), &seed, &why)) throw UsageError("--seed: " + why);
-  const PerceptionLog log = PerceptionLog::read(args.get("LOG"));
+  const PerceptionLog log = readReplayableLog(args.get("LOG"));
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   SphereMap map(cfg, cameraFromHeader(args.get("LOG"), log.header), seed);
   // Ground truth for the safety check when the log's world is a generated world.
@@ -255,7 +262,7 @@ int runBenchMapCommand(int argc, char** argv) {
   args.positional("LOG", "perception log").option("map-rate-hz", "5", "map update rate");
   if (!args.parse(argc, argv)) return kExitOk;
   const double rate_hz = args.getDoubleIn("map-rate-hz", 0.01, 1000.0);
-  const PerceptionLog log = PerceptionLog::read(args.get("LOG"));
+  const PerceptionLog log = readReplayableLog(args.get("LOG"));
   SphereMap map(SphereMapConfig{}, cameraFromHeader(args.get("LOG"), log.header), 1);
   const Replay r = replay(log, map, rate_hz);
   std::printf("bench-map: %zu updates over %.0f s; final %zu spheres, %zu obstacle points\n", r.stats.size(),

@@ -70,7 +70,7 @@ int runRunCommand(int argc, char** argv) {
   if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record");
   // Build the mission (world model, renderer, method) before any output exists: a world that
   // does not compile is bad input (exit 2) and leaves nothing behind.
-  Mission mission(spec, box, truth ? &*truth : nullptr);
+  Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   writeFileAtomic(out.staging() / "config.yaml",
                   "# effective scenario: " + file + (all_sets.empty() ? "" : " with overrides") + "\n" +

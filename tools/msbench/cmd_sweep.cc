@@ -30,6 +30,7 @@
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/output_files.h"
 #include "tools/msbench/scenario_yaml.h"
+#include "tools/msbench/strict_number.h"
 #include "tools/msbench/sweep_plan.h"
 #include "tools/msbench/yaml_reader.h"
 
@@ -191,9 +192,9 @@ int runSweepCommand(int argc, char** argv) {
   std::string task_text = args.get("task-index");
   if (task_text.empty() && std::getenv("SLURM_ARRAY_TASK_ID")) task_text = std::getenv("SLURM_ARRAY_TASK_ID");
   if (!task_text.empty()) {
-    char* end = nullptr;
-    const long k = std::strtol(task_text.c_str(), &end, 10);
-    if (*end || k < 0 || size_t(k) >= plan.runs.size())
+    int64_t k = -1;
+    std::string why;
+    if (!parseInteger(task_text, &k, &why) || k < 0 || size_t(k) >= plan.runs.size())
       throw UsageError("--task-index must be in [0, " + std::to_string(plan.runs.size() - 1) + "], got '" + task_text + "'");
     task = size_t(k);
   }

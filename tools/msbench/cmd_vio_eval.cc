@@ -96,14 +96,14 @@ int runVioEvalCommand(int argc, char** argv) {
   FlightSpec spec = loadFlightSpec(file);
   spec.perception.enabled = true;
   const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
-  const long annotate_every = args.getInt("annotate-every");
+  const long annotate_every = args.getIntIn("annotate-every", 0, 1000000);
   if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record");
   std::optional<WorldTruth> truth;
   if (built) truth.emplace(built->generated.shapes);
   // The loop (world model, renderer) before any output exists: a bad world writes nothing.
   LoopSetup setup;
   setup.truth = truth ? &*truth : nullptr;
-  ClosedLoop loop(spec, setup);
+  ClosedLoop loop = buildNamingFile(file, [&] { return ClosedLoop(spec, setup); });
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   fs::create_directories(out.staging() / "annotated");
   const FisheyeCamera camera(spec.camera);

@@ -49,9 +49,8 @@ cv::Vec3b kindColour(ObstacleKind k) {
 
 // Top-down map: a downward ray per pixel from the top of the exploration box; obstacles coloured
 // by kind and shaded by height; exploration box, 2.5 m grid and start pose on top.
-cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
-  const auto& g = w.generated;
-  const WorldTruth truth(g.shapes);
+// The area the top-down map shows: the exploration box and every object, 5 m around.
+std::pair<Vec2, Vec2> topDownExtent(const GeneratedWorld& g) {
   Vec2 lo = g.exploration_box.min.head<2>(), hi = g.exploration_box.max.head<2>();
   for (const auto& s : g.shapes) {
     if (s.type == ShapeType::kHalfSpace) continue;
@@ -59,6 +58,13 @@ cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
     lo = lo.cwiseMin(mn.head<2>()), hi = hi.cwiseMax(mx.head<2>());
   }
   lo.array() -= 5, hi.array() += 5;
+  return {lo, hi};
+}
+
+cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
+  const auto& g = w.generated;
+  const WorldTruth truth(g.shapes);
+  const auto [lo, hi] = topDownExtent(g);
   const int W = int((hi.x() - lo.x()) / m_per_px), H = int((hi.y() - lo.y()) / m_per_px);
   cv::Mat img(H, W, CV_8UC3, cv::Scalar(235, 235, 235));
   const double z_top = g.exploration_box.max.z() - 0.01;
@@ -153,8 +159,17 @@ int runWorldCommand(int argc, char** argv) {
     if (!args.parse(argc - 1, argv + 1)) return kExitOk;
     const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
     const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
+    // The map's size follows from the resolution: 1 to 16384 pixels a side.
+    const double m_per_px = args.getDoubleIn("m-per-px", 1e-3, 1e3);
+    const auto [lo, hi] = topDownExtent(w.generated);
+    const double longest_px = (hi - lo).maxCoeff() / m_per_px;
+    if (longest_px > 16384 || (hi - lo).minCoeff() / m_per_px < 1)
+      throw UsageError("--m-per-px " + args.get("m-per-px") + ": the top-down map of " + w.generated.name + " (" +
+                       std::to_string(int(hi.x() - lo.x())) + " x " + std::to_string(int(hi.y() - lo.y())) +
+                       " m) would be " + std::to_string(long(longest_px)) +
+                       " pixels long; choose a resolution that gives 1 to 16384 pixels a side");
     StagedOutputDir out(args.get("out"), args.has("overwrite"));
-    cv::imwrite((out.staging() / "topdown.png").string(), renderTopDown(w, args.getDouble("m-per-px")));
+    cv::imwrite((out.staging() / "topdown.png").string(), renderTopDown(w, m_per_px));
 
     // Fisheye views from 1.5 m above the start at four headings, in a 2x2 mosaic.
     const Pose start = w.generated.start * poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);

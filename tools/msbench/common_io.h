@@ -8,6 +8,7 @@
 #include "core/common/messages.h"
 #include "core/common/wall_time.h"
 #include "tools/loop/closed_loop.h"
+#include "tools/msbench/yaml_reader.h"
 
 namespace msb {
 
@@ -52,5 +53,16 @@ double peakRssMb();
 
 /// 16-digit hexadecimal form of a hash.
 std::string hexHash(uint64_t h);
+
+/// Builds what `build` returns (a loop, a mission); a ConfigError it throws (a world that does
+/// not load, a start pose inside an obstacle) is re-thrown as FileConfigError naming `file`.
+template <class Build>
+auto buildNamingFile(const std::string& file, Build&& build) -> decltype(build()) {
+  try {
+    return build();
+  } catch (const ConfigError& e) {
+    throw FileConfigError(file + ": " + e.what());
+  }
+}
 
 }  // namespace msb

@@ -94,6 +94,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
                      {"frames_few_tracks", f.frames_few_tracks}};
   j["final_drift_m"] = f.final_drift_m;
   j["frames_rendered"] = f.frames_rendered;
+  j["mujoco_warnings"] = f.mujoco_warnings;
   j["wall_time_s"] = f.wall_time_s;
   j["real_time_factor"] = f.realTimeFactor();
   // Wall time per simulated second, by stage; "other" = physics, controller, IMU, VIO, records.

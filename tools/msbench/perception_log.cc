@@ -6,7 +6,10 @@
 #include <cstring>
 #include <memory>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
+
+#include "tools/msbench/yaml_reader.h"
 
 namespace msb {
 
@@ -88,8 +91,8 @@ class Reader {
     return false;
   }
   [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error(path_ + ": " + what + (frame_ >= 0 ? " in frame " + std::to_string(frame_) : "") +
-                             " (a corrupt or truncated perception log)");
+    throw FileConfigError(path_ + ": " + what + (frame_ >= 0 ? " in frame " + std::to_string(frame_) : "") +
+                          " (a corrupt or truncated perception log)");
   }
 
  private:
@@ -100,6 +103,40 @@ class Reader {
   size_t pos_ = 0;
   bool buffered_ = false;
 };
+
+// The header's known keys have the types the writer gives them.
+void checkHeader(const std::string& path, const nlohmann::json& h) {
+  auto bad = [&](const char* key, const char* want) {
+    throw FileConfigError(path + ": log header key '" + key + "': expected " + want + ", got " + h[key].dump());
+  };
+  for (const char* key : {"world", "scenario"})
+    if (h.contains(key) && !h[key].is_string()) bad(key, "a string");
+  if (h.contains("seed") && !h["seed"].is_number_unsigned()) bad("seed", "a non-negative integer");
+  if (h.contains("camera_scale") && !h["camera_scale"].is_number()) bad("camera_scale", "a number");
+}
+
+// A frame's contents are what the front end can produce: time runs forward, every point has a
+// positive depth, a non-negative depth uncertainty and an anchor frame that is not in the
+// future, and a track appears once per frame.
+void checkFrame(const Reader& r, const LoggedFrame& fr, const LoggedFrame* previous) {
+  const SlamPointsFrame& f = fr.points;
+  if (f.tick < 0) r.fail("negative tick " + std::to_string(f.tick));
+  if (previous && (f.tick <= previous->points.tick || f.t_s < previous->points.t_s))
+    r.fail("time goes backwards (tick " + std::to_string(f.tick) + ", t = " + std::to_string(f.t_s) +
+           " s after tick " + std::to_string(previous->points.tick) + ", t = " + std::to_string(previous->points.t_s) +
+           " s)");
+  std::set<uint64_t> ids;
+  for (size_t i = 0; i < f.points.size(); ++i) {
+    const SlamPoint& p = f.points[i];
+    const std::string which = "point " + std::to_string(i) + " (track " + std::to_string(p.track_id) + ")";
+    if (!(p.depth_m > 0)) r.fail(which + ": depth " + std::to_string(p.depth_m) + " m is not positive");
+    if (!(p.depth_std_m >= 0)) r.fail(which + ": depth uncertainty " + std::to_string(p.depth_std_m) + " m is negative");
+    if (p.anchor_tick < 0 || p.anchor_tick > f.tick)
+      r.fail(which + ": anchor tick " + std::to_string(p.anchor_tick) + " is not in [0, the frame's tick " +
+             std::to_string(f.tick) + "]");
+    if (!ids.insert(p.track_id).second) r.fail(which + ": the track appears twice");
+  }
+}
 
 }  // namespace
 
@@ -151,24 +188,28 @@ void PerceptionLogWriter::close() {
 }
 
 PerceptionLog PerceptionLog::read(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": not a perception log file");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw FileConfigError(path + ": perception log not found");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw FileConfigError(path + ": not a regular file (a perception log is a file written by --record)");
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!f) throw std::runtime_error(path + ": cannot open the perception log");
+  if (!f) throw FileConfigError(path + ": cannot open the perception log");
   // The magic bytes first: nothing else is read from a file that is not a log.
   char magic[sizeof(kMagic) - 1];
   if (std::fread(magic, 1, sizeof(magic), f.get()) != sizeof(magic))
-    throw std::runtime_error(path + ": not an msbench perception log (bad magic)");
+    throw FileConfigError(path + ": not an msbench perception log (bad magic)");
   const bool v2 = std::memcmp(magic, kMagic, sizeof(magic)) == 0;
   if (!v2 && std::memcmp(magic, kMagicV1, sizeof(magic)) != 0)
-    throw std::runtime_error(path + ": not an msbench perception log (bad magic)");
+    throw FileConfigError(path + ": not an msbench perception log (bad magic)");
   Reader r(path, f.get());
   PerceptionLog log;
   try {
     log.header = nlohmann::json::parse(r.line(1 << 20));
   } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(path + ": bad log header: " + e.what());
+    throw FileConfigError(path + ": bad log header: " + e.what());
   }
-  if (!log.header.is_object()) throw std::runtime_error(path + ": bad log header: expected a JSON object");
+  if (!log.header.is_object()) throw FileConfigError(path + ": bad log header: expected a JSON object");
+  checkHeader(path, log.header);
   for (long frame = 0; !r.done(); ++frame) {
     r.setFrame(frame);
     if (v2) {  // length, payload, checksum: the payload is checked before it is parsed
@@ -200,6 +241,7 @@ PerceptionLog PerceptionLog::read(const std::string& path) {
       fr.points.points.push_back(p);
     }
     if (v2) r.clearBuffer();
+    checkFrame(r, fr, log.frames.empty() ? nullptr : &log.frames.back());
     log.frames.push_back(std::move(fr));
   }
   return log;

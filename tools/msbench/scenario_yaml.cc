@@ -1,5 +1,6 @@
 #include "tools/msbench/scenario_yaml.h"
 
+#include <cctype>
 #include <filesystem>
 #include <sstream>
 
@@ -58,12 +59,21 @@ void applySet(YAML::Node& root, const std::string& kv) {
     throw UsageError("--set " + path + ": value '" + text + "' is not valid YAML: " + e.msg);
   }
   rejectDuplicateKeys(value, "--set " + path);
-  std::vector<std::string> keys;
-  std::stringstream ss(path);
-  for (std::string k; std::getline(ss, k, '.');) {
-    if (k.empty()) throw UsageError("--set: empty key component in '" + path + "'");
-    keys.push_back(k);
+  // KEY is dot-separated names of letters, digits and '_' ("a.b.c"): no empty component
+  // (".a", "a..b", "a.") and nothing else, so that what is set is what was meant.
+  std::vector<std::string> keys(1);
+  for (const char ch : path) {
+    if (ch == '.') {
+      if (keys.back().empty()) break;
+      keys.emplace_back();
+    } else if (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_') {
+      keys.back() += ch;
+    } else {
+      throw UsageError("--set: key '" + path + "' may hold only letters, digits, '_' and '.' between names");
+    }
   }
+  for (const auto& k : keys)
+    if (k.empty()) throw UsageError("--set: empty key component in '" + path + "' (KEY is a.b.c)");
   // Walk with explicit copies: yaml-cpp nodes are handles, so assignment through them edits the tree.
   std::vector<YAML::Node> nodes = {root};
   for (size_t i = 0; i + 1 < keys.size(); ++i) {

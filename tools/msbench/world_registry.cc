@@ -164,7 +164,11 @@ ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed)
     }
     WorldSpec spec = loadWorldSpec(w.path);
     if (seed) spec.seed = *seed;
-    out.built = buildWorld(spec, worldCacheDir());
+    try {
+      out.built = buildWorld(spec, worldCacheDir());
+    } catch (const ConfigError& e) {
+      throw FileConfigError(w.path + ": " + e.what());
+    }
     out.world_xml = out.built->world_xml;
     return out;
   }

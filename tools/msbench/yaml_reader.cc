@@ -25,7 +25,11 @@ void rejectDuplicateKeys(const YAML::Node& node, const std::string& label, const
 }
 
 YAML::Node loadYamlFile(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw FileConfigError(path + ": file not found");
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw FileConfigError(path + ": file not found");
+  if (fs::is_directory(path, ec)) throw FileConfigError(path + ": is a directory, not a YAML file");
+  if (!fs::is_regular_file(path, ec)) throw FileConfigError(path + ": not a regular file (a YAML file is expected)");
   YAML::Node node;
   try {
     node = YAML::LoadFile(path);

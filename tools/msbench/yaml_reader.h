@@ -145,6 +145,7 @@ class MapReader {
       ++i;
     }
   }
+  void convert(const YAML::Node& n, const std::string& key, Vec2& out) const { numbers<2>(n, key, out); }
   void convert(const YAML::Node& n, const std::string& key, Vec3& out) const { numbers<3>(n, key, out); }
   void convert(const YAML::Node& n, const std::string& key, std::array<double, 3>& out) const {
     numbers<3>(n, key, out);
@@ -188,15 +189,10 @@ Spec parseConfigFile(const std::string& path, Read read) {
   return parseConfigNode<Spec>(path, loadYamlFile(path), read);
 }
 
-/// Reads a 2-vector ([x, y]).
+/// Reads a 2-vector ([x, y]) through the strict number reader (finite, in range; errors name the
+/// element, e.g. `objects[2].at[1]`).
 inline void readVec2(MapReader& r, const std::string& key, Vec2& out) {
-  YAML::Node n = r.raw(key);
-  if (!n.IsSequence() || n.size() != 2 || !n[0].IsScalar() || !n[1].IsScalar())
-    throw ConfigError(r.keyName(key), "expected a list of 2 numbers");
-  double a, b;
-  if (!YAML::convert<double>::decode(n[0], a) || !YAML::convert<double>::decode(n[1], b))
-    throw ConfigError(r.keyName(key), "expected a list of 2 numbers");
-  out = Vec2(a, b);
+  if (!r.read(key, out)) throw ConfigError(r.keyName(key), "expected a list of 2 numbers, got nothing");
 }
 
 }  // namespace msb

@@ -94,7 +94,9 @@ TEST(Worlds, GroundTruthRayCastsAgreeWithMuJoCoWithin1cm) {
   for (const auto& name : kWorlds) {
     const BuiltWorld w = buildWorld(spec(name), cache.string());
     const WorldTruth truth(w.generated.shapes);
-    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, poseFromXyzYaw(Vec3(0, 0, -50), 0));  // vehicle out of the way
+    // The vehicle stands at the start; rays skip its body.
+    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, poseFromXyzYaw(w.generated.start.translation() + Vec3(0, 0, 0.05), 0));
+    const int vehicle = mj_name2id(sim.model(), mjOBJ_BODY, mjcf_names::kVehicleBody);
     const mjtByte collision_groups[mjNGROUP] = {1, 0, 0, 0, 1, 0};
     RngStream rng(11, "rays_" + name);
     const Aabb& box = w.generated.exploration_box;
@@ -106,7 +108,7 @@ TEST(Worlds, GroundTruthRayCastsAgreeWithMuJoCoWithin1cm) {
       const Vec3 d = Vec3(rng.normal(), rng.normal(), rng.normal()).normalized();
       const auto hit = truth.raycast(o, d, 300.0);
       int geom = -1;
-      double t = mj_ray(sim.model(), sim.data(), o.data(), d.data(), collision_groups, 1, -1, &geom);
+      double t = mj_ray(sim.model(), sim.data(), o.data(), d.data(), collision_groups, 1, vehicle, &geom);
       // The sky planes (visual only, far beyond the ground) are not obstacles.
       const char* hit_name = geom >= 0 ? mj_id2name(sim.model(), mjOBJ_GEOM, geom) : nullptr;
       if (hit_name && std::string(hit_name).rfind("sky_", 0) == 0) t = -1.0;

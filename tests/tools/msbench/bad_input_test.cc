@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <thread>
+#include <vector>
 
 #include "cli_helpers.h"
 
@@ -133,21 +134,145 @@ TEST(BadInput, WorldsAndLogs) {
   t.expectRefused("fly " + t.p("b.yaml") + " --out " + t.p("o"), {"broken.xml", "world"});
   t.write("bs.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: broken.xml\n");
   t.expectRefused("run " + t.p("bs.yaml") + " --out " + t.p("o"), {"broken.xml", "world"});
-  // Perception logs: not a log, a log with absurd values, a truncated one.
-  t.expectRefused("map-replay /dev/zero --out " + t.p("o"), {"/dev/zero"}, 1);
+  // Perception logs: not a log, a log with absurd values, a truncated one (bad input: exit 2).
+  t.expectRefused("map-replay /dev/zero --out " + t.p("o"), {"/dev/zero"});
   t.write("notalog", "hello");
-  t.expectRefused("map-replay " + t.p("notalog") + " --out " + t.p("o"), {"notalog", "bad magic"}, 1);
+  t.expectRefused("map-replay " + t.p("notalog") + " --out " + t.p("o"), {"notalog", "bad magic"});
   std::string log = "MSBLOG1\n{\"camera_scale\": 1}\n";
   const int64_t tick = 0;
   const double huge[16] = {0, 1e300, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0};
   log.append(reinterpret_cast<const char*>(&tick), sizeof(tick));
   log.append(reinterpret_cast<const char*>(huge), sizeof(huge));
   t.write("huge.log", log);
-  t.expectRefused("map-replay " + t.p("huge.log") + " --out " + t.p("o"), {"huge.log", "out of range", "frame 0"}, 1);
+  t.expectRefused("map-replay " + t.p("huge.log") + " --out " + t.p("o"), {"huge.log", "out of range", "frame 0"});
   t.write("trunc.log", log.substr(0, log.size() - 5));
-  t.expectRefused("map-replay " + t.p("trunc.log") + " --out " + t.p("o"), {"trunc.log", "frame 0"}, 1);
+  t.expectRefused("map-replay " + t.p("trunc.log") + " --out " + t.p("o"), {"trunc.log", "frame 0"});
   t.expectRefused("map-replay " + t.p("notalog") + " --map-rate-hz 0 --out " + t.p("o"), {"--map-rate-hz"});
   t.expectRefused("map-replay " + t.p("notalog") + " --map-rate-hz -5 --out " + t.p("o"), {"--map-rate-hz"});
+}
+
+TEST(BadInput, EmptyWorldFilesNeverReachMuJoCosBlockingHandler) {
+  // MuJoCo's own handler would print, write MUJOCO_LOG.TXT into the current directory and wait
+  // for Enter: with stdin open (a pipe that closes after 3 s), a blocked msbench would end with
+  // MuJoCo's exit code 1 after the pipe closes, not 2.
+  const Dir t("empty_world");
+  t.write("empty.xml", "");
+  t.write("e.yaml", "world: empty.xml\nduration_s: 2\ntrajectory: {waypoints: [[0, 0, 1]]}\n");
+  t.write("es.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: empty.xml\n");
+  for (const std::string args : {"fly e.yaml --out o", "run es.yaml --out o", "render-probe --world empty.xml --out x.png"}) {
+    const std::string cmd = "cd '" + t.d.string() + "' && sleep 3 | '" + kExe + "' " + args + " > log 2>&1";
+    const int status = std::system(cmd.c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << args << "\n" << t.log();
+    EXPECT_NE(t.log().find("empty.xml: the world file is empty"), std::string::npos) << args << "\n" << t.log();
+    EXPECT_FALSE(fs::exists(t.d / "MUJOCO_LOG.TXT")) << args;
+    for (const char* gone : {"o", "o.partial", "x.png"}) EXPECT_FALSE(fs::exists(t.d / gone)) << args;
+  }
+}
+
+TEST(BadInput, MeaninglessValuesThatLoadAreRefused) {
+  const Dir t("nonsense");
+  t.write("s.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: w.xml\nduration_s: 2\n");
+  const std::string run_s = "run " + t.p("s.yaml") + " --out " + t.p("o") + " ";
+  // Start poses: inside a wall, below the ground, outside the world.
+  t.expectRefused(run_s + "--set 'start={position: [0, 20, 1]}'", {"s.yaml", "start.position", "inside geom 'wall_north_4'"});
+  t.expectRefused(run_s + "--set 'start={position: [0, 0, -3]}'", {"s.yaml", "start.position", "below the ground plane 'ground'"});
+  t.expectRefused(run_s + "--set 'start={position: [100, 0, 1]}'", {"s.yaml", "start.position", "outside the world"});
+  // Counts and sizes with bounds.
+  t.expectRefused(run_s + "--set method.planner.viewpoints.candidates=2000000000", {"viewpoints.candidates", "must be in [1, 100000]"});
+  t.expectRefused(run_s + "--set 'exploration_box={min: [0, 0, 0], max: [0.01, 0.01, 0.01]}'",
+                  {"exploration_box", "at least 2.5 m x 2.5 m"});
+  t.expectRefused(run_s + "--set camera.width_px=100000", {"camera.width_px", "must be in [16, 4096]"});
+  // Waypoints mean nothing to a mission: refused, not ignored.
+  t.expectRefused(run_s + "--set 'trajectory.waypoints=[[0, 0, 1]]'", {"trajectory.waypoints", "msbench fly"});
+  // --set: the key's syntax, and a missing value.
+  t.expectRefused(run_s + "--set duration_s.=3", {"--set", "empty key component", "duration_s."});
+  t.expectRefused(run_s + "--set .duration_s=3", {"--set", "empty key component"});
+  t.expectRefused(run_s + "--set 'duration s=3'", {"--set", "only letters, digits"});
+  t.expectRefused("run " + t.p("s.yaml") + " --out " + t.p("o") + " --set", {"--set needs a value"});
+  // A scripted waypoint far outside the world.
+  t.write("far.yaml", "world: w.xml\nduration_s: 2\ntrajectory: {waypoints: [[0, 0, 1], [1000000, 0, 1]]}\n");
+  t.expectRefused("fly " + t.p("far.yaml") + " --out " + t.p("o"), {"far.yaml", "trajectory.waypoints[1]", "outside the world"});
+  // Flags out of range.
+  t.expectRefused("vio-eval " + t.p("f.yaml") + " --annotate-every -1 --out " + t.p("o"), {"--annotate-every", "must be in"});
+  for (const char* m : {"0", "-1", "1e9"})
+    t.expectRefused("world show sparse --m-per-px " + std::string(m) + " --out " + t.p("o"), {"--m-per-px", "must be in"});
+  t.expectRefused("world show sparse --m-per-px 0.001 --out " + t.p("o"), {"--m-per-px", "pixels long"});
+  // Scenario paths that are not files.
+  t.expectRefused("run " + t.d.string() + " --out " + t.p("o"), {"is a directory, not a YAML file"});
+  t.expectRefused("run /dev/null --out " + t.p("o"), {"/dev/null", "not a regular file"});
+}
+
+TEST(BadInput, WorldSpecsWithNonFiniteOrMisplacedObjects) {
+  // A world spec of its own (MSBENCH_WORLDS_DIR), built into a cache in the test directory: bad
+  // values are refused before anything is generated, so no broken world is left in the cache.
+  const Dir t("world_spec");
+  const fs::path worlds = t.d / "worlds";
+  fs::create_directories(worlds / "tiny");
+  const std::string head = "name: tiny\nground: {size_m: [60, 60]}\nexploration_box: {min: [-20, -20, 0], max: [20, 20, 5]}\n"
+                           "start_clearance_m: 6\n";
+  const std::string env = "MSBENCH_WORLDS_DIR='" + worlds.string() + "' MSBENCH_CACHE_DIR='" + (t.d / "cache").string() + "' ";
+  auto refused = [&](const std::string& objects, std::initializer_list<std::string> fragments) {
+    std::ofstream(worlds / "tiny" / "spec.yaml") << head << objects;
+    const std::string cmd = env + "'" + kExe + "' world build tiny > '" + (t.d / "log").string() + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << objects << "\n" << t.log();
+    for (const auto& f : fragments) EXPECT_NE(t.log().find(f), std::string::npos) << objects << "\nmissing: " << f << "\n" << t.log();
+    EXPECT_FALSE(fs::exists(t.d / "cache") && !fs::is_empty(t.d / "cache")) << objects;
+  };
+  refused("objects: [{kind: rock, at: [3, .nan], size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n", {"spec.yaml", "objects[0].at[1]"});
+  refused("objects: [{kind: rock, count: 2, region: {min: [-10, -10], max: [.inf, 10]}, size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n",
+          {"spec.yaml", "objects[0].region.max[0]"});
+  refused("cave: {min: [-20, -20], max: [20, 20], chambers: [{min: [-5, .nan], max: [5, 5]}]}\n",
+          {"spec.yaml", "cave.chambers[0].min[1]"});
+  refused("objects: [{kind: rock, at: [3, 0], size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n",
+          {"spec.yaml", "objects[0].at", "inside the start clearance"});
+}
+
+// A version-1 perception log (frames back to back) with one frame of the given points.
+struct LogPoint {
+  uint64_t track;
+  double depth;
+  int64_t anchor_tick;
+};
+std::string logFrame(int64_t tick, double t_s, const std::vector<LogPoint>& points) {
+  std::string b;
+  auto put = [&](const auto& v) { b.append(reinterpret_cast<const char*>(&v), sizeof(v)); };
+  put(tick);
+  put(t_s);
+  for (int k = 0; k < 2; ++k)
+    for (const double v : {0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0}) put(v);  // T_W_C, T_W_C_truth
+  put(uint32_t(points.size()));
+  for (const LogPoint& p : points) {
+    put(p.track);
+    for (const double v : {5.0, 0.0, 1.0, 0.01, 0.0, 0.0, 0.01, 0.0, 0.01}) put(v);  // p_W, covariance
+    put(p.depth);
+    put(0.1);  // depth_std_m
+    put(p.anchor_tick);
+    put(100.0), put(100.0);  // anchor pixel
+  }
+  return b;
+}
+
+TEST(BadInput, PerceptionLogContentsAreCheckedOnRead) {
+  const Dir t("log_contents");
+  const std::string header = "MSBLOG1\n{\"camera_scale\": 1}\n";
+  const std::string good = logFrame(100, 0.2, {{1, 5.0, 50}, {2, 6.0, 100}});
+  auto refused = [&](const std::string& name, const std::string& text, std::initializer_list<std::string> fragments) {
+    t.write(name, text);
+    t.expectRefused("map-replay " + t.p(name) + " --out " + t.p("o"), fragments);
+  };
+  refused("future.log", header + logFrame(100, 0.2, {{1, 5.0, 150}}), {"future.log", "frame 0", "anchor tick 150"});
+  refused("zero.log", header + logFrame(100, 0.2, {{1, 0.0, 50}}), {"zero.log", "track 1", "depth", "not positive"});
+  refused("negative.log", header + logFrame(100, 0.2, {{1, -2.0, 50}}), {"negative.log", "not positive"});
+  refused("dup.log", header + logFrame(100, 0.2, {{7, 5.0, 50}, {7, 6.0, 60}}), {"dup.log", "track 7", "appears twice"});
+  refused("back.log", header + good + logFrame(90, 0.18, {{1, 5.0, 50}}), {"back.log", "frame 1", "time goes backwards"});
+  refused("world.log", "MSBLOG1\n{\"camera_scale\": 1, \"world\": 7}\n" + good, {"world.log", "'world'", "a string"});
+  refused("empty.log", header, {"empty.log", "no frames"});
+  t.expectRefused("map-replay " + t.p("missing.log") + " --out " + t.p("o"), {"missing.log", "not found"});
+  t.expectRefused("map-replay " + t.d.string() + " --out " + t.p("o"), {"not a regular file"});
+  // The same log with sane contents replays.
+  t.write("good.log", header + good);
+  EXPECT_EQ(run("map-replay " + t.p("good.log") + " --out " + t.p("ok"), t.d / "log"), 0) << t.log();
 }
 
 // Starts msbench, sends `sig` once it is running, returns its exit code.

@@ -146,6 +146,7 @@ TEST(PerceptionLogFormat, AFlippedByteFailsTheChecksumOfItsFrame) {
       SlamPoint p;
       p.track_id = 7;
       p.p_W = Vec3(1, 2, 3);
+      p.depth_m = 3.7;  // a point as the front end makes it (the reader checks contents too)
       frame.points.push_back(p);
       w.write(frame, Pose::Identity());
     }
