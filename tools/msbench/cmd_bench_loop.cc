@@ -23,7 +23,7 @@ int runBenchLoopCommand(int argc, char** argv) {
                  "Closed-loop cost per stage (wall ms per simulated second and per frame), real-time\n"
                  "factor and peak memory of a fixed mission: scenarios/missions/<WORLD>.yaml (or a\n"
                  "scenario file), its seed, --duration simulated seconds. Run it pinned to one core:\n"
-                 "LP_NUM_THREADS=1 taskset -c 1 msbench bench-loop --world urban. --set KEY=VALUE\n"
+                 "taskset -c 1 msbench bench-loop --world urban. --set KEY=VALUE\n"
                  "overrides a scenario key (e.g. render.cull_per_face=false).");
   args.option("world", "urban", "world: its mission scenarios/missions/<WORLD>.yaml")
       .option("scenario", "", "a scenario file instead of --world")

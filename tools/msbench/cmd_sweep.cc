@@ -180,7 +180,7 @@ int runSweepCommand(int argc, char** argv) {
     const fs::path out = fs::absolute(args.get("out"));
     std::printf("#!/bin/bash\n#SBATCH --job-name=msbench-sweep\n#SBATCH --array=0-%zu\n#SBATCH --cpus-per-task=1\n"
                 "#SBATCH --output=%s/slurm-%%A_%%a.out\n"
-                "export LP_NUM_THREADS=1\n'%s' sweep '%s' --out '%s' --task-index \"$SLURM_ARRAY_TASK_ID\"\n"
+                "'%s' sweep '%s' --out '%s' --task-index \"$SLURM_ARRAY_TASK_ID\"\n"
                 "# when all tasks are done: '%s' sweep '%s' --out '%s'   (writes sweep.json and runs.csv)\n",
                 plan.runs.size() - 1, out.c_str(), exe.c_str(), plan.file.c_str(), out.c_str(), exe.c_str(),
                 plan.file.c_str(), out.c_str());

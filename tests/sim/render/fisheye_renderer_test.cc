@@ -345,31 +345,27 @@ TEST(FisheyeRenderer, AFramebufferPerFaceChangesPixelsOnlyByRounding) {
   }
 }
 
-std::string readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+// The names of this process's threads (/proc/self/task/*/comm).
+std::vector<std::string> threadNames() {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator("/proc/self/task")) {
+    std::ifstream in(e.path() / "comm");
+    std::string name;
+    std::getline(in, name);
+    names.push_back(name);
+  }
+  return names;
 }
 
-TEST(FisheyeRenderer, RendersAreBitIdenticalWithOneOrTwoLlvmpipeThreads) {
-  // llvmpipe reads LP_NUM_THREADS at start-up, so each setting needs its own process.
-  const std::string exe = std::string(MSB_BINARY_DIR) + "/bin/msbench";
-  const fs::path dir = fs::path(::testing::TempDir()) / "msb_render_threads";
-  fs::create_directories(dir);
-  // The test world, and urban's default outdoor frame (sky, sun, vehicles in view).
-  for (const std::string world_pose : {"--world test --pose 3,2,1.7,40", "--world urban --pose 0,2,2,180"}) {
-    std::vector<std::string> images;
-    for (int threads : {1, 2}) {
-      const std::string out = (dir / ("probe_" + std::to_string(threads) + ".png")).string();
-      const std::string cmd = "LP_NUM_THREADS=" + std::to_string(threads) + " '" + exe + "' render-probe " +
-                              world_pose + " --overwrite --out '" + out + "' > /dev/null";
-      ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-      images.push_back(readBytes(out));
-    }
-    ASSERT_GT(images[0].size(), 1000u);
-    EXPECT_EQ(images[0], images[1]) << world_pose;
-  }
+TEST(FisheyeRenderer, LlvmpipeRasterisesInTheRenderingThreadWhateverLpNumThreadsSays) {
+  // Mesa 22.3's llvmpipe worker threads race with the GL thread over a fence (a write into freed
+  // memory; docs/robustness.md): the renderer's context must start none, even when asked to.
+  // ctest runs each test in its own process, so this context is the process's first.
+  ASSERT_EQ(::setenv("LP_NUM_THREADS", "2", 1), 0);
+  Scene scene(std::string(MSB_SOURCE_DIR) + "/worlds/test/world.xml", poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0));
+  ASSERT_GT(scene.render().pixels.size(), 0u);
+  EXPECT_EQ(std::string(std::getenv("LP_NUM_THREADS")), "0");
+  for (const std::string& name : threadNames()) EXPECT_EQ(name.rfind("llvmpipe", 0), std::string::npos) << name;
 }
 
 }  // namespace
