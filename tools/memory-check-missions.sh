@@ -2,10 +2,11 @@
 # Long missions under memory checkers, to run before a release (hours of CPU; not per-commit CI).
 # docs/robustness.md says what each checker finds and what the last run reported.
 #
-#   bash tools/memory-check-missions.sh [OUT_DIR] [DURATION_S]
+#   bash tools/memory-check-missions.sh [OUT_DIR] [DURATION_S] [SEED]
 #
 # 1. Builds build-asan (AddressSanitizer + UndefinedBehaviorSanitizer, -DMSB_SANITIZE=ON) and runs
-#    MonoSpheres and the grid baseline in the cave and in urban (seed 1), two missions at a time.
+#    MonoSpheres and the grid baseline in the cave and in urban (seed 1 by default), two missions at
+#    a time.
 # 2. Runs the same missions with the release build under glibc's malloc checks
 #    (libc_malloc_debug.so.0, MALLOC_CHECK_=3) and MALLOC_PERTURB_=165, which make a write into
 #    freed memory fail close to the damage (a corrupted free list) and a read of freed memory
@@ -16,6 +17,7 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-/tmp/msbench-memory-check}
 duration=${2:-1200}
+seed=${3:-1}
 mkdir -p "$out"
 bash tools/install-deps.sh >/dev/null
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null && cmake --build build -j2 --target msbench >/dev/null || exit 2
@@ -33,7 +35,7 @@ run() {
   shift 3
   local dir="$out/$label-$scenario" start
   start=$(date +%s)
-  env "$@" timeout -s KILL "$timeout_s" "$exe" run "scenarios/missions/$scenario.yaml" --seed 1 \
+  env "$@" timeout -s KILL "$timeout_s" "$exe" run "scenarios/missions/$scenario.yaml" --seed "$seed" \
     --duration "$duration" --out "$dir" --overwrite --quiet > "$dir.log" 2>&1
   local rc=$?
   local verdict=clean

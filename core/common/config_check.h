@@ -65,4 +65,28 @@ const Config& checkValid(const Config& config) {
   return config;
 }
 
+/// A configuration problem in a named file (message: "FILE: key 'k': reason"). Bad input:
+/// every command exits 2.
+class FileConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Wrong command-line usage, or a request that cannot be honoured as given (exit code 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Builds what `build` returns (a loop, a mission); a ConfigError it throws (a world that does
+/// not load, a start pose inside an obstacle) is re-thrown as FileConfigError naming `file`.
+template <class Build>
+auto buildNamingFile(const std::string& file, Build&& build) -> decltype(build()) {
+  try {
+    return build();
+  } catch (const ConfigError& e) {
+    throw FileConfigError(file + ": " + e.what());
+  }
+}
+
 }  // namespace msb

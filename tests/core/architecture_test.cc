@@ -3,7 +3,9 @@
 //  - exploration methods (every folder listed in kMethodFolders) never see ground truth: no
 //    include of core/geometry/ or of the truth-based evaluation, no link to msb::geometry or
 //    msb::eval_truth;
-//  - sim/ includes no mapping or planning; the loop library (tools/loop) includes no yaml-cpp.
+//  - sim/ includes no mapping or planning; the loop library (tools/loop) includes no yaml-cpp;
+//  - tools/: only tools/config includes yaml-cpp; config and results include neither each other
+//    nor the sweep or the command line; the sweep does not include the command line.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -72,6 +74,29 @@ TEST(Architecture, SimHasNoMappingOrPlanningAndTheLoopNoYaml) {
   for (const auto& hit : matchingLines(fs::path(MSB_SOURCE_DIR) / "sim", mapping)) ADD_FAILURE() << hit;
   const std::regex yaml(R"(^\s*#\s*include\s*[<"](yaml-cpp/|tools/msbench/))");
   for (const auto& hit : matchingLines(fs::path(MSB_SOURCE_DIR) / "tools" / "loop", yaml)) ADD_FAILURE() << hit;
+}
+
+TEST(Architecture, ToolsLibrariesKeepTheirConcerns) {
+  const fs::path tools = fs::path(MSB_SOURCE_DIR) / "tools";
+  auto rule = [](const std::string& forbidden) {
+    return std::regex(R"(^\s*#\s*include\s*[<"]()" + forbidden + ")");
+  };
+  const struct {
+    const char* folder;
+    std::string forbidden;
+  } kRules[] = {
+      {"loop", "yaml-cpp/|tools/config/|tools/results/|tools/sweep/|tools/msbench/"},
+      {"config", "tools/results/|tools/sweep/|tools/msbench/"},
+      {"results", "yaml-cpp/|tools/config/|tools/sweep/|tools/msbench/"},
+      {"sweep", "yaml-cpp/|tools/msbench/"},
+      {"msbench", "yaml-cpp/"},
+  };
+  for (const auto& r : kRules) {
+    int files = 0;
+    for (const auto& hit : matchingLines(tools / r.folder, rule(r.forbidden), &files)) ADD_FAILURE() << hit;
+    EXPECT_GT(files, 1) << r.folder;
+  }
+  EXPECT_TRUE(std::regex_search("#include \"tools/sweep/sweep_report.h\"", rule("tools/sweep/")));
 }
 
 }  // namespace

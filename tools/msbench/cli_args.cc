@@ -1,6 +1,6 @@
 #include "tools/msbench/cli_args.h"
 
-#include "tools/msbench/strict_number.h"
+#include "tools/config/strict_number.h"
 
 #include <cstdlib>
 #include <iomanip>

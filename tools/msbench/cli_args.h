@@ -8,13 +8,9 @@
 #include <string>
 #include <vector>
 
-namespace msb {
+#include "core/common/config_check.h"  // UsageError
 
-/// Wrong command-line usage (exit code 2).
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace msb {
 
 /// Exit codes of every msbench command.
 enum ExitCode { kExitOk = 0, kExitRuntime = 1, kExitUsage = 2 };

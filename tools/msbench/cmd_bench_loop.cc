@@ -10,10 +10,10 @@
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
-#include "tools/msbench/common_io.h"
+#include "tools/results/provenance.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/msbench/scenario_yaml.h"
-#include "tools/msbench/world_registry.h"
+#include "tools/config/scenario_yaml.h"
+#include "tools/config/world_registry.h"
 
 namespace msb {
 

@@ -12,10 +12,12 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/msbench/common_io.h"
-#include "tools/msbench/output_files.h"
-#include "tools/msbench/world_registry.h"
-#include "tools/msbench/yaml_config.h"
+#include "tools/results/provenance.h"
+#include "tools/results/flight_records.h"
+#include "tools/msbench/progress.h"
+#include "tools/results/output_files.h"
+#include "tools/config/world_registry.h"
+#include "tools/config/flight_yaml.h"
 
 namespace msb {
 

@@ -6,8 +6,8 @@
 
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
-#include "tools/msbench/output_files.h"
-#include "tools/msbench/regression.h"
+#include "tools/results/output_files.h"
+#include "tools/sweep/regression.h"
 
 namespace msb {
 

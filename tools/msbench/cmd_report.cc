@@ -9,8 +9,8 @@
 
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
-#include "tools/msbench/output_files.h"
-#include "tools/msbench/sweep_report.h"
+#include "tools/results/output_files.h"
+#include "tools/sweep/sweep_report.h"
 
 namespace msb {
 

@@ -10,13 +10,13 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/msbench/common_io.h"
-#include "tools/msbench/mission_outputs.h"
-#include "tools/msbench/output_files.h"
-#include "tools/msbench/perception_log.h"
-#include "tools/msbench/scenario_yaml.h"
-#include "tools/msbench/world_registry.h"
-#include "tools/msbench/yaml_reader.h"
+#include "tools/results/provenance.h"
+#include "tools/results/flight_records.h"
+#include "tools/results/mission_outputs.h"
+#include "tools/results/output_files.h"
+#include "tools/results/perception_log.h"
+#include "tools/config/scenario_yaml.h"
+#include "tools/config/world_registry.h"
 
 namespace msb {
 
@@ -63,7 +63,7 @@ int runRunCommand(int argc, char** argv) {
   if (args.given("seed")) all_sets.push_back("seed=" + args.get("seed"));
   if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
   ScenarioSpec spec = loadScenario(file, all_sets);
-  const YAML::Node tree = loadScenarioTree(file, all_sets);
+  const std::string merged_yaml = mergedScenarioYaml(file, all_sets);
   MissionWorld world = prepareMissionWorld(file, spec);
   const Aabb& box = world.box;
   std::optional<WorldTruth>& truth = world.truth;
@@ -74,7 +74,7 @@ int runRunCommand(int argc, char** argv) {
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   writeFileAtomic(out.staging() / "config.yaml",
                   "# effective scenario: " + file + (all_sets.empty() ? "" : " with overrides") + "\n" +
-                      scenarioTreeToString(tree));
+                      merged_yaml);
 
   const bool quiet = args.has("quiet") || !spec.mission.progress;
   std::unique_ptr<PerceptionLogWriter> recorder;

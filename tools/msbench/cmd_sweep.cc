@@ -1,159 +1,21 @@
-// msbench sweep: a sweep file's runs as separate `msbench run` processes, N at a time, into one
-// directory (docs/sweeps.md):
-//   DIR/sweep.json   the plan (file, its hash, the msbench build) and every run's status
-//   DIR/runs.csv     one row per run (status, A, box share, hashes, exit code or signal)
-//   DIR/runs/<id>/   the run's outputs (metrics.json present = complete)
-//   DIR/logs/<id>.log  its standard output and error
-// A run that fails (exit code, signal) is recorded with the tail of its log and the sweep goes
-// on. Re-running the same command skips complete runs and redoes the others; a changed sweep
-// file or msbench build is named and refused unless --accept-changes.
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-#include <fcntl.h>
-
-#include <chrono>
-#include <cstring>
+// msbench sweep: a sweep file's runs as separate processes, N at a time, into one directory
+// (docs/sweeps.md; the runner is tools/sweep/sweep_runner). Resumable; --task-index runs one run
+// (a Slurm array task); --emit-slurm prints the job-array script.
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
-#include <map>
-#include <optional>
-#include <sstream>
-#include <thread>
 
-#include <nlohmann/json.hpp>
-
-#include "core/common/wall_time.h"
+#include "tools/config/scenario_yaml.h"
+#include "tools/config/strict_number.h"
+#include "tools/config/sweep_plan.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
-#include "tools/msbench/common_io.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/msbench/output_files.h"
-#include "tools/msbench/scenario_yaml.h"
-#include "tools/msbench/strict_number.h"
-#include "tools/msbench/sweep_plan.h"
-#include "tools/msbench/yaml_reader.h"
+#include "tools/sweep/sweep_runner.h"
 
 namespace msb {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// What became of one run.
-struct RunState {
-  std::string status = "pending";  // pending | complete | failed
-  int exit_code = 0, signal = 0;
-  std::string log_tail;
-  std::string last_progress;       // the run's last progress line, if it printed one
-  std::string fatal;               // the crash handler's line (signal, tick, simulated time)
-  nlohmann::json metrics;          // the run's metrics.json (complete runs)
-};
-
-std::string tail(const std::string& text, int lines) {
-  if (text.empty()) return text;  // a run killed before it wrote anything
-  size_t pos = text.size();
-  for (int k = 0; k <= lines && pos > 0; ++k) {
-    const size_t nl = text.rfind('\n', pos - 1);
-    if (nl == std::string::npos) return text;
-    pos = nl;
-  }
-  return text.substr(pos + 1);
-}
-
-// The last line of `text` that contains `marker` ("" if none).
-std::string lastLineWith(const std::string& text, const std::string& marker) {
-  const size_t at = text.rfind(marker);
-  if (at == std::string::npos) return "";
-  const size_t begin = text.rfind('\n', at);
-  const size_t end = text.find('\n', at);
-  return text.substr(begin == std::string::npos ? 0 : begin + 1,
-                     (end == std::string::npos ? text.size() : end) - (begin == std::string::npos ? 0 : begin + 1));
-}
-
-// A run's outputs are complete when its metrics.json is readable and not the record of a run
-// that ended in an error (msbench run writes one then, and exits 1): those are redone.
-std::optional<nlohmann::json> completeMetrics(const fs::path& file) {
-  if (!fs::exists(file)) return std::nullopt;
-  nlohmann::json m = nlohmann::json::parse(readFileText(file), nullptr, false);
-  if (!m.is_object() || m.value("status", std::string()) == "error") return std::nullopt;
-  return m;
-}
-
-// The build a sweep's results come from.
-std::string buildId() {
-  const auto v = versionInfo();
-  return v.value("msbench", std::string("?")) + "+" + v.value("git_revision", std::string("?"));
-}
-
-// Starts `msbench run` for one run; stdout and stderr go to its log. Returns the child's pid.
-pid_t startRun(const SweepRun& run, const fs::path& out, const fs::path& log) {
-  std::vector<std::string> args = {"msbench", "run", run.scenario, "--seed", std::to_string(run.seed)};
-  for (const auto& [k, v] : run.sets) args.insert(args.end(), {"--set", k + "=" + v});
-  // Not --quiet: the log keeps a progress line every 10 simulated seconds, so a failed run's log
-  // says how far it got.
-  args.insert(args.end(), {"--out", out.string(), "--overwrite"});
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) dup2(fd, 1), dup2(fd, 2), close(fd);
-    signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv("/proc/self/exe", argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-std::string csvRow(const SweepRun& r, const RunState& s, const std::vector<std::string>& axes) {
-  std::ostringstream o;
-  o << r.id;
-  for (const auto& a : axes) o << "," << r.labels.at(a);
-  const auto& m = s.metrics;
-  auto num = [&](const nlohmann::json& j) { return j.is_number() ? std::to_string(j.get<double>()) : std::string(); };
-  o << "," << r.seed << "," << s.status << "," << (m.is_object() ? m.value("status", "") : "") << ","
-    << (m.is_object() ? num(m["coverage"]["area_m2"]) : "") << ","
-    << (m.is_object() ? num(m["coverage"]["box_share"]) : "") << ","
-    << (m.is_object() ? num(m["sim_time_s"]) : "") << "," << (m.is_object() ? num(m["wall_time_s"]) : "") << ","
-    << (m.is_object() ? m.value("determinism_hash", "") : "") << "," << s.exit_code << "," << s.signal << "\n";
-  return o.str();
-}
-
-// Writes sweep.json and runs.csv (atomically) for the current states.
-void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<RunState>& states, int jobs) {
-  nlohmann::json runs = nlohmann::json::array();
-  std::string csv = "id";
-  for (const auto& a : plan.axes) csv += "," + a;
-  csv += ",seed,status,run_status,area_m2,box_share,sim_time_s,wall_time_s,determinism_hash,exit_code,signal\n";
-  for (size_t i = 0; i < plan.runs.size(); ++i) {
-    const SweepRun& r = plan.runs[i];
-    const RunState& s = states[i];
-    nlohmann::json j = {{"id", r.id}, {"seed", r.seed}, {"scenario", r.scenario}, {"labels", r.labels},
-                        {"status", s.status}};
-    nlohmann::json sets = nlohmann::json::array();
-    for (const auto& [k, v] : r.sets) sets.push_back(k + "=" + v);
-    j["sets"] = sets;
-    if (s.status == "failed") {
-      j["failure"] = {{"exit_code", s.exit_code}, {"signal", s.signal}, {"log_tail", s.log_tail}};
-      if (s.signal) j["failure"]["signal_name"] = sigabbrev_np(s.signal) ? std::string("SIG") + sigabbrev_np(s.signal) : "?";
-      if (!s.last_progress.empty()) j["failure"]["last_progress"] = s.last_progress;
-      if (!s.fatal.empty()) j["failure"]["fatal"] = s.fatal;
-    }
-    if (s.metrics.is_object()) j["area_m2"] = s.metrics["coverage"]["area_m2"], j["run_status"] = s.metrics["status"];
-    runs.push_back(j);
-    csv += csvRow(r, s, plan.axes);
-  }
-  const nlohmann::json index = {{"sweep_file", plan.file}, {"sweep_file_hash", plan.file_hash}, {"build", buildId()},
-                                {"versions", versionInfo()}, {"jobs", jobs}, {"axes", plan.axes}, {"runs", runs}};
-  writeFileAtomic(dir / "sweep.json", index.dump(2) + "\n");
-  writeFileAtomic(dir / "runs.csv", csv);
-}
-
-}  // namespace
 
 int runSweepCommand(int argc, char** argv) {
   ArgParser args("msbench sweep",
@@ -175,20 +37,13 @@ int runSweepCommand(int argc, char** argv) {
   }
   if (args.get("out").empty()) throw UsageError("--out DIR is required (except with --list)");
   if (args.has("emit-slurm")) {
-    // One array task per run, one core each; afterwards a plain `sweep` call writes the index.
-    const std::string exe = fs::canonical("/proc/self/exe").string();
-    const fs::path out = fs::absolute(args.get("out"));
-    std::printf("#!/bin/bash\n#SBATCH --job-name=msbench-sweep\n#SBATCH --array=0-%zu\n#SBATCH --cpus-per-task=1\n"
-                "#SBATCH --output=%s/slurm-%%A_%%a.out\n"
-                "'%s' sweep '%s' --out '%s' --task-index \"$SLURM_ARRAY_TASK_ID\"\n"
-                "# when all tasks are done: '%s' sweep '%s' --out '%s'   (writes sweep.json and runs.csv)\n",
-                plan.runs.size() - 1, out.c_str(), exe.c_str(), plan.file.c_str(), out.c_str(), exe.c_str(),
-                plan.file.c_str(), out.c_str());
+    std::fputs(slurmArrayScript(plan, fs::absolute(args.get("out")), fs::canonical("/proc/self/exe").string()).c_str(),
+               stdout);
     return kExitOk;
   }
   // Distributed: exactly one run of the list (a Slurm array task); no index is written (tasks
   // run concurrently); a later plain call skips the complete runs and writes it.
-  std::optional<size_t> task;
+  SweepRunOptions options;
   std::string task_text = args.get("task-index");
   if (task_text.empty() && std::getenv("SLURM_ARRAY_TASK_ID")) task_text = std::getenv("SLURM_ARRAY_TASK_ID");
   if (!task_text.empty()) {
@@ -196,10 +51,10 @@ int runSweepCommand(int argc, char** argv) {
     std::string why;
     if (!parseInteger(task_text, &k, &why) || k < 0 || size_t(k) >= plan.runs.size())
       throw UsageError("--task-index must be in [0, " + std::to_string(plan.runs.size() - 1) + "], got '" + task_text + "'");
-    task = size_t(k);
+    options.task = size_t(k);
   }
-  const long jobs = args.getInt("jobs");
-  if (jobs < 1 || jobs > 256) throw UsageError("--jobs must be in [1, 256]");
+  options.jobs = args.getIntIn("jobs", 1, 256);
+  options.accept_changes = args.has("accept-changes");
   // Every run's scenario must load before anything starts (unknown keys, bad values: exit 2).
   for (const auto& r : plan.runs) {
     std::vector<std::string> sets;
@@ -210,120 +65,17 @@ int runSweepCommand(int argc, char** argv) {
       throw FileConfigError(plan.file + ": run " + r.id + ": " + e.what());
     }
   }
-  // The directory: new, or a sweep of the same file and build (resume).
   const fs::path dir = args.get("out");
-  if (task) {
-    fs::create_directories(dir / "runs");
-    fs::create_directories(dir / "logs");
-  } else if (fs::exists(dir / "sweep.json")) {
-    const auto old = nlohmann::json::parse(readFileText(dir / "sweep.json"), nullptr, false);
-    if (!old.is_object()) throw UsageError(dir.string() + "/sweep.json is unreadable: not a sweep directory?");
-    std::vector<std::string> changes;
-    if (old.value("sweep_file_hash", "") != plan.file_hash) changes.push_back("the sweep file changed (" + plan.file + ")");
-    if (old.value("build", "") != buildId())
-      changes.push_back("the msbench build changed (" + old.value("build", "?") + " -> " + buildId() + ")");
-    if (!changes.empty() && !args.has("accept-changes")) {
-      std::string msg = "cannot resume " + dir.string() + ":";
-      for (const auto& c : changes) msg += " " + c + ";";
-      throw UsageError(msg + " use a new --out, or --accept-changes to mix results");
-    }
-    for (const auto& c : changes) std::fprintf(stderr, "sweep: resuming although %s\n", c.c_str());
-  } else if (fs::exists(dir) && !fs::is_empty(dir) && !fs::exists(dir / "runs")) {
-    throw UsageError(dir.string() + " exists and is not a sweep directory (no sweep.json)");
+  const SweepOutcome outcome = runSweep(plan, dir, options, [] { return interruptRequested(); });
+  if (outcome.interrupted) throwIfInterrupted();  // exit 130/143
+  if (options.task) {
+    std::printf("sweep task %zu: run %s %s\n", *options.task, plan.runs[*options.task].id.c_str(),
+                outcome.task_status.c_str());
+    return outcome.task_status == "complete" ? kExitOk : kExitRuntime;
   }
-  fs::create_directories(dir / "runs");
-  fs::create_directories(dir / "logs");
-
-  // Complete runs are skipped.
-  std::vector<RunState> states(plan.runs.size());
-  std::vector<size_t> todo;
-  for (size_t i = 0; i < plan.runs.size(); ++i) {
-    const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
-    if (task && i != *task) continue;  // another task's run
-    if (auto metrics = completeMetrics(m)) {
-      states[i].status = "complete";
-      states[i].metrics = std::move(*metrics);
-    } else {
-      todo.push_back(i);
-    }
-  }
-  if (!task) writeIndex(dir, plan, states, int(jobs));
-  const size_t skipped = (task ? 1 : plan.runs.size()) - todo.size();
-  std::fprintf(stderr, "sweep %s: %zu runs (%zu complete, %zu to run), %ld at a time -> %s\n", plan.file.c_str(),
-               plan.runs.size(), skipped, todo.size(), jobs, dir.string().c_str());
-
-  // The pool: start runs in order, N at a time; record each as it ends.
-  std::map<pid_t, size_t> running;
-  size_t next = 0, failed = 0, done = 0;
-  const auto t0 = WallClock::now();
-  auto progress = [&]() {
-    const double elapsed = secondsSince(t0);
-    const double eta = done > 0 ? elapsed / double(done) * double(todo.size() - done) : 0.0;
-    std::fprintf(stderr, "sweep: %zu done, %zu running, %zu failed of %zu (%zu skipped); %.0f s elapsed%s\n",
-                 done, running.size(), failed, todo.size(), skipped, elapsed,
-                 done > 0 ? (", ETA " + std::to_string(int(eta)) + " s").c_str() : "");
-  };
-  bool interrupted = false;
-  while ((next < todo.size() && !interrupted) || !running.empty()) {
-    while (!interrupted && next < todo.size() && running.size() < size_t(jobs)) {
-      const size_t i = todo[next++];
-      const SweepRun& r = plan.runs[i];
-      running[startRun(r, dir / "runs" / r.id, dir / "logs" / (r.id + ".log"))] = i;
-    }
-    int wstatus = 0;
-    const pid_t pid = waitpid(-1, &wstatus, WNOHANG);
-    if (pid <= 0) {
-      try {
-        throwIfInterrupted();
-      } catch (const Interrupted&) {
-        if (!interrupted) {
-          interrupted = true;
-          for (const auto& [p, i] : running) kill(p, SIGTERM);  // each run cleans up its own outputs
-        }
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      continue;
-    }
-    const auto it = running.find(pid);
-    if (it == running.end()) continue;
-    const size_t i = it->second;
-    running.erase(it);
-    RunState& s = states[i];
-    const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
-    s.exit_code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 0;
-    s.signal = WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
-    auto metrics = WIFEXITED(wstatus) && s.exit_code == 0 ? completeMetrics(m) : std::nullopt;
-    if (metrics) {
-      s.status = "complete";
-      s.metrics = std::move(*metrics);
-    } else if (interrupted) {
-      s.status = "pending";  // stopped by us: redone on resume
-    } else {
-      s.status = "failed";
-      const std::string log = readFileText(dir / "logs" / (plan.runs[i].id + ".log"));
-      s.log_tail = tail(log, 12);
-      s.last_progress = lastLineWith(log, ": t = ");
-      s.fatal = lastLineWith(log, ": fatal signal ");
-      ++failed;
-      std::fprintf(stderr, "sweep: run %s failed (%s %d); see %s\n", plan.runs[i].id.c_str(),
-                   s.signal ? "signal" : "exit code", s.signal ? s.signal : s.exit_code,
-                   (dir / "logs" / (plan.runs[i].id + ".log")).c_str());
-    }
-    ++done;
-    if (!task) writeIndex(dir, plan, states, int(jobs));
-    progress();
-  }
-  if (!task) writeIndex(dir, plan, states, int(jobs));
-  if (interrupted) throwIfInterrupted();  // rethrows: exit 130/143
-  if (task) {
-    std::printf("sweep task %zu: run %s %s\n", *task, plan.runs[*task].id.c_str(), states[*task].status.c_str());
-    return states[*task].status == "complete" ? kExitOk : kExitRuntime;
-  }
-  size_t complete = 0;
-  for (const auto& s : states) complete += s.status == "complete";
-  std::printf("sweep: %zu of %zu runs complete, %zu failed -> %s\n", complete, plan.runs.size(), failed,
-              (dir / "runs.csv").c_str());
-  return failed ? kExitRuntime : kExitOk;
+  std::printf("sweep: %zu of %zu runs complete, %zu failed -> %s\n", outcome.complete, plan.runs.size(),
+              outcome.failed, (dir / "runs.csv").c_str());
+  return outcome.failed ? kExitRuntime : kExitOk;
 }
 
 }  // namespace msb

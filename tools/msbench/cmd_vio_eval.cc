@@ -15,12 +15,14 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/msbench/common_io.h"
-#include "tools/msbench/output_files.h"
+#include "tools/results/provenance.h"
+#include "tools/results/flight_records.h"
+#include "tools/msbench/progress.h"
+#include "tools/results/output_files.h"
 #include "core/eval/slam_point_truth.h"
-#include "tools/msbench/perception_log.h"
-#include "tools/msbench/world_registry.h"
-#include "tools/msbench/yaml_config.h"
+#include "tools/results/perception_log.h"
+#include "tools/config/world_registry.h"
+#include "tools/config/flight_yaml.h"
 
 namespace msb {
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include <opencv2/imgcodecs.hpp>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/common/wall_time.h"
@@ -12,10 +13,9 @@
 #include "sim/render/fisheye_renderer.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
-#include "tools/msbench/common_io.h"
-#include "tools/msbench/output_files.h"
-#include "tools/msbench/strict_number.h"
-#include "tools/msbench/world_registry.h"
+#include "tools/results/output_files.h"
+#include "tools/config/strict_number.h"
+#include "tools/config/world_registry.h"
 
 namespace msb {
 

@@ -20,6 +20,8 @@ void installInterruptHandlers() {
   sigaction(SIGTERM, &sa, nullptr);
 }
 
+bool interruptRequested() { return g_signal != 0; }
+
 void throwIfInterrupted() {
   if (g_signal) throw Interrupted(int(g_signal));
 }

@@ -24,5 +24,7 @@ class Interrupted : public std::runtime_error {
 void installInterruptHandlers();
 /// Throws Interrupted if a signal arrived.
 void throwIfInterrupted();
+/// True if a signal arrived (for loops that stop on their own terms, e.g. the sweep runner).
+bool interruptRequested();
 
 }  // namespace msb

@@ -13,7 +13,7 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/msbench/yaml_config.h"
+#include "tools/config/flight_yaml.h"
 
 namespace {
 

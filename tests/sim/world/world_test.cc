@@ -11,7 +11,7 @@
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/world/vehicle_models.h"
 #include "sim/world/world_cache.h"
-#include "tools/msbench/world_registry.h"
+#include "tools/config/world_registry.h"
 
 namespace msb {
 namespace {

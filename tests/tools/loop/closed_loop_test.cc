@@ -8,7 +8,7 @@
 #include "core/geometry/world_truth.h"
 #include "tools/loop/closed_loop.h"
 #include "tools/loop/mission.h"
-#include "tools/msbench/world_registry.h"
+#include "tools/config/world_registry.h"
 
 namespace msb {
 namespace {

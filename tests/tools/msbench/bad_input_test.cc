@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli_helpers.h"
+#include "tests/tools/cli_helpers.h"
 
 namespace {
 

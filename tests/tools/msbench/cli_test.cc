@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_helpers.h"
+#include "tests/tools/cli_helpers.h"
 
 namespace {
 

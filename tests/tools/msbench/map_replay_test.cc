@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/common/rng.h"
-#include "tools/msbench/perception_log.h"
+#include "tools/results/perception_log.h"
 
 namespace msb {
 namespace {

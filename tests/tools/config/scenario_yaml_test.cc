@@ -1,0 +1,133 @@
+// Scenario files: base chains, --set overrides, switches, and one error per class naming the
+// file and the key.
+#include "core/common/config_check.h"
+#include "tools/config/scenario_yaml.h"
+#include "tools/config/yaml_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace msb {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path tempDir() {
+  const fs::path d = fs::path(::testing::TempDir()) /
+                     ("msb_scenario_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  fs::create_directories(d / "sub");
+  fs::copy_file(fs::path(MSB_SOURCE_DIR) / "worlds/test/world.xml", d / "world.xml",
+                fs::copy_options::overwrite_existing);
+  return d;
+}
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+const char* kBase = R"(
+world: world.xml
+seed: 3
+method:
+  type: monospheres
+  planner: {local_radius_m: 12.0, viewpoints: {min_value: 5}}
+  switches: {ovde: true, dbof: true, fff: true, vpb: true}
+)";
+
+// The MonoSpheres config a scenario chose.
+MonoSpheresConfig mono(const ScenarioSpec& s) {
+  EXPECT_EQ(s.method.type, "monospheres");
+  return std::any_cast<MonoSpheresConfig>(s.method.config);
+}
+
+TEST(ScenarioYaml, BaseChainOverridesAndSwitches) {
+  const fs::path d = tempDir();
+  write(d / "base.yaml", kBase);
+  write(d / "sub" / "mission.yaml", "base: ../base.yaml\nduration_s: 30\n"
+                                    "method: {switches: {fff: false}, planner: {viewpoints: {candidates: 50}}}\n");
+  const ScenarioSpec s = loadScenario((d / "sub" / "mission.yaml").string());
+  EXPECT_EQ(s.name, "mission");
+  EXPECT_EQ(s.flight.seed, 3u);
+  EXPECT_DOUBLE_EQ(s.flight.duration_s, 30.0);
+  EXPECT_EQ(s.flight.world_path, (d / "world.xml").lexically_normal().string());  // relative to base.yaml
+  EXPECT_TRUE(s.flight.perception.enabled);
+  EXPECT_DOUBLE_EQ(mono(s).planner.local_radius_m, 12.0);        // from the base
+  EXPECT_EQ(mono(s).planner.viewpoints.min_value, 5);            // merged map by map
+  EXPECT_EQ(mono(s).planner.viewpoints.candidates, 50);
+  EXPECT_FALSE(mono(s).planner.fff);
+  EXPECT_TRUE(mono(s).planner.viewpoints.vpb);
+  EXPECT_FALSE(s.method.switches.at("fff"));
+  EXPECT_TRUE(s.start_from_world);
+  // Command-line overrides win over both files.
+  const ScenarioSpec o = loadScenario((d / "sub" / "mission.yaml").string(),
+                                      {"method.switches.vpb=false", "seed=9", "method.map.r_max_m=8", "duration_s=12.5"});
+  EXPECT_FALSE(mono(o).planner.viewpoints.vpb);
+  EXPECT_EQ(o.flight.seed, 9u);
+  EXPECT_DOUBLE_EQ(mono(o).map.r_max_m, 8.0);
+  EXPECT_DOUBLE_EQ(o.flight.duration_s, 12.5);
+  // Defaults: 1200 s, all switches on.
+  write(d / "plain.yaml", "world: world.xml\n");
+  const ScenarioSpec p = loadScenario((d / "plain.yaml").string());
+  EXPECT_DOUBLE_EQ(p.flight.duration_s, 1200.0);
+  EXPECT_TRUE(mono(p).map.ovde && mono(p).map.dbof && mono(p).planner.fff);
+}
+
+TEST(ScenarioYaml, TheMethodTableHoldsTheChosenMethodsKeysOnly) {
+  const fs::path d = tempDir();
+  write(d / "grid.yaml", "world: world.xml\nmethod: {type: grid_random, replan_period_s: 0.2, "
+                         "planner: {unknown_is_occupied: true}}\n");
+  const ScenarioSpec g = loadScenario((d / "grid.yaml").string());
+  EXPECT_EQ(g.method.type, "grid_random");
+  const auto c = std::any_cast<GridExplorerConfig>(g.method.config);
+  EXPECT_DOUBLE_EQ(c.replan_period_s, 0.2);
+  EXPECT_TRUE(c.planner.unknown_is_occupied);
+  EXPECT_DOUBLE_EQ(c.map.resolution_m, 0.5);
+  EXPECT_TRUE(g.method.switches.at("unknown_is_occupied"));
+}
+
+void expectError(const std::string& text, std::initializer_list<std::string> fragments,
+                 const std::vector<std::string>& sets = {}) {
+  const fs::path d = tempDir();
+  write(d / "base.yaml", kBase);
+  const std::string path = (d / "bad.yaml").string();
+  write(path, text);
+  try {
+    loadScenario(path, sets);
+    FAIL() << "expected an error for:\n" << text;
+  } catch (const FileConfigError& e) {
+    const std::string msg = e.what();
+    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << msg << "\n  missing: " << f;
+  } catch (const UsageError& e) {
+    const std::string msg = e.what();
+    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << msg << "\n  missing: " << f;
+  }
+}
+
+TEST(ScenarioYaml, ErrorsNameFileAndKey) {
+  expectError("base: base.yaml\nmethod: {planner: {local_radius: 3}}\n",
+              {"bad.yaml", "method.planner.local_radius", "unknown key"});
+  expectError("base: base.yaml\nmethod: {map: {ovde: false}}\n", {"method.map.ovde", "unknown key"});
+  expectError("base: base.yaml\nmethod: {switches: {fff: maybe}}\n", {"method.switches.fff", "true or false"});
+  expectError("base: base.yaml\nswitches: {fff: false}\n", {"'switches'", "unknown key"});
+  // Keys of one method are unknown keys for another.
+  expectError("world: world.xml\nmethod: {type: grid_random, switches: {vpb: false}}\n",
+              {"method.switches", "unknown key"});
+  expectError("world: world.xml\nmethod: {type: grid_random, map: {r_max_m: 8}}\n", {"method.map.r_max_m", "unknown key"});
+  expectError("world: world.xml\nmethod: {type: monospheres, goal_square_m: 30}\n",
+              {"method.goal_square_m", "unknown key"});
+  expectError("world: world.xml\nmethod: {type: grid_random, map: {resolution_m: -1}}\n", {"method.map.resolution_m"});
+  expectError("base: base.yaml\nmethod: {type: magic}\n", {"method.type", "unknown method 'magic'", "monospheres", "grid_random"});
+  expectError("base: base.yaml\nmethod: {planner: {viewpoints: {min_value: 0}}}\n",
+              {"method.planner.viewpoints.min_value"});
+  expectError("base: base.yaml\nmission: {map_rate_hz: -1}\n", {"mission.map_rate_hz"});
+  expectError("base: nowhere.yaml\n", {"bad.yaml", "key 'base'", "file not found"});
+  expectError("base: bad.yaml\n", {"circular"});
+  expectError("world: missing.xml\n", {"bad.yaml", "world", "file not found"});
+  expectError("base: base.yaml\nexploration_box: {min: [0, 0, 0]}\n", {"exploration_box.max", "required"});
+  expectError("base: base.yaml\n", {"method.planner.carrot", "unknown key"}, {"method.planner.carrot=3"});
+  expectError("base: base.yaml\n", {"--set", "KEY=VALUE"}, {"novalue"});
+  expectError("base: base.yaml\n", {"--set", "not a map"}, {"seed.x=1"});
+}
+
+}  // namespace
+}  // namespace msb

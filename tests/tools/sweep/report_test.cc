@@ -1,0 +1,162 @@
+// Reports and regression: the table rows of hand-built results (grouping, the paper's rows,
+// time to a box share, collisions by kind); `msbench report` on a real tiny sweep (table, CSV,
+// figures); `msbench regress` passing on identical results, failing on a changed A or hash on
+// the same machine, and the band mode for results from another machine.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/tools/cli_helpers.h"
+#include "tools/sweep/regression.h"
+#include "tools/sweep/sweep_report.h"
+
+namespace msb {
+namespace {
+
+namespace fs = std::filesystem;
+using msb_test::readText;
+using msb_test::run;
+
+// A complete run with the fields the report reads.
+ReportRun madeRun(const std::string& id, const std::string& world, const std::string& variant, double area,
+                  const std::string& status, const std::string& kind = "") {
+  ReportRun r;
+  r.id = id;
+  r.labels = {{"world", world}, {"method", variant}};
+  r.status = "complete";
+  r.metrics = {{"world", world},
+               {"method", "monospheres"},
+               {"switches", {{"ovde", variant != "no_ovde"}, {"fff", true}}},
+               {"status", status},
+               {"distance_flown_m", 200.0},
+               {"real_time_factor", 2.0},
+               {"coverage", {{"area_m2", area}, {"box_share", area / 1000.0}, {"longest_no_gain_s", 30.0}}}};
+  if (!kind.empty()) r.metrics["collision"] = {{"world_geom", "g"}, {"object", "bus_0"}, {"kind", kind}};
+  for (int t = 0; t <= 10; ++t) {
+    CoverageSample c;
+    c.t_s = 10.0 * t;
+    c.area_m2 = area * t / 10.0;
+    c.box_share = area / 1000.0 * t / 10.0;
+    r.coverage.push_back(c);
+  }
+  return r;
+}
+
+TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  s.runs = {madeRun("urban-full-s1", "urban", "full", 800, "completed"),
+            madeRun("urban-full-s2", "urban", "full", 600, "collided", "textureless"),
+            madeRun("urban-no_ovde-s1", "urban", "no_ovde", 400, "collided", "thin"),
+            madeRun("mars-full-s1", "mars", "full", 100, "completed")};
+  ReportRun failed;
+  failed.id = "urban-full-s3";
+  failed.labels = {{"world", "urban"}, {"method", "full"}};
+  failed.status = "failed";
+  s.runs.push_back(failed);
+  const auto rows = reportRows(s);
+  ASSERT_EQ(rows.size(), 3u);
+  const ReportRow& full = rows[0];
+  EXPECT_EQ(full.labels, (std::vector<std::string>{"urban", "full"}));
+  EXPECT_EQ(full.runs, 3);
+  EXPECT_EQ(full.complete, 2);
+  EXPECT_EQ(full.failed, 1);
+  EXPECT_DOUBLE_EQ(full.area_m2.mean, 700.0);
+  EXPECT_DOUBLE_EQ(full.max_area_m2, 800.0);
+  EXPECT_EQ(full.crashes, 1);
+  EXPECT_EQ(full.collisions_by_kind.at("textureless"), 1);
+  ASSERT_TRUE(full.paper_mean_m2.has_value());
+  EXPECT_DOUBLE_EQ(*full.paper_mean_m2, 4919.0);
+  // Box share 0.8 and 0.6 at the end, linear in time: 50 % at 70 s (0.56 at 70 s) and at 90 s.
+  EXPECT_EQ(full.t50_s.count, 2);
+  EXPECT_DOUBLE_EQ(full.t50_s.mean, (70.0 + 90.0) / 2);
+  EXPECT_EQ(full.t90_s.count, 0);
+  EXPECT_DOUBLE_EQ(full.area_per_100m.mean, 350.0);
+  // The ablation row maps to the paper's No OVDE row; an unknown world has no paper row.
+  EXPECT_EQ(rows[1].method, "monospheres -ovde");
+  EXPECT_DOUBLE_EQ(*rows[1].paper_mean_m2, 747.0);
+  EXPECT_EQ(rows[1].collisions_by_kind.at("thin"), 1);
+  EXPECT_FALSE(rows[2].paper_mean_m2.has_value());
+  // The Markdown names every row and the failed run; the CSV has a line per row.
+  const std::string md = reportMarkdown(s, rows);
+  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 700 | 800 | 4919 | 6081 | 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| urban-full-s3 | failed |"), std::string::npos) << md;
+  const std::string csv = reportTableCsv(s, rows);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  EXPECT_EQ(paperTableOne("cave", "grid_random", nlohmann::json::object())->first, 3171.0);
+}
+
+// Rewrites one run's metrics.json with a change.
+void editMetrics(const fs::path& run_dir, const std::function<void(nlohmann::json&)>& edit) {
+  auto m = nlohmann::json::parse(readText(run_dir / "metrics.json"));
+  edit(m);
+  std::ofstream(run_dir / "metrics.json") << m.dump(2);
+}
+
+TEST(SweepReport, ReportAndRegressOnARealSweep) {
+  const fs::path d = msb_test::tempDir("msb_report_", "real");
+  const fs::path sweep = d / "sweep.yaml";
+  std::ofstream(sweep) << "scenario: " << MSB_SOURCE_DIR << "/scenarios/missions/test_world_short.yaml\n"
+                       << "set: {duration_s: 3}\naxes:\n  - name: method\n    variants: {full: {}, no_fff: "
+                          "{method.switches.fff: false}}\nseeds: 2\n";
+  const fs::path out = d / "out";
+  ASSERT_EQ(run("sweep '" + sweep.string() + "' --out '" + out.string() + "' --jobs 2", d / "log_sweep"), 0)
+      << readText(d / "log_sweep");
+  // Every run records the machine it ran on.
+  const auto m = nlohmann::json::parse(readText(out / "runs" / "full-s1" / "metrics.json"));
+  ASSERT_TRUE(m.contains("machine"));
+  EXPECT_EQ(m["machine"]["id"].get<std::string>().size(), 16u);
+  EXPECT_NE(m["machine"]["gl"].get<std::string>().find("llvmpipe"), std::string::npos) << m["machine"].dump();
+
+  // The report: table, CSV, and figures when python3 with matplotlib is there.
+  ASSERT_EQ(run("report '" + out.string() + "'", d / "log_report"), 0) << readText(d / "log_report");
+  const std::string md = readText(out / "report" / "report.md");
+  EXPECT_NE(md.find("| full | monospheres | 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| no_fff | monospheres -fff | 2 |"), std::string::npos) << md;
+  EXPECT_NE(readText(out / "report" / "table.csv").find("no_fff,"), std::string::npos);
+  const bool have_matplotlib = std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0;
+  if (have_matplotlib) {
+    EXPECT_TRUE(fs::exists(out / "report" / "gallery.png")) << readText(d / "log_report");
+    EXPECT_GT(fs::file_size(out / "report" / "coverage_world.xml.png"), 1000u)
+        << readText(d / "log_report");
+  } else {
+    EXPECT_NE(readText(d / "log_report").find("apt-get install python3-matplotlib"), std::string::npos);
+  }
+
+  // Regress: a golden from the sweep passes against the same sweep (exact mode).
+  const fs::path golden = d / "golden";
+  ASSERT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "' --update", d / "log_up"), 0)
+      << readText(d / "log_up");
+  ASSERT_TRUE(fs::exists(golden / "golden.json"));
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_same"), 0)
+      << readText(d / "log_same");
+  EXPECT_NE(readText(d / "log_same").find("4 runs compared (4 exactly"), std::string::npos) << readText(d / "log_same");
+  // A changed A on the same machine is a regression, named.
+  const fs::path run_dir = out / "runs" / "no_fff-s2";
+  const std::string original = readText(run_dir / "metrics.json");
+  editMetrics(run_dir, [](nlohmann::json& j) { j["coverage"]["area_m2"] = j["coverage"]["area_m2"].get<double>() + 6.25; });
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_changed"), 1);
+  EXPECT_NE(readText(d / "log_changed").find("REGRESSION no_fff-s2: A"), std::string::npos) << readText(d / "log_changed");
+  // From another machine: compared in a band, so a small change passes and a large one fails.
+  editMetrics(run_dir, [](nlohmann::json& j) { j["machine"]["id"] = "0000000000000000"; });
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_band"), 0)
+      << readText(d / "log_band");
+  EXPECT_NE(readText(d / "log_band").find("1 in band mode"), std::string::npos) << readText(d / "log_band");
+  editMetrics(run_dir, [](nlohmann::json& j) { j["coverage"]["area_m2"] = 5.0 * j["coverage"]["area_m2"].get<double>() + 500; });
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_band2"), 1);
+  EXPECT_NE(readText(d / "log_band2").find("band mode"), std::string::npos) << readText(d / "log_band2");
+  // A changed status fails in either mode; a missing golden file is bad input.
+  std::ofstream(run_dir / "metrics.json") << original;
+  editMetrics(run_dir, [](nlohmann::json& j) { j["status"] = "collided"; });
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_status"), 1);
+  EXPECT_NE(readText(d / "log_status").find("status collided, golden completed"), std::string::npos);
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + (d / "nothing").string() + "'", d / "log_missing"), 2);
+}
+
+}  // namespace
+}  // namespace msb

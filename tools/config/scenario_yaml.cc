@@ -1,0 +1,173 @@
+#include "tools/config/scenario_yaml.h"
+
+#include <cctype>
+#include <filesystem>
+#include <sstream>
+
+#include "core/common/config_check.h"
+#include "tools/config/method_table.h"
+#include "tools/config/flight_keys.h"
+#include "tools/config/flight_yaml.h"
+#include "tools/config/yaml_reader.h"
+
+namespace msb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// b's keys over a's, recursively for maps; anything else in b replaces a's value.
+YAML::Node merge(const YAML::Node& a, const YAML::Node& b) {
+  if (!a.IsMap() || !b.IsMap()) return YAML::Clone(b);
+  YAML::Node out = YAML::Clone(a);
+  for (const auto& kv : b) {
+    if (!kv.first.IsScalar()) throw FileConfigError("a scenario map has a non-text key");
+    const std::string k = kv.first.Scalar();
+    out[k] = out[k] ? merge(out[k], kv.second) : YAML::Clone(kv.second);
+  }
+  return out;
+}
+
+YAML::Node loadChain(const fs::path& file, std::vector<fs::path>& chain) {
+  const fs::path abs = fs::weakly_canonical(fs::absolute(file));
+  for (const auto& f : chain)
+    if (f == abs) throw FileConfigError(file.string() + ": key 'base': circular base files");
+  chain.push_back(abs);
+  YAML::Node node = loadYamlFile(file.string());
+  if (!node.IsMap()) throw FileConfigError(file.string() + ": expected a map of keys at the top level");
+  const fs::path dir = abs.parent_path();
+  // An MJCF world path is relative to the file that names it.
+  if (node["world"] && node["world"].IsScalar() && fs::path(node["world"].Scalar()).extension() == ".xml")
+    node["world"] = (dir / node["world"].Scalar()).lexically_normal().string();
+  if (!node["base"]) return node;
+  if (!node["base"].IsScalar()) throw FileConfigError(file.string() + ": key 'base': expected a file path");
+  const fs::path base = dir / node["base"].Scalar();
+  if (!fs::is_regular_file(base))
+    throw FileConfigError(file.string() + ": key 'base': file not found: " + base.string());
+  YAML::Node base_tree = loadChain(base, chain);
+  node.remove("base");
+  return merge(base_tree, node);
+}
+
+// Applies "a.b.c=value" to the tree.
+void applySet(YAML::Node& root, const std::string& kv) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos || eq == 0) throw UsageError("--set: expected KEY=VALUE, got '" + kv + "'");
+  const std::string path = kv.substr(0, eq), text = kv.substr(eq + 1);
+  YAML::Node value;
+  try {
+    value = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw UsageError("--set " + path + ": value '" + text + "' is not valid YAML: " + e.msg);
+  }
+  rejectDuplicateKeys(value, "--set " + path);
+  // KEY is dot-separated names of letters, digits and '_' ("a.b.c"): no empty component
+  // (".a", "a..b", "a.") and nothing else, so that what is set is what was meant.
+  std::vector<std::string> keys(1);
+  for (const char ch : path) {
+    if (ch == '.') {
+      if (keys.back().empty()) break;
+      keys.emplace_back();
+    } else if (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_') {
+      keys.back() += ch;
+    } else {
+      throw UsageError("--set: key '" + path + "' may hold only letters, digits, '_' and '.' between names");
+    }
+  }
+  for (const auto& k : keys)
+    if (k.empty()) throw UsageError("--set: empty key component in '" + path + "' (KEY is a.b.c)");
+  // Walk with explicit copies: yaml-cpp nodes are handles, so assignment through them edits the tree.
+  std::vector<YAML::Node> nodes = {root};
+  for (size_t i = 0; i + 1 < keys.size(); ++i) {
+    YAML::Node cur = nodes.back();
+    if (!cur[keys[i]]) cur[keys[i]] = YAML::Node(YAML::NodeType::Map);
+    YAML::Node next = cur[keys[i]];
+    if (!next.IsMap()) throw UsageError("--set " + path + ": '" + keys[i] + "' is not a map");
+    nodes.push_back(next);
+  }
+  nodes.back()[keys.back()] = value;
+}
+
+void readMission(MapReader r, MissionSettings& m) {
+  r.read("map_rate_hz", m.map_rate_hz);
+  r.read("planning_rate_hz", m.planning_rate_hz);
+  r.read("metric_rate_hz", m.metric_rate_hz);
+  r.read("trajectory_rate_hz", m.trajectory_rate_hz);
+  r.read("write_map_ply", m.write_map_ply);
+  r.read("progress", m.progress);
+  r.finish();
+}
+
+void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
+  r.read("name", s.name);
+  s.start_from_world = !r.has("start");
+  readFlightKeys(r, dir, s.flight);
+  if (r.has("method")) s.method = readMethod(r.sub("method"));
+  if (r.has("exploration_box")) {
+    MapReader b = r.sub("exploration_box");
+    Aabb box;
+    if (!b.read("min", box.min)) throw ConfigError(b.keyName("min"), "is required");
+    if (!b.read("max", box.max)) throw ConfigError(b.keyName("max"), "is required");
+    b.finish();
+    s.exploration_box = box;
+  }
+  if (r.has("mission")) readMission(r.sub("mission"), s.mission);
+  r.finish();
+}
+
+YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::string>& sets) {
+  std::vector<fs::path> chain;
+  YAML::Node tree = loadChain(path, chain);
+  for (const auto& kv : sets) applySet(tree, kv);
+  return tree;
+}
+
+}  // namespace
+
+ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string>& sets) {
+  const YAML::Node tree = loadScenarioTree(path, sets);
+  const fs::path dir = fs::absolute(path).parent_path();
+  const std::string label = sets.empty() ? path : path + " (with --set overrides)";
+  ScenarioSpec spec = parseConfigNode<ScenarioSpec>(label, tree, [&](MapReader& r, ScenarioSpec& s) {
+    // Mission defaults that differ from a scripted flight.
+    s.flight.duration_s = 1200.0;
+    s.flight.perception.enabled = true;
+    s.flight.camera_stream.save_every_n = 0;
+    readScenario(r, dir, s);
+  });
+  if (spec.name.empty()) spec.name = fs::path(path).stem().string();
+  return spec;
+}
+
+SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets) {
+  YAML::Node tree(YAML::NodeType::Map);
+  for (const auto& kv : sets) {
+    if (kv.rfind("map.", 0) != 0) throw UsageError("--set: expected map.KEY=VALUE, got '" + kv + "'");
+    applySet(tree, kv);
+  }
+  return parseConfigNode<SphereMapConfig>("--set", tree, [](MapReader& r, SphereMapConfig& c) {
+    if (r.has("map")) {
+      MapReader m = r.sub("map");
+      m.read("ovde", c.ovde);
+      m.read("dbof", c.dbof);
+      readSphereMapKeys(m, c);
+      m.finish();
+    }
+    r.finish();
+  });
+}
+
+namespace {
+
+std::string scenarioTreeToString(const YAML::Node& tree) {
+  YAML::Emitter e;
+  e << tree;
+  return std::string(e.c_str()) + "\n";
+}
+
+}  // namespace
+
+std::string mergedScenarioYaml(const std::string& path, const std::vector<std::string>& sets) {
+  return scenarioTreeToString(loadScenarioTree(path, sets));
+}
+
+}  // namespace msb

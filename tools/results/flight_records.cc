@@ -1,0 +1,56 @@
+#include "tools/results/flight_records.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+namespace msb {
+
+std::string encodePng(const CameraFrame& frame) {
+  const cv::Mat img(frame.height, frame.width, CV_8UC1,
+                    const_cast<uint8_t*>(frame.pixels.data()));
+  std::vector<uchar> buf;
+  if (!cv::imencode(".png", img, buf)) throw std::runtime_error("PNG encoding failed");
+  return std::string(buf.begin(), buf.end());
+}
+
+std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {
+  std::string s = "t,x,y,z,qw,qx,qy,qz,vx,vy,vz,est_x,est_y,est_z,est_yaw,ref_x,ref_y,ref_z,ref_yaw\n";
+  char line[768];
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof(line),
+                  "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+                  r.t_s, r.position_m.x(), r.position_m.y(), r.position_m.z(),
+                  r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z(),
+                  r.velocity_mps.x(), r.velocity_mps.y(), r.velocity_mps.z(),
+                  r.est_position_m.x(), r.est_position_m.y(), r.est_position_m.z(), r.est_yaw_rad,
+                  r.ref_position_m.x(), r.ref_position_m.y(), r.ref_position_m.z(),
+                  r.ref_yaw_rad);
+    s += line;
+  }
+  return s;
+}
+
+std::string imuCsv(const std::vector<ImuSample>& samples) {
+  std::string s = "t,ax,ay,az,gx,gy,gz\n";
+  char line[256];
+  for (const auto& m : samples) {
+    std::snprintf(line, sizeof(line), "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", m.t_s,
+                  m.accel_mps2.x(), m.accel_mps2.y(), m.accel_mps2.z(), m.gyro_radps.x(),
+                  m.gyro_radps.y(), m.gyro_radps.z());
+    s += line;
+  }
+  return s;
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const size_t k = std::min(v.size() - 1, size_t(q * (v.size() - 1) + 0.5));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+}  // namespace msb

@@ -1,0 +1,25 @@
+// Files of a flight's records: trajectory.csv, imu.csv, frames as PNG; and the quantile used by
+// the per-stage time summaries.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/common/messages.h"
+#include "tools/loop/closed_loop.h"
+
+namespace msb {
+
+/// PNG bytes of a grey-scale frame.
+std::string encodePng(const CameraFrame& frame);
+
+/// trajectory.csv text.
+std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);
+
+/// imu.csv text.
+std::string imuCsv(const std::vector<ImuSample>& samples);
+
+/// The q-quantile (0..1, nearest rank) of a sample; 0 for an empty one.
+double percentile(std::vector<double> values, double q);
+
+}  // namespace msb

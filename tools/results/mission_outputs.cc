@@ -1,0 +1,318 @@
+#include "tools/results/mission_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "tools/results/provenance.h"
+#include "tools/results/flight_records.h"
+#include "tools/results/output_files.h"
+
+namespace msb {
+
+namespace {
+nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json stagesJson(const StageTimes& s, double per) {
+  return {{"render", s.render_ms / per},       {"tracker", s.tracker_ms / per},
+          {"triangulation", s.triangulation_ms / per}, {"map_update", s.map_ms / per},
+          {"planning", s.planning_ms / per},   {"metric", s.metric_ms / per}};
+}
+}  // namespace
+
+namespace {
+// The ground-truth shape a MuJoCo geom name belongs to (null if unknown).
+const Shape* shapeNamed(const WorldTruth* truth, const std::string& geom) {
+  if (!truth) return nullptr;
+  for (const Shape& s : truth->shapes())
+    if (s.name == geom) return &s;
+  return nullptr;
+}
+}  // namespace
+
+nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, const WorldTruth* truth) {
+  const FlightResult& f = r.flight;
+  nlohmann::json j;
+  j["name"] = spec.name;
+  j["status"] = f.status;
+  j["seed"] = spec.flight.seed;
+  j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
+  j["method"] = spec.method.type;
+  j["switches"] = spec.method.switches;
+  j["duration_s"] = spec.flight.duration_s;
+  j["sim_time_s"] = f.sim_time_s;
+  const double cell2 = r.columns.cellM() * r.columns.cellM();
+  const size_t in_box = r.columns.countInside(r.exploration_box.min.head<2>(), r.exploration_box.max.head<2>());
+  j["coverage"] = {
+      {"area_m2", r.columns.areaM2()},
+      {"area_box_m2", double(in_box) * cell2},
+      {"box_explorable_columns", r.box_explorable_columns},
+      {"box_explored_explorable_columns", r.box_explored_explorable_columns},
+      {"box_share", r.box_explorable_columns ? nlohmann::json(double(r.box_explored_explorable_columns) / r.box_explorable_columns)
+                                             : nlohmann::json(nullptr)},
+      {"box_share_true_frame", r.box_explorable_columns
+                                   ? nlohmann::json(double(r.box_true_frame_explored_explorable_columns) / r.box_explorable_columns)
+                                   : nlohmann::json(nullptr)},
+      {"longest_no_gain_s", r.longest_no_gain.lengthS()},
+      {"longest_no_gain_from_s", r.longest_no_gain.start_s},
+      {"area_true_frame_m2", r.columns_gt.areaM2()},
+      {"column_size_m", r.columns.cellM()},
+      {"exploration_box", nlohmann::json{{"min", vec(r.exploration_box.min)}, {"max", vec(r.exploration_box.max)}}}};
+  if (f.collision) {
+    const auto& c = *f.collision;
+    j["collision"] = {{"t_s", c.t_s}, {"vehicle_position_m", vec(c.vehicle_position_m)},
+                      {"contact_position_m", vec(c.contact_position_m)}, {"vehicle_geom", c.vehicle_geom},
+                      {"world_geom", c.world_geom}};
+    // The object hit and what it looks like to the front end (report: collisions by kind).
+    const Shape* hit = shapeNamed(truth, c.world_geom);
+    j["collision"]["object"] = hit ? nlohmann::json(hit->object.empty() ? hit->name : hit->object) : nlohmann::json(nullptr);
+    j["collision"]["kind"] = hit ? nlohmann::json(obstacleKindName(hit->kind)) : nlohmann::json(nullptr);
+  } else {
+    j["collision"] = nullptr;
+  }
+  // Map accuracy against the ground truth (VIO frame, so drift counts against it): obstacle
+  // elements (points, occupied cells) within 0.5 m of a true surface; free elements (spheres,
+  // free cells) whose centre lies outside every obstacle.
+  if (truth && (!r.final_map.obstacles.empty() || !r.final_map.free_space.empty())) {
+    size_t near = 0, free_ok = 0;
+    for (const auto& p : r.final_map.obstacles) near += std::fabs(truth->distance(p, 5.0)) <= 0.5;
+    for (const auto& d : r.final_map.free_space) free_ok += truth->distance(d.centre, 5.0) > 0.0;
+    auto share = [](size_t k, size_t n) { return n ? nlohmann::json(double(k) / double(n)) : nlohmann::json(nullptr); };
+    j["map_accuracy"] = {{"obstacles", r.final_map.obstacles.size()},
+                         {"obstacles_near_surface_share", share(near, r.final_map.obstacles.size())},
+                         {"free_elements", r.final_map.free_space.size()},
+                         {"free_really_free_share", share(free_ok, r.final_map.free_space.size())}};
+  }
+  j["vio_lost_at_s"] = f.vio_lost_at_s >= 0 ? nlohmann::json(f.vio_lost_at_s) : nlohmann::json(nullptr);
+  j["distance_flown_m"] = f.distance_flown_m;
+  j["perception"] = {{"frames", f.perception_frames},
+                     {"tracked_mean", f.perception_frames > 1 ? f.tracked_sum / (f.perception_frames - 1) : 0.0},
+                     {"tracked_min", f.tracked_min},
+                     {"frames_few_tracks", f.frames_few_tracks}};
+  j["final_drift_m"] = f.final_drift_m;
+  j["frames_rendered"] = f.frames_rendered;
+  j["mujoco_warnings"] = f.mujoco_warnings;
+  j["wall_time_s"] = f.wall_time_s;
+  j["real_time_factor"] = f.realTimeFactor();
+  // Wall time per simulated second, by stage; "other" = physics, controller, IMU, VIO, records.
+  const double sim = std::max(f.sim_time_s, 1e-9);
+  nlohmann::json st = stagesJson(r.stages, sim);
+  const auto& s = r.stages;
+  const double known = s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
+  st["other"] = (f.wall_time_s * 1000.0 - known) / sim;
+  st["total"] = f.wall_time_s * 1000.0 / sim;
+  j["wall_ms_per_sim_second"] = st;
+  j["map_update_ms"] = {{"updates", r.map_update_ms.size()},
+                        {"median", percentile(r.map_update_ms, 0.5)},
+                        {"p99", percentile(r.map_update_ms, 0.99)},
+                        {"max", percentile(r.map_update_ms, 1.0)}};
+  j["peak_rss_mb"] = peakRssMb();
+  j["counters"] = r.counters;
+  j["versions"] = versionInfo();
+  j["machine"] = machineFingerprint(f.gl_description);
+  j["trajectory_hash"] = hexHash(f.trajectory_hash);
+  j["map_hash"] = hexHash(r.map_hash);
+  j["determinism_hash"] = hexHash(r.run_hash);
+  return j;
+}
+
+std::string coverageCsv(const std::vector<CoverageSample>& samples) {
+  std::ostringstream o;
+  o << "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share\n";
+  char line[160];
+  for (const auto& c : samples) {
+    std::snprintf(line, sizeof(line), "%.3f,%.2f,%.2f,%.2f,%.3f,%.4f\n", c.t_s, c.area_m2, c.area_box_m2, c.area_gt_m2,
+                  c.distance_m, c.box_share);
+    o << line;
+  }
+  return o.str();
+}
+
+std::string timingCsv(const MissionResult& r) {
+  std::ostringstream o;
+  o << "t_s,render_ms,tracker_ms,triangulation_ms,map_update_ms,planning_ms,metric_ms\n";
+  char line[200];
+  for (const auto& [t, s] : r.stage_timeline) {
+    std::snprintf(line, sizeof(line), "%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", t, s.render_ms, s.tracker_ms,
+                  s.triangulation_ms, s.map_ms, s.planning_ms, s.metric_ms);
+    o << line;
+  }
+  return o.str();
+}
+
+std::string mapPly(const ExplorerSnapshot& snap) {
+  std::ostringstream ply;
+  ply << "ply\nformat ascii 1.0\ncomment msbench map (VIO frame); kind 0 free-space sphere (radius), "
+         "1 obstacle point, 2 frontier\nelement vertex "
+      << snap.free_space.size() + snap.obstacles.size() + snap.frontiers.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\n"
+         "property uchar kind\nend_header\n";
+  char line[160];
+  for (const auto& s : snap.free_space) {
+    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f %.4f 0\n", s.centre.x(), s.centre.y(), s.centre.z(), s.radius);
+    ply << line;
+  }
+  for (const auto& p : snap.obstacles) {
+    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f 0 1\n", p.x(), p.y(), p.z());
+    ply << line;
+  }
+  for (const auto& p : snap.frontiers) {
+    std::snprintf(line, sizeof(line), "%.4f %.4f %.4f 0 2\n", p.x(), p.y(), p.z());
+    ply << line;
+  }
+  return ply.str();
+}
+
+namespace {
+
+// Ground-truth obstacles (not the ground) as faint footprints, coloured by kind: textured grey,
+// textureless orange, thin magenta (drawn at least 2 px wide so rods stay visible).
+template <class ToPixel>
+void drawTruthFootprints(cv::Mat& img, const WorldTruth& truth, ToPixel px) {
+  cv::Mat layer = img.clone();
+  for (const Shape& sh : truth.shapes()) {
+    if (sh.kind == ObstacleKind::kGround || sh.type == ShapeType::kHalfSpace) continue;
+    const cv::Scalar colour = sh.kind == ObstacleKind::kTextureless ? cv::Scalar(60, 150, 245)
+                              : sh.kind == ObstacleKind::kThin     ? cv::Scalar(200, 0, 200)
+                                                                   : cv::Scalar(120, 120, 120);
+    std::vector<cv::Point> outline;
+    if (sh.type == ShapeType::kBox) {
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 corner((k & 1 ? 1 : -1) * sh.size.x(), (k & 2 ? 1 : -1) * sh.size.y(), (k & 4 ? 1 : -1) * sh.size.z());
+        outline.push_back(px(sh.pose * corner));
+      }
+    } else {
+      // Cylinders (rim points at both ends) and spheres (their equator).
+      const double radius = sh.size.x(), half = sh.type == ShapeType::kCylinder ? sh.size.z() : 0.0;
+      for (int k = 0; k < 24; ++k) {
+        const double a = 2.0 * M_PI * k / 24;
+        for (double end : {-half, half}) {
+          const Vec3 local = sh.type == ShapeType::kSphere ? Vec3(radius * std::cos(a), radius * std::sin(a), 0)
+                                                           : Vec3(radius * std::cos(a), radius * std::sin(a), end);
+          outline.push_back(sh.type == ShapeType::kSphere ? px(sh.pose.translation() + local) : px(sh.pose * local));
+        }
+      }
+    }
+    std::vector<cv::Point> hull;
+    cv::convexHull(outline, hull);
+    cv::fillConvexPoly(layer, hull, colour, cv::LINE_AA);
+    if (sh.kind == ObstacleKind::kThin) cv::polylines(layer, hull, true, colour, 2, cv::LINE_AA);
+  }
+  cv::addWeighted(layer, 0.3, img, 0.7, 0, img);
+}
+
+// A round step for grid lines and the scale bar: about a sixth of the extent.
+double niceStepM(double extent_m) {
+  for (double s : {1.0, 2.0, 5.0, 10.0, 20.0, 25.0, 50.0, 100.0, 200.0, 500.0})
+    if (extent_m / s <= 8) return s;
+  return 1000.0;
+}
+
+}  // namespace
+
+void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth) {
+  // Extent: the box, the trajectory and the map.
+  Vec2 lo = r.exploration_box.min.head<2>(), hi = r.exploration_box.max.head<2>();
+  if (!(hi.array() > lo.array()).all() || (hi - lo).norm() > 1e5) lo = hi = Vec2::Zero();
+  auto grow = [&](const Vec2& p, double m) {
+    lo = lo.cwiseMin(Vec2(p.array() - m));
+    hi = hi.cwiseMax(Vec2(p.array() + m));
+  };
+  for (const auto& t : r.flight.trajectory) grow(t.position_m.head<2>(), 5), grow(t.est_position_m.head<2>(), 5);
+  for (const auto& d : r.final_map.free_space) grow(d.centre.head<2>(), d.radius);
+  const double mpp = std::max({0.05, (hi.x() - lo.x()) / 1600.0, (hi.y() - lo.y()) / 1600.0});
+  const int header = 88;  // legend band above the map
+  const int w = std::max(640, int((hi.x() - lo.x()) / mpp) + 1), h = int((hi.y() - lo.y()) / mpp) + 1 + header;
+  cv::Mat img(h, w, CV_8UC3, cv::Scalar(255, 255, 255));
+  auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), header + int((hi.y() - p.y()) / mpp)); };
+  auto px2 = [&](const Vec2& p) { return px(Vec3(p.x(), p.y(), 0)); };
+  if (truth) drawTruthFootprints(img, *truth, px);
+  // Metre grid (faint) with labels along the left and top edges of the map.
+  const double step = niceStepM(std::max(hi.x() - lo.x(), hi.y() - lo.y()));
+  for (double x = std::ceil(lo.x() / step) * step; x <= hi.x(); x += step) {
+    cv::line(img, px2(Vec2(x, lo.y())), px2(Vec2(x, hi.y())), cv::Scalar(225, 225, 225), 1);
+    cv::putText(img, std::to_string(int(std::lround(x))), px2(Vec2(x, hi.y())) + cv::Point(2, 12),
+                cv::FONT_HERSHEY_SIMPLEX, 0.35, cv::Scalar(110, 110, 110), 1, cv::LINE_AA);
+  }
+  for (double y = std::ceil(lo.y() / step) * step; y <= hi.y(); y += step) {
+    cv::line(img, px2(Vec2(lo.x(), y)), px2(Vec2(hi.x(), y)), cv::Scalar(225, 225, 225), 1);
+    cv::putText(img, std::to_string(int(std::lround(y))), px2(Vec2(lo.x(), y)) + cv::Point(2, -3),
+                cv::FONT_HERSHEY_SIMPLEX, 0.35, cv::Scalar(110, 110, 110), 1, cv::LINE_AA);
+  }
+
+  // Explored columns (light green squares around their nodes), spheres (blue, translucent).
+  const double half = 0.5 * r.columns.cellM();
+  for (const auto& c : r.columns.columns()) {
+    const Vec2 n = r.columns.node(c);
+    cv::rectangle(img, px2(n + Vec2(-half, half)), px2(n + Vec2(half, -half)), cv::Scalar(200, 240, 200), -1);
+  }
+  // Free space: spheres as discs; a grid method's free cells as their squares.
+  const bool spheres = r.method == "monospheres";
+  cv::Mat discs = img.clone();
+  for (const auto& d : r.final_map.free_space) {
+    if (spheres) {
+      cv::circle(discs, px(d.centre), int(d.radius / mpp), cv::Scalar(230, 160, 90), -1);
+    } else {
+      const Vec2 c = d.centre.head<2>();
+      cv::rectangle(discs, px2(c + Vec2(-d.radius, d.radius)), px2(c + Vec2(d.radius, -d.radius)),
+                    cv::Scalar(230, 160, 90), -1);
+    }
+  }
+  cv::addWeighted(discs, 0.35, img, 0.65, 0, img);
+  cv::rectangle(img, px(r.exploration_box.min), px(r.exploration_box.max), cv::Scalar(0, 0, 0), 1);
+  // Obstacle points: near the ground (z < 0.5 m) light grey, above it black.
+  for (const auto& p : r.final_map.obstacles)
+    if (p.z() < 0.5) cv::circle(img, px(p), 1, cv::Scalar(185, 185, 185), -1);
+  for (const auto& p : r.final_map.obstacles)
+    if (p.z() >= 0.5) cv::circle(img, px(p), 1, cv::Scalar(20, 20, 20), -1);
+  for (const auto& p : r.final_map.frontiers) cv::circle(img, px(p), 3, cv::Scalar(200, 40, 200), -1);
+  auto arrow = [&](const ExplorerSnapshot::Pose2& v, const cv::Scalar& col) {
+    const Vec3 tip = v.position + 2.0 * Vec3(std::cos(v.yaw_rad), std::sin(v.yaw_rad), 0);
+    cv::arrowedLine(img, px(v.position), px(tip), col, 2, cv::LINE_AA, 0, 0.4);
+  };
+  for (const auto& v : r.final_map.visited) arrow(v, cv::Scalar(140, 140, 140));
+  for (const auto& v : r.final_map.viewpoints) arrow(v, cv::Scalar(0, 160, 255));
+  // Trajectories: estimate (orange) under truth (red).
+  const auto& tr = r.flight.trajectory;
+  for (size_t i = 1; i < tr.size(); ++i)
+    cv::line(img, px(tr[i - 1].est_position_m), px(tr[i].est_position_m), cv::Scalar(0, 150, 255), 2, cv::LINE_AA);
+  for (size_t i = 1; i < tr.size(); ++i)
+    cv::line(img, px(tr[i - 1].position_m), px(tr[i].position_m), cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
+  // The last path sent (blue) and the active goal (red circle).
+  const auto& path = r.final_map.path;
+  for (size_t i = 1; i < path.size(); ++i) cv::line(img, px(path[i - 1]), px(path[i]), cv::Scalar(200, 60, 0), 2, cv::LINE_AA);
+  if (r.final_map.goal) cv::circle(img, px(r.final_map.goal->position), 6, cv::Scalar(0, 0, 230), 2, cv::LINE_AA);
+  if (r.flight.collision) {
+    const cv::Point c = px(r.flight.collision->vehicle_position_m);
+    cv::drawMarker(img, c, cv::Scalar(0, 0, 255), cv::MARKER_TILTED_CROSS, 24, 3);
+  }
+  char text[200];
+  std::snprintf(text, sizeof(text), "A = %.0f m2 (%zu columns), t = %.0f s, %s", r.columns.areaM2(),
+                r.columns.count(), r.flight.sim_time_s, r.flight.status.c_str());
+  cv::rectangle(img, cv::Point(0, 0), cv::Point(w, header - 1), cv::Scalar(255, 255, 255), -1);
+  cv::putText(img, text, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, spheres ? "green: explored columns, blue: spheres, black/grey: obstacle points (above/below 0.5 m), magenta: frontiers,"
+                           : "green: explored columns, blue: free cells, black/grey: occupied cells (above/below 0.5 m), red circle: goal,",
+              cv::Point(8, 42), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+  cv::putText(img, spheres ? "orange arrows: viewpoints, grey: visited, red: true path, orange: estimate, blue: last path"
+                           : "red: true path, orange: estimate, blue: last path",
+              cv::Point(8, 60), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+  if (truth)
+    cv::putText(img, "faint: true obstacles (grey textured, orange textureless, magenta thin); grid and labels in metres",
+                cv::Point(8, 78), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+  // Scale bar (bottom right) and the grid's unit.
+  const int bar = int(step / mpp), bx = w - bar - 20, by = h - 16;
+  cv::rectangle(img, cv::Point(bx - 6, by - 22), cv::Point(w - 8, h - 4), cv::Scalar(255, 255, 255), -1);
+  cv::line(img, cv::Point(bx, by), cv::Point(bx + bar, by), cv::Scalar(0, 0, 0), 3);
+  cv::putText(img, std::to_string(int(step)) + " m", cv::Point(bx, by - 7), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  std::vector<uchar> png;
+  cv::imencode(".png", img, png);
+  writeFileAtomic(file, std::string(png.begin(), png.end()));
+}
+
+}  // namespace msb

@@ -1,0 +1,125 @@
+#include "tools/results/output_files.h"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/common/config_check.h"
+
+namespace msb {
+
+namespace fs = std::filesystem;
+
+std::string readFileText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void writeFileAtomic(const fs::path& path, const std::string& bytes) {
+  const fs::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+  }
+  fs::rename(tmp, path);
+}
+
+namespace {
+
+constexpr char kMarker[] = ".msbench-output";
+
+// True if `dir` is `p` or one of its ancestors (both absolute and normalised).
+bool isSameOrAncestor(const fs::path& dir, const fs::path& p) {
+  auto q = p.begin();
+  for (auto d = dir.begin(); d != dir.end(); ++d, ++q) {
+    if (d->empty()) continue;  // a trailing separator
+    if (q == p.end() || *d != *q) return false;
+  }
+  return true;
+}
+
+bool existsNoFollow(const fs::path& p) {
+  std::error_code ec;
+  return fs::exists(fs::symlink_status(p, ec));
+}
+
+}  // namespace
+
+void checkOutputFile(const fs::path& file, bool overwrite, const std::string& flag) {
+  const std::string name = "--" + flag + " " + file.string();
+  if (file.empty() || !fs::absolute(file).has_filename()) throw UsageError(name + ": expected a file name");
+  if (existsNoFollow(file)) {
+    if (!fs::is_regular_file(fs::symlink_status(file))) throw UsageError(name + ": exists and is not a regular file");
+    if (!overwrite) throw UsageError(name + ": exists (use --overwrite to replace it)");
+  }
+  const fs::path dir = fs::absolute(file).parent_path();
+  if (!fs::is_directory(dir)) throw UsageError(name + ": directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw UsageError(name + ": directory " + dir.string() + " is not writable");
+}
+
+bool isMsbenchOutput(const fs::path& dir) {
+  if (!fs::is_directory(dir)) return false;
+  if (fs::exists(dir / kMarker)) return true;
+  // A result written before the marker existed: its metrics.json names msbench's versions.
+  std::ifstream in(dir / "metrics.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text.find("\"versions\"") != std::string::npos && text.find("\"msbench\"") != std::string::npos;
+}
+
+StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite) : overwrite_(overwrite) {
+  // One normal absolute form (a trailing slash names the same directory).
+  if (final_dir.empty()) throw UsageError("--out: empty path");
+  fs::path p = fs::absolute(final_dir).lexically_normal();
+  if (!p.has_filename()) p = p.parent_path();
+  final_ = p;
+  const std::string name = final_dir.string();
+  if (p == p.root_path() || isSameOrAncestor(p, fs::current_path().lexically_normal()))
+    throw UsageError(name + ": refusing to use the current directory, one of its parents or / as an output directory");
+  // An existing target must be a directory; a non-empty one needs --overwrite and must be an
+  // msbench result (marker file), so nothing else is ever deleted.
+  if (existsNoFollow(p)) {
+    if (!fs::is_directory(fs::symlink_status(p)))
+      throw UsageError(name + ": exists and is not a directory; refusing to replace it");
+    if (!fs::is_empty(p)) {
+      if (!overwrite_)
+        throw UsageError(name + ": output directory exists and is not empty (use --overwrite to replace an msbench result)");
+      if (!isMsbenchOutput(p))
+        throw UsageError(name + ": was not written by msbench (no " + kMarker + " inside); refusing to replace it");
+    }
+  }
+  // The staging directory: a stale one of an interrupted msbench run is cleared, anything else kept.
+  staging_ = p.string() + ".partial";
+  if (existsNoFollow(staging_)) {
+    if (!fs::is_directory(fs::symlink_status(staging_)) || !isMsbenchOutput(staging_))
+      throw UsageError(staging_.string() + ": exists and was not written by msbench; remove or rename it first");
+    fs::remove_all(staging_);
+  }
+  std::error_code ec;
+  fs::create_directories(staging_, ec);
+  if (ec) throw UsageError(staging_.string() + ": cannot create the output directory: " + ec.message());
+  writeFileAtomic(staging_ / kMarker, "This directory was written by msbench; --overwrite may replace it.\n");
+}
+
+StagedOutputDir::~StagedOutputDir() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove_all(staging_, ec);
+  }
+}
+
+void StagedOutputDir::commit() {
+  // The target is empty or an msbench result (checked at construction).
+  if (existsNoFollow(final_)) fs::remove_all(final_);
+  if (final_.has_parent_path()) fs::create_directories(final_.parent_path());
+  fs::rename(staging_, final_);
+  committed_ = true;
+}
+
+}  // namespace msb

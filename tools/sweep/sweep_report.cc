@@ -1,0 +1,317 @@
+#include "tools/sweep/sweep_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include "tools/results/output_files.h"
+
+namespace msb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// coverage.csv rows by column name (older files without box_share read it as 0).
+std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
+  std::vector<CoverageSample> out;
+  if (!fs::exists(file)) return out;
+  std::istringstream in(readFileText(file));
+  std::string line;
+  if (!std::getline(in, line)) return out;
+  std::vector<std::string> names;
+  {
+    std::istringstream h(line);
+    for (std::string n; std::getline(h, n, ',');) names.push_back(n);
+  }
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    CoverageSample c;
+    size_t k = 0;
+    for (std::string v; std::getline(row, v, ','); ++k) {
+      if (k >= names.size()) break;
+      const double x = std::strtod(v.c_str(), nullptr);
+      const std::string& n = names[k];
+      if (n == "t_s") c.t_s = x;
+      else if (n == "area_m2") c.area_m2 = x;
+      else if (n == "area_box_m2") c.area_box_m2 = x;
+      else if (n == "area_true_frame_m2") c.area_gt_m2 = x;
+      else if (n == "distance_m") c.distance_m = x;
+      else if (n == "box_share") c.box_share = x;
+    }
+    out.push_back(c);
+  }
+  return out;
+}
+
+void add(MeanOf& m, double v) {
+  m.mean = (m.mean * m.count + v) / (m.count + 1);
+  ++m.count;
+}
+
+double number(const nlohmann::json& j, const char* key, double fallback = 0.0) {
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
+}
+
+// The method as a reader names it: the type, plus the switches that are off ("monospheres -ovde").
+std::string methodName(const nlohmann::json& m) {
+  std::string name = m.value("method", std::string("?"));
+  if (m.contains("switches") && m["switches"].is_object())
+    for (const auto& [k, v] : m["switches"].items())
+      if (v.is_boolean() && !v.get<bool>()) name += " -" + k;
+  return name;
+}
+
+std::string fixed(double v, int digits) {
+  char b[64];
+  std::snprintf(b, sizeof(b), "%.*f", digits, v);
+  return b;
+}
+
+// "mean (k/n)" when only k of n runs have a value, "—" when none has.
+std::string meanCell(const MeanOf& m, int runs, int digits, const std::string& unit = "") {
+  if (m.count == 0) return "—";
+  std::string s = fixed(m.mean, digits) + unit;
+  if (m.count < runs) s += " (" + std::to_string(m.count) + "/" + std::to_string(runs) + ")";
+  return s;
+}
+
+std::string csvNumber(const MeanOf& m, int digits) { return m.count ? fixed(m.mean, digits) : ""; }
+
+}  // namespace
+
+std::optional<std::pair<double, double>> paperTableOne(const std::string& world, const std::string& method,
+                                                       const nlohmann::json& switches) {
+  // MonoSpheres paper, Table I: mean and max A (m²).
+  std::vector<std::string> off;
+  if (switches.is_object())
+    for (const auto& [k, v] : switches.items())
+      if (v.is_boolean() && !v.get<bool>()) off.push_back(k);
+  if (method == "grid_random") {
+    if (world == "urban") return std::pair{1911.0, 2306.0};
+    if (world == "cave") return std::pair{3171.0, 3375.0};
+    if (world == "rooftops") return std::pair{1360.0, 1556.0};
+    if (world == "sparse") return std::pair{2108.0, 2168.0};
+    return std::nullopt;
+  }
+  if (method != "monospheres") return std::nullopt;
+  if (off.empty()) {
+    if (world == "urban") return std::pair{4919.0, 6081.0};
+    if (world == "cave") return std::pair{7627.0, 8006.0};
+    if (world == "rooftops") return std::pair{3760.0, 4606.0};
+    if (world == "sparse") return std::pair{5127.0, 5150.0};
+    return std::nullopt;
+  }
+  if (off.size() != 1 || world != "urban") return std::nullopt;
+  if (off[0] == "fff") return std::pair{2470.0, 3181.0};
+  if (off[0] == "dbof") return std::pair{2308.0, 3081.0};
+  if (off[0] == "ovde") return std::pair{747.0, 862.0};
+  if (off[0] == "vpb") return std::pair{3697.0, 4175.0};
+  return std::nullopt;
+}
+
+SweepResults loadSweepResults(const fs::path& dir) {
+  const fs::path index = dir / "sweep.json";
+  if (!fs::exists(index)) throw std::runtime_error(index.string() + ": not found (not a sweep directory?)");
+  const auto j = nlohmann::json::parse(readFileText(index), nullptr, false);
+  if (!j.is_object() || !j.contains("runs") || !j["runs"].is_array())
+    throw std::runtime_error(index.string() + ": not a sweep index (no runs)");
+  SweepResults r;
+  r.dir = dir;
+  if (j.contains("axes")) r.axes = j["axes"].get<std::vector<std::string>>();
+  for (const auto& jr : j["runs"]) {
+    ReportRun run;
+    run.id = jr.value("id", std::string());
+    run.seed = jr.value("seed", uint64_t(0));
+    run.status = jr.value("status", std::string("pending"));
+    if (jr.contains("labels")) run.labels = jr["labels"].get<std::map<std::string, std::string>>();
+    if (jr.contains("failure")) run.failure = jr["failure"];
+    const fs::path rd = dir / "runs" / run.id;
+    if (run.status == "complete" && fs::exists(rd / "metrics.json")) {
+      run.metrics = nlohmann::json::parse(readFileText(rd / "metrics.json"), nullptr, false);
+      run.coverage = readCoverageCsv(rd / "coverage.csv");
+    }
+    r.runs.push_back(std::move(run));
+  }
+  return r;
+}
+
+std::optional<double> timeToBoxShare(const std::vector<CoverageSample>& coverage, double share) {
+  for (const CoverageSample& c : coverage)
+    if (c.box_share >= share) return c.t_s;
+  return std::nullopt;
+}
+
+std::vector<ReportRow> reportRows(const SweepResults& results) {
+  std::vector<ReportRow> rows;
+  for (const ReportRun& run : results.runs) {
+    std::vector<std::string> labels;
+    for (const auto& a : results.axes) labels.push_back(run.labels.count(a) ? run.labels.at(a) : "");
+    auto it = std::find_if(rows.begin(), rows.end(), [&](const ReportRow& r) { return r.labels == labels; });
+    if (it == rows.end()) {
+      rows.push_back(ReportRow{});
+      it = rows.end() - 1;
+      it->labels = labels;
+    }
+    ReportRow& row = *it;
+    ++row.runs;
+    if (run.status == "failed") ++row.failed;
+    const nlohmann::json& m = run.metrics;
+    if (!m.is_object() || m.value("status", std::string()) == "error") continue;
+    ++row.complete;
+    if (row.world.empty()) {
+      row.world = m.value("world", std::string("?"));
+      row.method = methodName(m);
+      if (const auto p = paperTableOne(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json())))
+        row.paper_mean_m2 = p->first, row.paper_max_m2 = p->second;
+    }
+    const nlohmann::json& cov = m["coverage"];
+    const double a = number(cov, "area_m2");
+    add(row.area_m2, a);
+    row.max_area_m2 = std::max(row.max_area_m2, a);
+    if (cov.contains("box_share") && cov["box_share"].is_number()) add(row.box_share, cov["box_share"].get<double>());
+    if (const auto t = timeToBoxShare(run.coverage, 0.5)) add(row.t50_s, *t);
+    if (const auto t = timeToBoxShare(run.coverage, 0.9)) add(row.t90_s, *t);
+    const double flown = number(m, "distance_flown_m");
+    if (flown > 0) add(row.area_per_100m, 100.0 * a / flown);
+    if (cov.contains("longest_no_gain_s")) add(row.longest_no_gain_s, number(cov, "longest_no_gain_s"));
+    add(row.rtf, number(m, "real_time_factor"));
+    if (m.value("status", std::string()) == "collided") {
+      ++row.crashes;
+      const nlohmann::json& c = m["collision"];
+      const std::string kind = c.is_object() && c.contains("kind") && c["kind"].is_string() ? c["kind"].get<std::string>()
+                                                                                            : std::string("unknown");
+      ++row.collisions_by_kind[kind];
+    }
+  }
+  return rows;
+}
+
+std::string reportMarkdown(const SweepResults& results, const std::vector<ReportRow>& rows) {
+  std::ostringstream o;
+  o << "# Sweep report: " << results.dir.string() << "\n\n";
+  int complete = 0, failed = 0, pending = 0;
+  for (const auto& r : results.runs)
+    (r.status == "complete" ? complete : r.status == "failed" ? failed : pending)++;
+  o << results.runs.size() << " runs: " << complete << " complete, " << failed << " failed, " << pending
+    << " not run. A = explored 2.5 m columns (m², unbounded, VIO frame, as the paper's Table I).\n\n";
+  // Failed runs first: a table with a hole in it must say so before anything else.
+  if (failed > 0) {
+    o << "## Failed runs\n\nThese runs have no result; the rows below average the others. Re-running the same "
+         "`msbench sweep` command redoes them.\n\n| run | ended by | last progress | fatal signal report | log |\n"
+         "| --- | --- | --- | --- | --- |\n";
+    for (const ReportRun& r : results.runs) {
+      if (r.status != "failed") continue;
+      const nlohmann::json& f = r.failure;
+      auto text = [&](const char* k) { return f.is_object() && f.contains(k) && f[k].is_string() ? f[k].get<std::string>() : std::string("—"); };
+      const int sig = f.is_object() ? f.value("signal", 0) : 0;
+      const std::string ended = sig ? "signal " + std::to_string(sig) + (f.contains("signal_name") ? " (" + text("signal_name") + ")" : "")
+                                    : "exit code " + std::to_string(f.is_object() ? f.value("exit_code", 0) : 0);
+      o << "| " << r.id << " | " << ended << " | " << text("last_progress") << " | " << text("fatal") << " | logs/" << r.id
+        << ".log |\n";
+    }
+    o << "\n";
+  }
+  // The Table I layout first.
+  o << "## Table I layout\n\n|";
+  for (const auto& a : results.axes) o << " " << a << " |";
+  o << " method type | runs | mean A (m²) | max A (m²) | paper mean A | paper max A | crashes |\n|";
+  for (size_t k = 0; k < results.axes.size() + 7; ++k) o << " --- |";
+  o << "\n";
+  for (const ReportRow& r : rows) {
+    o << "|";
+    for (const auto& l : r.labels) o << " " << l << " |";
+    o << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
+    if (r.complete < r.runs) o << " of " << r.runs;
+    o << " | " << meanCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—") << " | "
+      << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | " << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—")
+      << " | " << r.crashes << " |\n";
+  }
+  // Then what the paper does not report.
+  o << "\n## Beyond the paper\n\n"
+       "Box share: explored explorable columns of the exploration box / explorable columns (mean). "
+       "t50 / t90: simulated time to 50 % / 90 % of the box (mean over the runs that got there: k/n). "
+       "A per 100 m: A / distance flown. No gain: longest stretch without coverage gain. "
+       "Collisions by the kind of object hit.\n\n|";
+  for (const auto& a : results.axes) o << " " << a << " |";
+  o << " box share | t50 (s) | t90 (s) | A per 100 m | no gain (s) | textureless | thin | textured | other | RTF |\n|";
+  for (size_t k = 0; k < results.axes.size() + 10; ++k) o << " --- |";
+  o << "\n";
+  for (const ReportRow& r : rows) {
+    o << "|";
+    for (const auto& l : r.labels) o << " " << l << " |";
+    auto kind = [&](const std::string& k) { return r.collisions_by_kind.count(k) ? r.collisions_by_kind.at(k) : 0; };
+    const int other = r.crashes - kind("textureless") - kind("thin") - kind("textured");
+    o << " " << meanCell(r.box_share, r.complete, 2) << " | " << meanCell(r.t50_s, r.complete, 0) << " | "
+      << meanCell(r.t90_s, r.complete, 0) << " | " << meanCell(r.area_per_100m, r.complete, 0) << " | "
+      << meanCell(r.longest_no_gain_s, r.complete, 0) << " | " << kind("textureless") << " | " << kind("thin") << " | "
+      << kind("textured") << " | " << other << " | " << meanCell(r.rtf, r.complete, 2) << " |\n";
+  }
+  // Every run, with its collision.
+  o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | tracked (mean) | drift (m) | collision |\n"
+       "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const ReportRun& r : results.runs) {
+    const nlohmann::json& m = r.metrics;
+    if (!m.is_object()) {
+      o << "| " << r.id << " | " << r.status << " | — | — | — | — | — | — |\n";
+      continue;
+    }
+    std::string hit = "—";
+    if (m.contains("collision") && m["collision"].is_object()) {
+      const auto& c = m["collision"];
+      hit = (c.contains("object") && c["object"].is_string() ? c["object"].get<std::string>() : c.value("world_geom", "?")) +
+            (c.contains("kind") && c["kind"].is_string() ? " (" + c["kind"].get<std::string>() + ")" : "");
+    }
+    const auto& cov = m["coverage"];
+    o << "| " << r.id << " | " << m.value("status", std::string("?")) << " | " << fixed(number(cov, "area_m2"), 0)
+      << " | " << (cov.is_object() && cov.contains("box_share") && cov["box_share"].is_number() ? fixed(cov["box_share"].get<double>(), 2) : "—")
+      << " | " << fixed(number(m, "sim_time_s"), 0) << " | "
+      << (m.contains("perception") ? fixed(number(m["perception"], "tracked_mean"), 0) : "—") << " | "
+      << fixed(number(m, "final_drift_m"), 2) << " | " << hit << " |\n";
+  }
+  return o.str();
+}
+
+std::string reportTableCsv(const SweepResults& results, const std::vector<ReportRow>& rows) {
+  std::ostringstream o;
+  for (const auto& a : results.axes) o << a << ",";
+  o << "world,method,runs,complete,failed,crashes,mean_area_m2,max_area_m2,paper_mean_area_m2,paper_max_area_m2,"
+       "mean_box_share,t50_s,t50_runs,t90_s,t90_runs,area_per_100m,longest_no_gain_s,collisions_textureless,"
+       "collisions_thin,collisions_textured,mean_rtf\n";
+  for (const ReportRow& r : rows) {
+    for (const auto& l : r.labels) o << l << ",";
+    auto kind = [&](const std::string& k) { return r.collisions_by_kind.count(k) ? r.collisions_by_kind.at(k) : 0; };
+    o << r.world << "," << r.method << "," << r.runs << "," << r.complete << "," << r.failed << "," << r.crashes << ","
+      << csvNumber(r.area_m2, 1) << "," << (r.complete ? fixed(r.max_area_m2, 1) : "") << ","
+      << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "") << "," << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "")
+      << "," << csvNumber(r.box_share, 4) << "," << csvNumber(r.t50_s, 1) << "," << r.t50_s.count << ","
+      << csvNumber(r.t90_s, 1) << "," << r.t90_s.count << "," << csvNumber(r.area_per_100m, 1) << ","
+      << csvNumber(r.longest_no_gain_s, 1) << "," << kind("textureless") << "," << kind("thin") << ","
+      << kind("textured") << "," << csvNumber(r.rtf, 3) << "\n";
+  }
+  return o.str();
+}
+
+std::string reportRunsCsv(const SweepResults& results) {
+  std::ostringstream o;
+  o << "id,world,series,status,run_status,dir\n";
+  for (const ReportRun& r : results.runs) {
+    const std::string world = r.metrics.is_object() ? r.metrics.value("world", std::string("?")) : "";
+    // The series: the run's labels except the one naming its world (one line per method/variant).
+    std::string series;
+    for (const auto& a : results.axes) {
+      const std::string l = r.labels.count(a) ? r.labels.at(a) : "";
+      if (l == world) continue;
+      series += (series.empty() ? "" : "-") + l;
+    }
+    if (series.empty()) series = r.metrics.is_object() ? methodName(r.metrics) : "run";
+    o << r.id << "," << world << "," << series << "," << r.status << ","
+      << (r.metrics.is_object() ? r.metrics.value("status", std::string()) : "") << ","
+      << (results.dir / "runs" / r.id).string() << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace msb
