@@ -80,11 +80,59 @@ bool modelRendersGrey(const mjModel* m) {
 }
 
 FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
-                                 const FisheyeCamera& camera, mjModel* model)
-    : config_(checkValid(config)), camera_(camera), model_(model) {
+                                 const FisheyeCamera& camera, const mjModel* model)
+    : config_(checkValid(config)),
+      camera_(camera),
+      model_copy_(mj_copyModel(nullptr, model), mj_deleteModel),
+      model_(model_copy_.get()) {
+  if (!model_) throw std::runtime_error("MuJoCo: could not copy the model for rendering");
   face_focal_px_ = config_.face_focal_ratio * camera_.fx();
   buildFacesAndLut();
 
+  configureRenderModel();
+
+  // GL context (tiny default framebuffer: MuJoCo renders into its off-screen FBO).
+  context_ = makeOsMesaContext(64, 64);
+  mjv_defaultScene(&scene_);
+  mjv_makeScene(model_, &scene_, std::max(1000, 2 * model_->ngeom));
+  mjr_defaultContext(&mjr_context_);
+  mjr_makeContext(model_, &mjr_context_, mjFONTSCALE_50);
+  if (mjr_context_.offWidth < atlas_width_ || mjr_context_.offHeight < atlas_height_)
+    throw std::runtime_error("MuJoCo off-screen buffer smaller than the face atlas");
+  // Texture minification: MuJoCo uploads every texture with trilinear filtering; by default
+  // only the nearest mip level is sampled (bilinear within it), which saves llvmpipe about a
+  // fifth of the frame with the same sharpness and tracking (docs/performance.md).
+  if (!config_.trilinear_textures) {
+    for (int i = 0; i < mjr_context_.ntexture; ++i) {
+      const GLenum target = mjr_context_.textureType[i] == mjTEXTURE_2D ? GL_TEXTURE_2D : GL_TEXTURE_CUBE_MAP;
+      glBindTexture(target, mjr_context_.texture[i]);
+      glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    }
+  }
+  if (config_.single_channel_textures) storeGreyTexturesAsLuminance();
+  mjr_setBuffer(mjFB_OFFSCREEN, &mjr_context_);
+  if (config_.framebuffer_per_face) makeFaceFramebuffers();
+  // Fog by distance from the eye, not by depth along each cube face's axis (which would differ
+  // between faces and leave seams); MuJoCo sets the rest of the fog state on every render.
+  if (config_.conditions.fog_end_m > 0) glFogi(GL_FOG_DISTANCE_MODE_NV, GL_EYE_RADIAL_NV);
+
+  mjv_defaultOption(&options_);
+  // Geom groups 0-2 are the visible world; 3 is the vehicle, 4 collision-only geoms.
+  for (int g = 0; g < mjNGROUP; ++g) options_.geomgroup[g] = g <= config_.max_visible_geom_group;
+  options_.geomgroup[kSkyGeomGroup] = config_.sky ? 1 : 0;  // the world's sky planes, if any
+  // Only geoms: no sites, joints, tendons or other decorations.
+  for (int g = 0; g < mjNGROUP; ++g) options_.sitegroup[g] = 0;
+  for (int f = 0; f < mjNVISFLAG; ++f) options_.flags[f] = 0;
+  options_.flags[mjVIS_STATIC] = 1;
+  options_.flags[mjVIS_TEXTURE] = 1;
+  mjv_defaultFreeCamera(model_, &free_camera_);
+  for (int f = 0; f < mjNRNDFLAG; ++f) scene_.flags[f] = 0;
+  scene_.flags[mjRND_CULL_FACE] = 1;
+  scene_.flags[mjRND_SKYBOX] = 0;
+  scene_.flags[mjRND_FOG] = config_.conditions.fog_end_m > 0 ? 1 : 0;
+}
+
+void FisheyeRenderer::configureRenderModel() {
   // Benchmark visual settings: no MSAA, coarse tessellation, ambient-only headlight.
   model_->vis.global.offwidth = atlas_width_;
   model_->vis.global.offheight = atlas_height_;
@@ -154,46 +202,6 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   for (int g = 0; g < model_->ngeom; ++g)
     if (model_->geom_type[g] == mjGEOM_PLANE)
       model_->geom_size[3 * g + 2] = std::max(model_->geom_size[3 * g + 2], config_.plane_grid_m);
-
-  // GL context (tiny default framebuffer: MuJoCo renders into its off-screen FBO).
-  context_ = makeOsMesaContext(64, 64);
-  mjv_defaultScene(&scene_);
-  mjv_makeScene(model_, &scene_, std::max(1000, 2 * model_->ngeom));
-  mjr_defaultContext(&mjr_context_);
-  mjr_makeContext(model_, &mjr_context_, mjFONTSCALE_50);
-  if (mjr_context_.offWidth < atlas_width_ || mjr_context_.offHeight < atlas_height_)
-    throw std::runtime_error("MuJoCo off-screen buffer smaller than the face atlas");
-  // Texture minification: MuJoCo uploads every texture with trilinear filtering; by default
-  // only the nearest mip level is sampled (bilinear within it), which saves llvmpipe about a
-  // fifth of the frame with the same sharpness and tracking (docs/performance.md).
-  if (!config_.trilinear_textures) {
-    for (int i = 0; i < mjr_context_.ntexture; ++i) {
-      const GLenum target = mjr_context_.textureType[i] == mjTEXTURE_2D ? GL_TEXTURE_2D : GL_TEXTURE_CUBE_MAP;
-      glBindTexture(target, mjr_context_.texture[i]);
-      glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    }
-  }
-  if (config_.single_channel_textures) storeGreyTexturesAsLuminance();
-  mjr_setBuffer(mjFB_OFFSCREEN, &mjr_context_);
-  if (config_.framebuffer_per_face) makeFaceFramebuffers();
-  // Fog by distance from the eye, not by depth along each cube face's axis (which would differ
-  // between faces and leave seams); MuJoCo sets the rest of the fog state on every render.
-  if (cond.fog_end_m > 0) glFogi(GL_FOG_DISTANCE_MODE_NV, GL_EYE_RADIAL_NV);
-
-  mjv_defaultOption(&options_);
-  // Geom groups 0-2 are the visible world; 3 is the vehicle, 4 collision-only geoms.
-  for (int g = 0; g < mjNGROUP; ++g) options_.geomgroup[g] = g <= config_.max_visible_geom_group;
-  options_.geomgroup[kSkyGeomGroup] = config_.sky ? 1 : 0;  // the world's sky planes, if any
-  // Only geoms: no sites, joints, tendons or other decorations.
-  for (int g = 0; g < mjNGROUP; ++g) options_.sitegroup[g] = 0;
-  for (int f = 0; f < mjNVISFLAG; ++f) options_.flags[f] = 0;
-  options_.flags[mjVIS_STATIC] = 1;
-  options_.flags[mjVIS_TEXTURE] = 1;
-  mjv_defaultFreeCamera(model_, &free_camera_);
-  for (int f = 0; f < mjNRNDFLAG; ++f) scene_.flags[f] = 0;
-  scene_.flags[mjRND_CULL_FACE] = 1;
-  scene_.flags[mjRND_SKYBOX] = 0;
-  scene_.flags[mjRND_FOG] = cond.fog_end_m > 0 ? 1 : 0;
 }
 
 FisheyeRenderer::~FisheyeRenderer() {

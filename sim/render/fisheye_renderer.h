@@ -4,10 +4,13 @@
 // map around the camera (front, right, left, down, up in the optical frame). Each face is a
 // 90° pinhole view with focal length f_face = face_focal_ratio · fx (pixels per unit tangent),
 // but only the part of the face the fisheye actually sees is rendered: its rectangle is taken
-// from the lookup table itself, plus a 2-pixel margin for bilinear sampling. All face
-// rectangles are packed into one atlas, rendered into one framebuffer and read back once; a
-// lookup table built once maps every fisheye pixel to atlas coordinates (cv::remap with
-// fixed-point maps). Each fisheye pixel samples exactly one face, so there are no blending
+// from the lookup table itself, plus a 2-pixel margin for bilinear sampling. Each face is drawn
+// into a framebuffer of its own (render.framebuffer_per_face, the default: a whole-buffer clear
+// instead of MuJoCo's scissored clear of a shared buffer) and read back into its rectangle of one
+// atlas image; a lookup table built once maps every fisheye pixel to atlas coordinates (the
+// fixed-point bilinear remap of cv::remap). With framebuffer_per_face off, all rectangles are
+// drawn into MuJoCo's one off-screen buffer and read back at once (bench-sim compares the two).
+// The renderer draws from its own copy of the model: its visual settings never reach physics. Each fisheye pixel samples exactly one face, so there are no blending
 // seams; with ambient-only lighting, shading does not depend on the face either.
 //
 // Resolution: at the image centre the fisheye needs fx pixels per radian; a face gives f_face at
@@ -93,11 +96,13 @@ struct CubeFace {
 /// Renders grey-scale fisheye images of a MuJoCo model from a camera pose.
 class FisheyeRenderer final : public FrameRenderer {
  public:
-  /// Creates the GL context and MuJoCo render context for `model`, whose visual settings
-  /// (off-screen size, samples, headlight, tessellation, plane grid) it adjusts for benchmark
-  /// rendering. Throws ConfigError or std::runtime_error.
+  /// Creates the GL context and MuJoCo render context for `model`, which it only reads: the
+  /// benchmark's visual settings (off-screen size, samples, headlight, tessellation, plane grid,
+  /// lights, sky colour, fog) go into the renderer's own copy of the model, so the physics sees
+  /// the world as loaded. `render()` takes the physics' mjData of the same model. Throws
+  /// ConfigError or std::runtime_error.
   FisheyeRenderer(const FisheyeRendererConfig& config, const FisheyeCamera& camera,
-                  mjModel* model);
+                  const mjModel* model);
   ~FisheyeRenderer() override;
   FisheyeRenderer(const FisheyeRenderer&) = delete;
   FisheyeRenderer& operator=(const FisheyeRenderer&) = delete;
@@ -127,6 +132,8 @@ class FisheyeRenderer final : public FrameRenderer {
 
  private:
   void buildFacesAndLut();
+  // The benchmark's visual settings and the conditions, written into the renderer's model copy.
+  void configureRenderModel();
   // Creates one framebuffer per face, with MuJoCo's off-screen colour and depth formats.
   void makeFaceFramebuffers();
   // Re-stores every grey texture (all levels R = G = B) as one-byte luminance.
@@ -137,6 +144,8 @@ class FisheyeRenderer final : public FrameRenderer {
 
   FisheyeRendererConfig config_;
   FisheyeCamera camera_;
+  // The renderer's copy of the physics model, with the visual settings.
+  std::unique_ptr<mjModel, void (*)(mjModel*)> model_copy_;
   mjModel* model_;
   std::unique_ptr<GlContext> context_;
   mjvScene scene_;

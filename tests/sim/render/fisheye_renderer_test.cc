@@ -1,11 +1,13 @@
 // Rendering checks on worlds with known content: geometry (bright markers land where the camera
 // model predicts), seams (uniform wall stays uniform across cube faces), determinism.
 #include "sim/render/fisheye_renderer.h"
+#include "sim/render/render_conditions.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -366,6 +368,32 @@ TEST(FisheyeRenderer, LlvmpipeRasterisesInTheRenderingThreadWhateverLpNumThreads
   ASSERT_GT(scene.render().pixels.size(), 0u);
   EXPECT_EQ(std::string(std::getenv("LP_NUM_THREADS")), "0");
   for (const std::string& name : threadNames()) EXPECT_EQ(name.rfind("llvmpipe", 0), std::string::npos) << name;
+}
+
+TEST(FisheyeRenderer, ThePhysicsModelIsReadNeverWritten) {
+  // Every render-only setting (off-screen size, headlight, tessellation, plane grid, lights, sky
+  // colour, fog) goes into the renderer's copy: the physics model stays byte for byte as loaded.
+  const std::string world = writeWorld(
+      "physics_untouched", "<material name='sky' rgba='0.8 0.8 0.8 1' emission='0.5'/>",
+      "<light directional='true' dir='0.3 0.2 -1' diffuse='0.6 0.6 0.6'/>"
+      "<geom name='ground' type='plane' size='30 30 0.5' rgba='0.5 0.5 0.5 1'/>"
+      "<geom name='box' type='box' pos='6 0 1' size='1 1 1' rgba='0.3 0.3 0.3 1'/>"
+      "<geom name='sky_top' type='plane' size='80 80 80' pos='0 0 80' euler='180 0 0' material='sky' "
+      "contype='0' conaffinity='0' group='" + std::to_string(kSkyGeomGroup) + "'/>");
+  QuadrotorSim sim(PhysicsConfig{}, world, poseFromXyzYaw(Vec3(0, 0, 0.05), 0.0));
+  const mjModel* m = sim.model();
+  const std::string buffer_before(static_cast<const char*>(m->buffer), size_t(m->nbuffer));
+  const mjVisual vis_before = m->vis;
+  FisheyeRendererConfig cfg;
+  cfg.sun = true;
+  cfg.conditions = *conditionsPreset("dusk_haze");  // sun direction and colour, sky level, fog
+  FisheyeRenderer renderer(cfg, FisheyeCamera(FisheyeCameraConfig{}), m);
+  CameraFrame frame;
+  renderer.render(sim.data(), poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0), &frame, nullptr);
+  ASSERT_GT(frame.pixels.size(), 0u);
+  EXPECT_TRUE(std::string(static_cast<const char*>(m->buffer), size_t(m->nbuffer)) == buffer_before)
+      << "the renderer changed the physics model's arrays";
+  EXPECT_EQ(std::memcmp(&m->vis, &vis_before, sizeof(mjVisual)), 0) << "the renderer changed the physics model's visual settings";
 }
 
 }  // namespace
