@@ -129,9 +129,7 @@ std::optional<PathCommand> GridExplorer::explore(const VehicleState& s) {
   return command(s, std::move(w));
 }
 
-void GridExplorer::markCoverage(ColumnCoverage& coverage) const { markFreeLeaves(map_, coverage); }
-
-std::vector<ExplorerSnapshot::Disk> GridExplorer::freeSpace() const { return freeLeavesAsDisks(map_); }
+std::vector<FreeSpaceElement> GridExplorer::freeSpace() const { return freeLeaves(map_); }
 
 ExplorerSnapshot GridExplorer::snapshot() const {
   ExplorerSnapshot snap;

@@ -59,9 +59,8 @@ class GridExplorer : public Explorer {
   std::string type() const override { return "grid_random"; }
   void observe(const SlamPointsFrame& frame) override;
   std::optional<PathCommand> plan(const VehicleState& vehicle) override;
-  void markCoverage(ColumnCoverage& coverage) const override;
   ExplorerSnapshot snapshot() const override;
-  std::vector<ExplorerSnapshot::Disk> freeSpace() const override;
+  std::vector<FreeSpaceElement> freeSpace() const override;
   std::map<std::string, double> counters() const override;
 
   /// The map (tests, tools).

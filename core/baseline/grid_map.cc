@@ -158,10 +158,6 @@ std::vector<GridLeaf> GridMap::leaves(bool occupied) const {
   return out;
 }
 
-void markFreeLeaves(const GridMap& map, ColumnCoverage& coverage) {
-  for (const GridLeaf& leaf : map.leaves(false)) coverage.markSquare(leaf.centre.head<2>(), 0.5 * leaf.size_m);
-}
-
 bool pathNearOccupied(const GridMap& map, const std::vector<Vec3>& path, const Vec3& from, double ahead_m,
                       double clearance_m) {
   if (path.size() < 2) return false;
@@ -178,9 +174,10 @@ bool pathNearOccupied(const GridMap& map, const std::vector<Vec3>& path, const V
   return false;
 }
 
-std::vector<ExplorerSnapshot::Disk> freeLeavesAsDisks(const GridMap& map) {
-  std::vector<ExplorerSnapshot::Disk> out;
-  for (const GridLeaf& leaf : map.leaves(false)) out.push_back({leaf.id, leaf.centre, 0.5 * leaf.size_m});
+std::vector<FreeSpaceElement> freeLeaves(const GridMap& map) {
+  std::vector<FreeSpaceElement> out;
+  for (const GridLeaf& leaf : map.leaves(false))
+    out.push_back({leaf.id, leaf.centre, 0.5 * leaf.size_m, FreeSpaceElement::Footprint::kSquare});
   return out;
 }
 

@@ -104,9 +104,6 @@ class GridMap {
   std::unique_ptr<octomap::OcTree> tree_;
 };
 
-/// Marks the columns under the xy footprint of every free leaf (its real size after pruning):
-/// the coverage of the grid-based methods.
-void markFreeLeaves(const GridMap& map, ColumnCoverage& coverage);
 
 /// The grid methods' predicted-path check: true if the first `ahead_m` of the polyline
 /// from -> path[1] -> ... (path[0] is where it was sent from) come within `clearance_m` of an
@@ -114,7 +111,8 @@ void markFreeLeaves(const GridMap& map, ColumnCoverage& coverage);
 bool pathNearOccupied(const GridMap& map, const std::vector<Vec3>& path, const Vec3& from, double ahead_m,
                       double clearance_m);
 
-/// Free leaves as disks (id, centre, half the leaf size) for the metric and pictures.
-std::vector<ExplorerSnapshot::Disk> freeLeavesAsDisks(const GridMap& map);
+/// The free leaves as free-space elements (id, centre, half the leaf size, square footprint:
+/// their real size after pruning) for the coverage metric and pictures.
+std::vector<FreeSpaceElement> freeLeaves(const GridMap& map);
 
 }  // namespace msb

@@ -327,9 +327,7 @@ std::optional<PathCommand> StarDiscoveryExplorer::plan(const VehicleState& s) {
   return std::nullopt;
 }
 
-void StarDiscoveryExplorer::markCoverage(ColumnCoverage& coverage) const { markFreeLeaves(map_, coverage); }
-
-std::vector<ExplorerSnapshot::Disk> StarDiscoveryExplorer::freeSpace() const { return freeLeavesAsDisks(map_); }
+std::vector<FreeSpaceElement> StarDiscoveryExplorer::freeSpace() const { return freeLeaves(map_); }
 
 ExplorerSnapshot StarDiscoveryExplorer::snapshot() const {
   ExplorerSnapshot snap;

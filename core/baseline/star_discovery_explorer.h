@@ -106,9 +106,8 @@ class StarDiscoveryExplorer : public Explorer {
   std::string type() const override { return "star_discovery"; }
   void observe(const SlamPointsFrame& frame) override;
   std::optional<PathCommand> plan(const VehicleState& vehicle) override;
-  void markCoverage(ColumnCoverage& coverage) const override;
   ExplorerSnapshot snapshot() const override;
-  std::vector<ExplorerSnapshot::Disk> freeSpace() const override;
+  std::vector<FreeSpaceElement> freeSpace() const override;
   std::map<std::string, double> counters() const override;
   /// The map (tests).
   GridMap& mutableMap() { return map_; }

@@ -48,4 +48,12 @@ size_t ColumnCoverage::countInside(const Vec2& lo, const Vec2& hi) const {
   return n;
 }
 
+int ColumnCoverage::markFreeSpace(const std::vector<FreeSpaceElement>& elements) {
+  int added = 0;
+  for (const FreeSpaceElement& e : elements)
+    added += e.footprint == FreeSpaceElement::Footprint::kSquare ? markSquare(e.centre.head<2>(), e.radius)
+                                                                : markDisk(e.centre.head<2>(), e.radius);
+  return added;
+}
+
 }  // namespace msb

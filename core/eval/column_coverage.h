@@ -7,8 +7,10 @@
 #include <cstdint>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "core/common/types.h"
+#include "core/eval/map_snapshot.h"
 
 namespace msb {
 
@@ -25,6 +27,9 @@ class ColumnCoverage {
   int markDisk(const Vec2& centre, double radius_m);
   /// Marks every column whose node lies inside the axis-aligned square |xy − c|∞ ≤ half_size.
   int markSquare(const Vec2& centre, double half_size_m);
+  /// Marks the footprint of every element (the only way a method's free space becomes columns:
+  /// the methods expose geometry, the metric scores it). Returns how many columns were new.
+  int markFreeSpace(const std::vector<FreeSpaceElement>& elements);
 
   /// Explored columns (ordered, for drawing and hashing).
   const std::set<ColumnIndex>& columns() const { return columns_; }

@@ -34,7 +34,7 @@ size_t MissionCoverage::trueFrameExploredExplorableColumns() const {
   return n;
 }
 
-void MissionCoverage::sample(double t_s, double distance_m, const std::vector<ExplorerSnapshot::Disk>& free_space) {
+void MissionCoverage::sample(double t_s, double distance_m, const std::vector<FreeSpaceElement>& free_space) {
   // True-frame columns: each element keeps the correction of the moment it was first seen.
   for (const auto& d : free_space) {
     const Pose& T = first_seen_.emplace(d.id, T_true_est_).first->second;

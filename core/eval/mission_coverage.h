@@ -29,14 +29,17 @@ class MissionCoverage {
 
   /// The estimate → truth correction at the latest perception frame (T_true_est).
   void setTrueFromEstimate(const Pose& T_true_est) { T_true_est_ = T_true_est; }
-  /// Explored columns in the VIO frame; the method marks its free space here before sample().
+  /// Explored columns in the VIO frame; the mission marks the method's free space here
+  /// (ColumnCoverage::markFreeSpace) before sample().
   ColumnCoverage& columns() { return columns_; }
   const ColumnCoverage& columns() const { return columns_; }
   /// Explored columns with free space mapped to the true frame.
   const ColumnCoverage& trueFrameColumns() const { return columns_gt_; }
   /// Records a sample at t_s: maps the current free-space elements to the true frame (each
   /// with the correction of the first time its id was seen) and appends A.
-  void sample(double t_s, double distance_m, const std::vector<ExplorerSnapshot::Disk>& free_space);
+  /// Squares are taken as their inscribed disks there: the correction rotates them, and a disk
+  /// stays a disk.
+  void sample(double t_s, double distance_m, const std::vector<FreeSpaceElement>& free_space);
   /// All samples so far.
   const std::vector<CoverageSample>& samples() const { return samples_; }
   /// The exploration box and its explorable nodes.

@@ -1,6 +1,7 @@
 // The interface every exploration method implements (docs/architecture.md §1, §8): it observes each frame of
 // SLAM points (its own map update), plans at the planning rate and emits path commands for the
-// trajectory tracker, and reports the free space it has mapped for the coverage metric. Methods
+// trajectory tracker, and exposes the free space it has mapped as geometry, which the coverage
+// metric (core/eval) scores. Methods
 // are chosen by `method.type` in a scenario; a new method lives in its own files behind this
 // interface and is registered in the runner's method table. The runner times observe() and
 // plan() itself (wall time is recorded, never used).
@@ -46,13 +47,12 @@ class Explorer {
   virtual void observe(const SlamPointsFrame& frame) = 0;
   /// One planning step; returns a new path to follow, or none to keep the current one.
   virtual std::optional<PathCommand> plan(const VehicleState& vehicle) = 0;
-  /// Marks the columns covered by the current free space (the metric is cumulative).
-  virtual void markCoverage(ColumnCoverage& coverage) const = 0;
   /// Map contents for pictures and the determinism hash.
   virtual ExplorerSnapshot snapshot() const = 0;
-  /// The free-space elements only (the metric's true-frame coverage samples them every
-  /// second); by default taken from snapshot().
-  virtual std::vector<ExplorerSnapshot::Disk> freeSpace() const { return snapshot().free_space; }
+  /// The free space the method has mapped, as geometry (spheres' disks, free cells' squares).
+  /// The coverage metric (core/eval) turns it into columns every metric period: a method never
+  /// scores itself. By default taken from snapshot().
+  virtual std::vector<FreeSpaceElement> freeSpace() const { return snapshot().free_space; }
   /// Counters for metrics.json and the progress line (e.g. spheres, goals reached).
   virtual std::map<std::string, double> counters() const = 0;
 };

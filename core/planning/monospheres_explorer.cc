@@ -527,13 +527,17 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   return command(s, cutAt(route.front(), hp.waypoints, pc.carrot_distance_m));
 }
 
-void MonoSpheresExplorer::markCoverage(ColumnCoverage& coverage) const {
-  for (const auto& [id, sp] : map_.spheres()) coverage.markDisk(sp.centre.head<2>(), sp.radius);
+std::vector<FreeSpaceElement> MonoSpheresExplorer::freeSpace() const {
+  std::vector<FreeSpaceElement> out;
+  out.reserve(map_.spheres().size());
+  for (const auto& [id, sp] : map_.spheres()) out.push_back({id, sp.centre, sp.radius, FreeSpaceElement::Footprint::kDisk});
+  return out;
 }
 
 ExplorerSnapshot sphereMapSnapshot(const SphereMap& map) {
   ExplorerSnapshot snap;
-  for (const auto& [id, sp] : map.spheres()) snap.free_space.push_back({id, sp.centre, sp.radius});
+  for (const auto& [id, sp] : map.spheres())
+    snap.free_space.push_back({id, sp.centre, sp.radius, FreeSpaceElement::Footprint::kDisk});
   for (const auto& [id, o] : map.obstacles()) snap.obstacles.push_back(o.position);
   for (const auto& [id, f] : map.frontiers()) snap.frontiers.push_back(f.position);
   return snap;

@@ -114,7 +114,7 @@ class MonoSpheresExplorer : public Explorer {
   std::string type() const override { return "monospheres"; }
   void observe(const SlamPointsFrame& frame) override;
   std::optional<PathCommand> plan(const VehicleState& vehicle) override;
-  void markCoverage(ColumnCoverage& coverage) const override;
+  std::vector<FreeSpaceElement> freeSpace() const override;
   ExplorerSnapshot snapshot() const override;
   std::map<std::string, double> counters() const override;
 

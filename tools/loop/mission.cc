@@ -61,8 +61,10 @@ const TickRecord& Mission::step() {
 
 void Mission::sample(double t_s) {
   const auto t0 = WallClock::now();
-  explorer_->markCoverage(coverage_.columns());
-  coverage_.sample(t_s, loop_->result().distance_flown_m, explorer_->freeSpace());
+  // The metric scores the method's free space (the method only exposes it).
+  const std::vector<FreeSpaceElement> free_space = explorer_->freeSpace();
+  coverage_.columns().markFreeSpace(free_space);
+  coverage_.sample(t_s, loop_->result().distance_flown_m, free_space);
   stages_.metric_ms += msSince(t0);
 }
 

@@ -250,11 +250,10 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
     const Vec2 n = r.columns.node(c);
     cv::rectangle(img, px2(n + Vec2(-half, half)), px2(n + Vec2(half, -half)), cv::Scalar(200, 240, 200), -1);
   }
-  // Free space: spheres as discs; a grid method's free cells as their squares.
-  const bool spheres = r.method == "monospheres";
+  // Free space as the metric reads it: disks (spheres) and squares (free cells).
   cv::Mat discs = img.clone();
   for (const auto& d : r.final_map.free_space) {
-    if (spheres) {
+    if (d.footprint == FreeSpaceElement::Footprint::kDisk) {
       cv::circle(discs, px(d.centre), int(d.radius / mpp), cv::Scalar(230, 160, 90), -1);
     } else {
       const Vec2 c = d.centre.head<2>();
@@ -295,6 +294,10 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
                 r.columns.count(), r.flight.sim_time_s, r.flight.status.c_str());
   cv::rectangle(img, cv::Point(0, 0), cv::Point(w, header - 1), cv::Scalar(255, 255, 255), -1);
   cv::putText(img, text, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  // The legend names what the map holds: spheres (disk footprints) or free cells (squares).
+  const bool spheres = std::any_of(r.final_map.free_space.begin(), r.final_map.free_space.end(), [](const auto& e) {
+    return e.footprint == FreeSpaceElement::Footprint::kDisk;
+  });
   cv::putText(img, spheres ? "green: explored columns, blue: spheres, black/grey: obstacle points (above/below 0.5 m), magenta: frontiers,"
                            : "green: explored columns, blue: free cells, black/grey: occupied cells (above/below 0.5 m), red circle: goal,",
               cv::Point(8, 42), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);

@@ -41,5 +41,15 @@ TEST(ColumnCoverage, IsCumulativeAndBoxCounting) {
   EXPECT_THROW(ColumnCoverage(0.0), std::invalid_argument);
 }
 
+TEST(ColumnCoverage, FreeSpaceIsScoredByEachElementsFootprint) {
+  // The metric reads a method's free space as geometry: a disk of radius 2.5 m covers the node
+  // (0, 0) and its four neighbours; a square of half side 2.5 m also its four diagonal ones.
+  using F = FreeSpaceElement::Footprint;
+  ColumnCoverage disks, squares;
+  EXPECT_EQ(disks.markFreeSpace({{1, Vec3(0, 0, 3), 2.5, F::kDisk}}), 5);
+  EXPECT_EQ(squares.markFreeSpace({{1, Vec3(0, 0, 3), 2.5, F::kSquare}}), 9);
+  EXPECT_EQ(squares.markFreeSpace({{2, Vec3(0, 0, 3), 2.5, F::kDisk}, {3, Vec3(10, 0, 1), 0.1, F::kSquare}}), 1);
+}
+
 }  // namespace
 }  // namespace msb
