@@ -56,7 +56,6 @@ class GridExplorer : public Explorer {
   /// Throws ConfigError.
   GridExplorer(const GridExplorerConfig& config, const ExplorerContext& context);
 
-  std::string type() const override { return "grid_random"; }
   void observe(const SlamPointsFrame& frame) override;
   std::optional<PathCommand> plan(const VehicleState& vehicle) override;
   ExplorerSnapshot snapshot() const override;

@@ -103,7 +103,6 @@ class StarDiscoveryExplorer : public Explorer {
  public:
   /// Throws ConfigError.
   StarDiscoveryExplorer(const StarDiscoveryConfig& config, const ExplorerContext& context);
-  std::string type() const override { return "star_discovery"; }
   void observe(const SlamPointsFrame& frame) override;
   std::optional<PathCommand> plan(const VehicleState& vehicle) override;
   ExplorerSnapshot snapshot() const override;

@@ -41,8 +41,6 @@ struct VehicleState {
 class Explorer {
  public:
   virtual ~Explorer() = default;
-  /// The method's name as in `method.type`.
-  virtual std::string type() const = 0;
   /// Integrates one frame of SLAM points (called at the map-update rate).
   virtual void observe(const SlamPointsFrame& frame) = 0;
   /// One planning step; returns a new path to follow, or none to keep the current one.

@@ -111,7 +111,6 @@ class MonoSpheresExplorer : public Explorer {
   MonoSpheresExplorer(const MonoSpheresConfig& config, const FisheyeCamera& camera, const ExplorerContext& context);
   ~MonoSpheresExplorer() override;
 
-  std::string type() const override { return "monospheres"; }
   void observe(const SlamPointsFrame& frame) override;
   std::optional<PathCommand> plan(const VehicleState& vehicle) override;
   std::vector<FreeSpaceElement> freeSpace() const override;

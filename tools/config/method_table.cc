@@ -214,17 +214,28 @@ MethodChoice readGridRandom(MapReader& m) {
 
 const std::vector<MethodEntry>& methodTable() {
   static const std::vector<MethodEntry> table = {
-      {"monospheres", "MonoSpheres: sphere map, frontier viewpoints, sphere-graph A* (the paper's method)",
-       readMonoSpheres},
-      {"grid_random", "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)", readGridRandom},
-      {"star_discovery", "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
-       readStarDiscovery},
+      // MonoSpheres paper, Table I: the full method in the four worlds and its urban ablations.
+      {kMonoSpheresType, "MonoSpheres: sphere map, frontier viewpoints, sphere-graph A* (the paper's method)",
+       readMonoSpheres,
+       {{"urban", "", 4919, 6081}, {"cave", "", 7627, 8006}, {"rooftops", "", 3760, 4606}, {"sparse", "", 5127, 5150},
+        {"urban", "fff", 2470, 3181}, {"urban", "dbof", 2308, 3081}, {"urban", "ovde", 747, 862},
+        {"urban", "vpb", 3697, 4175}}},
+      {kGridRandomType, "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)", readGridRandom,
+       {{"urban", "", 1911, 2306}, {"cave", "", 3171, 3375}, {"rooftops", "", 1360, 1556}, {"sparse", "", 2108, 2168}}},
+      {kStarDiscoveryType, "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
+       readStarDiscovery, {}},
   };
   return table;
 }
 
+const MethodEntry* findMethod(const std::string& type) {
+  for (const auto& e : methodTable())
+    if (type == e.type) return &e;
+  return nullptr;
+}
+
 MethodChoice readMethod(MapReader m) {
-  std::string type = "monospheres";
+  std::string type = kMonoSpheresType;
   m.read("type", type);
   std::string names;
   for (const auto& e : methodTable()) {

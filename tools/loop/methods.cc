@@ -5,7 +5,7 @@ namespace msb {
 MethodChoice monospheresMethod(const MonoSpheresConfig& config) {
   const MonoSpheresConfig c = checkValid(config);
   MethodChoice m;
-  m.type = "monospheres";
+  m.type = kMonoSpheresType;
   m.config = c;
   m.switches = {{"ovde", c.map.ovde}, {"dbof", c.map.dbof}, {"fff", c.planner.fff}, {"vpb", c.planner.viewpoints.vpb}};
   m.make = [c](const FisheyeCamera& camera, const ExplorerContext& context) {
@@ -17,7 +17,7 @@ MethodChoice monospheresMethod(const MonoSpheresConfig& config) {
 MethodChoice gridRandomMethod(const GridExplorerConfig& config) {
   const GridExplorerConfig c = checkValid(config);
   MethodChoice m;
-  m.type = "grid_random";
+  m.type = kGridRandomType;
   m.config = c;
   m.switches = {{"unknown_is_occupied", c.planner.unknown_is_occupied}};
   m.make = [c](const FisheyeCamera&, const ExplorerContext& context) {
@@ -29,7 +29,7 @@ MethodChoice gridRandomMethod(const GridExplorerConfig& config) {
 MethodChoice starDiscoveryMethod(const StarDiscoveryConfig& config) {
   const StarDiscoveryConfig c = checkValid(config);
   MethodChoice m;
-  m.type = "star_discovery";
+  m.type = kStarDiscoveryType;
   m.config = c;
   m.switches = {{"unknown_is_occupied", c.planner.unknown_is_occupied}};
   m.make = [c](const FisheyeCamera&, const ExplorerContext& context) {

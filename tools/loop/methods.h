@@ -1,6 +1,6 @@
 // The exploration methods the loop can run, as plain C++ (no YAML): each method is one
 // function that turns its validated config into a MethodChoice. The YAML side of the method
-// table (tools/msbench/method_table.cc) reads a scenario's `method:` keys for the chosen type
+// table (tools/config/method_table.cc) reads a scenario's `method:` keys for the chosen type
 // and calls the function here; tests call it directly.
 #pragma once
 
@@ -17,6 +17,11 @@
 #include "core/planning/monospheres_explorer.h"
 
 namespace msb {
+
+/// The `method.type` names, written once (the factories below and the method table use them).
+inline constexpr char kMonoSpheresType[] = "monospheres";
+inline constexpr char kGridRandomType[] = "grid_random";
+inline constexpr char kStarDiscoveryType[] = "star_discovery";
 
 /// The method of a scenario: its type, its validated config and a factory.
 struct MethodChoice {

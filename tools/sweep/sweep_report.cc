@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tools/config/method_table.h"
 #include "tools/results/output_files.h"
 
 namespace msb {
@@ -84,31 +85,17 @@ std::string csvNumber(const MeanOf& m, int digits) { return m.count ? fixed(m.me
 
 std::optional<std::pair<double, double>> paperTableOne(const std::string& world, const std::string& method,
                                                        const nlohmann::json& switches) {
-  // MonoSpheres paper, Table I: mean and max A (m²).
+  // The rows come from the method table: a run answers to the row of its world and of the one
+  // switch it turns off (none: the full method).
   std::vector<std::string> off;
   if (switches.is_object())
     for (const auto& [k, v] : switches.items())
       if (v.is_boolean() && !v.get<bool>()) off.push_back(k);
-  if (method == "grid_random") {
-    if (world == "urban") return std::pair{1911.0, 2306.0};
-    if (world == "cave") return std::pair{3171.0, 3375.0};
-    if (world == "rooftops") return std::pair{1360.0, 1556.0};
-    if (world == "sparse") return std::pair{2108.0, 2168.0};
-    return std::nullopt;
-  }
-  if (method != "monospheres") return std::nullopt;
-  if (off.empty()) {
-    if (world == "urban") return std::pair{4919.0, 6081.0};
-    if (world == "cave") return std::pair{7627.0, 8006.0};
-    if (world == "rooftops") return std::pair{3760.0, 4606.0};
-    if (world == "sparse") return std::pair{5127.0, 5150.0};
-    return std::nullopt;
-  }
-  if (off.size() != 1 || world != "urban") return std::nullopt;
-  if (off[0] == "fff") return std::pair{2470.0, 3181.0};
-  if (off[0] == "dbof") return std::pair{2308.0, 3081.0};
-  if (off[0] == "ovde") return std::pair{747.0, 862.0};
-  if (off[0] == "vpb") return std::pair{3697.0, 4175.0};
+  const MethodEntry* entry = findMethod(method);
+  if (!entry || off.size() > 1) return std::nullopt;
+  const std::string switched_off = off.empty() ? "" : off[0];
+  for (const PaperRow& row : entry->paper_rows)
+    if (world == row.world && switched_off == row.switched_off) return std::pair{row.mean_area_m2, row.max_area_m2};
   return std::nullopt;
 }
 
