@@ -127,13 +127,9 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
   const YAML::Node tree = loadScenarioTree(path, sets);
   const fs::path dir = fs::absolute(path).parent_path();
   const std::string label = sets.empty() ? path : path + " (with --set overrides)";
-  ScenarioSpec spec = parseConfigNode<ScenarioSpec>(label, tree, [&](MapReader& r, ScenarioSpec& s) {
-    // Mission defaults that differ from a scripted flight.
-    s.flight.duration_s = 1200.0;
-    s.flight.perception.enabled = true;
-    s.flight.camera_stream.save_every_n = 0;
-    readScenario(r, dir, s);
-  });
+  // The defaults are ScenarioSpec's own (missionFlightDefaults()); the file overrides them.
+  ScenarioSpec spec =
+      parseConfigNode<ScenarioSpec>(label, tree, [&](MapReader& r, ScenarioSpec& s) { readScenario(r, dir, s); });
   if (spec.name.empty()) spec.name = fs::path(path).stem().string();
   return spec;
 }

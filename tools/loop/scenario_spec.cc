@@ -4,6 +4,14 @@
 
 namespace msb {
 
+FlightSpec missionFlightDefaults() {
+  FlightSpec f;
+  f.duration_s = 1200.0;
+  f.perception.enabled = true;
+  f.camera_stream.save_every_n = 0;
+  return f;
+}
+
 void MissionSettings::validate(ConfigChecker& c) const {
   c.inRange("map_rate_hz", map_rate_hz, 0.1, 100.0);
   c.inRange("planning_rate_hz", planning_rate_hz, 0.1, 100.0);

@@ -27,10 +27,15 @@ struct MissionSettings {
   void validate(ConfigChecker& c) const;
 };
 
-/// Everything `msbench run` needs.
+/// A flight with the defaults of a mission where they differ from a scripted flight's: 20
+/// simulated minutes (Table I), perception on, no frames saved.
+FlightSpec missionFlightDefaults();
+
+/// Everything `msbench run` needs. Default-constructed, it is a valid mission once it names a
+/// world (`flight.world_path` or `flight.world_name`).
 struct ScenarioSpec {
   std::string name;                 ///< run name (defaults to the file's stem)
-  FlightSpec flight;                ///< world, seed, duration, start, vehicle, sensors
+  FlightSpec flight = missionFlightDefaults();  ///< world, seed, duration, start, vehicle, sensors
   bool start_from_world = true;     ///< take start pose from the generated world unless `start` is given
   std::optional<Aabb> exploration_box;  ///< overrides the world's box
   MethodChoice method = monospheresMethod();  ///< the exploration method and its config

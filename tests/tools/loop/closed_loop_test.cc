@@ -115,6 +115,17 @@ TEST(ClosedLoop, ShortOracleMissionExploresDeterministically) {
   EXPECT_EQ(a.run_hash, b.run_hash);
 }
 
+TEST(ScenarioSpec, ADefaultScenarioIsAValidMissionOnceItNamesAWorld) {
+  // The defaults live in the struct (not in a file loader): a C++-built scenario is a mission.
+  ScenarioSpec spec;
+  EXPECT_THROW(checkValid(spec), ConfigError);  // no world yet
+  spec.flight.world_path = std::string(MSB_SOURCE_DIR) + "/worlds/test/world.xml";
+  EXPECT_NO_THROW(checkValid(spec));
+  EXPECT_EQ(spec.flight.duration_s, 1200.0);
+  EXPECT_TRUE(spec.flight.perception.enabled);
+  EXPECT_EQ(spec.method.type, kMonoSpheresType);
+}
+
 TEST(ClosedLoop, SeamsRefuseImpossibleCombinations) {
   // The KLT tracker needs images.
   FlightSpec klt_on_null = oracleFlight();
