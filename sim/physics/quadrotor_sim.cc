@@ -179,17 +179,11 @@ void QuadrotorSim::checkStartPose(const std::string& world_xml_path) const {
   std::snprintf(where, sizeof(where), "the start position (%g, %g, %g)", p.x(), p.y(), p.z());
   if (const std::string why = outsideTheWorld(p); !why.empty())
     throw ConfigError("start.position", std::string(where) + " of " + world_xml_path + " " + why);
-  // Inside an obstacle: the vehicle penetrates a world geom other than the ground.
-  for (int i = 0; i < d_->ncon; ++i) {
-    const mjContact& c = d_->contact[i];
-    if (c.dist >= 0.0) continue;
-    const bool v1 = m_->geom_bodyid[c.geom1] == body_id_, v2 = m_->geom_bodyid[c.geom2] == body_id_;
-    if (v1 == v2) continue;
-    const int wg = v1 ? c.geom2 : c.geom1;
-    if (m_->geom_type[wg] == mjGEOM_PLANE) continue;  // resting on the ground
-    throw ConfigError("start.position", std::string(where) + " puts the vehicle inside geom " +
-                                            quotedGeomName(m_, wg) + " of " + world_xml_path);
-  }
+  // Inside an obstacle: a contact with a world geom at t = 0 (the same test that ends a run;
+  // before take-off, resting on the ground is no contact).
+  if (const auto hit = checkContacts())
+    throw ConfigError("start.position", std::string(where) + " puts the vehicle inside geom '" + hit->world_geom +
+                                            "' of " + world_xml_path);
 }
 
 QuadrotorSim::~QuadrotorSim() {
@@ -206,7 +200,7 @@ std::optional<CollisionEvent> QuadrotorSim::beginTick() {
   return hit;
 }
 
-std::optional<CollisionEvent> QuadrotorSim::checkContacts() {
+std::optional<CollisionEvent> QuadrotorSim::checkContacts() const {
   for (int i = 0; i < d_->ncon; ++i) {
     const mjContact& c = d_->contact[i];
     if (c.dist > 0.0) continue;

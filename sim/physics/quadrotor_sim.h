@@ -106,7 +106,7 @@ class QuadrotorSim {
   int geomCount() const { return m_->ngeom; }
 
  private:
-  std::optional<CollisionEvent> checkContacts();
+  std::optional<CollisionEvent> checkContacts() const;
   // Refuses a start pose below the ground, beyond the ground's extent or inside a world geom.
   void checkStartPose(const std::string& world_xml_path) const;
 

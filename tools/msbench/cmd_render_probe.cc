@@ -1,23 +1,16 @@
 // msbench render-probe: one grey-scale fisheye frame from a vehicle pose, as PNG.
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <vector>
 
-#include "core/common/clock.h"
-#include "core/common/wall_time.h"
 #include "sim/physics/quadrotor_sim.h"
-#include "sim/physics/se3_controller.h"
 #include "sim/render/fisheye_renderer.h"
+#include "tools/config/strict_number.h"
+#include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
-#include "tools/config/strict_number.h"
-#include "tools/config/world_registry.h"
-
 
 namespace msb {
 
