@@ -28,3 +28,12 @@ function(msb_add_test name)
   msb_set_options(${name})
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
 endfunction()
+
+# msb_add_method(<name> SOURCES ... DEPS ...): the library of an exploration method kept in a
+# folder of its own (core/baseline/<method>/); it is linked into the method table
+# (tools/config) through the global property MSB_METHOD_LIBRARIES.
+function(msb_add_method name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  msb_add_library(${name} ALIAS ${name} SOURCES ${ARG_SOURCES} DEPS ${ARG_DEPS})
+  set_property(GLOBAL APPEND PROPERTY MSB_METHOD_LIBRARIES ${name})
+endfunction()

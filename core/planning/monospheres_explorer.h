@@ -99,6 +99,10 @@ struct MonoSpheresConfig {
   MonoSpheresPlannerConfig planner;
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
+  /// The paper's four ablation switches (OVDE, DBOF, FFF, VPB) by name, for reports.
+  std::map<std::string, bool> switches() const {
+    return {{"ovde", map.ovde}, {"dbof", map.dbof}, {"fff", planner.fff}, {"vpb", planner.viewpoints.vpb}};
+  }
 };
 
 /// Spheres, obstacle points and frontiers of a map as a snapshot (drawing, map.ply, hashing).

@@ -1,15 +1,20 @@
-// The method table of the YAML layer: one entry per exploration method — its `method.type`
-// name, a one-line summary and the reader of its keys under `method:` (strict: keys of another
-// method are unknown keys). Each reader converts and validates the method's config and returns
-// the MethodChoice of tools/loop/methods.h. Adding a method: its folder under core/, one
-// function in tools/loop/methods.cc, one reader and one line here.
+// The method table: one entry per exploration method — its `method.type` name (written only
+// there), a one-line summary, the reader and writer of its keys under `method:` (one keys
+// function serves both; strict: keys of another method are unknown keys), the factory (through
+// methodChoice<Explorer>() of tools/loop/methods.h) and the Table I rows it answers to. How a
+// method's free space is drawn and scored comes from its free-space geometry, not its name.
+// Adding a method: its folder (core/baseline/<method>/ with a CMakeLists.txt calling
+// msb_add_method) and one entry in method_table.cc (docs/architecture.md, "Adding a method").
 #pragma once
 
+#include <any>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "tools/loop/methods.h"
 #include "tools/config/yaml_reader.h"
+#include "tools/config/yaml_writer.h"
 
 namespace msb {
 
@@ -24,7 +29,8 @@ struct PaperRow {
 struct MethodEntry {
   const char* type;      ///< `method.type`
   const char* summary;   ///< for help texts and errors
-  MethodChoice (*read)(MapReader& method);  ///< reads the keys under `method:` (except `type`) and finishes
+  std::function<MethodChoice(MapReader& method)> read;  ///< reads the keys under `method:` (except `type`) and finishes
+  std::function<void(const std::any& config, MapWriter& method)> write;  ///< writes every key of its config
   std::vector<PaperRow> paper_rows;         ///< the Table I rows it answers to (none: not in the paper)
 };
 
@@ -36,6 +42,9 @@ const MethodEntry* findMethod(const std::string& type);
 
 /// Reads `method:` (type and the type's keys); an unknown type names the known ones.
 MethodChoice readMethod(MapReader method);
+
+/// Writes `method.type` and every key of the method's config (defaults included).
+void writeMethod(MapWriter& w, const MethodChoice& method);
 
 /// The MonoSpheres mapper keys (shared with map-replay's --set map.KEY=VALUE); the caller
 /// finishes the reader.

@@ -9,6 +9,7 @@
 #include "tools/config/flight_keys.h"
 #include "tools/config/flight_yaml.h"
 #include "tools/config/yaml_reader.h"
+#include "tools/config/yaml_writer.h"
 
 namespace msb {
 namespace {
@@ -87,13 +88,14 @@ void applySet(YAML::Node& root, const std::string& kv) {
   nodes.back()[keys.back()] = value;
 }
 
-void readMission(MapReader r, MissionSettings& m) {
-  r.read("map_rate_hz", m.map_rate_hz);
-  r.read("planning_rate_hz", m.planning_rate_hz);
-  r.read("metric_rate_hz", m.metric_rate_hz);
-  r.read("trajectory_rate_hz", m.trajectory_rate_hz);
-  r.read("write_map_ply", m.write_map_ply);
-  r.read("progress", m.progress);
+template <class Keys>
+void missionKeys(Keys r, MissionSettings& m) {
+  r.field("map_rate_hz", m.map_rate_hz);
+  r.field("planning_rate_hz", m.planning_rate_hz);
+  r.field("metric_rate_hz", m.metric_rate_hz);
+  r.field("trajectory_rate_hz", m.trajectory_rate_hz);
+  r.field("write_map_ply", m.write_map_ply);
+  r.field("progress", m.progress);
   r.finish();
 }
 
@@ -110,7 +112,7 @@ void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
     b.finish();
     s.exploration_box = box;
   }
-  if (r.has("mission")) readMission(r.sub("mission"), s.mission);
+  if (r.has("mission")) missionKeys(r.sub("mission"), s.mission);
   r.finish();
 }
 
@@ -152,18 +154,20 @@ SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets) {
   });
 }
 
-namespace {
-
-std::string scenarioTreeToString(const YAML::Node& tree) {
-  YAML::Emitter e;
-  e << tree;
-  return std::string(e.c_str()) + "\n";
-}
-
-}  // namespace
-
-std::string mergedScenarioYaml(const std::string& path, const std::vector<std::string>& sets) {
-  return scenarioTreeToString(loadScenarioTree(path, sets));
+std::string effectiveScenarioYaml(const ScenarioSpec& spec) {
+  MapWriter w{YAML::Node(YAML::NodeType::Map)};
+  w.field("name", spec.name);
+  writeFlightKeys(w, spec.flight, !spec.start_from_world);
+  MapWriter m = w.sub("method");
+  writeMethod(m, spec.method);
+  if (spec.exploration_box) {
+    MapWriter b = w.sub("exploration_box");
+    b.field("min", spec.exploration_box->min);
+    b.field("max", spec.exploration_box->max);
+  }
+  MissionSettings mission = spec.mission;
+  missionKeys(w.sub("mission"), mission);
+  return yamlText(w.node());
 }
 
 }  // namespace msb

@@ -20,9 +20,11 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
 /// map.dbof). Throws UsageError (malformed --set) or FileConfigError (unknown key, bad value).
 SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets);
 
-/// The merged tree of a scenario file and its base chain with the `--set` overrides applied, as
-/// YAML text (what config.yaml records). Relative MJCF world paths are made absolute against the
-/// file that names them. Throws FileConfigError (file problems) or UsageError (malformed --set).
-std::string mergedScenarioYaml(const std::string& path, const std::vector<std::string>& sets = {});
+/// The effective configuration of a loaded scenario as YAML text (what config.yaml records):
+/// every key with its value, defaults included, numbers in their shortest exact form, so that
+/// loading the text gives the same ScenarioSpec (and running it the same run). The world is
+/// written as named (a world name, or the MJCF file with its absolute path); `start` only if
+/// the scenario gave one (else the generated world's start applies).
+std::string effectiveScenarioYaml(const ScenarioSpec& spec);
 
 }  // namespace msb

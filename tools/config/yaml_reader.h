@@ -31,7 +31,21 @@ class MapReader {
     if (!node_.IsMap()) throw ConfigError(keyName(""), "expected a map of keys");
   }
 
+  /// True here, false for MapWriter: sections only a reader can do (presets, refusals) check it.
+  static constexpr bool kReading = true;
+
   bool has(const std::string& key) const { return bool(node_[key]); }
+
+  /// read() under the name the key functions shared with MapWriter use.
+  template <class T>
+  bool field(const std::string& key, T& out) {
+    return read(key, out);
+  }
+
+  /// Throws ConfigError(key, reason) if `key` is present (a key that is not one, e.g. moved).
+  void refuse(const std::string& key, const std::string& reason) const {
+    if (has(key)) throw ConfigError(keyName(key), reason);
+  }
 
   // Reads `key` into `out` if present (marks it used); type errors name the key.
   template <class T>

@@ -63,7 +63,7 @@ int runRunCommand(int argc, char** argv) {
   if (args.given("seed")) all_sets.push_back("seed=" + args.get("seed"));
   if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
   ScenarioSpec spec = loadScenario(file, all_sets);
-  const std::string merged_yaml = mergedScenarioYaml(file, all_sets);
+  const std::string effective_yaml = effectiveScenarioYaml(spec);  // before the world fills in the start
   MissionWorld world = prepareMissionWorld(file, spec);
   const Aabb& box = world.box;
   std::optional<WorldTruth>& truth = world.truth;
@@ -73,8 +73,9 @@ int runRunCommand(int argc, char** argv) {
   Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
   writeFileAtomic(out.staging() / "config.yaml",
-                  "# effective scenario: " + file + (all_sets.empty() ? "" : " with overrides") + "\n" +
-                      merged_yaml);
+                  "# effective configuration (every key, defaults included) of " + file +
+                      (all_sets.empty() ? "" : " with overrides") + "; `msbench run` reproduces the run from it\n" +
+                      effective_yaml);
 
   const bool quiet = args.has("quiet") || !spec.mission.progress;
   std::unique_ptr<PerceptionLogWriter> recorder;

@@ -1,6 +1,8 @@
 // Scenario files: base chains, --set overrides, switches, and one error per class naming the
 // file and the key.
+#include "core/baseline/grid_explorer.h"
 #include "core/common/config_check.h"
+#include "tools/config/method_table.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/yaml_reader.h"
 
@@ -82,7 +84,7 @@ TEST(ScenarioYaml, TheMethodTableHoldsTheChosenMethodsKeysOnly) {
   EXPECT_DOUBLE_EQ(c.replan_period_s, 0.2);
   EXPECT_TRUE(c.planner.unknown_is_occupied);
   EXPECT_DOUBLE_EQ(c.map.resolution_m, 0.5);
-  EXPECT_TRUE(g.method.switches.at("unknown_is_occupied"));
+  EXPECT_TRUE(g.method.switches.empty());  // the ablation switches are MonoSpheres'
 }
 
 void expectError(const std::string& text, std::initializer_list<std::string> fragments,
@@ -127,6 +129,32 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
   expectError("base: base.yaml\n", {"method.planner.carrot", "unknown key"}, {"method.planner.carrot=3"});
   expectError("base: base.yaml\n", {"--set", "KEY=VALUE"}, {"novalue"});
   expectError("base: base.yaml\n", {"--set", "not a map"}, {"seed.x=1"});
+}
+
+}  // namespace
+}  // namespace msb
+
+namespace msb {
+namespace {
+
+// The effective configuration reads back to the same configuration: a named world without a
+// start (the world's start applies), a conditions preset with unset fields, a --set override,
+// angles in degrees, every method.
+TEST(ScenarioYaml, TheEffectiveConfigurationReadsBackToItself) {
+  const fs::path d = tempDir();
+  for (const MethodEntry& method : methodTable()) {
+    SCOPED_TRACE(method.type);
+    write(d / "named.yaml", "world: urban\nconditions: {preset: dusk}\nmethod: {type: " + std::string(method.type) + "}\n");
+    const ScenarioSpec s = loadScenario((d / "named.yaml").string(), {"camera.mount_pitch_down_deg=7.5", "seed=4"});
+    const std::string text = effectiveScenarioYaml(s);
+    EXPECT_EQ(text.find("start:"), std::string::npos) << "the world's start applies";
+    EXPECT_NE(text.find("world: urban"), std::string::npos);
+    EXPECT_NE(text.find("mount_pitch_down_deg: 7.5"), std::string::npos);
+    write(d / "effective.yaml", text);
+    const ScenarioSpec again = loadScenario((d / "effective.yaml").string());
+    EXPECT_TRUE(again.start_from_world);
+    EXPECT_EQ(effectiveScenarioYaml(again), text);
+  }
 }
 
 }  // namespace
