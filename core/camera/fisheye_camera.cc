@@ -5,6 +5,7 @@
 namespace msb {
 
 void FisheyeCameraConfig::validate(ConfigChecker& c) const {
+  c.inRange("clip_far_m", clip_far_m, 1.0, 100000.0);
   // Bounded: every frame is rendered, remapped and tracked at this size.
   c.inRange("width_px", width_px, 16, 4096);
   c.inRange("height_px", height_px, 16, 4096);

@@ -35,6 +35,10 @@ struct FisheyeCameraConfig {
   double scale = 1.0;                 ///< resolution scale: 1 = full, 0.5 = half (376×240)
   Vec3 mount_position_B_m = Vec3(0.085, 0.0, 0.13);  ///< camera centre in the body frame
   double mount_pitch_down_deg = 0.0;  ///< downward tilt of the forward-looking camera
+  /// Far clip of the simulated camera: nothing farther (along each cube face's axis, as the
+  /// reference's Gazebo wide-angle camera clips its faces) is drawn; the sky colour shows
+  /// instead. The reference's camera clips at 40 m (docs/perception.md).
+  double clip_far_m = 40.0;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

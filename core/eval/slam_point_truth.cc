@@ -9,6 +9,7 @@ PointTruth evaluatePoint(const SlamPoint& p, const Pose& T, const WorldTruth& tr
   const auto hit = truth.raycast(T.translation(), ray, 400.0);
   if (!hit) return out;
   out.has_surface = true;
+  out.shape = hit->shape;
   out.true_depth_m = hit->distance_m;
   const Shape& shape = truth.shapes()[hit->shape];
   out.kind = shape.kind;
@@ -28,6 +29,19 @@ PointTruth evaluatePoint(const SlamPoint& p, const Pose& T, const WorldTruth& tr
   }
   out.textureless_interior = out.interior && shape.kind == ObstacleKind::kTextureless;
   return out;
+}
+
+const char* surfaceClass(const Shape& shape) {
+  const std::string& n = shape.object.empty() ? shape.name : shape.object;
+  auto starts = [&](const char* prefix) { return n.rfind(prefix, 0) == 0; };
+  if (starts("ground") || starts("floor")) return "ground";
+  if (starts("car") || starts("bus") || starts("fire_truck") || starts("truck") || starts("van")) return "vehicles";
+  if (starts("tree")) return "trees";
+  if (starts("rod") || starts("pole")) return "thin";
+  if (starts("building") || starts("house") || starts("tower") || starts("wall") || starts("burned") ||
+      starts("ruin") || starts("cave") || starts("rock") || starts("pillar"))
+    return "walls";
+  return "other";
 }
 
 }  // namespace msb

@@ -16,7 +16,13 @@ struct PointTruth {
   ObstacleKind kind = ObstacleKind::kTextured;  ///< kind of the surface hit
   bool interior = false;             ///< the anchor pixel's 3-px neighbours see the same shape
   bool textureless_interior = false; ///< interior and textureless
+  int shape = -1;                    ///< index of the shape hit (WorldTruth::shapes())
 };
+
+/// The surface class of a shape for perception tables, from its object's name: ground, walls
+/// (buildings, houses, towers, ruins, cave walls and ceilings, rocks), vehicles (cars, buses,
+/// trucks), trees, thin (rods, poles), other.
+const char* surfaceClass(const Shape& shape);
 
 /// Evaluates `p` given the true camera pose of its anchor observation.
 PointTruth evaluatePoint(const SlamPoint& p, const Pose& T_W_C_true_anchor, const WorldTruth& truth,

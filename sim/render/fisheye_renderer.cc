@@ -22,7 +22,7 @@ void FisheyeRendererConfig::validate(ConfigChecker& c) const {
   c.inRange("tessellation_stacks", tessellation_stacks, 4, 100);
   c.nonNegative("plane_grid_m", plane_grid_m);
   c.positive("near_clip_m", near_clip_m);
-  c.require(far_clip_m > near_clip_m, "far_clip_m", "must exceed near_clip_m");
+  c.inRange("near_clip_m", near_clip_m, 1e-4, 1.0);
   c.inRange("max_visible_geom_group", max_visible_geom_group, 0, mjNGROUP - 1);
   c.nested("conditions", conditions);
 }
@@ -130,6 +130,17 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   scene_.flags[mjRND_CULL_FACE] = 1;
   scene_.flags[mjRND_SKYBOX] = 0;
   scene_.flags[mjRND_FOG] = config_.conditions.fog_end_m > 0 ? 1 : 0;
+
+  // Beyond the far clip: the fog colour in fog, else the sky's colour if the world has a drawn
+  // sky (saturated white, or the conditions' sky grey), else black (caves: no sky).
+  bool has_sky = false;
+  for (int g = 0; g < model_->ngeom; ++g) has_sky = has_sky || model_->geom_group[g] == kSkyGeomGroup;
+  const RenderConditions& cond = config_.conditions;
+  for (int k = 0; k < 3; ++k)
+    backdrop_[k] = cond.fog_end_m > 0              ? static_cast<float>(cond.fog_colour[k])
+                   : !(config_.sky && has_sky)     ? 0.0f
+                   : std::isnan(cond.sky_brightness) ? 1.0f
+                                                     : static_cast<float>(cond.sky_brightness);
 }
 
 void FisheyeRenderer::configureRenderModel() {
@@ -417,6 +428,41 @@ void FisheyeRenderer::cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0,
   scene_.ngeom = kept;
 }
 
+void FisheyeRenderer::paintBeyondClip(int x, int y, int width, int height) {
+  // A quad at the far plane, drawn only where the depth buffer still holds its cleared 1.0: the
+  // pixels nothing was drawn into (beyond the clip, or open sky without sky planes) take the
+  // backdrop colour instead of MuJoCo's black clear colour.
+  glPushAttrib(GL_ALL_ATTRIB_BITS);
+  glViewport(x, y, width, height);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_TEXTURE_2D);
+  glDisable(GL_FOG);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glMatrixMode(GL_PROJECTION);
+  glPushMatrix();
+  glLoadIdentity();
+  glMatrixMode(GL_MODELVIEW);
+  glPushMatrix();
+  glLoadIdentity();
+  glColor4f(backdrop_[0], backdrop_[1], backdrop_[2], 1.0f);
+  glBegin(GL_QUADS);
+  glVertex3f(-1.0f, -1.0f, 1.0f);
+  glVertex3f(1.0f, -1.0f, 1.0f);
+  glVertex3f(1.0f, 1.0f, 1.0f);
+  glVertex3f(-1.0f, 1.0f, 1.0f);
+  glEnd();
+  glPopMatrix();
+  glMatrixMode(GL_PROJECTION);
+  glPopMatrix();
+  glPopAttrib();
+}
+
 void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame* frame,
                              RenderTiming* timing) {
   RenderTiming t;
@@ -453,12 +499,13 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
       cam.frustum_bottom = static_cast<float>(-n * y1);
       cam.frustum_top = static_cast<float>(-n * f.tan_y0);
       cam.frustum_near = n;
-      cam.frustum_far = static_cast<float>(config_.far_clip_m);
+      cam.frustum_far = static_cast<float>(camera_.config().clip_far_m);
     }
     if (config_.cull_per_face) cullToFace(R_W_F, pos, f.tan_x0, x1, f.tan_y0, y1);
     drawn_geoms_ += scene_.ngeom;
     if (face_fbo_.empty()) {
       mjr_render(mjrRect{f.atlas_x, f.atlas_y, f.width, f.height}, &scene_, &mjr_context_);
+      paintBeyondClip(f.atlas_x, f.atlas_y, f.width, f.height);
     } else {
       // mjr_render draws into the bound framebuffer and rebinds its own when done.
       glBindFramebuffer(GL_FRAMEBUFFER, face_fbo_[&f - faces_.data()]);
@@ -469,6 +516,8 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
       glDisable(GL_SCISSOR_TEST);
       glClear(GL_STENCIL_BUFFER_BIT);
       mjr_render(mjrRect{0, 0, f.width, f.height}, &scene_, &mjr_context_);
+      glBindFramebuffer(GL_FRAMEBUFFER, face_fbo_[&f - faces_.data()]);
+      paintBeyondClip(0, 0, f.width, f.height);
     }
   }
   glFinish();

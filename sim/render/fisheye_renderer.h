@@ -57,7 +57,6 @@ struct FisheyeRendererConfig {
   int tessellation_stacks = 8;     ///< MuJoCo quality.numstacks (coarse)
   double plane_grid_m = 20.0;      ///< minimum rendering grid spacing of planes
   double near_clip_m = 0.03;       ///< near clipping distance
-  double far_clip_m = 600.0;       ///< far clipping distance
   bool read_red_channel_only = false;  ///< read one channel (exact for grey-scale worlds)
   int max_visible_geom_group = 2;  ///< groups above are not drawn (3: vehicle, 4: collision-only)
   bool sky = true;                  ///< draw the world's sky planes (outdoor worlds; else black)
@@ -131,6 +130,8 @@ class FisheyeRenderer final : public FrameRenderer {
   bool singleChannelFramebuffer() const { return single_channel_framebuffer_; }
 
  private:
+  // Paints the pixels of the face viewport nothing was drawn into with the backdrop colour.
+  void paintBeyondClip(int x, int y, int width, int height);
   void buildFacesAndLut();
   // The benchmark's visual settings and the conditions, written into the renderer's model copy.
   void configureRenderModel();
@@ -160,6 +161,7 @@ class FisheyeRenderer final : public FrameRenderer {
   std::optional<Vec3> sun_direction_;  // world direction of the sun's light, if conditions set it
   std::vector<mjvGeom> scene_geoms_;  // the full scene of a frame, culled per face into scene_
   long drawn_geoms_ = 0;              // geoms drawn in the last frame, over all faces
+  float backdrop_[3] = {0, 0, 0};     // colour beyond the camera's far clip (sky, fog or black)
   int luminance_textures_ = 0;        // textures re-stored as one-byte luminance
   bool single_channel_framebuffer_ = false;  // face colour buffers hold one channel (grey model)
   // Per-face framebuffers (framebuffer_per_face): framebuffer, colour and depth renderbuffers.

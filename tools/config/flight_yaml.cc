@@ -147,6 +147,7 @@ void cameraKeys(Keys r, FisheyeCameraConfig& c) {
   r.field("scale", c.scale);
   r.field("mount_position_B_m", c.mount_position_B_m);
   r.field("mount_pitch_down_deg", c.mount_pitch_down_deg);
+  r.field("clip_far_m", c.clip_far_m);
   r.finish();
 }
 
@@ -158,7 +159,6 @@ void renderKeys(Keys r, FisheyeRendererConfig& c) {
   r.field("tessellation_stacks", c.tessellation_stacks);
   r.field("plane_grid_m", c.plane_grid_m);
   r.field("near_clip_m", c.near_clip_m);
-  r.field("far_clip_m", c.far_clip_m);
   r.field("read_red_channel_only", c.read_red_channel_only);
   r.field("sky", c.sky);
   r.field("sun", c.sun);
@@ -269,15 +269,18 @@ void trackerKeys(Keys r, FeatureTrackerConfig& c) {
 
 template <class Keys>
 void slamPointsKeys(Keys r, SlamPointsConfig& c) {
-  r.field("min_parallax_deg", c.min_parallax_deg);
+  r.field("max_clones", c.max_clones);
+  r.field("reference_rate_hz", c.reference_rate_hz);
+  r.field("dt_slam_delay_s", c.dt_slam_delay_s);
+  r.field("max_slam_in_update", c.max_slam_in_update);
+  r.field("max_slam", c.max_slam);
+  r.field("min_dist_m", c.min_dist_m);
+  r.field("max_dist_m", c.max_dist_m);
+  r.field("max_baseline", c.max_baseline);
+  r.field("max_cond_number", c.max_cond_number);
   r.field("pixel_sigma_px", c.pixel_sigma_px);
   r.field("max_reprojection_rms_px", c.max_reprojection_rms_px);
-  r.field("max_relative_depth_std", c.max_relative_depth_std);
-  r.field("max_depth_m", c.max_depth_m);
-  r.field("min_depth_m", c.min_depth_m);
-  r.field("max_points", c.max_points);
   r.field("max_observations", c.max_observations);
-  r.field("min_observations", c.min_observations);
   r.field("max_iterations", c.max_iterations);
   r.finish();
 }

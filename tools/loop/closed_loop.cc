@@ -46,7 +46,7 @@ ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
       features_(makeFeatureSource(spec, camera_, setup.truth)),
       last_position_(spec.start_position_m),
       wall_start_(WallClock::now()) {
-  if (spec.perception.enabled) slam_ = std::make_unique<SlamPointEstimator>(spec.slam_points, camera_);
+  if (spec.perception.enabled) slam_ = std::make_unique<SlamPointEstimator>(spec.slam_points, camera_, spec.camera_stream.rate_hz);
   if (renderer_) result_.gl_description = renderer_->description();
   if (!setup_.explorer) {
     // A scripted path stays inside the world (above its ground, within its extent).

@@ -50,6 +50,8 @@ struct VioStats {
   long ransac_tested = 0, ransac_rejected = 0;   // tracked pairs tested / dropped as epipolar outliers
   long near_points = 0, spurious_near = 0;       // points < 1 m from the camera / of those, on no surface
   double tracks_sum = 0, points_sum = 0, tracker_ms = 0, tri_ms = 0, render_ms = 0;
+  double points_by_distance[kBins] = {};            // SLAM points summed over frames, by distance from the camera
+  std::map<std::string, double> points_by_surface;  // ... by the class of the surface hit (ground truth)
   int frames = 0, min_tracks = 1 << 30;
   std::string csv = "t,tracks,new_tracks,lost_tracks,slam_points,median_error_m,tracker_ms,triangulation_ms,render_ms\n";
 };
@@ -123,6 +125,13 @@ int runVioEvalCommand(int argc, char** argv) {
     gt_camera[s.frame.tick] = s.frame.T_W_C;
     if (recorder) recorder->write(s.points, s.frame.T_W_C);
     std::vector<double> frame_errors;
+    // The premise of OVDE (seed paper §III-B): how far the points the mapper gets lie.
+    for (const auto& p : s.points.points) {
+      const double d = (p.p_W - s.points.T_W_C.translation()).norm();
+      int band = 0;
+      while (band + 1 < kBins && d >= kBinEdges[band + 1]) ++band;
+      ++st.points_by_distance[band];
+    }
     if (truth) {
       for (const auto& p : s.points.points) {
         const PointTruth t = evaluatePoint(p, gt_camera.at(p.anchor_tick), *truth, camera);
@@ -135,8 +144,10 @@ int runVioEvalCommand(int argc, char** argv) {
         }
         if (!t.has_surface) {
           ++st.no_surface;
+          ++st.points_by_surface["none"];
           continue;
         }
+        ++st.points_by_surface[surfaceClass(truth->shapes()[t.shape])];
         st.textureless += t.kind == ObstacleKind::kTextureless;
         st.textureless_interior += t.textureless_interior;
         st.thin += t.kind == ObstacleKind::kThin;
@@ -198,6 +209,9 @@ int runVioEvalCommand(int argc, char** argv) {
                     {"median_predicted_depth_std_m", percentile(st.depth_std[b], 0.5)}});
   }
   const double ps = std::max<long>(1, st.point_samples);
+  nlohmann::json by_distance = nlohmann::json::object(), by_surface = nlohmann::json::object();
+  for (int b = 0; b < kBins; ++b) by_distance[bins[b]["bin"].get<std::string>()] = st.points_by_distance[b] / n;
+  for (const auto& [surface, count] : st.points_by_surface) by_surface[surface] = count / n;
   nlohmann::json j = {
       {"status", r.status},
       {"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
@@ -207,6 +221,8 @@ int runVioEvalCommand(int argc, char** argv) {
       {"min_tracks_per_frame", st.frames ? st.min_tracks : 0},
       {"mean_slam_points_per_frame", st.points_sum / n},
       {"point_error_by_distance", bins},
+      {"slam_points_per_frame_by_distance", by_distance},
+      {"slam_points_per_frame_by_surface", truth ? by_surface : nlohmann::json(nullptr)},
       {"ground_truth", bool(truth)},
       {"textureless_point_share", truth ? nlohmann::json(st.textureless_interior / ps) : nlohmann::json(nullptr)},
       {"textureless_incl_silhouette_point_share", truth ? nlohmann::json(st.textureless / ps) : nlohmann::json(nullptr)},
@@ -241,7 +257,13 @@ int runVioEvalCommand(int argc, char** argv) {
   std::printf("  tracks/frame %.0f (min %d), SLAM points/frame %.0f, drift %.2f %% of %.0f m\n",
               st.tracks_sum / n, st.frames ? st.min_tracks : 0, st.points_sum / n,
               j["drift_percent_of_distance"].get<double>(), r.distance_flown_m);
+  std::printf("  SLAM points per frame by distance from the camera:");
+  for (int b = 0; b < kBins; ++b) std::printf(" %s %.1f", bins[b]["bin"].get<std::string>().c_str(), st.points_by_distance[b] / n);
+  std::printf("\n");
   if (truth) {
+    std::printf("  SLAM points per frame by surface:");
+    for (const auto& [surface, v] : by_surface.items()) std::printf(" %s %.1f", surface.c_str(), v.get<double>());
+    std::printf("\n");
     std::printf("  points on textureless surfaces %.2f %% (%.2f %% incl. their silhouettes), thin %.2f %%, "
                 "no surface %.2f %%\n", 100 * st.textureless_interior / ps, 100 * st.textureless / ps,
                 100 * st.thin / ps, 100 * st.no_surface / ps);

@@ -114,6 +114,42 @@ TEST(FisheyeRenderer, BrightMarkersAppearWhereTheCameraModelPredicts) {
   }
 }
 
+// A grey wall 10 m ahead; with `sky`, a white self-lit sky plane 100 m ahead (the sky group).
+std::string clipWorld(bool sky) {
+  return writeWorld(sky ? "clip_sky" : "clip_cave",
+                    "<material name=\"grey\" rgba=\"0.4 0.4 0.4 1\"/>"
+                    "<material name=\"sky\" rgba=\"0.85 0.85 0.85 1\" emission=\"1\"/>",
+                    "<geom name=\"wall\" type=\"box\" pos=\"10 0 0\" size=\"0.2 3 3\" material=\"grey\"/>" +
+                        std::string(sky ? "<geom name=\"sky_east\" type=\"plane\" pos=\"100 0 0\" size=\"200 200 1\" "
+                                          "euler=\"0 -90 0\" material=\"sky\" contype=\"0\" conaffinity=\"0\" group=\"5\"/>"
+                                        : ""));
+}
+
+TEST(FisheyeRenderer, NothingBeyondTheCameraClipIsDrawnTheSkyColourShowsInstead) {
+  const Pose T = poseFromXyzYaw(Vec3(0, 0, -0.13), 0.0);  // camera centre at the origin, looking along +x
+  auto centreAndEdge = [&](bool sky, double clip_m) {
+    Scene scene(sky ? clipWorld(true) : clipWorld(false), T);
+    FisheyeCameraConfig c;
+    c.clip_far_m = clip_m;
+    scene.camera = FisheyeCamera(c);
+    scene.renderer = std::make_unique<FisheyeRenderer>(FisheyeRendererConfig{}, scene.camera, scene.sim->model());
+    const CameraFrame f = scene.render();
+    // The wall at the image centre; open sky 40° to the side of it.
+    const Vec2 side = scene.camera.project(Vec3(std::sin(0.7), 0, std::cos(0.7)));
+    return std::make_pair(int(at(f, 376, 240)), int(at(f, int(side.x()), int(side.y()))));
+  };
+  const auto [wall, sky] = centreAndEdge(true, 40.0);  // the reference's 40 m clip
+  EXPECT_GT(wall, 20);
+  EXPECT_LT(wall, 200);
+  EXPECT_EQ(sky, 255);  // the sky plane at 100 m is beyond the clip: the sky colour shows
+  const auto [clipped_wall, sky2] = centreAndEdge(true, 5.0);
+  EXPECT_EQ(clipped_wall, 255);  // the wall at 10 m is beyond a 5 m clip
+  EXPECT_EQ(sky2, 255);
+  const auto [cave_wall, cave_open] = centreAndEdge(false, 5.0);  // no sky: black beyond the clip
+  EXPECT_EQ(cave_wall, 0);
+  EXPECT_EQ(cave_open, 0);
+}
+
 TEST(FisheyeRenderer, UniformWallHasNoSeamsBetweenCubeFaces) {
   // A flat uniform wall 3 m ahead filling the view up to ~87° off-axis.
   const std::string world = writeWorld(
