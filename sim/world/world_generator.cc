@@ -110,7 +110,9 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
     b.addSphere(id + "_canopy", id, base * Vec3(0, 0, s.z() - r), r, T,
                 Look::textured(pick(g.texture, "foliage")));
   } else if (k == "rod" || k == "pole" || k == "pillar") {
-    const double tilt = detail.uniform(0, g.tilt_max_deg) * kDeg, dir = detail.uniform(-M_PI, M_PI);
+    // Rods at ruins lean outwards (`yaw` is the ruin's outward normal there), others anywhere.
+    const double tilt = detail.uniform(0, g.tilt_max_deg) * kDeg;
+    const double dir = g.near == "ruins" ? yaw + detail.uniform(-0.25 * M_PI, 0.25 * M_PI) : detail.uniform(-M_PI, M_PI);
     const Mat3 R = (Eigen::AngleAxisd(dir, Vec3::UnitZ()) * Eigen::AngleAxisd(tilt, Vec3::UnitY())).toRotationMatrix();
     Pose T_axis = base;
     T_axis.linear() = R;
@@ -274,6 +276,20 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
     return d;
   };
 
+  // The take-off corridor: from the start along its heading, kept free of every object.
+  const Vec2 heading(std::cos(spec.start_yaw_deg * kDeg), std::sin(spec.start_yaw_deg * kDeg));
+  auto corridorDistance = [&](const Vec2& xy) {
+    const double t = std::clamp((xy - start_xy).dot(heading), 0.0, spec.start_corridor_m);
+    return (xy - (start_xy + t * heading)).norm();
+  };
+  // Ruins built so far (burned parts, collapsed buildings): footprint rectangles for rods.
+  struct Ruin {
+    std::string object;
+    Vec2 centre, half;
+    double yaw;
+  };
+  std::vector<Ruin> ruins;
+
   RngStream placement(spec.seed, "world_gen_" + spec.name);
   for (size_t gi = 0; gi < spec.objects.size(); ++gi) {
     const auto& g = spec.objects[gi];
@@ -290,15 +306,49 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
       if (g.at) {
         xy = *g.at;
         yaw = g.yaw_deg.value_or(0.0) * kDeg;
+      } else if (g.near == "ruins") {
+        // Reinforcement bars standing out of a ruin: the base on the ruin's footprint edge (up
+        // to 0.2 m inside its walls, 0.8 m out into the rubble), leaning outwards; clear of the
+        // start, the take-off corridor and every other object.
+        if (ruins.empty())
+          throw std::runtime_error("world '" + spec.name + "': objects[" + std::to_string(gi) +
+                                   "] are placed at ruins, but no burned or collapsed building comes before them");
+        bool ok = false;
+        for (int attempt = 0; attempt < 3000 && !ok; ++attempt) {
+          const Ruin& ruin = ruins[std::min(ruins.size() - 1, size_t(placement.uniform(0, double(ruins.size()))))];
+          const double perimeter = 4 * (ruin.half.x() + ruin.half.y());
+          double t = placement.uniform(0, perimeter);
+          const double out_m = placement.uniform(-0.2, 0.8);
+          Vec2 local_xy, normal;
+          if (t < 2 * ruin.half.x()) local_xy = Vec2(-ruin.half.x() + t, ruin.half.y() + out_m), normal = Vec2(0, 1);
+          else if ((t -= 2 * ruin.half.x()) < 2 * ruin.half.y()) local_xy = Vec2(ruin.half.x() + out_m, ruin.half.y() - t), normal = Vec2(1, 0);
+          else if ((t -= 2 * ruin.half.y()) < 2 * ruin.half.x()) local_xy = Vec2(ruin.half.x() - t, -ruin.half.y() - out_m), normal = Vec2(0, -1);
+          else t -= 2 * ruin.half.x(), local_xy = Vec2(-ruin.half.x() - out_m, -ruin.half.y() + t), normal = Vec2(-1, 0);
+          const Eigen::Rotation2Dd R(ruin.yaw);
+          xy = ruin.centre + R * local_xy;
+          const Vec2 n = R * normal;
+          yaw = std::atan2(n.y(), n.x());
+          double d = 1e9;  // from everything but the ruin itself
+          for (const auto& sh : b.shapes()) {
+            if (sh.kind == ObstacleKind::kGround || sh.object == ruin.object) continue;
+            for (double z : {0.5, 2.0, 4.0}) d = std::min(d, sh.signedDistance(Vec3(xy.x(), xy.y(), z)));
+          }
+          ok = (xy - start_xy).norm() >= spec.start_clearance_m + r &&
+               corridorDistance(xy) >= spec.start_corridor_half_width_m + r && d >= r + 1.0;
+        }
+        if (!ok)
+          throw std::runtime_error("world '" + spec.name + "': could not place " + id + " (objects[" +
+                                   std::to_string(gi) + "]) at the ruins");
       } else {
-        // Rejection sampling: inside the region and the ground, clear of the start and of
-        // other objects (1 m gap), and for caves clear of the rock.
+        // Rejection sampling: inside the region and the ground, clear of the start, the
+        // take-off corridor and other objects (1 m gap), and for caves clear of the rock.
         bool ok = false;
         for (int attempt = 0; attempt < 3000 && !ok; ++attempt) {
           xy = Vec2(placement.uniform(g.region_min->x(), g.region_max->x()),
                     placement.uniform(g.region_min->y(), g.region_max->y()));
           yaw = g.yaw_deg ? *g.yaw_deg * kDeg : placement.uniform(-M_PI, M_PI);
           ok = (xy - start_xy).norm() >= spec.start_clearance_m + r &&
+               corridorDistance(xy) >= spec.start_corridor_half_width_m + r &&
                (xy.cwiseAbs().array() <= (half_ground.array() - r)).all() &&
                clearance(xy) >= r + 1.0;
         }
@@ -308,6 +358,13 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
       }
       const size_t shapes_before = b.shapes().size();
       buildObject(g, id, xy, yaw, size, detail, b);
+      if (g.kind == "building" && g.variant == "burned") {
+        const double lb = g.burned_fraction * size.x();
+        ruins.push_back({id, xy + Eigen::Rotation2Dd(yaw) * Vec2(0.5 * size.x() - 0.5 * lb, 0),
+                         Vec2(0.5 * lb, 0.5 * size.y()), yaw});
+      } else if (g.kind == "building" && g.variant == "collapsed") {
+        ruins.push_back({id, xy, Vec2(0.5 * size.x(), 0.5 * size.y()), yaw});
+      }
       // The start area is kept free of every object, fixed ones too: the nearest surface of what
       // was just built (probed at several heights above the start) lies outside the clearance.
       if (g.at) {
@@ -315,6 +372,15 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
         for (size_t k = shapes_before; k < b.shapes().size(); ++k)
           for (double z : {0.05, 0.5, 2.0, 4.0})
             d = std::min(d, b.shapes()[k].signedDistance(Vec3(start_xy.x(), start_xy.y(), z)));
+        for (double t = 1.0; t <= spec.start_corridor_m; t += 1.0)
+          for (size_t k = shapes_before; k < b.shapes().size(); ++k)
+            for (double z : {0.5, 2.0, 4.0}) {
+              const Vec2 c = start_xy + t * heading;
+              if (b.shapes()[k].signedDistance(Vec3(c.x(), c.y(), z)) < spec.start_corridor_half_width_m)
+                throw ConfigError("objects[" + std::to_string(gi) + "].at",
+                                  id + " lies in the take-off corridor (" + std::to_string(spec.start_corridor_m) +
+                                      " m along the start heading)");
+            }
         if (d < spec.start_clearance_m) {
           char why[200];
           std::snprintf(why, sizeof(why), "%s at (%g, %g) comes within %.2f m of the start (%g, %g): inside the start "

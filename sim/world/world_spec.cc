@@ -18,8 +18,11 @@ void ObjectGroupSpec::validate(ConfigChecker& c) const {
   c.require(std::find(kinds.begin(), kinds.end(), kind) != kinds.end(), "kind",
             "unknown object kind '" + kind + "'");
   c.require(count >= 1 && count <= 1000, "count", "must be in [1, 1000]");
-  c.require(at.has_value() != (region_min.has_value() && region_max.has_value()), "at",
-            "give either 'at' or 'region' (min and max)");
+  c.require(near.empty() || near == "ruins", "near", "unknown placement '" + near + "' (known: ruins)");
+  c.require(near.empty() || kind == "rod", "near", "placement at the ruins is for rods");
+  c.require(near.empty() ? at.has_value() != (region_min.has_value() && region_max.has_value())
+                         : !at.has_value() && !region_min && !region_max,
+            "at", near.empty() ? "give either 'at' or 'region' (min and max)" : "'near' places the objects: no 'at' or 'region'");
   c.require(!at || count == 1, "count", "must be 1 with a fixed position 'at'");
   if (region_min && region_max)
     c.require((region_max->array() > region_min->array()).all(), "region", "max must exceed min");
@@ -46,6 +49,8 @@ void WorldSpec::validate(ConfigChecker& c) const {
   c.require((exploration_box.max.array() > exploration_box.min.array()).all(), "exploration_box",
             "max must exceed min");
   c.nonNegative("start_clearance_m", start_clearance_m);
+  c.nonNegative("start_corridor_m", start_corridor_m);
+  c.positive("start_corridor_half_width_m", start_corridor_half_width_m);
   c.require(texture_px == 128 || texture_px == 256 || texture_px == 512 || texture_px == 1024,
             "texture_px", "must be 128, 256, 512 or 1024");
   for (size_t i = 0; i < objects.size(); ++i) c.nested("objects[" + std::to_string(i) + "]", objects[i]);

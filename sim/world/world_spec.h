@@ -31,6 +31,9 @@ struct ObjectGroupSpec {
   double tilt_max_deg = 0.0;         ///< random tilt (rods, poles, rocks)
   double burned_fraction = 0.4;      ///< share of a burned building's length that is textureless
   double base_z_m = 0.0;             ///< height of the object's base
+  /// "ruins": placed at the ruins built before (burned parts and collapsed buildings), not in a
+  /// region — rods as reinforcement bars standing out of the ruins and their rubble.
+  std::string near;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -70,6 +73,8 @@ struct WorldSpec {
   double start_yaw_deg = 0.0;
   Aabb exploration_box;              ///< where exploration goals may lie
   double start_clearance_m = 6.0;    ///< free radius kept around the start
+  double start_corridor_m = 0.0;     ///< length of the free corridor along the start heading (take-off direction)
+  double start_corridor_half_width_m = 3.0;  ///< its half width
   int texture_px = 512;              ///< texture resolution
   std::vector<ObjectGroupSpec> objects;
   std::optional<CaveSpec> cave;

@@ -51,6 +51,7 @@ void readObject(MapReader& r, ObjectGroupSpec& o) {
   r.read("tilt_max_deg", o.tilt_max_deg);
   r.read("burned_fraction", o.burned_fraction);
   r.read("base_z_m", o.base_z_m);
+  r.read("near", o.near);
   r.finish();
 }
 
@@ -105,6 +106,8 @@ void readWorld(MapReader& r, WorldSpec& s) {
     b.finish();
   }
   r.read("start_clearance_m", s.start_clearance_m);
+  r.read("start_corridor_m", s.start_corridor_m);
+  r.read("start_corridor_half_width_m", s.start_corridor_half_width_m);
   r.read("texture_px", s.texture_px);
   if (r.has("objects"))
     r.forEachInList("objects", [&](MapReader& m) {

@@ -203,7 +203,7 @@ void ClosedLoop::planPath() {
   vs.path_finished = trajectory_.finished();
   const std::optional<PathCommand> cmd = setup_.explorer->plan(vs);
   record_.timing.planning_ms = msSince(t0);
-  if (cmd) trajectory_.setPath(cmd->waypoints);
+  if (cmd) trajectory_.setPath(cmd->waypoints), last_path_t_s_ = vs.t_s;
 }
 
 void ClosedLoop::trackAndControl() {

@@ -124,6 +124,13 @@ class ClosedLoop {
   const FisheyeCamera& camera() const { return camera_; }
   /// The loop's tick rate.
   int physicsHz() const { return spec_.physics.physics_hz; }
+  /// The trajectory tracker's current reference (estimate frame).
+  const TrajectoryReference& reference() const { return trajectory_.reference(); }
+  /// The VIO estimate and the ground truth of the vehicle at the last tick.
+  const Odometry& estimate() const { return est_; }
+  const Odometry& groundTruth() const { return gt_; }
+  /// Simulated time of the explorer's last path command (-1: none yet).
+  double lastPathTimeS() const { return last_path_t_s_; }
   /// State hash of everything the loop has decided so far (trajectory rows and the
   /// current true state), for in-process determinism checks.
   uint64_t stateHash() const;
@@ -165,7 +172,7 @@ class ClosedLoop {
   SlamPointsFrame points_;
   std::optional<SlamPointsFrame> pending_points_;  // latest SLAM points not yet given to the map
   int64_t few_tracks_since_ = -1, finished_tick_ = -1, last_imu_tick_ = 0, err_count_ = 0;
-  double err_sq_sum_ = 0.0;
+  double err_sq_sum_ = 0.0, last_path_t_s_ = -1.0;
   Vec3 last_position_;
   bool ended_ = false, finished_ = false;
   TickRecord record_;

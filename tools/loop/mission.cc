@@ -1,6 +1,7 @@
 #include "tools/loop/mission.h"
 
 #include "core/common/wall_time.h"
+#include "core/eval/slam_point_truth.h"
 
 namespace msb {
 
@@ -28,7 +29,8 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
     : spec_(checkValid(spec)),
       explorer_(spec.method.make(FisheyeCamera(spec.flight.camera), explorerContext(spec, box))),
       coverage_(box, truth ? boxExplorableNodes(*truth, box, ColumnCoverage().cellM()) : std::set<ColumnIndex>{}),
-      metric_schedule_(spec.flight.physics.physics_hz, spec.mission.metric_rate_hz, "mission.metric_rate_hz") {
+      metric_schedule_(spec.flight.physics.physics_hz, spec.mission.metric_rate_hz, "mission.metric_rate_hz"),
+      truth_(truth) {
   LoopSetup setup;
   setup.explorer = explorer_.get();
   setup.truth = truth;
@@ -49,7 +51,20 @@ const TickRecord& Mission::step() {
   stages_.planning_ms += t.timing.planning_ms;
   if (t.map_updated) map_update_ms_.push_back(t.timing.map_ms);
   // The estimate → truth correction of the latest perception frame (true-frame coverage).
-  if (t.points) coverage_.setTrueFromEstimate(t.frame->T_W_C * t.points->T_W_C.inverse());
+  if (t.points) {
+    true_from_est_ = t.frame->T_W_C * t.points->T_W_C.inverse();
+    coverage_.setTrueFromEstimate(true_from_est_);
+    // The collision audit's record: the object each new SLAM point lies on (its anchor ray from
+    // the true camera pose of this frame, where new points are anchored).
+    if (truth_)
+      for (const SlamPoint& p : t.points->points)
+        if (p.anchor_tick == t.tick && audited_tracks_.insert(p.track_id).second) {
+          const PointTruth pt = evaluatePoint(p, t.frame->T_W_C, *truth_, loop_->camera());
+          if (!pt.has_surface) continue;
+          ++slam_points_by_object_[truth_->shapes()[pt.shape].object];
+          ++slam_points_by_geom_[truth_->shapes()[pt.shape].name];
+        }
+  }
   if (!t.completed) return t;
   // Coverage sample after this tick's map update.
   if (metric_schedule_.due(t.tick)) {
@@ -64,6 +79,8 @@ void Mission::sample(double t_s) {
   // The metric scores the method's free space (the method only exposes it).
   const std::vector<FreeSpaceElement> free_space = explorer_->freeSpace();
   coverage_.columns().markFreeSpace(free_space);
+  if (truth_)
+    for (const FreeSpaceElement& e : free_space) free_space_first_seen_s_.emplace(e.id, t_s);
   coverage_.sample(t_s, loop_->result().distance_flown_m, free_space);
   stages_.metric_ms += msSince(t0);
 }
@@ -89,6 +106,22 @@ MissionResult Mission::finish() {
   r.box_true_frame_explored_explorable_columns = int(coverage_.trueFrameExploredExplorableColumns());
   r.longest_no_gain = longestIntervalWithoutGain(r.coverage);
   r.map_hash = hashSnapshot(r.final_map);
+  // The collision audit: what the map knew at contact (the map is the final one: the run ended there).
+  if (r.flight.collision && truth_) {
+    CollisionAuditInput in;
+    for (const Shape& s : truth_->shapes())
+      if (s.name == r.flight.collision->world_geom) in.object = s.object;
+    in.contact_W = r.flight.collision->contact_position_m;
+    in.T_true_from_est = true_from_est_;
+    in.vio_drift_m = (loop_->estimate().T_W_B.translation() - loop_->groundTruth().T_W_B.translation()).norm();
+    in.slam_points_on_object = in.object.empty() ? 0 : slam_points_by_object_[in.object];
+    in.slam_points_on_part = slam_points_by_geom_[r.flight.collision->world_geom];
+    in.map = &r.final_map;
+    in.free_space_first_seen_s = &free_space_first_seen_s_;
+    in.commanded_speed_mps = loop_->reference().velocity_mps.norm();
+    in.since_last_path_s = loop_->lastPathTimeS() < 0 ? -1.0 : r.flight.collision->t_s - loop_->lastPathTimeS();
+    r.collision_audit = auditCollision(in, *truth_);
+  }
   r.run_hash = hashMission(r.flight.trajectory_hash, r.map_hash, r.columns, r.coverage);
   return r;
 }

@@ -6,11 +6,14 @@
 
 #include <map>
 #include <memory>
+#include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/common/aabb.h"
+#include "core/eval/collision_audit.h"
 #include "core/eval/mission_coverage.h"
 #include "core/planning/explorer.h"
 #include "tools/loop/closed_loop.h"
@@ -42,6 +45,7 @@ struct MissionResult {
   NoGainInterval longest_no_gain;          ///< longest stretch without coverage gain
   uint64_t map_hash = 0;                   ///< FNV-1a over the final map snapshot
   uint64_t run_hash = 0;                   ///< trajectory + map + coverage
+  std::optional<CollisionAudit> collision_audit;  ///< a collision in a world with ground truth
 };
 
 /// A mission in progress.
@@ -78,6 +82,13 @@ class Mission {
   StageTimes stages_;
   std::vector<std::pair<double, StageTimes>> stage_timeline_;
   std::vector<double> map_update_ms_;
+  // For the collision audit (worlds with ground truth only).
+  const WorldTruth* truth_ = nullptr;
+  std::set<uint64_t> audited_tracks_;                // SLAM points already attributed to an object
+  std::map<std::string, int> slam_points_by_object_; // SLAM points ever tracked, per object
+  std::map<std::string, int> slam_points_by_geom_;   // ... per part (world geom)
+  std::map<uint64_t, double> free_space_first_seen_s_;  // free-space element id → first sampled
+  Pose true_from_est_ = Pose::Identity();            // the latest frame's VIO → true correction
 };
 
 /// Runs a mission to its end.

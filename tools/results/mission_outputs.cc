@@ -71,6 +71,20 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
     const Shape* hit = shapeNamed(truth, c.world_geom);
     j["collision"]["object"] = hit ? nlohmann::json(hit->object.empty() ? hit->name : hit->object) : nlohmann::json(nullptr);
     j["collision"]["kind"] = hit ? nlohmann::json(obstacleKindName(hit->kind)) : nlohmann::json(nullptr);
+    if (r.collision_audit) {
+      const CollisionAudit& a = *r.collision_audit;
+      j["collision"]["audit"] = {
+          {"cause", a.cause},
+          {"slam_points_on_object", a.slam_points_on_object},
+          {"slam_points_on_part", a.slam_points_on_part},
+          {"map_points_on_object", a.map_points_on_object},
+          {"nearest_map_point_m", a.nearest_map_point_m < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.nearest_map_point_m)},
+          {"inside_free_space", a.inside_free_space},
+          {"free_space_since_s", a.free_space_since_s ? nlohmann::json(*a.free_space_since_s) : nlohmann::json(nullptr)},
+          {"vio_drift_m", a.vio_drift_m},
+          {"commanded_speed_mps", a.commanded_speed_mps},
+          {"since_last_path_s", a.since_last_path_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.since_last_path_s)}};
+    }
   } else {
     j["collision"] = nullptr;
   }

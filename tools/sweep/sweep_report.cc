@@ -250,6 +250,14 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
       const auto& c = m["collision"];
       hit = (c.contains("object") && c["object"].is_string() ? c["object"].get<std::string>() : c.value("world_geom", "?")) +
             (c.contains("kind") && c["kind"].is_string() ? " (" + c["kind"].get<std::string>() + ")" : "");
+      // The audit's cause and what the map knew (docs/planner.md, "Collision audit").
+      if (c.contains("audit") && c["audit"].is_object()) {
+        const auto& a = c["audit"];
+        hit += ": " + a.value("cause", std::string("?")) + " — " + std::to_string(a.value("slam_points_on_part", 0)) +
+               " SLAM points on the part, " + std::to_string(a.value("map_points_on_object", 0)) +
+               " map points on the object, drift " + fixed(number(a, "vio_drift_m"), 1) + " m" +
+               (a.value("inside_free_space", false) ? ", inside free space" : "");
+      }
     }
     const auto& cov = m["coverage"];
     o << "| " << r.id << " | " << m.value("status", std::string("?")) << " | " << fixed(number(cov, "area_m2"), 0)

@@ -160,3 +160,34 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+TEST(SweepReport, ACollisionsAuditIsOneLineOfTheRunsTable) {
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  ReportRun r;
+  r.id = "urban-full-s1";
+  r.labels = {{"world", "urban"}, {"method", "full"}};
+  r.status = "complete";
+  r.metrics = {{"status", "collided"},
+               {"coverage", {{"area_m2", 500.0}, {"box_share", 0.4}}},
+               {"collision",
+                {{"world_geom", "building_1_burned"},
+                 {"object", "building_1"},
+                 {"kind", "textureless"},
+                 {"audit",
+                  {{"cause", "seen-but-freed"}, {"slam_points_on_part", 41}, {"map_points_on_object", 144},
+                   {"vio_drift_m", 1.56}, {"inside_free_space", true}}}}}};
+  s.runs = {r};
+  const std::string md = reportMarkdown(s, reportRows(s));
+  EXPECT_NE(md.find("building_1 (textureless): seen-but-freed — 41 SLAM points on the part, 144 map points on the "
+                    "object, drift 1.6 m, inside free space"),
+            std::string::npos)
+      << md;
+}
+
+}  // namespace
+}  // namespace msb

@@ -1,0 +1,56 @@
+#include "core/eval/collision_audit.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace msb {
+
+namespace {
+
+// True if p lies in the element (a sphere, or a cell's cube for square footprints).
+bool contains(const FreeSpaceElement& e, const Vec3& p) {
+  if (e.footprint == FreeSpaceElement::Footprint::kSquare) return ((p - e.centre).cwiseAbs().array() <= e.radius).all();
+  return (p - e.centre).norm() <= e.radius;
+}
+
+}  // namespace
+
+CollisionAudit auditCollision(const CollisionAuditInput& in, const WorldTruth& truth,
+                              const CollisionAuditThresholds& th) {
+  CollisionAudit a;
+  a.slam_points_on_object = in.slam_points_on_object;
+  a.slam_points_on_part = in.slam_points_on_part;
+  a.vio_drift_m = in.vio_drift_m;
+  a.commanded_speed_mps = in.commanded_speed_mps;
+  a.since_last_path_s = in.since_last_path_s;
+  const Vec3 contact_est = in.T_true_from_est.inverse() * in.contact_W;
+  if (in.map) {
+    // The object's map points (true frame after the drift at contact) and the nearest point.
+    for (const Vec3& p_est : in.map->obstacles) {
+      const double d = (p_est - contact_est).norm();
+      a.nearest_map_point_m = a.nearest_map_point_m < 0 ? d : std::min(a.nearest_map_point_m, d);
+      const Vec3 p = in.T_true_from_est * p_est;
+      for (const Shape& s : truth.shapes())
+        if (s.object == in.object && std::abs(s.signedDistance(p)) <= th.on_object_m) {
+          ++a.map_points_on_object;
+          break;
+        }
+    }
+    // Free space at the contact, and since when.
+    for (const FreeSpaceElement& e : in.map->free_space) {
+      if (!contains(e, contact_est)) continue;
+      a.inside_free_space = true;
+      if (in.free_space_first_seen_s)
+        if (const auto it = in.free_space_first_seen_s->find(e.id); it != in.free_space_first_seen_s->end())
+          a.free_space_since_s = a.free_space_since_s ? std::min(*a.free_space_since_s, it->second) : it->second;
+    }
+  }
+  if (a.slam_points_on_part == 0) a.cause = "unseen";
+  else if (a.nearest_map_point_m >= 0 && a.nearest_map_point_m < th.clearance_m) a.cause = "planner";
+  else if (a.map_points_on_object == 0 || a.inside_free_space) a.cause = "seen-but-freed";
+  else if (a.vio_drift_m > th.clearance_m) a.cause = "drift";
+  else a.cause = "other";
+  return a;
+}
+
+}  // namespace msb
