@@ -10,6 +10,7 @@
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/results/output_files.h"
+#include "tools/sweep/findings.h"
 #include "tools/sweep/sweep_report.h"
 
 namespace msb {
@@ -60,7 +61,9 @@ int runReportCommand(int argc, char** argv) {
   const std::vector<ReportRow> rows = reportRows(results);
 
   StagedOutputDir staged(out, /*overwrite=*/true);
-  writeFileAtomic(staged.staging() / "report.md", reportMarkdown(results, rows));
+  const std::vector<FindingResult> findings = evaluateFindings(results, rows);
+  writeFileAtomic(staged.staging() / "report.md", reportMarkdown(results, rows) + findingsMarkdown(findings));
+  writeFileAtomic(staged.staging() / "findings.csv", findingsCsv(findings));
   writeFileAtomic(staged.staging() / "table.csv", reportTableCsv(results, rows));
   writeFileAtomic(staged.staging() / "report_runs.csv", reportRunsCsv(results));
   writeFileAtomic(staged.staging() / "make_figures.py", kReportFiguresScript);
@@ -81,8 +84,11 @@ int runReportCommand(int argc, char** argv) {
     }
   }
   staged.commit();
-  std::printf("report: %zu rows from %zu runs -> %s (report.md, table.csv); %s\n", rows.size(), results.runs.size(),
-              out.c_str(), figures.c_str());
+  int pass = 0, fail = 0;
+  for (const auto& f : findings) pass += f.status == "pass", fail += f.status == "fail";
+  std::printf("report: %zu rows from %zu runs -> %s (report.md, table.csv, findings.csv); findings %d pass, %d fail, "
+              "%zu not evaluated; %s\n",
+              rows.size(), results.runs.size(), out.c_str(), pass, fail, findings.size() - pass - fail, figures.c_str());
   return kExitOk;
 }
 

@@ -56,15 +56,6 @@ double number(const nlohmann::json& j, const char* key, double fallback = 0.0) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
 }
 
-// The method as a reader names it: the type, plus the switches that are off ("monospheres -ovde").
-std::string methodName(const nlohmann::json& m) {
-  std::string name = m.value("method", std::string("?"));
-  if (m.contains("switches") && m["switches"].is_object())
-    for (const auto& [k, v] : m["switches"].items())
-      if (v.is_boolean() && !v.get<bool>()) name += " -" + k;
-  return name;
-}
-
 std::string fixed(double v, int digits) {
   char b[64];
   std::snprintf(b, sizeof(b), "%.*f", digits, v);
@@ -82,6 +73,14 @@ std::string meanCell(const MeanOf& m, int runs, int digits, const std::string& u
 std::string csvNumber(const MeanOf& m, int digits) { return m.count ? fixed(m.mean, digits) : ""; }
 
 }  // namespace
+
+std::string reportMethodName(const nlohmann::json& m) {
+  std::string name = m.value("method", std::string("?"));
+  if (m.contains("switches") && m["switches"].is_object())
+    for (const auto& [k, v] : m["switches"].items())
+      if (v.is_boolean() && !v.get<bool>()) name += " -" + k;
+  return name;
+}
 
 std::optional<std::pair<double, double>> paperTableOne(const std::string& world, const std::string& method,
                                                        const nlohmann::json& switches) {
@@ -150,7 +149,7 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     ++row.complete;
     if (row.world.empty()) {
       row.world = m.value("world", std::string("?"));
-      row.method = methodName(m);
+      row.method = reportMethodName(m);
       if (const auto p = paperTableOne(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json())))
         row.paper_mean_m2 = p->first, row.paper_max_m2 = p->second;
     }
@@ -301,7 +300,7 @@ std::string reportRunsCsv(const SweepResults& results) {
       if (l == world) continue;
       series += (series.empty() ? "" : "-") + l;
     }
-    if (series.empty()) series = r.metrics.is_object() ? methodName(r.metrics) : "run";
+    if (series.empty()) series = r.metrics.is_object() ? reportMethodName(r.metrics) : "run";
     o << r.id << "," << world << "," << series << "," << r.status << ","
       << (r.metrics.is_object() ? r.metrics.value("status", std::string()) : "") << ","
       << (results.dir / "runs" / r.id).string() << "\n";

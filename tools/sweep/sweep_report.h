@@ -57,6 +57,10 @@ struct ReportRow {
 std::optional<std::pair<double, double>> paperTableOne(const std::string& world, const std::string& method,
                                                        const nlohmann::json& switches);
 
+/// The method as the report names it: the type, plus the switches that are off
+/// ("monospheres -ovde").
+std::string reportMethodName(const nlohmann::json& metrics);
+
 /// Reads DIR/sweep.json and every complete run's metrics.json and coverage.csv. Throws
 /// std::runtime_error naming the file when the directory is not a sweep directory.
 SweepResults loadSweepResults(const std::filesystem::path& dir);
