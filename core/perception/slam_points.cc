@@ -162,7 +162,7 @@ SlamPointsFrame SlamPointEstimator::update(const TrackFrame& tracks, const Pose&
     auto it = tracks_.find(t.id);
     TrackState s = it == tracks_.end() ? TrackState{} : std::move(it->second);
     const Observation o{t.pixel, T_W_C, tracks.tick};
-    if (s.window.empty() && !s.slam && it == tracks_.end()) s.first_tick = tracks.tick;
+    if (it == tracks_.end()) s.first_tick = tracks.tick;
     if (s.slam) {
       // The initialisation window stays (the EKF never loses that information; without it a
       // hover would leave only observations from one place); later ones are the most recent.
@@ -188,7 +188,9 @@ SlamPointsFrame SlamPointEstimator::update(const TrackFrame& tracks, const Pose&
       s.fail_count = 0;
       s.last = p;
     } else if (++s.fail_count > 1) {
-      s = TrackState{{}, s.first_tick, false, {}, 0.0, 0, {}};
+      const int64_t first_tick = s.first_tick;
+      s = TrackState{};
+      s.first_tick = first_tick;
       continue;
     } else {
       p = s.last;  // one failed update: the feature keeps its estimate
