@@ -10,8 +10,14 @@
 // atlas image; a lookup table built once maps every fisheye pixel to atlas coordinates (the
 // fixed-point bilinear remap of cv::remap). With framebuffer_per_face off, all rectangles are
 // drawn into MuJoCo's one off-screen buffer and read back at once (bench-sim compares the two).
-// The renderer draws from its own copy of the model: its visual settings never reach physics. Each fisheye pixel samples exactly one face, so there are no blending
-// seams; with ambient-only lighting, shading does not depend on the face either.
+// The renderer draws from its own copy of the model: its visual settings never reach physics.
+// Each fisheye pixel samples exactly one face, so there are no blending seams; with
+// ambient-only lighting, shading does not depend on the face either.
+//
+// Far clip: each face's frustum ends at the camera's clip_far_m (40 m, the reference's Gazebo
+// camera, which clips its cube faces the same way); the pixels nothing was drawn into are then
+// painted with the backdrop colour (the sky's, the fog's in fog, black without a sky) by one
+// quad at the far plane that passes the depth test only where the cleared depth remains.
 //
 // Resolution: at the image centre the fisheye needs fx pixels per radian; a face gives f_face at
 // its centre and 2·f_face at its edges. face_focal_ratio = 1 matches the front and up/down faces
