@@ -1,0 +1,31 @@
+#!/bin/sh
+# Publishes a sweep directory as committed results (docs/sweeps.md, "Publishing a sweep"):
+#   tools/publish-sweep.sh SWEEP_DIR DEST        e.g. tools/publish-sweep.sh /tmp/table1 results/table1
+# DEST receives the report (report.md with the findings, table.csv, findings.csv, the coverage
+# figures and the gallery), the sweep's index (sweep.json, runs.csv) and each run's metrics.json,
+# coverage.csv and config.yaml — no maps, trajectories or logs, so that it stays small. DEST is
+# replaced as a whole (written next to it, then renamed). Needs msbench on PATH or in build/bin.
+set -eu
+[ $# -eq 2 ] || { echo "usage: $0 SWEEP_DIR DEST" >&2; exit 2; }
+src=$1 dest=$2
+[ -f "$src/sweep.json" ] || { echo "$0: $src is not a sweep directory (no sweep.json)" >&2; exit 2; }
+here=$(dirname "$(readlink -f "$0")")
+msbench=$(command -v msbench || echo "$here/../build/bin/msbench")
+[ -x "$msbench" ] || { echo "$0: msbench not found (build it first)" >&2; exit 2; }
+tmp="$dest.publishing"
+rm -rf "$tmp"
+mkdir -p "$tmp/runs"
+"$msbench" report "$src" --out "$tmp/report"
+for f in report.md table.csv findings.csv gallery.png; do [ -f "$tmp/report/$f" ] && mv "$tmp/report/$f" "$tmp/"; done
+for f in "$tmp"/report/coverage_*.png; do [ -f "$f" ] && mv "$f" "$tmp/"; done
+rm -rf "$tmp/report"
+cp "$src/sweep.json" "$src/runs.csv" "$tmp/"
+for run in "$src"/runs/*/; do
+  case "$run" in *.partial/) continue ;; esac
+  id=$(basename "$run")
+  mkdir -p "$tmp/runs/$id"
+  for f in metrics.json coverage.csv config.yaml; do [ -f "$run/$f" ] && cp "$run/$f" "$tmp/runs/$id/"; done
+done
+rm -rf "$dest"
+mv "$tmp" "$dest"
+echo "published $(ls "$dest/runs" | wc -l) runs of $src -> $dest ($(du -sh "$dest" | cut -f1))"
