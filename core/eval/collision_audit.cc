@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace msb {
 
@@ -45,8 +46,21 @@ CollisionAudit auditCollision(const CollisionAuditInput& in, const WorldTruth& t
           a.free_space_since_s = a.free_space_since_s ? std::min(*a.free_space_since_s, it->second) : it->second;
     }
   }
+  // The free space at the contact where it was carved: the correction of its first sample.
+  if (a.free_space_since_s && in.true_from_est_history && !in.true_from_est_history->empty()) {
+    const auto& h = *in.true_from_est_history;
+    auto it = std::upper_bound(h.begin(), h.end(), *a.free_space_since_s,
+                               [](double t, const std::pair<double, Pose>& e) { return t < e.first; });
+    const Pose& then = it == h.begin() ? h.front().second : std::prev(it)->second;
+    const Vec3 carved_W = then * contact_est;
+    a.carved_clearance_m = truth.distance(carved_W);
+    a.drift_since_carved_m = (carved_W - in.contact_W).norm();
+  }
+  const bool drifted_onto = a.carved_clearance_m && *a.carved_clearance_m > th.clearance_m &&
+                            *a.drift_since_carved_m > th.clearance_m;
   if (a.slam_points_on_part == 0) a.cause = "unseen";
   else if (a.nearest_map_point_m >= 0 && a.nearest_map_point_m < th.clearance_m) a.cause = "planner";
+  else if (drifted_onto) a.cause = "drift";
   else if (a.map_points_on_object == 0 || a.inside_free_space) a.cause = "seen-but-freed";
   else if (a.vio_drift_m > th.clearance_m) a.cause = "drift";
   else a.cause = "other";

@@ -6,8 +6,11 @@
 //                   (the path ran through known points);
 //   seen-but-freed  the object gave SLAM points, but the map held none of them at contact
 //                   (deleted or never inserted), or its free space covered the contact;
-//   drift           the map held the object's points, but the VIO estimate had drifted by more
-//                   than the clearance (the map's copy was displaced from where the vehicle was);
+//   drift           the free space at the contact was truly free where it was carved (mapped
+//                   with the VIO correction of that moment) and the drift since has moved it onto
+//                   the object by more than the clearance; or the map held the object's points,
+//                   but the VIO estimate had drifted by more than the clearance (the map's copy
+//                   was displaced from where the vehicle was);
 //   other           none of these.
 // Evaluation only (ground truth): no method sees it.
 #pragma once
@@ -16,6 +19,8 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/eval/map_snapshot.h"
 #include "core/geometry/world_truth.h"
@@ -38,6 +43,8 @@ struct CollisionAuditInput {
   int slam_points_on_part = 0;        ///< ... on the part hit (the world geom)
   const ExplorerSnapshot* map = nullptr;  ///< the method's map at contact (VIO frame)
   const std::map<uint64_t, double>* free_space_first_seen_s = nullptr;  ///< element id → first seen
+  /// (t_s, VIO frame → true frame) over the run, ascending in time (the metric's samples).
+  const std::vector<std::pair<double, Pose>>* true_from_est_history = nullptr;
   double commanded_speed_mps = 0.0;   ///< the tracker's reference speed at contact
   double since_last_path_s = -1.0;    ///< time since the method's last path command (-1: none)
 };
@@ -50,6 +57,10 @@ struct CollisionAudit {
   double nearest_map_point_m = -1.0;  ///< from the contact (VIO frame); -1: the map has none
   bool inside_free_space = false;     ///< the contact lay inside a free-space element
   std::optional<double> free_space_since_s;  ///< since when (the earliest containing element)
+  /// Where the contact lay when that free space was carved (the VIO correction of then): its
+  /// distance from the true obstacles, and how far the drift since has moved it.
+  std::optional<double> carved_clearance_m;
+  std::optional<double> drift_since_carved_m;
   double vio_drift_m = 0.0;
   double commanded_speed_mps = 0.0;
   double since_last_path_s = -1.0;

@@ -65,6 +65,12 @@ NearestObstacle WorldTruth::nearest(const Vec3& p, double max_range_m) const {
   return best;
 }
 
+const Shape* WorldTruth::shapeNamed(const std::string& name) const {
+  for (const Shape& s : shapes_)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
 bool WorldTruth::inside(const Vec3& p) const {
   for (int i : unbounded_)
     if (shapes_[i].signedDistance(p) <= 0.0) return true;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/common/aabb.h"
@@ -39,6 +40,8 @@ class WorldTruth {
 
   /// All shapes (index = shape id).
   const std::vector<Shape>& shapes() const { return shapes_; }
+  /// The shape with this name (a MuJoCo geom name), or null if there is none.
+  const Shape* shapeNamed(const std::string& name) const;
   /// Nearest obstacle surface (signed distance; exact outside obstacles). Searches up to
   /// `max_range_m`; beyond it returns max_range_m and shape -1.
   NearestObstacle nearest(const Vec3& p, double max_range_m = 50.0) const;

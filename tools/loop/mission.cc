@@ -79,8 +79,10 @@ void Mission::sample(double t_s) {
   // The metric scores the method's free space (the method only exposes it).
   const std::vector<FreeSpaceElement> free_space = explorer_->freeSpace();
   coverage_.columns().markFreeSpace(free_space);
-  if (truth_)
+  if (truth_) {
     for (const FreeSpaceElement& e : free_space) free_space_first_seen_s_.emplace(e.id, t_s);
+    true_from_est_history_.emplace_back(t_s, true_from_est_);
+  }
   coverage_.sample(t_s, loop_->result().distance_flown_m, free_space);
   stages_.metric_ms += msSince(t0);
 }
@@ -109,8 +111,7 @@ MissionResult Mission::finish() {
   // The collision audit: what the map knew at contact (the map is the final one: the run ended there).
   if (r.flight.collision && truth_) {
     CollisionAuditInput in;
-    for (const Shape& s : truth_->shapes())
-      if (s.name == r.flight.collision->world_geom) in.object = s.object;
+    if (const Shape* hit = truth_->shapeNamed(r.flight.collision->world_geom)) in.object = hit->object;
     in.contact_W = r.flight.collision->contact_position_m;
     in.T_true_from_est = true_from_est_;
     in.vio_drift_m = (loop_->estimate().T_W_B.translation() - loop_->groundTruth().T_W_B.translation()).norm();
@@ -118,6 +119,7 @@ MissionResult Mission::finish() {
     in.slam_points_on_part = slam_points_by_geom_[r.flight.collision->world_geom];
     in.map = &r.final_map;
     in.free_space_first_seen_s = &free_space_first_seen_s_;
+    in.true_from_est_history = &true_from_est_history_;
     in.commanded_speed_mps = loop_->reference().velocity_mps.norm();
     in.since_last_path_s = loop_->lastPathTimeS() < 0 ? -1.0 : r.flight.collision->t_s - loop_->lastPathTimeS();
     r.collision_audit = auditCollision(in, *truth_);

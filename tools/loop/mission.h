@@ -89,6 +89,7 @@ class Mission {
   std::map<std::string, int> slam_points_by_geom_;   // ... per part (world geom)
   std::map<uint64_t, double> free_space_first_seen_s_;  // free-space element id → first sampled
   Pose true_from_est_ = Pose::Identity();            // the latest frame's VIO → true correction
+  std::vector<std::pair<double, Pose>> true_from_est_history_;  // ... at every metric sample
 };
 
 /// Runs a mission to its end.

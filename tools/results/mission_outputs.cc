@@ -24,16 +24,6 @@ nlohmann::json stagesJson(const StageTimes& s, double per) {
 }
 }  // namespace
 
-namespace {
-// The ground-truth shape a MuJoCo geom name belongs to (null if unknown).
-const Shape* shapeNamed(const WorldTruth* truth, const std::string& geom) {
-  if (!truth) return nullptr;
-  for (const Shape& s : truth->shapes())
-    if (s.name == geom) return &s;
-  return nullptr;
-}
-}  // namespace
-
 nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, const WorldTruth* truth) {
   const FlightResult& f = r.flight;
   nlohmann::json j;
@@ -68,7 +58,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
                       {"contact_position_m", vec(c.contact_position_m)}, {"vehicle_geom", c.vehicle_geom},
                       {"world_geom", c.world_geom}};
     // The object hit and what it looks like to the front end (report: collisions by kind).
-    const Shape* hit = shapeNamed(truth, c.world_geom);
+    const Shape* hit = truth ? truth->shapeNamed(c.world_geom) : nullptr;
     j["collision"]["object"] = hit ? nlohmann::json(hit->object.empty() ? hit->name : hit->object) : nlohmann::json(nullptr);
     j["collision"]["kind"] = hit ? nlohmann::json(obstacleKindName(hit->kind)) : nlohmann::json(nullptr);
     if (r.collision_audit) {
@@ -81,6 +71,8 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
           {"nearest_map_point_m", a.nearest_map_point_m < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.nearest_map_point_m)},
           {"inside_free_space", a.inside_free_space},
           {"free_space_since_s", a.free_space_since_s ? nlohmann::json(*a.free_space_since_s) : nlohmann::json(nullptr)},
+          {"carved_clearance_m", a.carved_clearance_m ? nlohmann::json(*a.carved_clearance_m) : nlohmann::json(nullptr)},
+          {"drift_since_carved_m", a.drift_since_carved_m ? nlohmann::json(*a.drift_since_carved_m) : nlohmann::json(nullptr)},
           {"vio_drift_m", a.vio_drift_m},
           {"commanded_speed_mps", a.commanded_speed_mps},
           {"since_last_path_s", a.since_last_path_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.since_last_path_s)}};

@@ -87,5 +87,38 @@ TEST(CollisionAudit, TheObjectMappedButTheEstimateDriftedIsDrift) {
   EXPECT_EQ(auditCollision(in, truth).cause, "other");
 }
 
+TEST(CollisionAudit, FreeSpaceCarvedWhereItWasFreeAndMovedOntoTheObjectByDriftIsDrift) {
+  const WorldTruth truth = wallWorld();
+  // A sphere carved at t = 40 s, when the estimate was exact, in front of the wall; by the
+  // contact at t = 100 s the estimate has drifted 2 m along +x: the vehicle, flying in that
+  // sphere as it believes, is 2 m further than it thinks and touches the wall.
+  Pose drifted = Pose::Identity();
+  drifted.translation() = Vec3(2, 0, 0);
+  ExplorerSnapshot map;
+  map.obstacles = {Vec3(2.5, 4, 2)};  // the wall's points, displaced by the drift, away from the contact
+  map.free_space = {{7, Vec3(2.5, 0, 2), 1.5, FreeSpaceElement::Footprint::kDisk}};
+  const std::map<uint64_t, double> first_seen = {{7, 40.0}};
+  const std::vector<std::pair<double, Pose>> history = {
+      {0.0, Pose::Identity()}, {40.0, Pose::Identity()}, {100.0, drifted}};
+  CollisionAuditInput in = contactAt(map, 20);
+  in.T_true_from_est = drifted;
+  in.vio_drift_m = 2.0;
+  in.free_space_first_seen_s = &first_seen;
+  in.true_from_est_history = &history;
+  const CollisionAudit a = auditCollision(in, truth);
+  EXPECT_TRUE(a.inside_free_space);
+  ASSERT_TRUE(a.carved_clearance_m && a.drift_since_carved_m);
+  EXPECT_NEAR(*a.drift_since_carved_m, 2.0, 1e-9);
+  EXPECT_NEAR(*a.carved_clearance_m, 2.0, 1e-9);  // (2.5, 0, 2) lies 2 m in front of the wall
+  EXPECT_EQ(a.cause, "drift");
+  // The same drift, but it had already happened when the sphere was carved: the sphere itself
+  // reached into the wall, which is the map's doing, not the drift's.
+  const std::vector<std::pair<double, Pose>> drifted_before = {{0.0, Pose::Identity()}, {30.0, drifted}};
+  in.true_from_est_history = &drifted_before;
+  const CollisionAudit b = auditCollision(in, truth);
+  EXPECT_NEAR(*b.drift_since_carved_m, 0.0, 1e-9);
+  EXPECT_EQ(b.cause, "seen-but-freed");
+}
+
 }  // namespace
 }  // namespace msb
