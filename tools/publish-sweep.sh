@@ -3,7 +3,8 @@
 #   tools/publish-sweep.sh SWEEP_DIR DEST        e.g. tools/publish-sweep.sh /tmp/table1 results/table1
 # DEST receives the report (report.md with the findings, table.csv, findings.csv, the coverage
 # figures and the gallery), the sweep's index (sweep.json, runs.csv) and each run's metrics.json,
-# coverage.csv and config.yaml — no maps, trajectories or logs, so that it stays small. DEST is
+# coverage.csv and config.yaml — no maps, trajectories or logs, so that it stays small; paths of the
+# machine it ran on are rewritten (the sweep directory to DEST, scenario files repository-relative). DEST is
 # replaced as a whole (written next to it, then renamed). Needs msbench on PATH or in build/bin.
 set -eu
 [ $# -eq 2 ] || { echo "usage: $0 SWEEP_DIR DEST" >&2; exit 2; }
@@ -26,6 +27,9 @@ for run in "$src"/runs/*/; do
   mkdir -p "$tmp/runs/$id"
   for f in metrics.json coverage.csv config.yaml; do [ -f "$run/$f" ] && cp "$run/$f" "$tmp/runs/$id/"; done
 done
+# Paths of the machine it ran on: the sweep directory becomes DEST, scenario files repository-relative.
+find "$tmp" \( -name report.md -o -name sweep.json -o -name config.yaml \) -exec \
+  sed -i -e "s|$src|$dest|g" -e 's|/[^ "]*/scenarios/|scenarios/|g' {} +
 rm -rf "$dest"
 mv "$tmp" "$dest"
 echo "published $(ls "$dest/runs" | wc -l) runs of $src -> $dest ($(du -sh "$dest" | cut -f1))"
