@@ -14,7 +14,7 @@ namespace msb {
 
 nlohmann::json versionInfo() {
   return {{"msbench", MSB_VERSION},
-          {"git_revision", MSB_GIT_REVISION},
+          {"git_revision", msbGitRevision()},
           {"mujoco", mj_versionString()},
           {"opencv", CV_VERSION},
           {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." +

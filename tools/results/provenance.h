@@ -9,6 +9,9 @@
 
 namespace msb {
 
+/// The git revision this binary was built from (12 hex digits, "-dirty" if the tracked files
+/// differed from it; taken at build time by cmake/GitRevision.cmake).
+const char* msbGitRevision();
 /// Versions of the libraries a result depends on (MuJoCo, OpenCV, Eigen, msbench git revision).
 nlohmann::json versionInfo();
 
