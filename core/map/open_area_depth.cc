@@ -12,6 +12,8 @@ void OpenAreaDepthConfig::validate(ConfigChecker& c) const {
   c.nonNegative("min_translation_m", min_translation_m);
   c.inRange("min_rotation_deg", min_rotation_deg, 0.0, 180.0);
   c.positive("min_parallax_rad", min_parallax_rad);
+  c.require(visibility == "recent_run" || visibility == "whole_buffer", "visibility",
+            "must be recent_run or whole_buffer (is '" + visibility + "')");
 }
 
 OpenAreaDepth::OpenAreaDepth(const OpenAreaDepthConfig& config, const FisheyeCamera& camera)
@@ -52,13 +54,19 @@ std::vector<Vec3> OpenAreaDepth::update(const Pose& T_W_C) {
   }
   std::vector<Vec3> active;
   const double min_cos = std::cos(config_.min_parallax_rad);
+  const bool whole_buffer = config_.visibility == "whole_buffer";
   for (const Vec3& X : candidates(T_W_C)) {
     // Camera centres that saw X in their central view, continuously back from now.
     std::vector<Vec3> centres = {T_W_C.translation()};
+    bool seen_by_all = true;
     for (auto it = poses_.rbegin(); it != poses_.rend(); ++it) {
-      if (!inCentralView(*it, X)) break;
+      if (!inCentralView(*it, X)) {
+        seen_by_all = false;
+        break;
+      }
       centres.push_back(it->translation());
     }
+    if (whole_buffer && !seen_by_all) continue;
     bool parallax = false;
     for (size_t a = 0; a < centres.size() && !parallax; ++a)
       for (size_t b = a + 1; b < centres.size() && !parallax; ++b) {

@@ -3,8 +3,8 @@
 // Sparse SLAM sees nothing in open areas (sky, far fields), so P_f would end where the tracked
 // points end. OVDE places virtual points at 15 m along a 6×6 grid of rays over the central 60 %
 // of the image and lets them extend P_f when the assumption "nothing within 15 m there" is
-// supported: the point stayed inside the central view of every buffered past pose, walking back
-// from now without a break (and in front of the camera), and some pair of those poses sees it
+// supported: the point stayed inside the central view (and in front of the camera) of every
+// buffered past pose, as the paper's p_{k-n} ... p_{k-1} (`visibility`), and some pair of those poses sees it
 // with ≥ 0.07 rad parallax, i.e. the camera translated enough that a real obstacle there would
 // have been triangulated. A pose buffer keeps up to 10 past poses, adding one when the camera
 // moved > 0.3 m or turned > 45° since the last one. Virtual points only extend free space:
@@ -12,6 +12,7 @@
 #pragma once
 
 #include <deque>
+#include <string>
 #include <vector>
 
 #include "core/camera/fisheye_camera.h"
@@ -29,6 +30,11 @@ struct OpenAreaDepthConfig {
   double min_translation_m = 0.3;      ///< add a pose after this translation ...
   double min_rotation_deg = 45.0;      ///< ... or this rotation
   double min_parallax_rad = 0.07;      ///< activation threshold
+  /// Which buffered poses must have seen a virtual point in their central view:
+  /// "whole_buffer" — every buffered pose, as the paper states it (§III-B: "at the current pose
+  /// p_k and also at previous poses p_{k-n}, ..., p_{k-1}");
+  /// "recent_run" — only the unbroken run back from now, of any length (msbench before 2026-11-25).
+  std::string visibility = "whole_buffer";
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -20,6 +20,7 @@ void ovdeKeys(Keys r, OpenAreaDepthConfig& c) {
   r.field("min_translation_m", c.min_translation_m);
   r.field("min_rotation_deg", c.min_rotation_deg);
   r.field("min_parallax_rad", c.min_parallax_rad);
+  r.field("visibility", c.visibility);
   r.finish();
 }
 

@@ -47,5 +47,40 @@ TEST(OpenAreaDepth, ContinuityBreakDeactivates) {
   EXPECT_TRUE(broken.update(camera(1.3, M_PI / 2)).empty());
 }
 
+TEST(OpenAreaDepth, WholeBufferNeedsEveryBufferedPoseToHaveSeenThePoint) {
+  const FisheyeCamera cam;
+  OpenAreaDepthConfig paper;  // the default
+  OpenAreaDepthConfig recent_cfg;
+  recent_cfg.visibility = "recent_run";
+  // Looked the other way first, then turned and flew sideways 1.6 m: the recent run back from
+  // now has the parallax, but the buffered poses from before the turn never saw these points.
+  auto fly = [&](OpenAreaDepth& ovde) {
+    ovde.update(camera(-0.8, -M_PI / 2));
+    ovde.update(camera(-0.4, -M_PI / 2));
+    std::vector<Vec3> active;
+    for (double x : {0.0, 0.4, 0.8, 1.2, 1.6}) active = ovde.update(camera(x, M_PI / 2));
+    return active;
+  };
+  OpenAreaDepth recent(recent_cfg, cam), whole(paper, cam);
+  EXPECT_FALSE(fly(recent).empty());
+  EXPECT_TRUE(fly(whole).empty());
+  // Once the buffer holds only poses that saw them (max_poses 4 here), they activate again.
+  paper.max_poses = 4;
+  OpenAreaDepth short_buffer(paper, cam);
+  EXPECT_FALSE(fly(short_buffer).empty());
+  // And on a straight run from the start both rules agree.
+  OpenAreaDepth a(recent_cfg, cam), b(OpenAreaDepthConfig{}, cam);
+  std::vector<Vec3> ra, rb;
+  for (int k = 0; k <= 6; ++k) ra = a.update(camera(0.4 * k, M_PI / 2)), rb = b.update(camera(0.4 * k, M_PI / 2));
+  EXPECT_EQ(ra.size(), rb.size());
+  EXPECT_GE(rb.size(), 18u);
+}
+
+TEST(OpenAreaDepth, UnknownVisibilityRuleIsAConfigError) {
+  OpenAreaDepthConfig c;
+  c.visibility = "sometimes";
+  EXPECT_THROW(OpenAreaDepth(c, FisheyeCamera{}), ConfigError);
+}
+
 }  // namespace
 }  // namespace msb
