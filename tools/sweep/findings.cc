@@ -40,6 +40,11 @@ std::string number(double v, int digits) {
   return b;
 }
 
+// "1 collision", "2 collisions".
+std::string counted(int n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
 const ReportRow* findRow(const std::vector<ReportRow>& rows, const std::string& world, const std::string& method) {
   for (const ReportRow& r : rows)
     if (r.world == world && r.method == method && r.area_m2.count > 0) return &r;
@@ -58,7 +63,7 @@ FindingResult evaluate(const Finding& f, const SweepResults& results, const std:
       if (!a || !b || b->area_m2.mean <= 0) break;
       const double ratio = a->area_m2.mean / b->area_m2.mean;
       out.measured = number(a->area_m2.mean, 0) + " / " + number(b->area_m2.mean, 0) + " = " + number(ratio, 2) +
-                     " (" + std::to_string(a->area_m2.count) + " and " + std::to_string(b->area_m2.count) + " runs)";
+                     " (" + std::to_string(a->area_m2.count) + " and " + counted(b->area_m2.count, "run") + ")";
       verdict(f.check == FindingCheck::kRatioAtLeast ? ratio >= f.threshold : ratio <= f.threshold);
       break;
     }
@@ -85,7 +90,7 @@ FindingResult evaluate(const Finding& f, const SweepResults& results, const std:
       for (const auto& m : f.methods)
         if (const ReportRow* r = findRow(rows, f.world, m)) crashes += r->crashes, runs += r->complete;
       if (runs == 0) break;
-      out.measured = std::to_string(crashes) + " collisions in " + std::to_string(runs) + " runs";
+      out.measured = counted(crashes, "collision") + " in " + counted(runs, "run");
       verdict(crashes == 0);
       break;
     }
@@ -99,7 +104,7 @@ FindingResult evaluate(const Finding& f, const SweepResults& results, const std:
           if (kind != "textureless" && kind != "thin") other += n;
       }
       if (runs == 0) break;
-      out.measured = std::to_string(crashes) + " collisions in " + std::to_string(runs) + " runs, " +
+      out.measured = counted(crashes, "collision") + " in " + counted(runs, "run") + ", " +
                      std::to_string(other) + " on other objects";
       verdict(other == 0);
       break;
@@ -123,7 +128,7 @@ FindingResult evaluate(const Finding& f, const SweepResults& results, const std:
         shares += (shares.empty() ? "" : ", ") + number(share, 2);
       }
       if (runs == 0) break;
-      out.measured = std::to_string(crashes) + " collisions in " + std::to_string(runs) + " runs" +
+      out.measured = counted(crashes, "collision") + " in " + counted(runs, "run") +
                      (shares.empty() ? "" : ", box share at contact " + shares);
       verdict(early == 0);
       break;

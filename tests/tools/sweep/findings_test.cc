@@ -41,7 +41,7 @@ FindingResult check(const std::string& id, const std::vector<ReportRun>& runs) {
 TEST(Findings, RatioAtLeastPassesAtTwiceTheGridAndFailsBelow) {
   auto r = check("ms_vs_grid_cave", {madeRun("cave", "monospheres", "", 5000), madeRun("cave", "grid_random", "", 2000)});
   EXPECT_EQ(r.status, "pass");
-  EXPECT_EQ(r.measured, "5000 / 2000 = 2.50 (1 and 1 runs)");
+  EXPECT_EQ(r.measured, "5000 / 2000 = 2.50 (1 and 1 run)");
   r = check("ms_vs_grid_cave", {madeRun("cave", "monospheres", "", 3000), madeRun("cave", "grid_random", "", 2000)});
   EXPECT_EQ(r.status, "fail");
   EXPECT_EQ(check("ms_vs_grid_cave", {madeRun("cave", "monospheres", "", 3000)}).status, "n/a");
@@ -74,7 +74,7 @@ TEST(Findings, NoCollisionInTheCave) {
   const auto r = check("cave_no_collision",
                        {madeRun("cave", "monospheres", "", 5000), madeRun("cave", "grid_random", "", 2000, "textured")});
   EXPECT_EQ(r.status, "fail");
-  EXPECT_EQ(r.measured, "1 collisions in 2 runs");
+  EXPECT_EQ(r.measured, "1 collision in 2 runs");
 }
 
 TEST(Findings, UrbanCollisionsOnlyOnTexturelessOrThinObjects) {
