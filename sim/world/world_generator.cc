@@ -45,7 +45,7 @@ double footprintRadius(const ObjectGroupSpec& g, const Vec3& s) {
   if (k == "tree") return std::max(0.5 * s.x(), 0.3);
   if (k == "rod" || k == "pole" || k == "pillar")
     return s.x() + s.z() * std::sin(g.tilt_max_deg * kDeg);
-  if (k == "building" && g.variant == "collapsed") return 0.5 * std::hypot(s.x(), s.y()) + 0.4 * s.z();
+  if (k == "building" && (g.variant == "collapsed" || g.variant == "collapsed_burned")) return 0.5 * std::hypot(s.x(), s.y()) + 0.4 * s.z();
   if (k == "gazebo" || k == "house") return 0.5 * std::hypot(s.x(), s.y()) + 0.5;
   return 0.5 * std::hypot(s.x(), s.y());
 }
@@ -66,10 +66,17 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
       b.addBox(id + "_burned", id, local(base, Vec3(0.5 * s.x() - 0.5 * lb, 0, 0.45 * s.z())),
                Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), ObstacleKind::kTextureless,
                Look::flat(0.12));
-    } else if (g.variant == "collapsed") {
-      // A lower remaining block, a slab leaning against it, and rubble.
-      b.addBox(id + "_block", id, local(base, Vec3(-0.15 * s.x(), 0, 0.3 * s.z())),
-               Vec3(0.35 * s.x(), 0.5 * s.y(), 0.3 * s.z()), T, look);
+    } else if (g.variant == "collapsed" || g.variant == "collapsed_burned") {
+      // A lower remaining block, a slab leaning against it, and rubble. `collapsed_burned`: the
+      // far end of the block (burned_fraction of its length, away from the slab) is burned,
+      // flat and textureless.
+      const double block_l = 0.7 * s.x();
+      const double lb = g.variant == "collapsed_burned" ? g.burned_fraction * block_l : 0.0;
+      b.addBox(id + "_block", id, local(base, Vec3(-0.15 * s.x() + 0.5 * lb, 0, 0.3 * s.z())),
+               Vec3(0.5 * (block_l - lb), 0.5 * s.y(), 0.3 * s.z()), T, look);
+      if (lb > 0.0)
+        b.addBox(id + "_burned", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lb, 0, 0.3 * s.z())),
+                 Vec3(0.5 * lb, 0.5 * s.y(), 0.3 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
       const double pitch = detail.uniform(25, 40) * kDeg;
       const Mat3 R = Eigen::AngleAxisd(-pitch, Vec3::UnitY()).toRotationMatrix();
       b.addBox(id + "_slab", id,
@@ -362,7 +369,7 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
         const double lb = g.burned_fraction * size.x();
         ruins.push_back({id, xy + Eigen::Rotation2Dd(yaw) * Vec2(0.5 * size.x() - 0.5 * lb, 0),
                          Vec2(0.5 * lb, 0.5 * size.y()), yaw});
-      } else if (g.kind == "building" && g.variant == "collapsed") {
+      } else if (g.kind == "building" && (g.variant == "collapsed" || g.variant == "collapsed_burned")) {
         ruins.push_back({id, xy, Vec2(0.5 * size.x(), 0.5 * size.y()), yaw});
       }
       // The start area is kept free of every object, fixed ones too: the nearest surface of what

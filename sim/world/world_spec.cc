@@ -33,7 +33,8 @@ void ObjectGroupSpec::validate(ConfigChecker& c) const {
             "unknown texture '" + texture + "'");
   c.inRange("tilt_max_deg", tilt_max_deg, 0.0, 60.0);
   c.inRange("burned_fraction", burned_fraction, 0.05, 0.95);
-  const bool variant_ok = variant.empty() || (kind == "building" && (variant == "burned" || variant == "collapsed"));
+  const bool variant_ok = variant.empty() || (kind == "building" && (variant == "burned" || variant == "collapsed" ||
+                                                              variant == "collapsed_burned"));
   c.require(variant_ok, "variant", "unknown variant '" + variant + "' for kind " + kind);
 }
 

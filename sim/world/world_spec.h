@@ -26,7 +26,7 @@ struct ObjectGroupSpec {
   std::optional<double> yaw_deg;     ///< fixed yaw; default random (region) or 0 (at)
   Vec3 size_min = Vec3::Zero();      ///< size range (kind-specific meaning, see docs/worlds.md)
   Vec3 size_max = Vec3::Zero();
-  std::string variant;               ///< kind-specific: building burned|collapsed, ...
+  std::string variant;               ///< kind-specific: building burned|collapsed|collapsed_burned, ...
   std::string texture;               ///< texture override (default per kind)
   double tilt_max_deg = 0.0;         ///< random tilt (rods, poles, rocks)
   double burned_fraction = 0.4;      ///< share of a burned building's length that is textureless

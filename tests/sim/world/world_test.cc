@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kWorlds = {"urban", "cave", "rooftops", "sparse"};
+const std::vector<std::string> kWorlds = {"urban", "cave", "rooftops", "sparse", "urban_town"};
 
 WorldSpec spec(const std::string& name) {
   return loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/" + name + "/spec.yaml");
@@ -85,7 +85,7 @@ TEST(Worlds, ADifferentSeedMovesObjectsButKeepsCountsAndSizes) {
       EXPECT_TRUE(a.shapes[i].size.isApprox(b.shapes[i].size, 1e-12)) << a.shapes[i].name;
       moved += (a.shapes[i].pose.translation() - b.shapes[i].pose.translation()).norm() > 0.1;
     }
-    EXPECT_GT(moved, 10) << name;
+    EXPECT_GE(moved, 8) << name;  // urban places only its 8 rods at random (at its ruins)
   }
 }
 
@@ -133,16 +133,19 @@ TEST(Worlds, GroundTruthRayCastsAgreeWithMuJoCoWithin1cm) {
   }
 }
 
-TEST(Worlds, StartPosesKeepAtLeast6mClearance) {
+TEST(Worlds, StartPosesKeepTheirSpecsClearance) {
   for (const auto& name : kWorlds) {
-    const GeneratedWorld g = generateWorld(spec(name));
+    const WorldSpec ws = spec(name);
+    // urban: the reference's spawn, 2.5 m beside an SUV (docs/worlds.md); the others 6 m.
+    EXPECT_GE(ws.start_clearance_m, name == std::string("urban") ? 2.0 : 6.0) << name;
+    const GeneratedWorld g = generateWorld(ws);
     std::vector<Shape> obstacles;
     for (const auto& s : g.shapes)
       if (s.type != ShapeType::kHalfSpace) obstacles.push_back(s);
     const WorldTruth truth(obstacles);
     for (double z = 0.3; z <= 3.0; z += 0.1) {
       const Vec3 p = g.start.translation() + Vec3(0, 0, z);
-      EXPECT_GE(truth.distance(p, 100.0), 6.0) << name << " at height " << z;
+      EXPECT_GE(truth.distance(p, 100.0), ws.start_clearance_m) << name << " at height " << z;
     }
     EXPECT_TRUE(g.exploration_box.contains(g.start.translation() + Vec3(0, 0, 1)));
   }
@@ -151,8 +154,48 @@ TEST(Worlds, StartPosesKeepAtLeast6mClearance) {
 TEST(Worlds, ListingShowsTheFourBenchmarkWorldsAndTheTestWorld) {
   std::vector<std::string> names;
   for (const auto& w : listWorlds()) names.push_back(w.name);
-  for (const auto& n : {"cave", "rooftops", "sparse", "test", "urban"})
+  for (const auto& n : {"cave", "rooftops", "sparse", "test", "urban", "urban_town"})
     EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
+}
+
+TEST(Worlds, ACollapsedBurnedBuildingHasATexturelessBurnedEndAndRodsStandAtIt) {
+  // The reference's collapsed houses (10.5 x 8.4 x 3.5 m) with half the remaining block burned.
+  WorldSpec s = spec("sparse");
+  s.objects.clear();
+  ObjectGroupSpec house;
+  house.kind = "building";
+  house.variant = "collapsed_burned";
+  house.burned_fraction = 0.5;
+  house.at = Vec2(20, 0);
+  house.size_min = house.size_max = Vec3(10.5, 8.4, 3.5);
+  s.objects.push_back(house);
+  ObjectGroupSpec rods;
+  rods.kind = "rod";
+  rods.count = 3;
+  rods.near = "ruins";
+  rods.size_min = Vec3(0.01, 0, 2.5);
+  rods.size_max = Vec3(0.03, 0, 5);
+  s.objects.push_back(rods);
+  const GeneratedWorld g = generateWorld(s);
+  const Shape* burned = nullptr;
+  const Shape* block = nullptr;
+  int rod_count = 0;
+  for (const auto& sh : g.shapes) {
+    if (sh.name == "building_0_burned") burned = &sh;
+    if (sh.name == "building_0_block") block = &sh;
+    rod_count += sh.kind == ObstacleKind::kThin;
+  }
+  ASSERT_TRUE(burned && block);
+  EXPECT_EQ(burned->kind, ObstacleKind::kTextureless);
+  EXPECT_EQ(block->kind, ObstacleKind::kTextured);
+  // The remaining block is 0.7 of the length, half of it burned, 0.6 of the height.
+  EXPECT_NEAR(2 * burned->size.x(), 0.5 * 0.7 * 10.5, 1e-9);
+  EXPECT_NEAR(2 * block->size.x(), 0.5 * 0.7 * 10.5, 1e-9);
+  EXPECT_NEAR(2 * burned->size.z(), 0.6 * 3.5, 1e-9);
+  EXPECT_EQ(rod_count, 3);
+  // A plain collapsed building has no burned part.
+  s.objects[0].variant = "collapsed";
+  for (const auto& sh : generateWorld(s).shapes) EXPECT_NE(sh.kind, ObstacleKind::kTextureless) << sh.name;
 }
 
 TEST(Worlds, UnknownObjectKindIsAConfigError) {

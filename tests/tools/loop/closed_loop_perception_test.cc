@@ -1,5 +1,5 @@
 // Perception in closed-loop flights on rendered images: tracks, SLAM-point accuracy against the
-// urban world's ground truth, textureless surfaces, tracking loss, determinism.
+// urban town's ground truth, textureless surfaces, tracking loss, determinism.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,10 +13,10 @@
 namespace msb {
 namespace {
 
-// A 3 m-radius circle centred on the urban start at 2.5 m, always facing west (the town):
+// A 3 m-radius circle centred on the urban town's start at 2.5 m, always facing west (the town):
 // inside the world's guaranteed 6 m start clearance, with parallax for the tracked points.
 FlightSpec urbanCircle(BuiltWorld* world) {
-  WorldSpec ws = loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban/spec.yaml");
+  WorldSpec ws = loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban_town/spec.yaml");
   *world = buildWorld(ws, (std::string(::testing::TempDir()) + "/msb_perception_cache"));
   FlightSpec s;
   s.world_path = world->world_xml;

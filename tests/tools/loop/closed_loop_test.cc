@@ -13,14 +13,14 @@
 namespace msb {
 namespace {
 
-// The urban world, built once into a test cache.
+// The urban town (the dense procedural town, the former `urban`), built once into a test cache.
 const BuiltWorld& urban() {
-  static const BuiltWorld world = buildWorld(loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban/spec.yaml"),
+  static const BuiltWorld world = buildWorld(loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban_town/spec.yaml"),
                                              std::string(::testing::TempDir()) + "/msb_loop_cache");
   return world;
 }
 
-// A short climb and a 6 m leg west of the urban start, on the null renderer and oracle features.
+// A short climb and a 6 m leg west of the town's start, on the null renderer and oracle features.
 FlightSpec oracleFlight() {
   FlightSpec s;
   s.world_path = urban().world_xml;
