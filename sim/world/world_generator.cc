@@ -39,13 +39,18 @@ std::string pick(const std::string& override_texture, const char* def) {
   return override_texture.empty() ? def : override_texture;
 }
 
+// A collapsed building, with or without a burned end.
+bool isCollapsed(const ObjectGroupSpec& g) {
+  return g.kind == "building" && (g.variant == "collapsed" || g.variant == "collapsed_burned");
+}
+
 // Horizontal radius that an object of this kind and size occupies (for placement).
 double footprintRadius(const ObjectGroupSpec& g, const Vec3& s) {
   const std::string& k = g.kind;
   if (k == "tree") return std::max(0.5 * s.x(), 0.3);
   if (k == "rod" || k == "pole" || k == "pillar")
     return s.x() + s.z() * std::sin(g.tilt_max_deg * kDeg);
-  if (k == "building" && (g.variant == "collapsed" || g.variant == "collapsed_burned")) return 0.5 * std::hypot(s.x(), s.y()) + 0.4 * s.z();
+  if (isCollapsed(g)) return 0.5 * std::hypot(s.x(), s.y()) + 0.4 * s.z();
   if (k == "gazebo" || k == "house") return 0.5 * std::hypot(s.x(), s.y()) + 0.5;
   return 0.5 * std::hypot(s.x(), s.y());
 }
@@ -66,7 +71,7 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
       b.addBox(id + "_burned", id, local(base, Vec3(0.5 * s.x() - 0.5 * lb, 0, 0.45 * s.z())),
                Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), ObstacleKind::kTextureless,
                Look::flat(0.12));
-    } else if (g.variant == "collapsed" || g.variant == "collapsed_burned") {
+    } else if (isCollapsed(g)) {
       // A lower remaining block, a slab leaning against it, and rubble. `collapsed_burned`: the
       // far end of the block (burned_fraction of its length, away from the slab) is burned,
       // flat and textureless.
@@ -369,7 +374,7 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
         const double lb = g.burned_fraction * size.x();
         ruins.push_back({id, xy + Eigen::Rotation2Dd(yaw) * Vec2(0.5 * size.x() - 0.5 * lb, 0),
                          Vec2(0.5 * lb, 0.5 * size.y()), yaw});
-      } else if (g.kind == "building" && (g.variant == "collapsed" || g.variant == "collapsed_burned")) {
+      } else if (isCollapsed(g)) {
         ruins.push_back({id, xy, Vec2(0.5 * size.x(), 0.5 * size.y()), yaw});
       }
       // The start area is kept free of every object, fixed ones too: the nearest surface of what

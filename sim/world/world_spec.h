@@ -29,7 +29,7 @@ struct ObjectGroupSpec {
   std::string variant;               ///< kind-specific: building burned|collapsed|collapsed_burned, ...
   std::string texture;               ///< texture override (default per kind)
   double tilt_max_deg = 0.0;         ///< random tilt (rods, poles, rocks)
-  double burned_fraction = 0.4;      ///< share of a burned building's length that is textureless
+  double burned_fraction = 0.4;      ///< textureless share of a burned building's length (collapsed_burned: of its remaining block)
   double base_z_m = 0.0;             ///< height of the object's base
   /// "ruins": placed at the ruins built before (burned parts and collapsed buildings), not in a
   /// region — rods as reinforcement bars standing out of the ruins and their rubble.

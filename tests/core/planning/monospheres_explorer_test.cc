@@ -76,7 +76,7 @@ TEST(MonoSpheresExplorer, TakesOffThenFliesForwardThenExplores) {
   const auto climb = f.explorer.plan(Fixture::at(Vec3(0, 0, kStartZ), 0.0, 0.0));
   ASSERT_TRUE(climb);
   ASSERT_EQ(climb->waypoints.size(), 1u);
-  // The reference's take-off: climb 3 m, then 5 m ahead (MonoSpheresPlannerConfig defaults).
+  // The take-off: climb 3 m (the reference's height), then 5 m ahead (docs/deviations.md).
   const MonoSpheresPlannerConfig defaults;
   ASSERT_EQ(defaults.takeoff_altitude_m, 3.0);
   ASSERT_EQ(defaults.start_forward_m, 5.0);
