@@ -53,7 +53,7 @@ struct StarDiscoveryConfig {
   double check_ahead_m = 5.0;         ///< predicted-path check length ...
   double check_clearance_m = 1.0;     ///< ... and clearance from occupied cells
   double takeoff_altitude_m = 3.0;    ///< climb above the start (the reference's 3 m)
-  double start_forward_m = 5.0;       ///< then fly this far ahead (docs/deviations.md)
+  double start_forward_m = 4.0;       ///< then fly this far ahead (the reference's goforward5m.sh: 4 m)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -85,7 +85,7 @@ struct MonoSpheresPlannerConfig {
   double reach_angle_deg = 90.0;            ///< ... and this heading difference
   double no_progress_timeout_s = 10.0;      ///< goal failed without 0.5 m progress for this long
   double takeoff_altitude_m = 3.0;          ///< climb to this height above the start (the reference's 3 m)
-  double start_forward_m = 5.0;             ///< then fly this far straight ahead (docs/deviations.md)
+  double start_forward_m = 4.0;             ///< then fly this far straight ahead (the reference's goforward5m.sh: 4 m)
   double idle_turn_deg = 90.0;              ///< without goals, turn in place by this much ...
   double idle_turn_period_s = 3.0;          ///< ... this often
 

@@ -76,10 +76,10 @@ TEST(MonoSpheresExplorer, TakesOffThenFliesForwardThenExplores) {
   const auto climb = f.explorer.plan(Fixture::at(Vec3(0, 0, kStartZ), 0.0, 0.0));
   ASSERT_TRUE(climb);
   ASSERT_EQ(climb->waypoints.size(), 1u);
-  // The take-off: climb 3 m (the reference's height), then 5 m ahead (docs/deviations.md).
+  // The take-off: climb 3 m (the reference's height), then 4 m ahead (its goforward5m.sh).
   const MonoSpheresPlannerConfig defaults;
   ASSERT_EQ(defaults.takeoff_altitude_m, 3.0);
-  ASSERT_EQ(defaults.start_forward_m, 5.0);
+  ASSERT_EQ(defaults.start_forward_m, 4.0);
   EXPECT_TRUE(climb->waypoints[0].position_m.isApprox(Vec3(0, 0, kStartZ + 3.0)));
   ASSERT_TRUE(climb->waypoints[0].heading_rad);
   EXPECT_DOUBLE_EQ(*climb->waypoints[0].heading_rad, 0.0);
@@ -88,10 +88,10 @@ TEST(MonoSpheresExplorer, TakesOffThenFliesForwardThenExplores) {
   EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(0, 0, 3), 0.0, 0.4, true)));
   const auto forward = f.explorer.plan(Fixture::at(Vec3(0, 0, 3), 0.0, 0.6, false));
   ASSERT_TRUE(forward);
-  EXPECT_TRUE(forward->waypoints[0].position_m.isApprox(Vec3(5, 0, kStartZ + 3.0)));
-  EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(5, 0, 3), 0.0, 0.8, true)));
+  EXPECT_TRUE(forward->waypoints[0].position_m.isApprox(Vec3(4, 0, kStartZ + 3.0)));
+  EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(4, 0, 3), 0.0, 0.8, true)));
   // Exploring on an empty map: outside every sphere, nothing to return to, no command.
-  EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(5, 0, 3), 0.0, 1.0, true)));
+  EXPECT_FALSE(f.explorer.plan(Fixture::at(Vec3(4, 0, 3), 0.0, 1.0, true)));
   EXPECT_EQ(f.counter("goals_chosen"), 0.0);
 }
 
