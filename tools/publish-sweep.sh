@@ -1,23 +1,38 @@
 #!/bin/sh
 # Publishes a sweep directory as committed results (docs/sweeps.md, "Publishing a sweep"):
 #   tools/publish-sweep.sh SWEEP_DIR DEST        e.g. tools/publish-sweep.sh /tmp/table1 results/table1
-# DEST receives the report (report.md with the findings, table.csv, findings.csv, the coverage
-# figures and the gallery), the sweep's index (sweep.json, runs.csv) and each run's metrics.json,
-# coverage.csv and config.yaml — no maps, trajectories or logs, so that it stays small; paths of the
-# machine it ran on are rewritten (the sweep directory to DEST, scenario files repository-relative). DEST is
-# replaced as a whole (written next to it, then renamed). Needs msbench on PATH or in build/bin.
+#   tools/publish-sweep.sh --report-only DEST    the report of published results written anew from
+#                                                their committed runs (no run re-done; the gallery,
+#                                                which needs the runs' pictures, is kept)
+# DEST receives the report (report.md with the findings, table.csv, findings.csv, the Table I and
+# coverage figures and the gallery), the sweep's index (sweep.json, runs.csv) and each run's
+# metrics.json, coverage.csv and config.yaml — no maps, trajectories or logs, so that it stays small;
+# paths of the machine it ran on are rewritten (the sweep directory to DEST, scenario files
+# repository-relative). DEST is replaced as a whole (written next to it, then renamed). Needs msbench
+# on PATH or in build/bin.
 set -eu
-[ $# -eq 2 ] || { echo "usage: $0 SWEEP_DIR DEST" >&2; exit 2; }
-src=$1 dest=$2
-[ -f "$src/sweep.json" ] || { echo "$0: $src is not a sweep directory (no sweep.json)" >&2; exit 2; }
 here=$(dirname "$(readlink -f "$0")")
 msbench=$(command -v msbench || echo "$here/../build/bin/msbench")
 [ -x "$msbench" ] || { echo "$0: msbench not found (build it first)" >&2; exit 2; }
+if [ $# -eq 2 ] && [ "$1" = "--report-only" ]; then
+  dest=$2
+  [ -f "$dest/sweep.json" ] && [ -d "$dest/runs" ] || { echo "$0: $dest is not published results (no sweep.json, runs/)" >&2; exit 2; }
+  tmp=$(mktemp -d "${TMPDIR:-/tmp}/msb_report.XXXXXX")
+  "$msbench" report "$dest" --out "$tmp/report"
+  for f in report.md table.csv findings.csv table1.png; do [ -f "$tmp/report/$f" ] && cp "$tmp/report/$f" "$dest/"; done
+  for f in "$tmp"/report/coverage_*.png; do [ -f "$f" ] && cp "$f" "$dest/"; done
+  rm -rf "$tmp"
+  echo "report of $dest written anew from its $(ls "$dest/runs" | wc -l) committed runs"
+  exit 0
+fi
+[ $# -eq 2 ] || { echo "usage: $0 SWEEP_DIR DEST | $0 --report-only DEST" >&2; exit 2; }
+src=$1 dest=$2
+[ -f "$src/sweep.json" ] || { echo "$0: $src is not a sweep directory (no sweep.json)" >&2; exit 2; }
 tmp="$dest.publishing"
 rm -rf "$tmp"
 mkdir -p "$tmp/runs"
 "$msbench" report "$src" --out "$tmp/report"
-for f in report.md table.csv findings.csv gallery.png; do [ -f "$tmp/report/$f" ] && mv "$tmp/report/$f" "$tmp/"; done
+for f in report.md table.csv findings.csv table1.png gallery.png; do [ -f "$tmp/report/$f" ] && mv "$tmp/report/$f" "$tmp/"; done
 for f in "$tmp"/report/coverage_*.png; do [ -f "$f" ] && mv "$f" "$tmp/"; done
 # The gallery (every run's top-down picture) as a 256-colour PNG: a third of the size, same look
 # (Pillow comes with python3-matplotlib; without it the gallery stays as written).

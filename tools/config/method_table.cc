@@ -253,13 +253,16 @@ const std::vector<MethodEntry>& methodTable() {
       methodEntry<MonoSpheresExplorer, MonoSpheresConfig>(
           kMonoSpheresType, "MonoSpheres: sphere map, frontier viewpoints, sphere-graph A* (the paper's method)",
           [](auto& k, MonoSpheresConfig& c) { monoSpheresKeys(k, c); },
-          {{"urban", "", 4919, 6081}, {"cave", "", 7627, 8006}, {"rooftops", "", 3760, 4606}, {"sparse", "", 5127, 5150},
-           {"urban", "fff", 2470, 3181}, {"urban", "dbof", 2308, 3081}, {"urban", "ovde", 747, 862},
-           {"urban", "vpb", 3697, 4175}}),
+          // Collisions (§V-C): two of the six urban runs; none in the cave; not given for the rest.
+          {{"urban", "", 4919, 6081, 6, 2}, {"cave", "", 7627, 8006, 3, 0}, {"rooftops", "", 3760, 4606, 3},
+           {"sparse", "", 5127, 5150, 3}, {"urban", "fff", 2470, 3181, 3}, {"urban", "dbof", 2308, 3081, 3},
+           {"urban", "ovde", 747, 862, 3}, {"urban", "vpb", 3697, 4175, 3}}),
       methodEntry<GridExplorer, GridExplorerConfig>(
           "grid_random", "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)",
           [](auto& k, GridExplorerConfig& c) { gridRandomKeys(k, c); },
-          {{"urban", "", 1911, 2306}, {"cave", "", 3171, 3375}, {"rooftops", "", 1360, 1556}, {"sparse", "", 2108, 2168}}),
+          // Collisions (§V-C): one of the six urban runs (a metal rod); none in the cave.
+          {{"urban", "", 1911, 2306, 6, 1}, {"cave", "", 3171, 3375, 3, 0}, {"rooftops", "", 1360, 1556, 3},
+           {"sparse", "", 2108, 2168, 3}}),
       methodEntry<StarDiscoveryExplorer, StarDiscoveryConfig>(
           "star_discovery", "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
           [](auto& k, StarDiscoveryConfig& c) { starDiscoveryKeys(k, c); }),

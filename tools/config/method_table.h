@@ -18,11 +18,15 @@
 
 namespace msb {
 
-/// A row of the paper's Table I that a method answers to (mean and max A over its runs, m²).
+/// A row of the paper's Table I that a method answers to (mean and max A over its runs, m²; the
+/// runs; the runs that ended in a collision where §V-C says how many). The one source of the
+/// paper's figures: the report's rows and its findings read them from here.
 struct PaperRow {
   const char* world;           ///< urban, cave, rooftops, sparse
   const char* switched_off;    ///< "" for the full method, else the one switch an ablation turns off
   double mean_area_m2, max_area_m2;
+  int runs = 0;                ///< Table I's "Runs"
+  int collisions = -1;         ///< runs ended by a collision (-1: the paper does not say)
 };
 
 /// One registered method.

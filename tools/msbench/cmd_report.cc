@@ -43,8 +43,11 @@ int runReportCommand(int argc, char** argv) {
   ArgParser args("msbench report",
                  "Report of a sweep directory: report.md (the paper's Table I layout with its figures\n"
                  "beside, box share, time to 50/90 % of the box, A per 100 m, longest time without\n"
-                 "gain, collisions by object kind, RTF), table.csv, and figures (coverage over time\n"
-                 "per world, a gallery of top-down maps) if python3 with matplotlib is available.");
+                 "gain, collisions by object kind, RTF; 95 % bootstrap intervals over the seeds,\n"
+                 "paired comparisons, the paper's findings as holds / fails / undecided), table.csv,\n"
+                 "findings.csv, and figures (Table I bars with intervals, coverage over time per\n"
+                 "world with a bootstrap band, a gallery of top-down maps) if python3 with\n"
+                 "matplotlib is available.");
   args.positional("DIR", "sweep directory (from msbench sweep)")
       .option("out", "", "report directory (default DIR/report; an earlier report there is replaced)")
       .flag("no-figures", "write the Markdown and CSV files only");
@@ -84,11 +87,11 @@ int runReportCommand(int argc, char** argv) {
     }
   }
   staged.commit();
-  int pass = 0, fail = 0;
-  for (const auto& f : findings) pass += f.status == "pass", fail += f.status == "fail";
-  std::printf("report: %zu rows from %zu runs -> %s (report.md, table.csv, findings.csv); findings %d pass, %d fail, "
-              "%zu not evaluated; %s\n",
-              rows.size(), results.runs.size(), out.c_str(), pass, fail, findings.size() - pass - fail, figures.c_str());
+  const FindingCounts c = countFindings(findings);
+  std::printf("report: %zu rows from %zu runs -> %s (report.md, table.csv, findings.csv); findings %d hold, %d fail, "
+              "%d undecided, %d not evaluated; %s\n",
+              rows.size(), results.runs.size(), out.c_str(), c.holds, c.fails, c.undecided, c.not_evaluated,
+              figures.c_str());
   return kExitOk;
 }
 

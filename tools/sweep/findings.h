@@ -1,9 +1,14 @@
-// The paper's qualitative findings as checks on a sweep's report (docs/sweeps.md, "Findings"):
-// one table of claims — which rows are compared, how, against which threshold, and the paper's
-// own figures — evaluated to ✓ / ✗ (or "n/a" when the sweep lacks the rows) with the numbers
-// behind each. A new finding is one entry of findingsTable().
+// The paper's qualitative findings as checks on a sweep's report (docs/sweeps.md, "Findings" and
+// "Intervals and verdicts"): one table of claims — which rows are compared, how, against which
+// threshold — evaluated to a three-way verdict: holds (the 95 % interval lies on the paper's side
+// of the threshold), fails (on the other side), undecided (it straddles; with the seeds per row
+// that would decide it at the observed spread), or "n/a" when the sweep lacks the rows. Counts
+// of events are rates with Wilson intervals, compared with the paper's count by Fisher's exact
+// test. The paper's figures come from the method table (one source). A new finding is one entry
+// of findingsTable().
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,7 +36,7 @@ struct Finding {
   std::vector<std::string> methods;
   std::vector<std::string> relations;  ///< kOrder only
   double threshold;
-  const char* paper;                 ///< the paper's own figures for it
+  const char* paper_note;            ///< the paper's words where its figures are not numbers of Table I ("" none)
 };
 
 /// The findings of the MonoSpheres paper (seed 001, §V-B and Table I).
@@ -40,18 +45,33 @@ const std::vector<Finding>& findingsTable();
 /// A finding evaluated on a sweep.
 struct FindingResult {
   const Finding* finding = nullptr;
-  std::string status;   ///< "pass", "fail" or "n/a" (rows missing)
-  std::string measured; ///< the numbers behind the verdict
+  std::string status;    ///< "holds", "fails", "undecided" or "n/a" (rows missing)
+  std::string measured;  ///< the numbers behind the verdict, intervals included
+  std::string paper;     ///< the paper's figures for it (from the method table) and its words
+  std::optional<stats::Estimate> estimate;  ///< the ratio, or the rate of events, with its interval
+  std::optional<double> p_value;            ///< Fisher's exact test against the paper's count
+  std::optional<int> seeds_to_decide;       ///< undecided ratios: seeds per row that would decide
+  int runs = 0;                             ///< runs behind the verdict
+  std::string note;                         ///< pairing, saturation
 };
 
 /// Evaluates every finding of `table` on the sweep's rows and runs.
 std::vector<FindingResult> evaluateFindings(const SweepResults& results, const std::vector<ReportRow>& rows,
                                             const std::vector<Finding>& table = findingsTable());
 
+/// How many findings hold, fail, are undecided, and could not be evaluated.
+struct FindingCounts {
+  int holds = 0, fails = 0, undecided = 0, not_evaluated = 0;
+};
+
+/// The verdicts of `findings` counted.
+FindingCounts countFindings(const std::vector<FindingResult>& findings);
+
 /// The "Findings" section of report.md.
 std::string findingsMarkdown(const std::vector<FindingResult>& findings);
 
-/// findings.csv text: id, claim, status, measured, threshold, paper.
+/// findings.csv text: id, claim, verdict, measured, estimate, ci_lo, ci_hi, n, threshold, p_value,
+/// seeds_to_decide, paper, note.
 std::string findingsCsv(const std::vector<FindingResult>& findings);
 
 }  // namespace msb

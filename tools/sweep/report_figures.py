@@ -2,13 +2,16 @@
 """Figures of a sweep report (msbench report writes this script into the report directory and runs
 it; run it again by hand with `python3 make_figures.py REPORT_DIR`).
 
-Reads REPORT_DIR/report_runs.csv (run id, world, series, status, run directory) and each complete
-run's coverage.csv and topdown.png, and writes:
-  coverage_<world>.png  explored area A over simulated time, one mean line and min-max band per
-                        series (method or variant), like the MonoSpheres paper's Fig. 8/9;
-                        a run that ended early (collision) keeps its final A to the end
+Reads REPORT_DIR/report_runs.csv (run id, world, series, status, run directory), REPORT_DIR/table.csv
+(the rows with their intervals) and each complete run's coverage.csv and topdown.png, and writes:
+  table1.png            each row's mean A with its 95 % bootstrap interval (the report's), beside
+                        the paper's Table I mean and max where the row exists
+  coverage_<world>.png  explored area A over simulated time, one mean line per series (method or
+                        variant) with the 95 % percentile bootstrap band of the mean over its runs
+                        (fixed resampling seed: the same figure every time), like the MonoSpheres
+                        paper's Fig. 8/9; a run that ended early (collision) keeps its final A
   gallery.png           every complete run's top-down map, labelled with its id
-Needs Debian's python3-matplotlib (apt-get install python3-matplotlib).
+Needs Debian's python3-matplotlib (apt-get install python3-matplotlib; it brings numpy).
 """
 import csv
 import os
@@ -16,6 +19,7 @@ import re
 import sys
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
@@ -42,6 +46,23 @@ def value_at(times, areas, t):
     return best
 
 
+RESAMPLE_SEED = 20261126  # fixed: the bands are the same every time the figures are drawn
+DRAWS = 2000
+
+
+def bootstrap_band(curves, level=0.95):
+    """Mean curve and the percentile bootstrap band of the mean over the runs (rows of curves)."""
+    data = np.asarray(curves, dtype=float)
+    mean = data.mean(axis=0)
+    if len(data) < 2:
+        return mean, mean, mean
+    rng = np.random.default_rng(RESAMPLE_SEED)
+    picks = rng.integers(0, len(data), size=(DRAWS, len(data)))
+    means = data[picks].mean(axis=1)
+    tail = (1.0 - level) / 2.0
+    return mean, np.quantile(means, tail, axis=0), np.quantile(means, 1.0 - tail, axis=0)
+
+
 def coverage_figures(out_dir, runs):
     worlds = sorted({r["world"] for r in runs})
     for world in worlds:
@@ -59,20 +80,55 @@ def coverage_figures(out_dir, runs):
         fig, ax = plt.subplots(figsize=(7, 4.2))
         for name in sorted(series):
             curves = [[value_at(t, a, g) for g in grid] for t, a in series[name]]
-            mean = [sum(c[k] for c in curves) / len(curves) for k in range(len(grid))]
-            lo = [min(c[k] for c in curves) for k in range(len(grid))]
-            hi = [max(c[k] for c in curves) for k in range(len(grid))]
-            (line,) = ax.plot(grid, mean, label=f"{name} ({len(curves)} runs)")
+            mean, lo, hi = bootstrap_band(curves)
+            (line,) = ax.plot(grid, mean, label=f"{name} (n = {len(curves)})")
             ax.fill_between(grid, lo, hi, color=line.get_color(), alpha=0.2, linewidth=0)
         ax.set_xlabel("simulated time (s)")
         ax.set_ylabel("explored area A (m²)")
-        ax.set_title(f"{os.path.basename(world)}: coverage over time (mean, min–max)")
+        ax.set_title(f"{os.path.basename(world)}: coverage over time (mean, 95 % bootstrap band)")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         fig.tight_layout()
         safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", os.path.basename(world))
         fig.savefig(os.path.join(out_dir, f"coverage_{safe}.png"), dpi=110)
         plt.close(fig)
+
+
+def number(text):
+    """A float of a CSV field, None when empty."""
+    return float(text) if text not in ("", None) else None
+
+
+def table_figure(out_dir):
+    """Each row's mean A with its interval, beside the paper's mean and max (table.csv)."""
+    path = os.path.join(out_dir, "table.csv")
+    if not os.path.exists(path):
+        return
+    with open(path, newline="") as f:
+        rows = [r for r in csv.DictReader(f) if number(r["mean_area_m2"]) is not None]
+    if not rows:
+        return
+    x = np.arange(len(rows))
+    mean = np.array([number(r["mean_area_m2"]) for r in rows])
+    lo = np.array([number(r["area_ci_lo"]) for r in rows])
+    hi = np.array([number(r["area_ci_hi"]) for r in rows])
+    fig, ax = plt.subplots(figsize=(max(6.0, 0.75 * len(rows) + 2), 4.5))
+    ax.bar(x - 0.2, mean, 0.4, yerr=[mean - lo, hi - mean], capsize=3, label="msbench mean A, 95 % CI")
+    paper = [(k, number(r["paper_mean_area_m2"]), number(r["paper_max_area_m2"])) for k, r in enumerate(rows)]
+    paper = [p for p in paper if p[1] is not None]
+    if paper:
+        ax.bar([k + 0.2 for k, _, _ in paper], [m for _, m, _ in paper], 0.4, color="0.6", label="paper mean A")
+        ax.scatter([k + 0.2 for k, _, _ in paper], [m for _, _, m in paper], marker="_", s=200, color="k",
+                   label="paper max A", zorder=3)
+    ax.set_xticks(x)
+    ax.set_xticklabels([f"{r['world']}\n{r['method']}" for r in rows], rotation=60, ha="right", fontsize=7)
+    ax.set_ylabel("explored area A (m²)")
+    ax.set_title("Table I: mean A per row (msbench with 95 % bootstrap interval; the paper)")
+    ax.grid(alpha=0.3, axis="y")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, "table1.png"), dpi=110)
+    plt.close(fig)
 
 
 def gallery(out_dir, runs):
@@ -100,6 +156,7 @@ def main():
     out_dir = sys.argv[1]
     with open(os.path.join(out_dir, "report_runs.csv"), newline="") as f:
         runs = [r for r in csv.DictReader(f) if r["status"] == "complete"]
+    table_figure(out_dir)
     coverage_figures(out_dir, runs)
     gallery(out_dir, runs)
     print(f"figures written to {out_dir}")

@@ -50,6 +50,7 @@ std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
 void add(MeanOf& m, double v) {
   m.mean = (m.mean * m.count + v) / (m.count + 1);
   ++m.count;
+  m.values.push_back(v);
 }
 
 double number(const nlohmann::json& j, const char* key, double fallback = 0.0) {
@@ -70,7 +71,41 @@ std::string meanCell(const MeanOf& m, int runs, int digits, const std::string& u
   return s;
 }
 
+// "mean [lo, hi]" with its 95 % bootstrap interval, "(k/n)" when only k of n runs have a value.
+std::string intervalCell(const MeanOf& m, int runs, int digits) {
+  if (m.count == 0) return "—";
+  const stats::Estimate e = estimateOf(m);
+  std::string s = fixed(e.value, digits) + " [" + fixed(e.ci.lo, digits) + ", " + fixed(e.ci.hi, digits) + "]";
+  if (m.count < runs) s += " (" + std::to_string(m.count) + "/" + std::to_string(runs) + ")";
+  return s;
+}
+
 std::string csvNumber(const MeanOf& m, int digits) { return m.count ? fixed(m.mean, digits) : ""; }
+
+// ",lo,hi" of a mean's interval for table.csv (empty fields: no value).
+std::string csvInterval(const MeanOf& m, int digits) {
+  if (m.count == 0) return ",,";
+  const stats::Estimate e = estimateOf(m);
+  std::string s = ",";  // appended, not "," + ...: GCC 12 warns falsely (-Wrestrict) on that form
+  s += fixed(e.ci.lo, digits);
+  s += ",";
+  s += fixed(e.ci.hi, digits);
+  return s;
+}
+
+// "k/n [lo, hi]" of a row's collisions, and the paper's k of n with Fisher's exact p where known.
+std::string collisionCell(const ReportRow& r) {
+  const stats::Interval ci = collisionRate(r);
+  std::string s = std::to_string(r.crashes) + "/" + std::to_string(r.complete) + " [" + fixed(ci.lo, 2) + ", " +
+                  fixed(ci.hi, 2) + "]";
+  return s;
+}
+
+std::string paperCollisionCell(const ReportRow& r) {
+  if (r.paper_collisions < 0 || r.paper_runs <= 0) return "—";
+  return std::to_string(r.paper_collisions) + "/" + std::to_string(r.paper_runs) + " (p = " +
+         fixed(stats::fisherExact(r.crashes, r.complete, r.paper_collisions, r.paper_runs), 2) + ")";
+}
 
 }  // namespace
 
@@ -82,8 +117,7 @@ std::string reportMethodName(const nlohmann::json& m) {
   return name;
 }
 
-std::optional<std::pair<double, double>> paperTableOne(const std::string& world, const std::string& method,
-                                                       const nlohmann::json& switches) {
+const PaperRow* paperRow(const std::string& world, const std::string& method, const nlohmann::json& switches) {
   // The rows come from the method table: a run answers to the row of its world and of the one
   // switch it turns off (none: the full method).
   std::vector<std::string> off;
@@ -91,12 +125,29 @@ std::optional<std::pair<double, double>> paperTableOne(const std::string& world,
     for (const auto& [k, v] : switches.items())
       if (v.is_boolean() && !v.get<bool>()) off.push_back(k);
   const MethodEntry* entry = findMethod(method);
-  if (!entry || off.size() > 1) return std::nullopt;
+  if (!entry || off.size() > 1) return nullptr;
   const std::string switched_off = off.empty() ? "" : off[0];
   for (const PaperRow& row : entry->paper_rows)
-    if (world == row.world && switched_off == row.switched_off) return std::pair{row.mean_area_m2, row.max_area_m2};
-  return std::nullopt;
+    if (world == row.world && switched_off == row.switched_off) return &row;
+  return nullptr;
 }
+
+const PaperRow* paperRowNamed(const std::string& world, const std::string& report_method) {
+  // "monospheres -ovde -dbof": the type, then the switches that are off.
+  std::istringstream words(report_method);
+  std::string type, word;
+  words >> type;
+  nlohmann::json switches = nlohmann::json::object();
+  while (words >> word)
+    if (word.size() > 1 && word[0] == '-') switches[word.substr(1)] = false;
+  return paperRow(world, type, switches);
+}
+
+bool isSaturated(const ReportRow& row) { return row.complete > 0 && 2 * row.saturated > row.complete; }
+
+stats::Estimate estimateOf(const MeanOf& m) { return stats::bootstrapMean(m.values); }
+
+stats::Interval collisionRate(const ReportRow& row) { return stats::wilson(row.crashes, row.complete); }
 
 SweepResults loadSweepResults(const fs::path& dir) {
   const fs::path index = dir / "sweep.json";
@@ -150,14 +201,21 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     if (row.world.empty()) {
       row.world = m.value("world", std::string("?"));
       row.method = reportMethodName(m);
-      if (const auto p = paperTableOne(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json())))
-        row.paper_mean_m2 = p->first, row.paper_max_m2 = p->second;
+      if (const PaperRow* p = paperRow(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json()))) {
+        row.paper_mean_m2 = p->mean_area_m2, row.paper_max_m2 = p->max_area_m2;
+        row.paper_runs = p->runs, row.paper_collisions = p->collisions;
+      }
     }
     const nlohmann::json& cov = m["coverage"];
     const double a = number(cov, "area_m2");
     add(row.area_m2, a);
+    row.area_seeds.push_back(run.seed);
     row.max_area_m2 = std::max(row.max_area_m2, a);
-    if (cov.contains("box_share") && cov["box_share"].is_number()) add(row.box_share, cov["box_share"].get<double>());
+    if (cov.contains("box_share") && cov["box_share"].is_number()) {
+      add(row.box_share, cov["box_share"].get<double>());
+      row.saturated += cov["box_share"].get<double>() >= kSaturatedBoxShare;
+    }
+    row.vio_lost += m.value("status", std::string()) == "vio_lost";
     if (const auto t = timeToBoxShare(run.coverage, 0.5)) add(row.t50_s, *t);
     if (const auto t = timeToBoxShare(run.coverage, 0.9)) add(row.t90_s, *t);
     const double flown = number(m, "distance_flown_m");
@@ -173,6 +231,137 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     }
   }
   return rows;
+}
+
+namespace {
+
+// The row's axis labels as the first cells of a Markdown table line.
+std::string labelCells(const ReportRow& r) {
+  std::string s = "|";
+  for (const auto& l : r.labels) s += " " + l + " |";
+  return s;
+}
+
+// A Markdown table head: the axes, then `columns`.
+std::string tableHead(const SweepResults& results, const std::vector<std::string>& columns) {
+  std::string head = "|", rule = "|";
+  for (const auto& a : results.axes) head += " " + a + " |", rule += " --- |";
+  for (const auto& c : columns) head += " " + c + " |", rule += " --- |";
+  return head + "\n" + rule + "\n";
+}
+
+// The paper's Table I layout, each mean with its interval.
+std::string tableOneSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
+  std::ostringstream o;
+  o << "## Table I layout\n\nMean A with its 95 % bootstrap interval over the row's seeds (percentile, "
+    << stats::kDraws << " resamples, fixed seed; docs/sweeps.md, \"Intervals and verdicts\"). Crashes: runs ended by "
+       "a collision, k/n with the Wilson 95 % interval of the rate; the paper's count where §V-C gives it, with "
+       "Fisher's exact p of the two counts.\n\n"
+    << tableHead(results, {"method type", "runs", "mean A (m²) [95 % CI]", "max A (m²)", "paper mean A", "paper max A",
+                           "crashes [95 % CI]", "paper crashes (p)"});
+  for (const ReportRow& r : rows) {
+    o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
+    if (r.complete < r.runs) o << " of " << r.runs;
+    o << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—")
+      << " | " << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | "
+      << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—") << " | " << (r.complete ? collisionCell(r) : "—") << " | "
+      << paperCollisionCell(r) << " |\n";
+  }
+  return o.str();
+}
+
+// What the paper does not report, with intervals.
+std::string beyondPaperSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
+  std::ostringstream o;
+  o << "\n## Beyond the paper\n\n"
+       "Box share: explored explorable columns of the exploration box / explorable columns. "
+       "t50 / t90: simulated time to 50 % / 90 % of the box (over the runs that got there: k/n). "
+       "A per 100 m: A / distance flown. Each with its 95 % bootstrap interval. No gain: longest stretch "
+       "without coverage gain (mean). Collisions by the kind of object hit; VIO lost: runs ended by lost "
+       "tracking.\n\n"
+    << tableHead(results, {"box share", "t50 (s)", "t90 (s)", "A per 100 m", "no gain (s)", "textureless", "thin",
+                           "textured", "other", "VIO lost", "RTF"});
+  for (const ReportRow& r : rows) {
+    auto kind = [&](const std::string& k) { return r.collisions_by_kind.count(k) ? r.collisions_by_kind.at(k) : 0; };
+    const int other = r.crashes - kind("textureless") - kind("thin") - kind("textured");
+    o << labelCells(r) << " " << intervalCell(r.box_share, r.complete, 2) << " | " << intervalCell(r.t50_s, r.complete, 0)
+      << " | " << intervalCell(r.t90_s, r.complete, 0) << " | " << intervalCell(r.area_per_100m, r.complete, 0) << " | "
+      << meanCell(r.longest_no_gain_s, r.complete, 0) << " | " << kind("textureless") << " | " << kind("thin") << " | "
+      << kind("textured") << " | " << other << " | " << r.vio_lost << " | " << meanCell(r.rtf, r.complete, 2) << " |\n";
+  }
+  return o.str();
+}
+
+// The worlds where a row fills the box: there the area cannot tell speeds apart; t50 / t90 can.
+std::string saturationSection(const std::vector<ReportRow>& rows) {
+  std::vector<std::string> worlds;
+  for (const ReportRow& r : rows)
+    if (isSaturated(r) && std::find(worlds.begin(), worlds.end(), r.world) == worlds.end()) worlds.push_back(r.world);
+  if (worlds.empty()) return "";
+  std::ostringstream o;
+  o << "\n## Where the box saturates\n\nA row is saturated when most of its runs explored at least "
+    << fixed(100 * kSaturatedBoxShare, 0)
+    << " % of the box. Its area then measures the box, not the method: a method twice as fast ends with the same A, "
+       "and the paper's mean / max A cannot be compared with it. Compare such rows by the time to 50 % and 90 % of "
+       "the box (95 % intervals over the runs that got there, k/n).\n\n"
+       "| world | method | saturated runs | t50 (s) | t90 (s) |\n| --- | --- | --- | --- | --- |\n";
+  for (const std::string& w : worlds)
+    for (const ReportRow& r : rows)
+      if (r.world == w)
+        o << "| " << w << " | " << r.method << (isSaturated(r) ? " (saturated)" : "") << " | " << r.saturated << "/"
+          << r.complete << " | " << intervalCell(r.t50_s, r.complete, 0) << " | " << intervalCell(r.t90_s, r.complete, 0)
+          << " |\n";
+  return o.str();
+}
+
+// "ratio [lo, hi]".
+std::string ratioText(const stats::Estimate& e) {
+  return fixed(e.value, 2) + " [" + fixed(e.ci.lo, 2) + ", " + fixed(e.ci.hi, 2) + "]";
+}
+
+// Each row against its world's first row, independently and paired on common seeds.
+std::string pairedSection(const std::vector<ReportRow>& rows) {
+  std::ostringstream body;
+  for (const ReportRow& r : rows) {
+    const ReportRow* ref = nullptr;
+    for (const ReportRow& c : rows)
+      if (c.world == r.world && c.area_m2.count > 0) { ref = &c; break; }
+    if (!ref || ref == &r || r.area_m2.count == 0 || !(ref->area_m2.mean > 0)) continue;
+    const PairedAreas p = pairedAreas(r, *ref);
+    body << "| " << r.world << " | " << r.method << " / " << ref->method << " | "
+         << ratioText(stats::bootstrapRatio(r.area_m2.values, ref->area_m2.values)) << " (" << r.area_m2.count << ", "
+         << ref->area_m2.count << ") | ";
+    if (p.a.size() >= 2 && stats::mean(p.b) > 0) {
+      const auto rho = stats::correlation(p.a, p.b);
+      body << ratioText(stats::bootstrapPairedRatio(p.a, p.b)) << " (" << p.a.size() << ") | "
+           << (rho ? fixed(*rho, 2) : "—") << " |\n";
+    } else {
+      body << "— | — |\n";
+    }
+  }
+  if (body.str().empty()) return "";
+  return "\n## Paired comparisons\n\nEach row's mean A over its world's first row's: independently (each row's "
+         "seeds resampled on their own) and paired (runs with the same seed resampled together; r: the correlation "
+         "of the pairs). Runs with the same seed share the world and every noise stream's seed; the pairing is "
+         "tightest between a method and its own ablation, which fly the same until the switch first acts "
+         "(docs/sweeps.md, \"Intervals and verdicts\").\n\n"
+         "| world | rows | ratio, independent [95 % CI] (runs) | ratio, paired [95 % CI] (seeds) | r |\n"
+         "| --- | --- | --- | --- | --- |\n" + body.str();
+}
+
+}  // namespace
+
+PairedAreas pairedAreas(const ReportRow& a, const ReportRow& b) {
+  PairedAreas p;
+  for (size_t i = 0; i < a.area_seeds.size(); ++i)
+    for (size_t j = 0; j < b.area_seeds.size(); ++j)
+      if (a.area_seeds[i] == b.area_seeds[j]) {
+        p.seeds.push_back(a.area_seeds[i]);
+        p.a.push_back(a.area_m2.values[i]);
+        p.b.push_back(b.area_m2.values[j]);
+        break;
+      }
+  return p;
 }
 
 std::string reportMarkdown(const SweepResults& results, const std::vector<ReportRow>& rows) {
@@ -200,41 +389,8 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     }
     o << "\n";
   }
-  // The Table I layout first.
-  o << "## Table I layout\n\n|";
-  for (const auto& a : results.axes) o << " " << a << " |";
-  o << " method type | runs | mean A (m²) | max A (m²) | paper mean A | paper max A | crashes |\n|";
-  for (size_t k = 0; k < results.axes.size() + 7; ++k) o << " --- |";
-  o << "\n";
-  for (const ReportRow& r : rows) {
-    o << "|";
-    for (const auto& l : r.labels) o << " " << l << " |";
-    o << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
-    if (r.complete < r.runs) o << " of " << r.runs;
-    o << " | " << meanCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—") << " | "
-      << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | " << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—")
-      << " | " << r.crashes << " |\n";
-  }
-  // Then what the paper does not report.
-  o << "\n## Beyond the paper\n\n"
-       "Box share: explored explorable columns of the exploration box / explorable columns (mean). "
-       "t50 / t90: simulated time to 50 % / 90 % of the box (mean over the runs that got there: k/n). "
-       "A per 100 m: A / distance flown. No gain: longest stretch without coverage gain. "
-       "Collisions by the kind of object hit.\n\n|";
-  for (const auto& a : results.axes) o << " " << a << " |";
-  o << " box share | t50 (s) | t90 (s) | A per 100 m | no gain (s) | textureless | thin | textured | other | RTF |\n|";
-  for (size_t k = 0; k < results.axes.size() + 10; ++k) o << " --- |";
-  o << "\n";
-  for (const ReportRow& r : rows) {
-    o << "|";
-    for (const auto& l : r.labels) o << " " << l << " |";
-    auto kind = [&](const std::string& k) { return r.collisions_by_kind.count(k) ? r.collisions_by_kind.at(k) : 0; };
-    const int other = r.crashes - kind("textureless") - kind("thin") - kind("textured");
-    o << " " << meanCell(r.box_share, r.complete, 2) << " | " << meanCell(r.t50_s, r.complete, 0) << " | "
-      << meanCell(r.t90_s, r.complete, 0) << " | " << meanCell(r.area_per_100m, r.complete, 0) << " | "
-      << meanCell(r.longest_no_gain_s, r.complete, 0) << " | " << kind("textureless") << " | " << kind("thin") << " | "
-      << kind("textured") << " | " << other << " | " << meanCell(r.rtf, r.complete, 2) << " |\n";
-  }
+  o << tableOneSection(results, rows) << beyondPaperSection(results, rows) << saturationSection(rows)
+    << pairedSection(rows);
   // Every run, with its collision.
   o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | tracked (mean) | drift (m) | collision |\n"
        "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
@@ -273,7 +429,9 @@ std::string reportTableCsv(const SweepResults& results, const std::vector<Report
   for (const auto& a : results.axes) o << a << ",";
   o << "world,method,runs,complete,failed,crashes,mean_area_m2,max_area_m2,paper_mean_area_m2,paper_max_area_m2,"
        "mean_box_share,t50_s,t50_runs,t90_s,t90_runs,area_per_100m,longest_no_gain_s,collisions_textureless,"
-       "collisions_thin,collisions_textured,mean_rtf\n";
+       "collisions_thin,collisions_textured,mean_rtf,area_ci_lo,area_ci_hi,box_share_ci_lo,box_share_ci_hi,"
+       "t50_ci_lo,t50_ci_hi,t90_ci_lo,t90_ci_hi,area_per_100m_ci_lo,area_per_100m_ci_hi,collision_rate_ci_lo,"
+       "collision_rate_ci_hi,paper_runs,paper_collisions,collisions_fisher_p,vio_lost,saturated_runs,saturated\n";
   for (const ReportRow& r : rows) {
     for (const auto& l : r.labels) o << l << ",";
     auto kind = [&](const std::string& k) { return r.collisions_by_kind.count(k) ? r.collisions_by_kind.at(k) : 0; };
@@ -283,7 +441,15 @@ std::string reportTableCsv(const SweepResults& results, const std::vector<Report
       << "," << csvNumber(r.box_share, 4) << "," << csvNumber(r.t50_s, 1) << "," << r.t50_s.count << ","
       << csvNumber(r.t90_s, 1) << "," << r.t90_s.count << "," << csvNumber(r.area_per_100m, 1) << ","
       << csvNumber(r.longest_no_gain_s, 1) << "," << kind("textureless") << "," << kind("thin") << ","
-      << kind("textured") << "," << csvNumber(r.rtf, 3) << "\n";
+      << kind("textured") << "," << csvNumber(r.rtf, 3) << csvInterval(r.area_m2, 1) << csvInterval(r.box_share, 4)
+      << csvInterval(r.t50_s, 1) << csvInterval(r.t90_s, 1) << csvInterval(r.area_per_100m, 1);
+    const stats::Interval rate = collisionRate(r);
+    o << "," << (r.complete ? fixed(rate.lo, 4) + "," + fixed(rate.hi, 4) : std::string(","));
+    const bool paper_count = r.paper_collisions >= 0 && r.paper_runs > 0;
+    o << "," << (r.paper_runs ? std::to_string(r.paper_runs) : "") << ","
+      << (paper_count ? std::to_string(r.paper_collisions) : "") << ","
+      << (paper_count ? fixed(stats::fisherExact(r.crashes, r.complete, r.paper_collisions, r.paper_runs), 4) : "")
+      << "," << r.vio_lost << "," << r.saturated << "," << (isSaturated(r) ? "yes" : "no") << "\n";
   }
   return o.str();
 }

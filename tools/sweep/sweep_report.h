@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/eval/coverage_sample.h"
+#include "tools/config/method_table.h"
+#include "tools/sweep/statistics.h"
 
 namespace msb {
 
@@ -35,27 +37,43 @@ struct SweepResults {
   std::vector<ReportRun> runs;
 };
 
-/// A mean over the runs where a quantity exists, and how many runs that is.
+/// A mean over the runs where a quantity exists, how many runs that is, and their values (in run
+/// order; what the intervals resample).
 struct MeanOf {
   double mean = 0.0;
   int count = 0;  ///< runs that contributed (0: no value)
+  std::vector<double> values;
 };
+
+/// The share of box explored above which a run counts as having filled the box.
+inline constexpr double kSaturatedBoxShare = 0.95;
 
 /// One row of the table: the runs sharing all axis labels.
 struct ReportRow {
   std::vector<std::string> labels;  ///< one per axis, in axis order
   std::string world, method;        ///< from the runs' metrics (method incl. switched-off switches)
   int runs = 0, complete = 0, failed = 0, crashes = 0;  ///< crashes: runs that collided
+  int vio_lost = 0;    ///< runs ended because the VIO lost track
+  int saturated = 0;   ///< runs whose box share reached kSaturatedBoxShare
   MeanOf area_m2, box_share, t50_s, t90_s, area_per_100m, longest_no_gain_s, rtf;
+  std::vector<uint64_t> area_seeds;  ///< the seed of each value of area_m2 (pairing across rows)
   double max_area_m2 = 0.0;
   std::map<std::string, int> collisions_by_kind;  ///< textured / textureless / thin / ground / unknown
   std::optional<double> paper_mean_m2, paper_max_m2;
+  int paper_runs = 0;          ///< 0: no paper row
+  int paper_collisions = -1;   ///< -1: the paper does not say
 };
 
-/// The paper's Table I mean and max A for a world and a method with its switches (monospheres
-/// with one of ovde/dbof/fff/vpb off = the ablation rows; grid_random = Grid-Based).
-std::optional<std::pair<double, double>> paperTableOne(const std::string& world, const std::string& method,
-                                                       const nlohmann::json& switches);
+/// Whether most of a row's complete runs filled the exploration box (its area then no longer
+/// tells a faster method from a slower one: compare t50 / t90 instead).
+bool isSaturated(const ReportRow& row);
+
+/// The paper's Table I row of a world and a method with its switches (monospheres with one of
+/// ovde/dbof/fff/vpb off = the ablation rows; grid_random = Grid-Based), or null.
+const PaperRow* paperRow(const std::string& world, const std::string& method, const nlohmann::json& switches);
+
+/// The same for a method as the report names it ("monospheres -ovde").
+const PaperRow* paperRowNamed(const std::string& world, const std::string& report_method);
 
 /// The method as the report names it: the type, plus the switches that are off
 /// ("monospheres -ovde").
@@ -70,6 +88,21 @@ std::optional<double> timeToBoxShare(const std::vector<CoverageSample>& coverage
 
 /// The table rows, in the order their first run appears.
 std::vector<ReportRow> reportRows(const SweepResults& results);
+
+/// The mean of `m` with its bootstrap interval over the runs' values (count must be > 0).
+stats::Estimate estimateOf(const MeanOf& m);
+
+/// A row's collision rate: Wilson interval of crashes of complete runs.
+stats::Interval collisionRate(const ReportRow& row);
+
+/// Two rows' areas on their common seeds, in the first row's run order.
+struct PairedAreas {
+  std::vector<uint64_t> seeds;
+  std::vector<double> a, b;
+};
+
+/// The areas of `a` and `b` from runs with the same seed.
+PairedAreas pairedAreas(const ReportRow& a, const ReportRow& b);
 
 /// report.md text: the table and one line per failed run.
 std::string reportMarkdown(const SweepResults& results, const std::vector<ReportRow>& rows);

@@ -84,11 +84,20 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   EXPECT_FALSE(rows[2].paper_mean_m2.has_value());
   // The Markdown names every row and the failed run; the CSV has a line per row.
   const std::string md = reportMarkdown(s, rows);
-  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 700 | 800 | 4919 | 6081 | 1 |"), std::string::npos) << md;
+  // Two runs (600, 800): the bootstrap means are 600, 700, 800 with probabilities 1/4, 1/2, 1/4.
+  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 700 [600, 800] | 800 | 4919 | 6081 | 1/2 [0.09, 0.91] | "
+                    "2/6 (p = 1.00) |"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(full.paper_runs, 6);
+  EXPECT_EQ(full.paper_collisions, 2);
+  EXPECT_FALSE(isSaturated(full));
   EXPECT_NE(md.find("| urban-full-s3 | failed |"), std::string::npos) << md;
   const std::string csv = reportTableCsv(s, rows);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
-  EXPECT_EQ(paperTableOne("cave", "grid_random", nlohmann::json::object())->first, 3171.0);
+  EXPECT_EQ(paperRow("cave", "grid_random", nlohmann::json::object())->mean_area_m2, 3171.0);
+  EXPECT_EQ(paperRowNamed("urban", "monospheres -ovde")->mean_area_m2, 747.0);
+  EXPECT_EQ(paperRowNamed("urban", "monospheres -ovde -dbof"), nullptr);
 }
 
 // Rewrites one run's metrics.json with a change.
@@ -124,6 +133,7 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
     EXPECT_TRUE(fs::exists(out / "report" / "gallery.png")) << readText(d / "log_report");
     EXPECT_GT(fs::file_size(out / "report" / "coverage_world.xml.png"), 1000u)
         << readText(d / "log_report");
+    EXPECT_GT(fs::file_size(out / "report" / "table1.png"), 1000u) << readText(d / "log_report");
   } else {
     EXPECT_NE(readText(d / "log_report").find("apt-get install python3-matplotlib"), std::string::npos);
   }
