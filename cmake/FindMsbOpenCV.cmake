@@ -3,7 +3,7 @@
 # meta package, which would pull in highgui/Qt; highgui must never be linked (it breaks the
 # OSMesa GL lookup), so it is deliberately not offered here.
 find_path(MsbOpenCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4)
-set(_msb_cv_modules core imgproc imgcodecs video features2d calib3d flann)
+set(_msb_cv_modules core imgproc video features2d calib3d flann)
 set(MsbOpenCV_FOUND TRUE)
 foreach(m IN LISTS _msb_cv_modules)
   find_library(MsbOpenCV_${m}_LIBRARY opencv_${m})

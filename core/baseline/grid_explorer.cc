@@ -17,8 +17,7 @@ void GridExplorerConfig::validate(ConfigChecker& c) const {
   c.positive("reach_distance_m", reach_distance_m);
   c.nonNegative("check_ahead_m", check_ahead_m);
   c.nonNegative("check_clearance_m", check_clearance_m);
-  c.inRange("takeoff_altitude_m", takeoff_altitude_m, 0.3, 50.0);
-  c.nonNegative("start_forward_m", start_forward_m);
+  validateTakeoff(c);
 }
 
 GridExplorer::GridExplorer(const GridExplorerConfig& config, const ExplorerContext& context)
@@ -27,7 +26,7 @@ GridExplorer::GridExplorer(const GridExplorerConfig& config, const ExplorerConte
       map_(config.map),
       planner_(config.planner, context.exploration_box, config.map.resolution_m),
       goal_rng_(context.seed, "baseline_goals"),
-      takeoff_(context.start, config.takeoff_altitude_m, config.start_forward_m) {
+      takeoff_(context.start, config) {
   for (const char* k : {"goals_chosen", "goals_reached", "goals_timed_out", "goals_idle", "paths_sent",
                         "paths_to_closest_cell", "paths_failed", "blocked_stops", "map_points"})
     counters_[k] = 0;
@@ -54,11 +53,7 @@ Vec3 GridExplorer::drawGoal(const Vec3& p) {
 }
 
 PathCommand GridExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
-  PathCommand cmd{s.tick, std::move(w)};
-  last_path_ = {s.reference.position_m};
-  for (const auto& wp : cmd.waypoints) last_path_.push_back(wp.position_m);
-  ++counters_["paths_sent"];
-  return cmd;
+  return sendPath(s, std::move(w), last_path_, counters_);
 }
 
 std::optional<PathCommand> GridExplorer::plan(const VehicleState& s) {

@@ -25,13 +25,13 @@
 #include "core/baseline/grid_map.h"
 #include "core/baseline/grid_path_planner.h"
 #include "core/common/rng.h"
-#include "core/planning/explorer.h"
-#include "core/planning/takeoff.h"
+#include "core/explorer/explorer.h"
+#include "core/explorer/takeoff.h"
 
 namespace msb {
 
 /// Grid explorer settings (reference values; see docs/deviations.md for the replanning rate).
-struct GridExplorerConfig {
+struct GridExplorerConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, start_forward_m
   GridMapConfig map;                  ///< OctoMap insertion
   GridPlannerConfig planner;          ///< A* and clearance
   double goal_period_s = 1.0;         ///< goals are (re)drawn at most this often
@@ -43,8 +43,6 @@ struct GridExplorerConfig {
   double reach_distance_m = 1.0;      ///< a goal this close counts as reached
   double check_ahead_m = 5.0;         ///< predicted-path check length ...
   double check_clearance_m = 1.0;     ///< ... and clearance from occupied cells
-  double takeoff_altitude_m = 3.0;    ///< climb above the start (the reference's 3 m)
-  double start_forward_m = 4.0;       ///< then fly this far ahead (the reference's goforward5m.sh: 4 m)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -27,8 +27,7 @@
 #include "core/common/aabb.h"
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
-#include "core/eval/column_coverage.h"
-#include "core/eval/map_snapshot.h"
+#include "core/explorer/snapshot.h"
 
 namespace msb {
 

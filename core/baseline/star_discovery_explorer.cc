@@ -23,8 +23,7 @@ void StarDiscoveryConfig::validate(ConfigChecker& c) const {
   c.positive("retry_period_s", retry_period_s);
   c.nonNegative("check_ahead_m", check_ahead_m);
   c.nonNegative("check_clearance_m", check_clearance_m);
-  c.inRange("takeoff_altitude_m", takeoff_altitude_m, 0.3, 50.0);
-  c.nonNegative("start_forward_m", start_forward_m);
+  validateTakeoff(c);
 }
 
 Star planStar(const GridPathPlanner& planner, const Vec3& origin, const StarDiscoveryConfig& config) {
@@ -159,7 +158,7 @@ StarDiscoveryExplorer::StarDiscoveryExplorer(const StarDiscoveryConfig& config, 
       map_(config.map),
       planner_(config.planner, context.exploration_box, config.map.resolution_m),
       candidate_rng_(context.seed, "star_candidates"),
-      takeoff_(context.start, config.takeoff_altitude_m, config.start_forward_m) {
+      takeoff_(context.start, config) {
   for (const char* k : {"stars", "star_rays", "global_steps", "fallback_steps", "holds", "interesting_cells", "transits_reached",
                         "transits_failed", "blocked_stops", "paths_sent", "map_points"})
     counters_[k] = 0;
@@ -177,12 +176,8 @@ void StarDiscoveryExplorer::rebuildPlanner() {
 }
 
 PathCommand StarDiscoveryExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
-  PathCommand cmd{s.tick, std::move(w)};
-  last_path_ = {s.reference.position_m};
-  for (const auto& wp : cmd.waypoints) last_path_.push_back(wp.position_m);
-  ++counters_["paths_sent"];
   sent_ = true;
-  return cmd;
+  return sendPath(s, std::move(w), last_path_, counters_);
 }
 
 bool StarDiscoveryExplorer::pathBlocked(const Vec3& from) const {

@@ -28,13 +28,13 @@
 #include "core/baseline/grid_map.h"
 #include "core/baseline/grid_path_planner.h"
 #include "core/common/rng.h"
-#include "core/planning/explorer.h"
-#include "core/planning/takeoff.h"
+#include "core/explorer/explorer.h"
+#include "core/explorer/takeoff.h"
 
 namespace msb {
 
 /// Star discovery settings (the paper's where it gives them).
-struct StarDiscoveryConfig {
+struct StarDiscoveryConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, start_forward_m
   GridMapConfig map;                  ///< OctoMap insertion (as the grid baseline)
   /// Traversability and A*: occupied cells inflated by clearance_m; only known free cells are
   /// traversable, unknown ones are not inflated (the paper: "inflation of the occupied voxels").
@@ -52,8 +52,6 @@ struct StarDiscoveryConfig {
   double retry_period_s = 5.0;        ///< with no reachable candidate: hold, look again after this
   double check_ahead_m = 5.0;         ///< predicted-path check length ...
   double check_clearance_m = 1.0;     ///< ... and clearance from occupied cells
-  double takeoff_altitude_m = 3.0;    ///< climb above the start (the reference's 3 m)
-  double start_forward_m = 4.0;       ///< then fly this far ahead (the reference's goforward5m.sh: 4 m)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -3,6 +3,8 @@
 // A pose T_A_B maps points expressed in frame B to frame A.
 #pragma once
 
+#include <numbers>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -17,6 +19,8 @@ using Pose = Eigen::Isometry3d;
 
 /// Standard gravity in m/s².
 inline constexpr double kGravity = 9.81;
+/// Radians per degree (std::numbers::pi / 180, the same double as M_PI / 180).
+inline constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// Wraps an angle to (-pi, pi].
 double wrapAngle(double a);

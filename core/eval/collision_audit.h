@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/eval/map_snapshot.h"
+#include "core/explorer/snapshot.h"
 #include "core/geometry/world_truth.h"
 
 namespace msb {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/common/types.h"
-#include "core/eval/map_snapshot.h"
+#include "core/explorer/snapshot.h"
 
 namespace msb {
 

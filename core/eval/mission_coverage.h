@@ -12,7 +12,7 @@
 #include "core/common/aabb.h"
 #include "core/eval/column_coverage.h"
 #include "core/eval/coverage_sample.h"
-#include "core/eval/map_snapshot.h"
+#include "core/explorer/snapshot.h"
 #include "core/geometry/world_truth.h"
 
 namespace msb {

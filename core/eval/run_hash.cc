@@ -4,29 +4,6 @@
 
 namespace msb {
 
-uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows) {
-  uint64_t h = fnv1a64(nullptr, 0);
-  for (const auto& r : rows) {
-    const double v[15] = {r.t_s,
-                          r.est_position_m.x(),
-                          r.est_position_m.y(),
-                          r.est_position_m.z(),
-                          r.est_yaw_rad,
-                          r.position_m.x(),
-                          r.position_m.y(),
-                          r.position_m.z(),
-                          r.orientation.w(),
-                          r.orientation.x(),
-                          r.orientation.y(),
-                          r.orientation.z(),
-                          r.velocity_mps.x(),
-                          r.velocity_mps.y(),
-                          r.velocity_mps.z()};
-    h = fnv1a64(v, sizeof(v), h);
-  }
-  return h;
-}
-
 uint64_t hashSnapshot(const ExplorerSnapshot& snap) {
   uint64_t h = fnv1a64(nullptr, 0);
   for (const auto& d : snap.free_space) {

@@ -71,7 +71,7 @@ struct FeatureTrackerConfig {
   void validate(ConfigChecker& c) const;
 };
 
-/// Interface of feature sources (image tracker; later, an oracle source for fast tests).
+/// Interface of feature sources (the image tracker; the oracle source of oracle_features.h).
 class FeatureSource {
  public:
   virtual ~FeatureSource() = default;

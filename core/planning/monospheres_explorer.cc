@@ -5,10 +5,11 @@
 #include <set>
 #include <tuple>
 
+#include "core/common/types.h"
+
 namespace msb {
 
 namespace {
-constexpr double kDeg = M_PI / 180.0;
 
 // True if `ok` holds at every sample of the segment a→b: n + 1 evenly spaced points (ends
 // included), n = ceil(|b − a| / step) ≥ 1.
@@ -46,7 +47,6 @@ void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
   c.nested("viewpoints", viewpoints);
   c.nested("safety", safety);
   c.nonNegative("start_max_outside_m", start_max_outside_m);
-  c.nonNegative("goal_max_outside_m", goal_max_outside_m);
   c.positive("local_radius_m", local_radius_m);
   c.inRange("local_misses_before_global", local_misses_before_global, 0, 1000);
   c.inRange("max_goal_candidates", max_goal_candidates, 1, 10000);
@@ -71,8 +71,7 @@ void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
   c.positive("reach_distance_m", reach_distance_m);
   c.inRange("reach_angle_deg", reach_angle_deg, 0.0, 180.0);
   c.positive("no_progress_timeout_s", no_progress_timeout_s);
-  c.inRange("takeoff_altitude_m", takeoff_altitude_m, 0.3, 50.0);
-  c.nonNegative("start_forward_m", start_forward_m);
+  validateTakeoff(c);
   c.inRange("idle_turn_deg", idle_turn_deg, 0.0, 180.0);
   c.positive("idle_turn_period_s", idle_turn_period_s);
 }
@@ -97,7 +96,7 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
       context_(context),
       map_(config.map, camera, context.seed),
       viewpoints_(config.planner.viewpoints, context.seed),
-      takeoff_(context.start, config.planner.takeoff_altitude_m, config.planner.start_forward_m) {
+      takeoff_(context.start, config.planner) {
   for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress",
                         "goals_failed_unreachable", "goals_failed_blocked", "goals_global", "blocked_stops",
                         "paths_sent", "idle_turns", "returns_to_free_space", "returns_refused", "edges_blocked", "bridges",
@@ -112,12 +111,8 @@ void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) {
 }
 
 PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
-  PathCommand cmd{s.tick, std::move(w)};
-  last_path_ = {s.reference.position_m};
-  for (const auto& wp : cmd.waypoints) last_path_.push_back(wp.position_m);
   last_send_s_ = s.t_s;
-  ++counters_["paths_sent"];
-  return cmd;
+  return sendPath(s, std::move(w), last_path_, counters_);
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {

@@ -40,23 +40,22 @@
 
 #include "core/camera/fisheye_camera.h"
 #include "core/map/sphere_map.h"
-#include "core/planning/explorer.h"
+#include "core/explorer/explorer.h"
 #include "core/planning/path_shaping.h"
 #include "core/planning/sphere_graph_search.h"
-#include "core/planning/takeoff.h"
+#include "core/explorer/takeoff.h"
 #include "core/planning/viewpoint_set.h"
 
 namespace msb {
 
 /// Planner parameters (docs/architecture.md §8 defaults).
-struct MonoSpheresPlannerConfig {
+struct MonoSpheresPlannerConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, start_forward_m
   bool fff = true;                          ///< forced forward flight
   double fff_turn_rate_rad_per_m = 0.314;   ///< heading change allowed per metre before a viewpoint
   double align_before_route_deg = 90.0;     ///< FFF: turn in place first if the route starts this far off
   ViewpointConfig viewpoints;               ///< sampling, value, VPB
   SafetyCostConfig safety;                  ///< A* edge cost
   double start_max_outside_m = 1.5;         ///< start sphere may be this far outside
-  double goal_max_outside_m = 3.5;          ///< (viewpoints sit at centres; used to re-find the goal sphere)
   double local_radius_m = 15.0;             ///< local goals lie within this distance
   int local_misses_before_global = 3;       ///< steps without a local goal before searching all
   int max_goal_candidates = 10;             ///< FFF feasibility checks per goal choice
@@ -84,8 +83,6 @@ struct MonoSpheresPlannerConfig {
   double reach_distance_m = 1.0;            ///< goal reached within ...
   double reach_angle_deg = 90.0;            ///< ... and this heading difference
   double no_progress_timeout_s = 10.0;      ///< goal failed without 0.5 m progress for this long
-  double takeoff_altitude_m = 3.0;          ///< climb to this height above the start (the reference's 3 m)
-  double start_forward_m = 4.0;             ///< then fly this far straight ahead (the reference's goforward5m.sh: 4 m)
   double idle_turn_deg = 90.0;              ///< without goals, turn in place by this much ...
   double idle_turn_period_s = 3.0;          ///< ... this often
 

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/common/types.h"
+
 namespace msb {
 
 namespace {
-constexpr double kDeg = M_PI / 180.0;
 }
 
 void ViewpointConfig::validate(ConfigChecker& c) const {

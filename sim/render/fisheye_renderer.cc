@@ -21,7 +21,6 @@ void FisheyeRendererConfig::validate(ConfigChecker& c) const {
   c.inRange("tessellation_slices", tessellation_slices, 4, 100);
   c.inRange("tessellation_stacks", tessellation_stacks, 4, 100);
   c.nonNegative("plane_grid_m", plane_grid_m);
-  c.positive("near_clip_m", near_clip_m);
   c.inRange("near_clip_m", near_clip_m, 1e-4, 1.0);
   c.inRange("max_visible_geom_group", max_visible_geom_group, 0, mjNGROUP - 1);
   c.nested("conditions", conditions);

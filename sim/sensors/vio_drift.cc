@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/common/types.h"
+
 namespace msb {
 
 void VioDriftConfig::validate(ConfigChecker& c) const {
@@ -40,7 +42,6 @@ Odometry VioDriftModel::update(const Odometry& gt) {
   const double turned = std::abs(std::remainder(gt_yaw - last_gt_yaw_, 2 * M_PI));
   last_position_ = p;
   last_gt_yaw_ = gt_yaw;
-  constexpr double kDeg = M_PI / 180.0;
   const double growth = 1.0 + config_.few_tracks_gain * shortfall_ * shortfall_;
   // Yaw increment, applied about the current position (keeps the estimate continuous): a
   // random walk over distance, plus an error per radian turned while few features are tracked.

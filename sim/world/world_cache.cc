@@ -8,8 +8,8 @@
 #include <fstream>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 
+#include "core/common/png.h"
 #include "core/common/wall_time.h"
 
 #include "core/common/rng.h"
@@ -65,9 +65,7 @@ BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
     fs::remove_all(tmp);
     fs::create_directories(tmp / "textures");
     for (const auto& t : out.generated.textures) {
-      std::vector<uchar> png;
-      cv::imencode(".png", makeTexture(t, spec.texture_px, 0), png);
-      writeBytes(tmp / "textures" / (t + ".png"), std::string(png.begin(), png.end()));
+      writeBytes(tmp / "textures" / (t + ".png"), encodePng(viewOf(makeTexture(t, spec.texture_px, 0))));
     }
     writeBytes(tmp / "shapes.csv", shapesCsv(out.generated.shapes));
     writeBytes(tmp / "world.xml", out.generated.mjcf);

@@ -9,13 +9,13 @@
 #include <tuple>
 
 #include "core/common/rng.h"
+#include "core/common/types.h"
 #include "sim/world/mjcf_world_builder.h"
 
 namespace msb {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 
 // Pose from a ground position, base height, yaw and optional roll/pitch tilt.
 Pose placed(const Vec2& xy, double z, double yaw, double roll = 0, double pitch = 0) {

@@ -1,8 +1,10 @@
-// Architecture rules (docs/architecture.md §1), checked on the source text:
-//  - nothing under core/ includes MuJoCo, GL/OSMesa/EGL or yaml-cpp;
-//  - exploration methods (every folder listed in kMethodFolders) never see ground truth: no
-//    include of core/geometry/ or of the truth-based evaluation, no link to msb::geometry or
-//    msb::eval_truth;
+// Architecture rules (docs/architecture.md, "Layers"), checked on the source text:
+//  - nothing under core/ includes MuJoCo, GL/OSMesa/EGL or yaml-cpp, nor anything of sim/ or tools/;
+//  - the method interface (core/explorer) includes and links core/common alone;
+//  - exploration methods (every folder listed in kMethodFolders, nested folders included) never
+//    see ground truth nor the metric: no include of core/geometry/ or core/eval/ (every header
+//    there), no link to msb::geometry, msb::eval or msb::eval_truth in any of their CMakeLists.txt;
+//    the example method (core/baseline/hover_turn) includes and links the interface alone;
 //  - sim/ includes no mapping or planning; the loop library (tools/loop) includes no yaml-cpp;
 //  - tools/: only tools/config includes yaml-cpp; config and results include neither each other
 //    nor the sweep or the command line; the sweep does not include the command line.
@@ -18,8 +20,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The folders that hold exploration methods (a new method adds its folder here).
+// The folders that hold exploration methods (a new method adds its folder here, or lives below one).
 const char* const kMethodFolders[] = {"core/planning", "core/baseline"};
+
+// Every CMakeLists.txt at or below `dir`, with its text.
+std::vector<std::pair<fs::path, std::string>> cmakeFiles(const fs::path& dir) {
+  std::vector<std::pair<fs::path, std::string>> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (e.path().filename() != "CMakeLists.txt") continue;
+    std::ifstream in(e.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    out.emplace_back(e.path(), text.str());
+  }
+  return out;
+}
 
 // Every line of the C++ sources under `dir` that matches `rule`, as "file:line: text".
 std::vector<std::string> matchingLines(const fs::path& dir, const std::regex& rule, int* files = nullptr) {
@@ -36,9 +51,9 @@ std::vector<std::string> matchingLines(const fs::path& dir, const std::regex& ru
   return hits;
 }
 
-const std::regex kForbiddenInCore(R"(^\s*#\s*include\s*[<"](mujoco/|GL/|EGL/|yaml-cpp/|mujoco\.h))");
+const std::regex kForbiddenInCore(R"(^\s*#\s*include\s*[<"](mujoco/|GL/|EGL/|yaml-cpp/|mujoco\.h|sim/|tools/))");
 
-TEST(Architecture, CoreIncludesNoSimulatorGlOrYamlHeaders) {
+TEST(Architecture, CoreIncludesNoSimulatorGlYamlSimOrTools) {
   int files = 0;
   for (const auto& hit : matchingLines(fs::path(MSB_SOURCE_DIR) / "core", kForbiddenInCore, &files)) ADD_FAILURE() << hit;
   EXPECT_GT(files, 5);
@@ -49,24 +64,50 @@ TEST(Architecture, TheRuleDetectsAForbiddenInclude) {
   EXPECT_TRUE(std::regex_search("#include <mujoco/mujoco.h>", kForbiddenInCore));
   EXPECT_TRUE(std::regex_search("  #include \"yaml-cpp/yaml.h\"", kForbiddenInCore));
   EXPECT_TRUE(std::regex_search("#include <GL/osmesa.h>", kForbiddenInCore));
+  EXPECT_TRUE(std::regex_search("#include \"sim/physics/quadrotor_sim.h\"", kForbiddenInCore));
+  EXPECT_TRUE(std::regex_search("#include \"tools/loop/records.h\"", kForbiddenInCore));
   EXPECT_FALSE(std::regex_search("#include <opencv2/core.hpp>", kForbiddenInCore));
 }
 
-TEST(Architecture, MethodsCannotSeeGroundTruth) {
-  const std::regex truth_include(
-      R"(^\s*#\s*include\s*"core/(geometry/|eval/(mission_coverage|map_safety|slam_point_truth)\.h))");
-  EXPECT_TRUE(std::regex_search("#include \"core/geometry/world_truth.h\"", truth_include));
-  EXPECT_FALSE(std::regex_search("#include \"core/eval/column_coverage.h\"", truth_include));
-  const std::regex truth_link(R"(msb::(geometry|eval_truth)\b)");
+TEST(Architecture, TheMethodInterfaceDependsOnCommonAlone) {
+  const fs::path dir = fs::path(MSB_SOURCE_DIR) / "core" / "explorer";
+  const std::regex other(R"(^\s*#\s*include\s*"(?!core/(common|explorer)/))");
+  int files = 0;
+  for (const auto& hit : matchingLines(dir, other, &files)) ADD_FAILURE() << hit;
+  EXPECT_GT(files, 2);
+  const std::regex link(R"(msb::(?!common\b|explorer\b)\w+)");
+  for (const auto& [path, text] : cmakeFiles(dir)) EXPECT_FALSE(std::regex_search(text, link)) << path << " links more than msb::common";
+}
+
+TEST(Architecture, MethodsCannotSeeGroundTruthOrTheMetric) {
+  // Every header of core/geometry and core/eval: the truth and the metric that scores a method.
+  const std::regex eval_include(R"(^\s*#\s*include\s*"core/(geometry|eval)/)");
+  for (const char* header : {"core/eval/collision_audit.h", "core/eval/column_coverage.h", "core/eval/map_safety.h",
+                             "core/geometry/world_truth.h"})
+    EXPECT_TRUE(std::regex_search("#include \"" + std::string(header) + "\"", eval_include)) << header;
+  EXPECT_FALSE(std::regex_search("#include \"core/explorer/snapshot.h\"", eval_include));
+  const std::regex eval_link(R"(msb::(geometry|eval|eval_truth)\b)");
+  int cmake_files = 0;
   for (const char* folder : kMethodFolders) {
     const fs::path dir = fs::path(MSB_SOURCE_DIR) / folder;
     ASSERT_TRUE(fs::is_directory(dir)) << dir;
-    for (const auto& hit : matchingLines(dir, truth_include)) ADD_FAILURE() << hit;
-    std::ifstream cmake(dir / "CMakeLists.txt");
-    std::stringstream text;
-    text << cmake.rdbuf();
-    EXPECT_FALSE(std::regex_search(text.str(), truth_link)) << folder << "/CMakeLists.txt links ground truth";
+    for (const auto& hit : matchingLines(dir, eval_include)) ADD_FAILURE() << hit;
+    for (const auto& [path, text] : cmakeFiles(dir)) {
+      ++cmake_files;
+      EXPECT_FALSE(std::regex_search(text, eval_link)) << path << " links ground truth or the metric";
+    }
   }
+  EXPECT_GE(cmake_files, 3);  // planning, baseline, baseline/hover_turn
+}
+
+TEST(Architecture, TheExampleMethodUsesTheInterfaceAlone) {
+  const fs::path dir = fs::path(MSB_SOURCE_DIR) / "core" / "baseline" / "hover_turn";
+  const std::regex other(R"(^\s*#\s*include\s*"(?!core/(common|explorer|baseline/hover_turn)/))");
+  int files = 0;
+  for (const auto& hit : matchingLines(dir, other, &files)) ADD_FAILURE() << hit;
+  EXPECT_GE(files, 2);
+  const std::regex link(R"(msb::(?!common\b|explorer\b)\w+)");
+  for (const auto& [path, text] : cmakeFiles(dir)) EXPECT_FALSE(std::regex_search(text, link)) << path;
 }
 
 TEST(Architecture, SimHasNoMappingOrPlanningAndTheLoopNoYaml) {

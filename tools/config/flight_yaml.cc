@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "core/common/types.h"
 #include "tools/config/yaml_reader.h"
 #include "tools/config/yaml_writer.h"
 
@@ -14,7 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kDeg = M_PI / 180.0;
 
 template <class Keys>
 void vehicleKeys(Keys r, QuadrotorConfig& q) {

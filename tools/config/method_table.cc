@@ -83,7 +83,6 @@ void plannerKeys(Keys r, MonoSpheresPlannerConfig& c) {
   r.field("fff_turn_rate_rad_per_m", c.fff_turn_rate_rad_per_m);
   r.field("align_before_route_deg", c.align_before_route_deg);
   r.field("start_max_outside_m", c.start_max_outside_m);
-  r.field("goal_max_outside_m", c.goal_max_outside_m);
   r.field("local_radius_m", c.local_radius_m);
   r.field("local_misses_before_global", c.local_misses_before_global);
   r.field("max_goal_candidates", c.max_goal_candidates);
@@ -109,8 +108,7 @@ void plannerKeys(Keys r, MonoSpheresPlannerConfig& c) {
   r.field("reach_distance_m", c.reach_distance_m);
   r.field("reach_angle_deg", c.reach_angle_deg);
   r.field("no_progress_timeout_s", c.no_progress_timeout_s);
-  r.field("takeoff_altitude_m", c.takeoff_altitude_m);
-  r.field("start_forward_m", c.start_forward_m);
+  takeoffKeys(r, c);
   r.field("idle_turn_deg", c.idle_turn_deg);
   r.field("idle_turn_period_s", c.idle_turn_period_s);
   r.finish();
@@ -189,8 +187,7 @@ void starDiscoveryKeys(Keys& m, StarDiscoveryConfig& c) {
   m.field("retry_period_s", c.retry_period_s);
   m.field("check_ahead_m", c.check_ahead_m);
   m.field("check_clearance_m", c.check_clearance_m);
-  m.field("takeoff_altitude_m", c.takeoff_altitude_m);
-  m.field("start_forward_m", c.start_forward_m);
+  takeoffKeys(m, c);
 }
 
 // The grid baseline: OctoMap insertion, A*, goals.
@@ -206,8 +203,7 @@ void gridRandomKeys(Keys& m, GridExplorerConfig& c) {
   m.field("reach_distance_m", c.reach_distance_m);
   m.field("check_ahead_m", c.check_ahead_m);
   m.field("check_clearance_m", c.check_clearance_m);
-  m.field("takeoff_altitude_m", c.takeoff_altitude_m);
-  m.field("start_forward_m", c.start_forward_m);
+  takeoffKeys(m, c);
 }
 
 // The example method (core/baseline/hover_turn).
@@ -223,11 +219,13 @@ void hoverTurnKeys(Keys& m, HoverTurnConfig& c) {
 // One method-table entry from the method's explorer and config types and its keys function
 // (`keys(k, config)` for any key visitor k: MapReader reads, MapWriter writes).
 template <class ExplorerT, class Config, class KeysFn>
-MethodEntry methodEntry(const char* type, const char* summary, KeysFn keys, std::vector<PaperRow> paper_rows = {}) {
+MethodEntry methodEntry(const char* type, const char* summary, KeysFn keys, std::vector<std::string> progress,
+                        std::vector<PaperRow> paper_rows = {}) {
   MethodEntry e;
   e.type = type;
   e.summary = summary;
   e.paper_rows = std::move(paper_rows);
+  e.progress_counters = std::move(progress);
   e.read = [type, keys](MapReader& m) {
     Config c;
     keys(m, c);
@@ -253,22 +251,24 @@ const std::vector<MethodEntry>& methodTable() {
       methodEntry<MonoSpheresExplorer, MonoSpheresConfig>(
           kMonoSpheresType, "MonoSpheres: sphere map, frontier viewpoints, sphere-graph A* (the paper's method)",
           [](auto& k, MonoSpheresConfig& c) { monoSpheresKeys(k, c); },
+          {"spheres", "reachable_spheres", "viewpoints", "goals_reached", "goals_chosen"},
           // Collisions (§V-C): two of the six urban runs; none in the cave; not given for the rest.
           {{"urban", "", 4919, 6081, 6, 2}, {"cave", "", 7627, 8006, 3, 0}, {"rooftops", "", 3760, 4606, 3},
            {"sparse", "", 5127, 5150, 3}, {"urban", "fff", 2470, 3181, 3}, {"urban", "dbof", 2308, 3081, 3},
            {"urban", "ovde", 747, 862, 3}, {"urban", "vpb", 3697, 4175, 3}}),
       methodEntry<GridExplorer, GridExplorerConfig>(
           "grid_random", "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)",
-          [](auto& k, GridExplorerConfig& c) { gridRandomKeys(k, c); },
+          [](auto& k, GridExplorerConfig& c) { gridRandomKeys(k, c); }, {"leaves", "goals_reached", "goals_chosen"},
           // Collisions (§V-C): one of the six urban runs (a metal rod); none in the cave.
           {{"urban", "", 1911, 2306, 6, 1}, {"cave", "", 3171, 3375, 3, 0}, {"rooftops", "", 1360, 1556, 3},
            {"sparse", "", 2108, 2168, 3}}),
       methodEntry<StarDiscoveryExplorer, StarDiscoveryConfig>(
           "star_discovery", "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
-          [](auto& k, StarDiscoveryConfig& c) { starDiscoveryKeys(k, c); }),
+          [](auto& k, StarDiscoveryConfig& c) { starDiscoveryKeys(k, c); },
+          {"leaves", "stars", "interesting_cells", "goals_reached"}),
       methodEntry<HoverTurnExplorer, HoverTurnConfig>(
           "hover_turn", "example method: take off, turn once, descend (a template for new methods)",
-          [](auto& k, HoverTurnConfig& c) { hoverTurnKeys(k, c); }),
+          [](auto& k, HoverTurnConfig& c) { hoverTurnKeys(k, c); }, {"turn_steps", "points_seen"}),
   };
   return table;
 }

@@ -36,6 +36,7 @@ struct MethodEntry {
   std::function<MethodChoice(MapReader& method)> read;  ///< reads the keys under `method:` (except `type`) and finishes
   std::function<void(const std::any& config, MapWriter& method)> write;  ///< writes every key of its config
   std::vector<PaperRow> paper_rows;         ///< the Table I rows it answers to (none: not in the paper)
+  std::vector<std::string> progress_counters;  ///< the counters the progress line shows, in order
 };
 
 /// All methods, in the order they are listed.

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "core/common/types.h"
+
 namespace msb {
 
 std::string exactNumberText(double v) {
@@ -18,7 +20,6 @@ std::string exactNumberText(double v) {
 }
 
 double exactDegrees(double rad) {
-  constexpr double kDeg = M_PI / 180.0;
   // Of the values a few ulps either side of rad / kDeg that convert back exactly, the one with
   // the shortest text (30 rather than 29.999999999999996).
   const double d0 = rad / kDeg;

@@ -111,13 +111,13 @@ void ClosedLoop::run() {
 
 bool ClosedLoop::stepPhysicsAndContacts() {
   if (sim_.beginTick()) {
-    result_.status = "collided";
+    result_.status = RunStatus::kCollided;
     result_.collision = sim_.collision();
     ended_ = true;
     return false;
   }
   if (sim_.diverged()) {
-    result_.status = "diverged";
+    result_.status = RunStatus::kDiverged;
     ended_ = true;
     return false;
   }
@@ -174,7 +174,7 @@ bool ClosedLoop::perceive() {
     few_tracks_since_ = -1;
   }
   if (few_tracks_since_ >= 0 && record_.tick - few_tracks_since_ >= lost_ticks_) {
-    result_.status = "vio_lost";
+    result_.status = RunStatus::kVioLost;
     result_.vio_lost_at_s = gt_.t_s;
     ended_ = true;
     return false;

@@ -26,9 +26,10 @@
 
 #include "core/common/clock.h"
 #include "core/eval/run_hash.h"
+#include "tools/loop/records.h"
 #include "core/perception/feature_tracker.h"
 #include "core/perception/slam_points.h"
-#include "core/planning/explorer.h"
+#include "core/explorer/explorer.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/physics/se3_controller.h"
 #include "sim/physics/trajectory_tracker.h"
@@ -43,7 +44,7 @@ class WorldTruth;
 
 /// Outcome and records of a run of the loop.
 struct FlightResult {
-  std::string status = "completed";     ///< completed | collided | vio_lost | diverged
+  RunStatus status = RunStatus::kCompleted;
   std::optional<CollisionEvent> collision;
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;

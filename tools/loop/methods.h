@@ -1,8 +1,8 @@
 // The exploration method of a mission as the loop sees it: a type name, a validated config and
-// a factory. MethodChoice is built from a method's config struct by methodChoice<Explorer>()
-// (generic: no code here knows a particular method). The methods themselves are listed in the
-// method table (tools/config/method_table.cc), one entry each; MonoSpheres, the paper's method,
-// is also the default of a C++-built ScenarioSpec.
+// a factory. MethodChoice is built from a method's config struct by methodChoice<Explorer>(),
+// which is generic. The methods themselves are listed in the method table
+// (tools/config/method_table.cc), one entry each; the one method named here is MonoSpheres, the
+// paper's method, as the default of a C++-built ScenarioSpec (monospheresMethod() below).
 #pragma once
 
 #include <any>
@@ -15,7 +15,7 @@
 
 #include "core/camera/fisheye_camera.h"
 #include "core/common/config_check.h"
-#include "core/planning/explorer.h"
+#include "core/explorer/explorer.h"
 #include "core/planning/monospheres_explorer.h"
 
 namespace msb {

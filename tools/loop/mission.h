@@ -15,7 +15,7 @@
 #include "core/common/aabb.h"
 #include "core/eval/collision_audit.h"
 #include "core/eval/mission_coverage.h"
-#include "core/planning/explorer.h"
+#include "core/explorer/explorer.h"
 #include "tools/loop/closed_loop.h"
 #include "tools/loop/scenario_spec.h"
 

@@ -54,7 +54,7 @@ int runBenchLoopCommand(int argc, char** argv) {
   const double total = f.wall_time_s * 1000.0;
   const double known = s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
   std::printf("bench-loop %s seed %s: %.0f s simulated, %ld frames, %s; wall %.1f s, RTF %.2f, peak RSS %.0f MiB\n",
-              spec.name.c_str(), args.get("seed").c_str(), f.sim_time_s, long(f.frames_rendered), f.status.c_str(),
+              spec.name.c_str(), args.get("seed").c_str(), f.sim_time_s, long(f.frames_rendered), runStatusName(f.status),
               f.wall_time_s, f.realTimeFactor(), peakRssMb());
   std::printf("%-14s %12s %12s %8s\n", "stage", "ms/sim-s", "ms/frame", "share");
   auto row = [&](const char* name, double ms) {

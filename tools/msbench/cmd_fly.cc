@@ -27,7 +27,7 @@ namespace {
 
 nlohmann::json flightMetrics(const FlightSpec& spec, const FlightResult& r) {
   nlohmann::json j;
-  j["status"] = r.status;
+  j["status"] = runStatusName(r.status);
   j["seed"] = spec.seed;
   j["world"] = spec.world_path;
   j["sim_time_s"] = r.sim_time_s;
@@ -127,7 +127,7 @@ int runFlyCommand(int argc, char** argv) {
 
   std::printf("fly: %s after %.2f s simulated (%.2f s wall, real-time factor %.2f); "
               "tracking RMS %.3f m; %d frames (%d saved); hash %s -> %s\n",
-              r.status.c_str(), r.sim_time_s, r.wall_time_s, r.realTimeFactor(),
+              runStatusName(r.status), r.sim_time_s, r.wall_time_s, r.realTimeFactor(),
               r.tracking_rms_m, r.frames_rendered, saved, hexHash(r.trajectory_hash).c_str(),
               out.finalDir().c_str());
   if (r.collision)

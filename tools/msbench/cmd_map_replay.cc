@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/common/wall_time.h"
+#include "core/common/png.h"
 #include "core/eval/map_safety.h"
 #include "core/map/sphere_map.h"
 #include "core/eval/column_coverage.h"
@@ -113,7 +113,7 @@ int runMapReplayCommand(int argc, char** argv) {
   for (size_t i = 1; i < log.frames.size(); ++i)
     cv::line(img, px(log.frames[i - 1].points.T_W_C.translation()), px(log.frames[i].points.T_W_C.translation()),
              cv::Scalar(0, 140, 255), 2);
-  cv::imwrite((out.staging() / "topdown.png").string(), img);
+  writePng(out.staging() / "topdown.png", viewOf(img));
 
   // Explored area as in the paper (the metric of core/eval, final map only).
   ColumnCoverage columns;

@@ -15,6 +15,7 @@
 #include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
+#include "tools/config/method_table.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/world_registry.h"
 
@@ -24,19 +25,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Progress on stderr every 10 simulated seconds: time, real-time factor, coverage, the
-// method's main counters, ETA.
-void printProgress(const std::string& name, double duration_s, double sim_s, double wall_s, double area,
-                   const std::map<std::string, double>& c) {
+// Progress on stderr every 10 simulated seconds: time, real-time factor, coverage, the counters
+// the method's table entry names, ETA.
+void printProgress(const std::string& name, const std::string& method, double duration_s, double sim_s, double wall_s,
+                   double area, const std::map<std::string, double>& c) {
   const double rtf = sim_s / std::max(wall_s, 1e-9);
-  auto get = [&c](const char* k) { const auto it = c.find(k); return it == c.end() ? 0.0 : it->second; };
-  std::string map = c.count("spheres") ? "spheres " + std::to_string(long(get("spheres"))) + " (" +
-                                             std::to_string(long(get("reachable_spheres"))) + " reachable), viewpoints " +
-                                             std::to_string(long(get("viewpoints")))
-                                       : "leaves " + std::to_string(long(get("leaves")));
-  std::fprintf(stderr, "run %s: t = %.0f / %.0f s, RTF %.2f, A = %.0f m², %s, goals reached %.0f of %.0f, ETA %.0f s\n",
-               name.c_str(), sim_s, duration_s, rtf, area, map.c_str(), get("goals_reached"), get("goals_chosen"),
-               (duration_s - sim_s) / std::max(rtf, 1e-9));
+  std::string counters;
+  if (const MethodEntry* entry = findMethod(method))
+    for (const std::string& k : entry->progress_counters)
+      if (const auto it = c.find(k); it != c.end())
+        counters += ", " + k + " " + std::to_string(static_cast<long>(it->second));
+  std::fprintf(stderr, "run %s: t = %.0f / %.0f s, RTF %.2f, A = %.0f m²%s, ETA %.0f s\n", name.c_str(), sim_s,
+               duration_s, rtf, area, counters.c_str(), (duration_s - sim_s) / std::max(rtf, 1e-9));
 }
 
 }  // namespace
@@ -97,7 +97,7 @@ int runRunCommand(int argc, char** argv) {
       setCrashContext(t.tick, t.t_s);
       if (recorder && t.points) recorder->write(*t.points, t.frame->T_W_C);
       if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
-        printProgress(spec.name, spec.flight.duration_s, t.t_s, secondsSince(wall_start), mission.areaM2(),
+        printProgress(spec.name, spec.method.type, spec.flight.duration_s, t.t_s, secondsSince(wall_start), mission.areaM2(),
                       mission.explorer().counters());
     }
     r = mission.finish();
@@ -105,7 +105,7 @@ int runRunCommand(int argc, char** argv) {
     throw;  // unwinds: the recorder and the staging directory remove themselves
   } catch (const std::exception& e) {
     // A crashed run leaves a record saying so (a sweep goes on with the next run).
-    nlohmann::json j = {{"name", spec.name}, {"status", "error"}, {"error", e.what()}, {"seed", spec.flight.seed},
+    nlohmann::json j = {{"name", spec.name}, {"status", runStatusName(RunStatus::kError)}, {"error", e.what()}, {"seed", spec.flight.seed},
                         {"versions", versionInfo()}};
     writeFileAtomic(out.staging() / "metrics.json", j.dump(2) + "\n");
     out.commit();
@@ -126,7 +126,7 @@ int runRunCommand(int argc, char** argv) {
   const auto& cov = metrics["coverage"];
   std::printf("run %s: %s after %.0f s simulated (%.0f s wall, RTF %.2f); A = %.0f m² (box %.0f m²%s), "
               "%.0f m flown; hash %s -> %s\n",
-              spec.name.c_str(), r.flight.status.c_str(), r.flight.sim_time_s, r.flight.wall_time_s,
+              spec.name.c_str(), runStatusName(r.flight.status), r.flight.sim_time_s, r.flight.wall_time_s,
               r.flight.realTimeFactor(), cov["area_m2"].get<double>(), cov["area_box_m2"].get<double>(),
               cov["box_share"].is_null() ? "" : (", " + std::to_string(int(100 * cov["box_share"].get<double>())) + " % of explorable").c_str(),
               r.flight.distance_flown_m, hexHash(r.run_hash).c_str(), out.finalDir().c_str());

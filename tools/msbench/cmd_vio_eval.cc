@@ -8,10 +8,10 @@
 #include <map>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "tools/msbench/cli_args.h"
+#include "core/common/png.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
@@ -89,7 +89,7 @@ int runVioEvalCommand(int argc, char** argv) {
   ArgParser args("msbench vio-eval",
                  "Fly a scripted path with the feature tracker and SLAM points running and evaluate\n"
                  "them against the world's ground truth (generated worlds). Writes frames.csv,\n"
-                 "summary.json, trajectory.csv, metrics.json and annotated/*.png into DIR.");
+                 "summary.json, trajectory.csv and annotated/*.png into DIR.");
   args.positional("FILE.yaml", "flight description (as for fly)")
       .option("out", "", "output directory", true)
       .option("annotate-every", "30", "write every N-th processed frame annotated (0 = none)")
@@ -180,7 +180,7 @@ int runVioEvalCommand(int argc, char** argv) {
     if (annotate_every > 0 && (st.frames - 1) % annotate_every == 0) {
       char name[64];
       std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", st.frames - 1, s.frame.t_s);
-      cv::imwrite((out.staging() / "annotated" / name).string(), annotate(s));
+      writePng(out.staging() / "annotated" / name, viewOf(annotate(s)));
     }
   };
   // Fly the path with perception on; evaluate every processed frame; stop on SIGINT/SIGTERM.
@@ -213,7 +213,7 @@ int runVioEvalCommand(int argc, char** argv) {
   for (int b = 0; b < kBins; ++b) by_distance[bins[b]["bin"].get<std::string>()] = st.points_by_distance[b] / n;
   for (const auto& [surface, count] : st.points_by_surface) by_surface[surface] = count / n;
   nlohmann::json j = {
-      {"status", r.status},
+      {"status", runStatusName(r.status)},
       {"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
       {"sim_time_s", r.sim_time_s},
       {"frames", st.frames},
@@ -252,7 +252,7 @@ int runVioEvalCommand(int argc, char** argv) {
   out.commit();
 
   std::printf("vio-eval %s: %s after %.1f s, %d frames%s\n", j["world"].get<std::string>().c_str(),
-              r.status.c_str(), r.sim_time_s, st.frames,
+              runStatusName(r.status), r.sim_time_s, st.frames,
               r.collision ? (" (hit " + r.collision->world_geom + ")").c_str() : "");
   std::printf("  tracks/frame %.0f (min %d), SLAM points/frame %.0f, drift %.2f %% of %.0f m\n",
               st.tracks_sum / n, st.frames ? st.min_tracks : 0, st.points_sum / n,

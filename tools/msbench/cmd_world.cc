@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 
-#include <opencv2/imgcodecs.hpp>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/common/wall_time.h"
+#include "core/common/png.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/render/fisheye_renderer.h"
 #include "tools/msbench/cli_args.h"
@@ -169,7 +169,7 @@ int runWorldCommand(int argc, char** argv) {
                        " m) would be " + std::to_string(long(longest_px)) +
                        " pixels long; choose a resolution that gives 1 to 16384 pixels a side");
     StagedOutputDir out(args.get("out"), args.has("overwrite"));
-    cv::imwrite((out.staging() / "topdown.png").string(), renderTopDown(w, m_per_px));
+    writePng(out.staging() / "topdown.png", viewOf(renderTopDown(w, m_per_px)));
 
     // Fisheye views from 1.5 m above the start at four headings, in a 2x2 mosaic.
     const Pose start = w.generated.start * poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
@@ -184,7 +184,7 @@ int runWorldCommand(int argc, char** argv) {
       cv::Mat(f.height, f.width, CV_8UC1, f.pixels.data())
           .copyTo(mosaic(cv::Rect((k % 2) * cam.width(), (k / 2) * cam.height(), cam.width(), cam.height())));
     }
-    cv::imwrite((out.staging() / "views.png").string(), mosaic);
+    writePng(out.staging() / "views.png", viewOf(mosaic));
 
     const WorldTruth truth(w.generated.shapes);
     const auto columns = truth.explorableColumns(w.generated.exploration_box);

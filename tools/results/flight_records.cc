@@ -4,17 +4,12 @@
 #include <cstdio>
 #include <sstream>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include "core/common/png.h"
 
 namespace msb {
 
 std::string encodePng(const CameraFrame& frame) {
-  const cv::Mat img(frame.height, frame.width, CV_8UC1,
-                    const_cast<uint8_t*>(frame.pixels.data()));
-  std::vector<uchar> buf;
-  if (!cv::imencode(".png", img, buf)) throw std::runtime_error("PNG encoding failed");
-  return std::string(buf.begin(), buf.end());
+  return msb::encodePng(ImageView{frame.pixels.data(), frame.width, frame.height, 1, static_cast<size_t>(frame.width)});
 }
 
 std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {

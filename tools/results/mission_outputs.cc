@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/common/png.h"
 #include "tools/results/provenance.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
@@ -28,7 +28,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   const FlightResult& f = r.flight;
   nlohmann::json j;
   j["name"] = spec.name;
-  j["status"] = f.status;
+  j["status"] = runStatusName(f.status);
   j["seed"] = spec.flight.seed;
   j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
   j["method"] = spec.method.type;
@@ -297,7 +297,7 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
   }
   char text[200];
   std::snprintf(text, sizeof(text), "A = %.0f m2 (%zu columns), t = %.0f s, %s", r.columns.areaM2(),
-                r.columns.count(), r.flight.sim_time_s, r.flight.status.c_str());
+                r.columns.count(), r.flight.sim_time_s, runStatusName(r.flight.status));
   cv::rectangle(img, cv::Point(0, 0), cv::Point(w, header - 1), cv::Scalar(255, 255, 255), -1);
   cv::putText(img, text, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   // The legend names what the map holds: spheres (disk footprints) or free cells (squares).
@@ -319,9 +319,7 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
   cv::line(img, cv::Point(bx, by), cv::Point(bx + bar, by), cv::Scalar(0, 0, 0), 3);
   cv::putText(img, std::to_string(int(step)) + " m", cv::Point(bx, by - 7), cv::FONT_HERSHEY_SIMPLEX, 0.45,
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  std::vector<uchar> png;
-  cv::imencode(".png", img, png);
-  writeFileAtomic(file, std::string(png.begin(), png.end()));
+  writeFileAtomic(file, encodePng(viewOf(img)));
 }
 
 }  // namespace msb

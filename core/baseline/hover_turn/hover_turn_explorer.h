@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/common/config_check.h"
-#include "core/planning/explorer.h"
+#include "core/explorer/explorer.h"
 
 namespace msb {
 

@@ -6,6 +6,7 @@
 
 #include "core/baseline/grid_explorer.h"
 #include "core/baseline/grid_map.h"
+#include "core/eval/column_coverage.h"
 
 namespace msb {
 namespace {

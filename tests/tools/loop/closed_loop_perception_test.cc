@@ -82,7 +82,7 @@ TEST(PerceptionFlight, UrbanTracksPointAccuracyTexturelessShareAndDeterminism) {
   BuiltWorld world;
   const FlightSpec spec = urbanCircle(&world);
   const Evaluation a = evaluate(spec, world);
-  ASSERT_EQ(a.result.status, "completed");
+  ASSERT_EQ(a.result.status, RunStatus::kCompleted);
   EXPECT_GE(a.mean_tracks, 100.0);
   EXPECT_GE(a.mean_points, 50.0);
   // Error grows with distance, as inverse-depth uncertainty predicts (roughly with depth²).
@@ -110,7 +110,7 @@ TEST(PerceptionFlight, FacingATexturelessWallEndsInVioLost) {
   ClosedLoop loop(s, LoopSetup{});
   loop.run();
   const FlightResult r = loop.finish();
-  EXPECT_EQ(r.status, "vio_lost");
+  EXPECT_EQ(r.status, RunStatus::kVioLost);
   EXPECT_NEAR(r.vio_lost_at_s, s.perception.lost_after_s, 0.1);
 }
 

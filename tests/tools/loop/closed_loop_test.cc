@@ -57,7 +57,7 @@ TEST(ClosedLoop, NullRendererWithOracleFeaturesTracksAndTriangulates) {
       EXPECT_TRUE(loop.camera().inImage(tr.pixel)) << tr.pixel.transpose();
   }
   const FlightResult& r = loop.finish();
-  EXPECT_EQ(r.status, "completed");
+  EXPECT_EQ(r.status, RunStatus::kCompleted);
   EXPECT_TRUE(r.path_finished);
   EXPECT_EQ(r.gl_description, "null renderer (no images)");
   ASSERT_GE(frames, 80);
@@ -105,7 +105,7 @@ TEST(ClosedLoop, ShortOracleMissionExploresDeterministically) {
   spec.mission.progress = false;
   const Aabb box = urban().generated.exploration_box;
   const MissionResult a = runMission(spec, box, &truth);
-  ASSERT_EQ(a.flight.status, "completed")
+  ASSERT_EQ(a.flight.status, RunStatus::kCompleted)
       << (a.flight.collision ? a.flight.collision->world_geom + " at t = " + std::to_string(a.flight.collision->t_s) : "");
   EXPECT_GT(a.counters.at("spheres"), 5.0);
   EXPECT_GT(a.columns.areaM2(), 200.0);

@@ -1,5 +1,5 @@
-// A method's map as plain data (estimate frame): what pictures, map.ply and the determinism
-// hash need, whatever the method's own representation (spheres, voxels, ...).
+// A method's map as plain data (estimate frame): what the coverage metric, pictures, map.ply and
+// the determinism hash need, whatever the method's own representation (spheres, voxels, ...).
 #pragma once
 
 #include <cstdint>

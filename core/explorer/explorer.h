@@ -1,10 +1,11 @@
-// The interface every exploration method implements (docs/architecture.md §1, §8): it observes each frame of
-// SLAM points (its own map update), plans at the planning rate and emits path commands for the
-// trajectory tracker, and exposes the free space it has mapped as geometry, which the coverage
-// metric (core/eval) scores. Methods
-// are chosen by `method.type` in a scenario; a new method lives in its own files behind this
-// interface and is registered in the runner's method table. The runner times observe() and
-// plan() itself (wall time is recorded, never used).
+// The interface every exploration method implements (docs/architecture.md, "Adding a method"): it
+// observes each frame of SLAM points (its own map update), plans at the planning rate and emits
+// path commands for the trajectory tracker, and exposes the free space it has mapped as geometry,
+// which the coverage metric (core/eval) scores. This layer depends on core/common alone: a method
+// links msb::explorer, never the metric or another method. Methods are chosen by `method.type` in
+// a scenario; a new method lives in its own folder behind this interface and has one entry in the
+// method table (tools/config/method_table.cc). The loop times observe() and plan() itself (wall
+// time is recorded, never used).
 #pragma once
 
 #include <cstdint>
@@ -15,8 +16,7 @@
 
 #include "core/common/aabb.h"
 #include "core/common/messages.h"
-#include "core/eval/column_coverage.h"
-#include "core/eval/map_snapshot.h"
+#include "core/explorer/snapshot.h"
 
 namespace msb {
 
@@ -54,5 +54,10 @@ class Explorer {
   /// Counters for metrics.json and the progress line (e.g. spheres, goals reached).
   virtual std::map<std::string, double> counters() const = 0;
 };
+
+/// A path command sent at this planning step: `last_path` becomes the vehicle's reference followed
+/// by the waypoints (for pictures and checks along it), and the "paths_sent" counter counts it.
+PathCommand sendPath(const VehicleState& vehicle, std::vector<Waypoint> waypoints, std::vector<Vec3>& last_path,
+                     std::map<std::string, double>& counters);
 
 }  // namespace msb

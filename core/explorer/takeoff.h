@@ -1,0 +1,54 @@
+// The start of every exploration method: climb vertically above the start, then fly a short
+// straight stretch ahead, so that the first SLAM points get parallax before the method plans. The
+// configuration is shared by the methods that fly it (their configs derive from TakeoffConfig, so
+// the keys stay where they are in a scenario).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/common/config_check.h"
+#include "core/common/messages.h"
+
+namespace msb {
+
+/// The take-off's two legs (the reference's sessions: 3 m up, then goforward5m.sh's 4 m ahead).
+struct TakeoffConfig {
+  double takeoff_altitude_m = 3.0;  ///< climb to this height above the start (the reference's 3 m)
+  double start_forward_m = 4.0;     ///< then fly this far straight ahead (the reference's goforward5m.sh: 4 m)
+
+  /// Records invalid fields (a derived config calls it from its own validate()).
+  void validateTakeoff(ConfigChecker& c) const;
+};
+
+/// The take-off keys for a method's keys function (any visitor with field(name, value)).
+template <class Keys>
+void takeoffKeys(Keys& k, TakeoffConfig& c) {
+  k.field("takeoff_altitude_m", c.takeoff_altitude_m);
+  k.field("start_forward_m", c.start_forward_m);
+}
+
+/// Take-off phases, stepped once per planning step.
+class TakeoffSequence {
+ public:
+  /// `start`: body pose on the ground; climb by `altitude_m`, then fly `forward_m` ahead.
+  TakeoffSequence(const Pose& start, double altitude_m, double forward_m);
+  /// The same from a method's take-off configuration.
+  TakeoffSequence(const Pose& start, const TakeoffConfig& config)
+      : TakeoffSequence(start, config.takeoff_altitude_m, config.start_forward_m) {}
+
+  /// True once both phases are done.
+  bool done() const { return phase_ == Phase::kDone; }
+
+  /// One planning step: the path to send now, if any (`path_finished`: the last one is done).
+  std::optional<std::vector<Waypoint>> step(bool path_finished);
+
+ private:
+  enum class Phase { kClimb, kForward, kDone };
+  Vec3 start_;
+  double yaw_, altitude_m_, forward_m_;
+  Phase phase_ = Phase::kClimb;
+  bool sent_ = false;
+};
+
+}  // namespace msb

@@ -1,0 +1,45 @@
+// What the loop records of a run, as typed values: the trajectory rows (and their determinism
+// hash) and the run's status. The words written to metrics.json ("completed", "collided",
+// "vio_lost", "diverged", and "error" for a run that threw) are made and read here only.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/types.h"
+
+namespace msb {
+
+/// One row of trajectory.csv: ground truth, the VIO estimate and the reference.
+struct TrajectoryRow {
+  double t_s;
+  Vec3 position_m;       ///< ground truth
+  Quat orientation;      ///< ground truth
+  Vec3 velocity_mps;     ///< ground truth
+  Vec3 est_position_m;   ///< VIO estimate
+  double est_yaw_rad;    ///< VIO estimate
+  Vec3 ref_position_m;   ///< trajectory reference (estimate frame)
+  double ref_yaw_rad;
+};
+
+/// Hash of trajectory rows (time, estimate, true pose and velocity).
+uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows);
+
+/// How a run ended.
+enum class RunStatus {
+  kCompleted,  ///< ran its duration
+  kCollided,   ///< a real contact ended it
+  kVioLost,    ///< the VIO lost track
+  kDiverged,   ///< the vehicle left the world or its state became invalid
+  kError,      ///< an exception ended it (the message is in metrics.json)
+};
+
+/// The word of a status in metrics.json and on the console.
+const char* runStatusName(RunStatus s);
+
+/// The status of a word, nullopt for an unknown one.
+std::optional<RunStatus> parseRunStatus(const std::string& word);
+
+}  // namespace msb
