@@ -70,6 +70,7 @@ GridUpdateStats GridMap::insert(const SlamPointsFrame& frame) {
 GridUpdateStats GridMap::insertScan(const Vec3& origin, const std::vector<Vec3>& points,
                                     const std::vector<double>& weights) {
   GridUpdateStats st;
+  last_watched_.clear();
   // (key, weight) pairs; with standard insertion every weight is 1.
   std::vector<std::pair<uint64_t, double>> free_keys, occupied_keys;
   octomap::KeyRay ray;
@@ -84,8 +85,11 @@ GridUpdateStats GridMap::insertScan(const Vec3& origin, const std::vector<Vec3>&
     if (d < 1e-6 || w <= 0.0) continue;
     // Occupied end cell within range; free cells along the ray up to the free-ray length.
     octomap::OcTreeKey end_key;
-    if (d <= config_.max_range_m && tree_->coordToKeyChecked(toPoint(p), end_key))
-      occupied_keys.push_back({packKey(end_key), w});
+    std::optional<uint64_t> hit_key;
+    if (d <= config_.max_range_m && tree_->coordToKeyChecked(toPoint(p), end_key)) {
+      hit_key = packKey(end_key);
+      occupied_keys.push_back({*hit_key, w});
+    }
     const double free_len = std::min(d, config_.free_ray_length_m);
     const Vec3 free_end = origin + (free_len / d) * (p - origin);
     if (tree_->computeRayKeys(o, toPoint(free_end), ray))
@@ -93,8 +97,9 @@ GridUpdateStats GridMap::insertScan(const Vec3& origin, const std::vector<Vec3>&
     // A ray cut short of its point also clears the cell it ends in.
     if (free_len < d) {
       octomap::OcTreeKey k;
-      if (tree_->coordToKeyChecked(toPoint(free_end), k)) free_keys.push_back({packKey(k), w});
+      if (tree_->coordToKeyChecked(toPoint(free_end), k)) free_keys.push_back({packKey(k), w}), ray.addKey(k);
     }
+    if (!watched_.empty()) noteWatched(ray, i, hit_key);
   }
   // Sorted by key, one entry per key with its largest weight; occupied wins over free within
   // one scan.
@@ -125,6 +130,11 @@ GridUpdateStats GridMap::insertScan(const Vec3& origin, const std::vector<Vec3>&
     else tree_->updateNode(unpackKey(k), true, true);
   }
   tree_->updateInnerOccupancy();
+  // Watched misses of cells this scan also hit were not made (occupied wins within a scan).
+  std::erase_if(last_watched_, [&](const WatchedUpdate& u) {
+    return !u.hit && std::binary_search(occupied_keys.begin(), occupied_keys.end(), std::pair<uint64_t, double>{u.key, 0.0},
+                                        [](const auto& a, const auto& b) { return a.first < b.first; });
+  });
   st.free_cells = int(only_free.size());
   st.occupied_cells = int(occupied_keys.size());
   return st;
@@ -156,6 +166,37 @@ std::vector<GridLeaf> GridMap::leaves(bool occupied) const {
     out.push_back({toVec(it.getCoordinate()), it.getSize(), (packKey(it.getKey()) << 5) | it.getDepth()});
   }
   return out;
+}
+
+void GridMap::watch(std::vector<uint64_t> keys) {
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  watched_ = std::move(keys);
+}
+
+void GridMap::noteWatched(const octomap::KeyRay& ray, size_t point, const std::optional<uint64_t>& hit_key) {
+  for (const auto& k : ray)
+    if (std::binary_search(watched_.begin(), watched_.end(), packKey(k)))
+      last_watched_.push_back({packKey(k), int(point), false});
+  if (hit_key && std::binary_search(watched_.begin(), watched_.end(), *hit_key))
+    last_watched_.push_back({*hit_key, int(point), true});
+}
+
+std::optional<uint64_t> GridMap::keyOf(const Vec3& p) const {
+  octomap::OcTreeKey k;
+  if (!tree_->coordToKeyChecked(toPoint(p), k)) return std::nullopt;
+  return packKey(k);
+}
+
+Vec3 GridMap::centreOf(uint64_t key) const {
+  const octomap::point3d c = tree_->keyToCoord(unpackKey(key));
+  return Vec3(c.x(), c.y(), c.z());
+}
+
+std::optional<double> GridMap::probabilityOf(uint64_t key) const {
+  const octomap::OcTreeNode* n = tree_->search(unpackKey(key));
+  if (!n) return std::nullopt;
+  return n->getOccupancy();
 }
 
 bool pathNearOccupied(const GridMap& map, const std::vector<Vec3>& path, const Vec3& from, double ahead_m,

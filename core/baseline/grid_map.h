@@ -19,6 +19,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,14 @@ struct GridLeaf {
   Vec3 centre;
   double size_m;
   uint64_t id;   ///< packed key and depth, stable while the leaf exists
+};
+
+/// An update a scan made to a watched cell (GridMap::watch): which ray (the point's index in the
+/// scan) set it hit or missed. Misses of a cell that the same scan hit are not made, so not listed.
+struct WatchedUpdate {
+  uint64_t key = 0;  ///< packed OcTreeKey of the cell
+  int point = 0;     ///< index of the point whose ray made the update
+  bool hit = false;  ///< true: the point's own cell (occupied update); false: crossed by its ray (free update)
 };
 
 /// Counts of one map update.
@@ -98,9 +107,26 @@ class GridMap {
   /// The configuration.
   const GridMapConfig& config() const { return config_; }
 
+  /// Cells whose updates each scan lists in lastWatched() (an analysis aid: the collision audit of
+  /// the grid baseline; empty by default, then insertion does no extra work).
+  void watch(std::vector<uint64_t> keys);
+  /// The updates the last scan made to watched cells, in ray order.
+  const std::vector<WatchedUpdate>& lastWatched() const { return last_watched_; }
+  /// The packed key of the cell containing p (nullopt outside the tree's range).
+  std::optional<uint64_t> keyOf(const Vec3& p) const;
+  /// The centre of the cell of a packed key.
+  Vec3 centreOf(uint64_t key) const;
+  /// The occupancy probability of the cell of a packed key (nullopt: unknown).
+  std::optional<double> probabilityOf(uint64_t key) const;
+
  private:
+  // Records the updates of watched keys of one ray (misses of keys hit in the scan dropped later).
+  void noteWatched(const octomap::KeyRay& ray, size_t point, const std::optional<uint64_t>& hit_key);
+
   GridMapConfig config_;
   std::unique_ptr<octomap::OcTree> tree_;
+  std::vector<uint64_t> watched_;  ///< sorted
+  std::vector<WatchedUpdate> last_watched_;
 };
 
 

@@ -16,6 +16,9 @@ void FisheyeCameraConfig::validate(ConfigChecker& c) const {
   c.inRange("fov_deg", fov_deg, 10.0, 200.0);
   c.require(scale == 1.0 || scale == 0.5 || scale == 0.25, "scale",
             "must be 1, 0.5 or 0.25");
+  // The camera sits on the vehicle: its centre within a metre of the body origin.
+  c.require(mount_position_B_m.allFinite() && mount_position_B_m.norm() <= 1.0, "mount_position_B_m",
+            "must lie within 1 m of the body origin (the camera is mounted on the vehicle)");
   c.inRange("mount_pitch_down_deg", mount_pitch_down_deg, -90.0, 90.0);
 }
 

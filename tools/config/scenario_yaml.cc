@@ -1,5 +1,6 @@
 #include "tools/config/scenario_yaml.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <sstream>
@@ -28,25 +29,60 @@ YAML::Node merge(const YAML::Node& a, const YAML::Node& b) {
   return out;
 }
 
-YAML::Node loadChain(const fs::path& file, std::vector<fs::path>& chain) {
-  const fs::path abs = fs::weakly_canonical(fs::absolute(file));
-  for (const auto& f : chain)
-    if (f == abs) throw FileConfigError(file.string() + ": key 'base': circular base files");
-  chain.push_back(abs);
+// How many files a scenario's `base:` chain may hold (the scenario itself included).
+constexpr size_t kMaxBaseChain = 64;
+
+// "a.yaml -> b.yaml -> c.yaml" (the chain so far, for messages).
+std::string chainText(const std::vector<fs::path>& chain) {
+  std::string s;
+  for (const auto& f : chain) s += (s.empty() ? "" : " -> ") + f.filename().string();
+  return s;
+}
+
+// One file of a chain, read: a map, its MJCF world path made relative to the file itself.
+YAML::Node loadChainFile(const fs::path& file, const fs::path& dir) {
   YAML::Node node = loadYamlFile(file.string());
   if (!node.IsMap()) throw FileConfigError(file.string() + ": expected a map of keys at the top level");
-  const fs::path dir = abs.parent_path();
-  // An MJCF world path is relative to the file that names it.
   if (node["world"] && node["world"].IsScalar() && fs::path(node["world"].Scalar()).extension() == ".xml")
     node["world"] = (dir / node["world"].Scalar()).lexically_normal().string();
-  if (!node["base"]) return node;
+  return node;
+}
+
+// The file a node's `base:` names, checked (a regular file that exists).
+fs::path baseOf(const YAML::Node& node, const fs::path& file, const fs::path& dir) {
   if (!node["base"].IsScalar()) throw FileConfigError(file.string() + ": key 'base': expected a file path");
   const fs::path base = dir / node["base"].Scalar();
-  if (!fs::is_regular_file(base))
-    throw FileConfigError(file.string() + ": key 'base': file not found: " + base.string());
-  YAML::Node base_tree = loadChain(base, chain);
-  node.remove("base");
-  return merge(base_tree, node);
+  std::error_code ec;
+  const auto st = fs::status(base, ec);
+  if (!fs::exists(st)) throw FileConfigError(file.string() + ": key 'base': file not found: " + base.string());
+  if (!fs::is_regular_file(st))
+    throw FileConfigError(file.string() + ": key 'base': not a regular file: " + base.string());
+  return base;
+}
+
+// The scenario file and its `base:` chain, read iteratively (at most kMaxBaseChain files, no
+// file twice), merged from the last base outwards: each file's keys override its base's.
+YAML::Node loadChain(const fs::path& file, std::vector<fs::path>& chain) {
+  std::vector<YAML::Node> nodes;
+  fs::path next = file;
+  while (true) {
+    const fs::path abs = fs::weakly_canonical(fs::absolute(next));
+    if (std::find(chain.begin(), chain.end(), abs) != chain.end())
+      throw FileConfigError(next.string() + ": key 'base': circular base files (" + chainText(chain) + " -> " +
+                            abs.filename().string() + ")");
+    chain.push_back(abs);
+    if (chain.size() > kMaxBaseChain)
+      throw FileConfigError(file.string() + ": key 'base': a chain of more than " + std::to_string(kMaxBaseChain) +
+                            " files (" + chainText({chain.begin(), chain.begin() + 3}) + " -> ... -> " +
+                            abs.filename().string() + ")");
+    nodes.push_back(loadChainFile(next, abs.parent_path()));
+    if (!nodes.back()["base"]) break;
+    next = baseOf(nodes.back(), next, abs.parent_path());
+    nodes.back().remove("base");
+  }
+  YAML::Node merged = nodes.back();
+  for (size_t k = nodes.size() - 1; k-- > 0;) merged = merge(merged, nodes[k]);
+  return merged;
 }
 
 // Applies "a.b.c=value" to the tree.

@@ -169,7 +169,9 @@ SweepPlan loadSweepPlan(const std::string& path) {
     r.finish();
     for (const Axis& a : axes) plan.axes.push_back(a.name);
 
-    // Expand: the first axis varies slowest, seeds fastest.
+    // Expand: the first axis varies slowest, seeds fastest. Each include / exclude entry must
+    // match some combination: one that matches none (a misspelt value) is refused, not ignored.
+    std::vector<bool> include_used(include.size(), false), exclude_used(exclude.size(), false);
     std::vector<size_t> index(axes.size(), 0);
     while (true) {
       std::map<std::string, std::string> labels;
@@ -186,6 +188,8 @@ SweepPlan loadSweepPlan(const std::string& path) {
         std::map<std::string, std::string> with_seed = labels;
         with_seed["seed"] = std::to_string(s);
         auto hit = [&](const Combination& c) { return matches(c, with_seed); };
+        for (size_t i = 0; i < include.size(); ++i) include_used[i] = include_used[i] || hit(include[i]);
+        for (size_t i = 0; i < exclude.size(); ++i) exclude_used[i] = exclude_used[i] || hit(exclude[i]);
         const bool kept = (include.empty() || std::any_of(include.begin(), include.end(), hit)) &&
                           std::none_of(exclude.begin(), exclude.end(), hit);
         if (kept) plan.runs.push_back({id + "s" + std::to_string(s), file, s, sets, labels});
@@ -194,6 +198,10 @@ SweepPlan loadSweepPlan(const std::string& path) {
       while (k > 0 && ++index[k - 1] == axes[k - 1].values.size()) index[--k] = 0;
       if (k == 0) break;
     }
+    for (size_t i = 0; i < include.size(); ++i)
+      if (!include_used[i]) throw ConfigError("include[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
+    for (size_t i = 0; i < exclude.size(); ++i)
+      if (!exclude_used[i]) throw ConfigError("exclude[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
     for (size_t i = 0; i < plan.runs.size(); ++i)
       for (size_t j = 0; j < i; ++j)
         if (plan.runs[i].id == plan.runs[j].id) throw ConfigError("axes", "two runs share the id " + plan.runs[i].id);

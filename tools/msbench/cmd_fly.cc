@@ -92,7 +92,8 @@ int runFlyCommand(int argc, char** argv) {
   LoopSetup setup;
   setup.truth = truth ? &*truth : nullptr;
   ClosedLoop loop = buildNamingFile(file, [&] { return ClosedLoop(spec, setup); });
-  StagedOutputDir out(args.get("out"), args.has("overwrite"));
+  checkNoOverlap({{"FILE.yaml", file}}, {{"--out", args.get("out")}});
+  StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kFly);
   fs::create_directories(out.staging() / "frames");
 
   // Fly: the closed loop without an explorer follows the waypoints; every N-th frame is saved;

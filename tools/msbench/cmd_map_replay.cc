@@ -47,8 +47,9 @@ int runMapReplayCommand(int argc, char** argv) {
   uint64_t seed;
   std::string why;
   if (!parseUnsigned(args.get("seed"), &seed, &why)) throw UsageError("--seed: " + why);
+  checkNoOverlap({{"LOG", args.get("LOG")}}, {{"--out", args.get("out")}});
   const PerceptionLog log = readReplayableLog(args.get("LOG"));
-  StagedOutputDir out(args.get("out"), args.has("overwrite"));
+  StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kMapReplay);
   SphereMap map(cfg, cameraFromHeader(args.get("LOG"), log.header), seed);
   // Ground truth for the safety check when the log's world is a generated world.
   std::optional<WorldTruth> truth;

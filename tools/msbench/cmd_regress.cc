@@ -22,7 +22,8 @@ int runRegressCommand(int argc, char** argv) {
       .option("against", "", "golden file or a directory holding golden.json", false)
       .flag("update", "write the golden from DIR (all runs must be complete)")
       .option("tolerance", "", "relative band for runs from another machine (default: the golden's, else 0.25)")
-      .option("tolerance-m2", "", "absolute band in m² (default: the golden's, else 100)");
+      .option("tolerance-m2", "", "absolute band in m² (default: the golden's, else 100)")
+      .flag("band", "compare every run in band mode (status and A within the band), hashes and machines aside");
   if (!args.parse(argc, argv)) return kExitOk;
   fs::path golden_file = args.get("against");
   if (fs::is_directory(golden_file) || (args.has("update") && golden_file.extension() != ".json"))
@@ -34,14 +35,21 @@ int runRegressCommand(int argc, char** argv) {
     throw UsageError(e.what());
   }
   nlohmann::json golden;
-  if (!args.has("update")) {
-    if (!fs::exists(golden_file)) throw UsageError(golden_file.string() + ": no such golden file");
-    golden = nlohmann::json::parse(readFileText(golden_file), nullptr, false);
-    if (!golden.is_object()) throw UsageError(golden_file.string() + ": not a JSON golden file");
+  if (!args.has("update")) golden = readGolden(golden_file);
+  // --update replaces only a golden msbench wrote, and never a file of the sweep it reads.
+  if (args.has("update")) {
+    const fs::path sweep = fs::weakly_canonical(fs::absolute(args.get("DIR")));
+    const fs::path target = fs::weakly_canonical(fs::absolute(golden_file));
+    if (target.string().rfind(sweep.string() + "/", 0) == 0)
+      throw UsageError("--against " + golden_file.string() + ": inside the sweep directory " + args.get("DIR") +
+                       " (an input); refusing to write there");
+    if (fs::exists(golden_file) && !isGoldenFile(golden_file))
+      throw UsageError("--against " + golden_file.string() + ": exists and is not a golden msbench wrote; refusing to replace it");
   }
   RegressionTolerance tolerance = toleranceOf(golden);
   if (args.given("tolerance")) tolerance.relative = args.getDoubleIn("tolerance", 0.0, 10.0);
   if (args.given("tolerance-m2")) tolerance.absolute_m2 = args.getDoubleIn("tolerance-m2", 0.0, 1e6);
+  tolerance.band_only = args.has("band");
 
   if (args.has("update")) {
     nlohmann::json g;

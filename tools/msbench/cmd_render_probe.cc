@@ -9,6 +9,7 @@
 #include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/interrupt.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
 
@@ -67,7 +68,7 @@ int runRenderProbeCommand(int argc, char** argv) {
   if (!conditions) throw UsageError("--conditions: unknown preset '" + args.get("conditions") + "'");
   render_cfg.conditions = *conditions;
   const std::string world = resolveWorld(args.get("world")).world_xml;
-  checkOutputFile(args.get("out"), args.has("overwrite"), "out");
+  checkOutputFile(args.get("out"), args.has("overwrite"), "out", "\x89PNG");
 
   const Pose T_W_B = poseFromXyzYaw(pose.head<3>(), pose[3] * M_PI / 180.0);
   QuadrotorSim sim(PhysicsConfig{}, world, T_W_B);
@@ -76,6 +77,7 @@ int runRenderProbeCommand(int argc, char** argv) {
   CameraFrame frame;
   RenderTiming t;
   renderer.render(sim.data(), T_W_B * camera.T_B_C(), &frame, &t);
+  throwIfInterrupted();  // rendered, nothing written yet
   writeFileAtomic(args.get("out"), encodePng(frame));
   std::printf("render-probe: %dx%d frame in %.1f ms (scene %.1f, render %.1f, read-back %.1f, "
               "remap %.1f) -> %s\n",

@@ -2,6 +2,10 @@
 // Table I layout and more), table.csv, report_runs.csv, and the figures (coverage over time per
 // world, a gallery of top-down maps) drawn by the embedded Python script when python3 with
 // matplotlib is available.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +13,7 @@
 
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/interrupt.h"
 #include "tools/results/output_files.h"
 #include "tools/sweep/findings.h"
 #include "tools/sweep/sweep_report.h"
@@ -25,6 +30,28 @@ std::string shellQuote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
+}
+
+// Runs `cmd` through /bin/sh and waits for it, stopping it (SIGTERM) and throwing Interrupted if
+// msbench is signalled meanwhile (std::system would ignore SIGINT and SIGQUIT while it waits).
+// Returns the command's exit status (-1: it did not exit normally).
+int runInterruptible(const std::string& cmd) {
+  const pid_t child = fork();
+  if (child < 0) throw std::runtime_error("cannot start the figure script (fork failed)");
+  if (child == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(child, &status, WNOHANG) == 0) {
+    if (interruptRequested()) {
+      kill(child, SIGTERM);
+      waitpid(child, &status, 0);
+      throwIfInterrupted();
+    }
+    usleep(20000);
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // A Python interpreter that has matplotlib (Debian's python3-matplotlib installs it for
@@ -62,8 +89,13 @@ int runReportCommand(int argc, char** argv) {
   }
   const fs::path out = args.get("out").empty() ? dir / "report" : fs::path(args.get("out"));
   const std::vector<ReportRow> rows = reportRows(results);
+  throwIfInterrupted();  // safe points: after reading, after writing the tables, after the figures
 
-  StagedOutputDir staged(out, /*overwrite=*/true);
+  // The report may sit inside the sweep (DIR/report, the default) but never over its inputs.
+  checkNoOverlap({{"DIR (sweep.json)", dir / "sweep.json"}, {"DIR (runs)", dir / "runs"}, {"DIR (runs.csv)", dir / "runs.csv"},
+                  {"DIR (logs)", dir / "logs"}},
+                 {{"--out", out}});
+  StagedOutputDir staged(out, /*overwrite=*/true, OutputKind::kReport);
   const std::vector<FindingResult> findings = evaluateFindings(results, rows);
   writeFileAtomic(staged.staging() / "report.md", reportMarkdown(results, rows) + findingsMarkdown(findings));
   writeFileAtomic(staged.staging() / "findings.csv", findingsCsv(findings));
@@ -81,11 +113,12 @@ int runReportCommand(int argc, char** argv) {
     } else {
       const std::string cmd = python + " " + shellQuote((staged.staging() / "make_figures.py").string()) + " " +
                               shellQuote(staged.staging().string()) + " >/dev/null";
-      if (std::system(cmd.c_str()) != 0)
+      if (runInterruptible(cmd) != 0)
         throw std::runtime_error("the figure script failed: " + cmd);
       figures = "figures: coverage_<world>.png, gallery.png";
     }
   }
+  throwIfInterrupted();
   staged.commit();
   const FindingCounts c = countFindings(findings);
   std::printf("report: %zu rows from %zu runs -> %s (report.md, table.csv, findings.csv); findings %d hold, %d fail, "

@@ -67,7 +67,9 @@ int runRunCommand(int argc, char** argv) {
   MissionWorld world = prepareMissionWorld(file, spec);
   const Aabb& box = world.box;
   std::optional<WorldTruth>& truth = world.truth;
-  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record");
+  // Outputs never overlap the inputs or each other; a replaced log must be a perception log.
+  checkNoOverlap({{"SCENARIO", file}}, {{"--out", args.get("out")}, {"--record", args.get("record")}});
+  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
   // Build the mission (world model, renderer, method) before any output exists: a world that
   // does not compile is bad input (exit 2) and leaves nothing behind.
   Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });

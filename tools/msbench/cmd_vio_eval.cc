@@ -101,14 +101,15 @@ int runVioEvalCommand(int argc, char** argv) {
   spec.perception.enabled = true;
   const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
   const long annotate_every = args.getIntIn("annotate-every", 0, 1000000);
-  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record");
+  checkNoOverlap({{"FILE.yaml", file}}, {{"--out", args.get("out")}, {"--record", args.get("record")}});
+  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
   std::optional<WorldTruth> truth;
   if (built) truth.emplace(built->generated.shapes);
   // The loop (world model, renderer) before any output exists: a bad world writes nothing.
   LoopSetup setup;
   setup.truth = truth ? &*truth : nullptr;
   ClosedLoop loop = buildNamingFile(file, [&] { return ClosedLoop(spec, setup); });
-  StagedOutputDir out(args.get("out"), args.has("overwrite"));
+  StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kVioEval);
   fs::create_directories(out.staging() / "annotated");
   const FisheyeCamera camera(spec.camera);
   std::map<int64_t, Pose> gt_camera;  // ground-truth camera pose per rendered tick

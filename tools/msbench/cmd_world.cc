@@ -13,6 +13,7 @@
 #include "sim/render/fisheye_renderer.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/interrupt.h"
 #include "tools/results/output_files.h"
 #include "tools/config/strict_number.h"
 #include "tools/config/world_registry.h"
@@ -168,7 +169,7 @@ int runWorldCommand(int argc, char** argv) {
                        std::to_string(int(hi.x() - lo.x())) + " x " + std::to_string(int(hi.y() - lo.y())) +
                        " m) would be " + std::to_string(long(longest_px)) +
                        " pixels long; choose a resolution that gives 1 to 16384 pixels a side");
-    StagedOutputDir out(args.get("out"), args.has("overwrite"));
+    StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kWorldShow);
     writePng(out.staging() / "topdown.png", viewOf(renderTopDown(w, m_per_px)));
 
     // Fisheye views from 1.5 m above the start at four headings, in a 2x2 mosaic.
@@ -179,6 +180,7 @@ int runWorldCommand(int argc, char** argv) {
     FisheyeRenderer renderer(FisheyeRendererConfig{}, cam, sim.model());
     cv::Mat mosaic(2 * cam.height(), 2 * cam.width(), CV_8UC1);
     for (int k = 0; k < 4; ++k) {
+      throwIfInterrupted();  // between views: the staging directory goes with the exception
       CameraFrame f;
       renderer.render(sim.data(), start * poseFromXyzYaw(Vec3::Zero(), k * M_PI / 2) * cam.T_B_C(), &f);
       cv::Mat(f.height, f.width, CV_8UC1, f.pixels.data())

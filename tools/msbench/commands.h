@@ -20,6 +20,8 @@ int runRenderProbeCommand(int argc, char** argv);
 int runVioEvalCommand(int argc, char** argv);
 /// `msbench map-replay LOG --out DIR`: the mapper over a recorded perception log.
 int runMapReplayCommand(int argc, char** argv);
+/// `msbench grid-audit LOG RUN`: how a grid-baseline run's map came to be free where it collided.
+int runGridAuditCommand(int argc, char** argv);
 /// `msbench bench-map LOG`: the mapper's per-update time.
 int runBenchMapCommand(int argc, char** argv);
 /// `msbench world list|build|show`: the benchmark worlds.

@@ -1,7 +1,8 @@
-// SIGINT / SIGTERM during a long command: the handler only records the signal; the command's
-// loop calls throwIfInterrupted() between ticks, so the run stops at the end of the current
-// tick and the exception unwinds through the output objects, which remove their temporary files
-// (no DIR.partial, no LOG.tmp). main() prints one line and exits 128 + signal (130, 143).
+// SIGINT, SIGTERM, SIGHUP or SIGQUIT during a command: the handler only records the signal; the
+// command calls throwIfInterrupted() at its safe points (between ticks, frames, views, report
+// stages), so it stops there and the exception unwinds through the output objects, which remove
+// their temporary files (no DIR.partial, no LOG.tmp). main() prints one line and exits 128 +
+// signal (130, 143, 129, 131).
 #pragma once
 
 #include <stdexcept>
@@ -9,7 +10,7 @@
 
 namespace msb {
 
-/// Thrown between ticks after SIGINT or SIGTERM.
+/// Thrown at a safe point after SIGINT, SIGTERM, SIGHUP or SIGQUIT.
 class Interrupted : public std::runtime_error {
  public:
   explicit Interrupted(int signal);
@@ -20,7 +21,7 @@ class Interrupted : public std::runtime_error {
   int signal_;
 };
 
-/// Installs the SIGINT and SIGTERM handlers (once, at start-up).
+/// Installs the SIGINT, SIGTERM, SIGHUP and SIGQUIT handlers (once, at start-up).
 void installInterruptHandlers();
 /// Throws Interrupted if a signal arrived.
 void throwIfInterrupted();

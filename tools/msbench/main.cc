@@ -31,6 +31,7 @@ constexpr Command kCommands[] = {
     {"fly", msb::runFlyCommand, "fly a scripted waypoint list in a world; write results"},
     {"vio-eval", msb::runVioEvalCommand, "fly with tracker + SLAM points, evaluate against truth"},
     {"map-replay", msb::runMapReplayCommand, "run the mapper over a recorded perception log"},
+    {"grid-audit", msb::runGridAuditCommand, "replay a grid-baseline collision's log: what cleared the cells it hit"},
     {"bench-map", msb::runBenchMapCommand, "mapper time per update on a perception log"},
     {"render-probe", msb::runRenderProbeCommand, "render one fisheye frame from a pose"},
     {"bench-loop", msb::runBenchLoopCommand, "closed-loop cost per stage (per simulated s and per frame)"},

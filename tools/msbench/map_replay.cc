@@ -1,5 +1,7 @@
 #include "tools/msbench/map_replay.h"
 
+#include "tools/msbench/interrupt.h"
+
 #include <cmath>
 #include <optional>
 
@@ -17,6 +19,7 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
   if (truth) safety.emplace(*truth, 0);
   double next_t = -1e9;
   for (const auto& f : log.frames) {
+    throwIfInterrupted();  // a safe point: nothing of this frame is in the map yet
     // Corridor at the time: is the camera inside the free space the map has at that moment?
     if (f.T_W_C_truth.translation().z() >= 1.0) {
       ++r.live_samples;

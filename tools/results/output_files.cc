@@ -52,16 +52,93 @@ bool existsNoFollow(const fs::path& p) {
 
 }  // namespace
 
-void checkOutputFile(const fs::path& file, bool overwrite, const std::string& flag) {
+void checkOutputFile(const fs::path& file, bool overwrite, const std::string& flag, const std::string& magic) {
   const std::string name = "--" + flag + " " + file.string();
   if (file.empty() || !fs::absolute(file).has_filename()) throw UsageError(name + ": expected a file name");
   if (existsNoFollow(file)) {
     if (!fs::is_regular_file(fs::symlink_status(file))) throw UsageError(name + ": exists and is not a regular file");
     if (!overwrite) throw UsageError(name + ": exists (use --overwrite to replace it)");
+    if (!magic.empty() && readFileText(file).compare(0, magic.size(), magic) != 0)
+      throw UsageError(name + ": exists and is not a file msbench wrote as this output; refusing to replace it");
   }
   const fs::path dir = fs::absolute(file).parent_path();
   if (!fs::is_directory(dir)) throw UsageError(name + ": directory " + dir.string() + " does not exist");
   if (::access(dir.c_str(), W_OK) != 0) throw UsageError(name + ": directory " + dir.string() + " is not writable");
+}
+
+namespace {
+
+// The marker's text of a kind, and the file that shows a directory of that kind written before
+// markers named their kind.
+const char* kindName(OutputKind k) {
+  switch (k) {
+    case OutputKind::kRun: return "run";
+    case OutputKind::kReport: return "report";
+    case OutputKind::kFly: return "fly";
+    case OutputKind::kVioEval: return "vio-eval";
+    case OutputKind::kMapReplay: return "map-replay";
+    case OutputKind::kWorldShow: return "world-show";
+  }
+  return "?";
+}
+
+const char* characteristicFile(OutputKind k) {
+  switch (k) {
+    case OutputKind::kRun: return "coverage.csv";
+    case OutputKind::kReport: return "report.md";
+    case OutputKind::kFly: return "imu.csv";
+    case OutputKind::kVioEval: return "frames.csv";
+    case OutputKind::kMapReplay: return "map_stats.csv";
+    case OutputKind::kWorldShow: return "views.png";
+  }
+  return "";
+}
+
+std::string markerText(OutputKind k) {
+  return std::string("This directory was written by msbench (") + kindName(k) +
+         "); --overwrite may replace it with the same kind of output.\n";
+}
+
+// Weakly canonical absolute form (symlinks resolved where the path exists).
+fs::path canonicalOf(const fs::path& p) {
+  std::error_code ec;
+  fs::path c = fs::weakly_canonical(fs::absolute(p), ec);
+  if (ec) c = fs::absolute(p).lexically_normal();
+  if (!c.has_filename() && c.has_parent_path()) c = c.parent_path();
+  return c;
+}
+
+}  // namespace
+
+void checkNoOverlap(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
+  auto overlap = [](const fs::path& a, const fs::path& b) { return isSameOrAncestor(a, b) || isSameOrAncestor(b, a); };
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    if (outputs[i].path.empty()) continue;
+    const fs::path o = canonicalOf(outputs[i].path);
+    const std::string name = outputs[i].flag + " " + outputs[i].path.string();
+    for (const NamedPath& in : inputs)
+      if (!in.path.empty() && overlap(o, canonicalOf(in.path)))
+        throw UsageError(name + ": overlaps the input " + in.flag + " " + in.path.string() +
+                         " (an output may not be, hold or lie inside an input); refusing it, nothing was written");
+    for (size_t j = i + 1; j < outputs.size(); ++j)
+      if (!outputs[j].path.empty() && overlap(o, canonicalOf(outputs[j].path)))
+        throw UsageError(name + ": overlaps the output " + outputs[j].flag + " " + outputs[j].path.string() +
+                         "; refusing it, nothing was written");
+  }
+}
+
+
+bool isMsbenchOutput(const fs::path& dir, OutputKind kind) {
+  if (!fs::is_directory(dir)) return false;
+  const fs::path marker = dir / kMarker;
+  if (fs::exists(marker)) {
+    const std::string text = readFileText(marker);
+    if (text == markerText(kind)) return true;
+    // A marker from before kinds: the kind's characteristic file decides.
+    if (text.find("(") == std::string::npos) return fs::exists(dir / characteristicFile(kind));
+    return false;
+  }
+  return kind == OutputKind::kRun && isMsbenchOutput(dir);
 }
 
 bool isMsbenchOutput(const fs::path& dir) {
@@ -73,7 +150,8 @@ bool isMsbenchOutput(const fs::path& dir) {
   return text.find("\"versions\"") != std::string::npos && text.find("\"msbench\"") != std::string::npos;
 }
 
-StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite) : overwrite_(overwrite) {
+StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind kind)
+    : overwrite_(overwrite), kind_(kind) {
   // One normal absolute form (a trailing slash names the same directory).
   if (final_dir.empty()) throw UsageError("--out: empty path");
   fs::path p = fs::absolute(final_dir).lexically_normal();
@@ -92,6 +170,9 @@ StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite) : overwrite
         throw UsageError(name + ": output directory exists and is not empty (use --overwrite to replace an msbench result)");
       if (!isMsbenchOutput(p))
         throw UsageError(name + ": was not written by msbench (no " + kMarker + " inside); refusing to replace it");
+      if (!isMsbenchOutput(p, kind_))
+        throw UsageError(name + ": is an msbench output of another kind, not a " + kindName(kind_) +
+                         " output; refusing to replace it");
     }
   }
   // The staging directory: a stale one of an interrupted msbench run is cleared, anything else kept.
@@ -104,7 +185,7 @@ StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite) : overwrite
   std::error_code ec;
   fs::create_directories(staging_, ec);
   if (ec) throw UsageError(staging_.string() + ": cannot create the output directory: " + ec.message());
-  writeFileAtomic(staging_ / kMarker, "This directory was written by msbench; --overwrite may replace it.\n");
+  writeFileAtomic(staging_ / kMarker, markerText(kind_));
 }
 
 StagedOutputDir::~StagedOutputDir() {

@@ -15,12 +15,31 @@ std::string readFileText(const std::filesystem::path& path);
 void writeFileAtomic(const std::filesystem::path& path, const std::string& bytes);
 
 /// Checks before a run that `file` can be written as an output file named by `flag`: not a
-/// directory, its directory exists and is writable, and an existing file only with `overwrite`.
-/// Throws UsageError (exit 2).
-void checkOutputFile(const std::filesystem::path& file, bool overwrite, const std::string& flag);
+/// directory, its directory exists and is writable, and an existing file only with `overwrite`
+/// and only when it starts with `magic` (what msbench writes as that kind of file: "MSBLOG" for a
+/// perception log, the PNG signature for a picture). Throws UsageError (exit 2).
+void checkOutputFile(const std::filesystem::path& file, bool overwrite, const std::string& flag,
+                     const std::string& magic = "");
 
-/// True if `dir` is a directory msbench wrote (it holds the marker file `.msbench-output`).
+/// A path a command reads or writes, with the flag (or argument) the user gave it by.
+struct NamedPath {
+  std::string flag;  ///< e.g. "--out", "--record", "SCENARIO"
+  std::filesystem::path path;
+};
+
+/// Refuses (UsageError, exit 2, before anything is written) an output equal to, inside, or
+/// containing an input or another output. `inputs` are files or directories the command reads;
+/// `outputs` what it writes (a directory output includes its "<dir>.partial" staging directory).
+void checkNoOverlap(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
+
+/// The kinds of output directory msbench writes; --overwrite replaces only one of the same kind.
+enum class OutputKind { kRun, kReport, kFly, kVioEval, kMapReplay, kWorldShow };
+
+/// True if `dir` is a directory msbench wrote (it holds the marker file `.msbench-output`); with
+/// `kind`, only one of that kind (a marker written before kinds existed counts for the kind whose
+/// characteristic file the directory holds).
 bool isMsbenchOutput(const std::filesystem::path& dir);
+bool isMsbenchOutput(const std::filesystem::path& dir, OutputKind kind);
 
 /// A staging directory "<final>.partial" that becomes "<final>" on commit(). Safe by
 /// construction: the path is normalised (a trailing slash is the same directory); the current
@@ -30,8 +49,10 @@ bool isMsbenchOutput(const std::filesystem::path& dir);
 /// marker file.
 class StagedOutputDir {
  public:
-  /// Checks the target and creates the staging directory; refusals throw UsageError (exit 2).
-  StagedOutputDir(std::filesystem::path final_dir, bool overwrite);
+  /// Checks the target and creates the staging directory; refusals throw UsageError (exit 2). An
+  /// existing non-empty target is replaced only with `overwrite` and only if it is an msbench
+  /// output of the same kind.
+  StagedOutputDir(std::filesystem::path final_dir, bool overwrite, OutputKind kind = OutputKind::kRun);
   /// Removes the staging directory if commit() was never called.
   ~StagedOutputDir();
   /// Where to write files now.
@@ -44,6 +65,7 @@ class StagedOutputDir {
  private:
   std::filesystem::path final_, staging_;
   bool overwrite_, committed_ = false;
+  OutputKind kind_;
 };
 
 }  // namespace msb

@@ -19,6 +19,9 @@
 
 namespace msb {
 
+/// The first bytes of every perception log (any version): what --record --overwrite may replace.
+inline constexpr char kPerceptionLogMagic[] = "MSBLOG";
+
 /// One recorded frame.
 struct LoggedFrame {
   SlamPointsFrame points;            ///< estimate pose + SLAM points

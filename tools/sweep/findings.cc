@@ -214,14 +214,12 @@ void evaluateCollisionsLate(const Finding& f, const SweepResults& results, const
   std::string shares;
   for (const ReportRun& run : results.runs) {
     const nlohmann::json& m = run.metrics;
-    if (run.status != "complete" || !m.is_object() || m.value("world", std::string()) != f.world) continue;
+    if (!run.record || run.record->world != f.world) continue;
     if (std::find(f.methods.begin(), f.methods.end(), reportMethodName(m)) == f.methods.end()) continue;
     ++runs;
-    if (m.value("status", std::string()) != "collided") continue;
+    if (run.record->status != RunStatus::kCollided) continue;
     ++crashes;
-    const auto& cov = m["coverage"];
-    const double share = cov.is_object() && cov.contains("box_share") && cov["box_share"].is_number()
-                             ? cov["box_share"].get<double>() : 0.0;
+    const double share = run.record->box_share.value_or(0.0);
     early += share < f.threshold;
     shares += (shares.empty() ? "" : ", ") + number(share, 2);
   }

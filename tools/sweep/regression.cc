@@ -5,19 +5,12 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/common/config_check.h"
+#include "tools/results/output_files.h"
+
 namespace msb {
 
 namespace {
-
-std::string machineId(const nlohmann::json& metrics) {
-  if (!metrics.is_object() || !metrics.contains("machine") || !metrics["machine"].is_object()) return "";
-  return metrics["machine"].value("id", std::string());
-}
-
-double areaOf(const nlohmann::json& metrics) {
-  const auto& c = metrics["coverage"];
-  return c.is_object() && c.contains("area_m2") && c["area_m2"].is_number() ? c["area_m2"].get<double>() : 0.0;
-}
 
 std::string f0(double v) {
   char b[48];
@@ -41,22 +34,53 @@ nlohmann::json goldenFromSweep(const SweepResults& results, const RegressionTole
   nlohmann::json runs = nlohmann::json::array();
   nlohmann::json machine;
   for (const ReportRun& r : results.runs) {
-    if (r.status != "complete" || !r.metrics.is_object() || r.metrics.value("status", std::string()) == "error") {
+    if (!r.record) {
       missing += (missing.empty() ? "" : ", ") + r.id + " (" + r.status + ")";
       continue;
     }
     if (machine.is_null() && r.metrics.contains("machine")) machine = r.metrics["machine"];
     runs.push_back({{"id", r.id},
-                    {"status", r.metrics.value("status", std::string())},
-                    {"area_m2", areaOf(r.metrics)},
-                    {"sim_time_s", r.metrics.value("sim_time_s", 0.0)},
-                    {"determinism_hash", r.metrics.value("determinism_hash", std::string())},
-                    {"machine_id", machineId(r.metrics)}});
+                    {"status", runStatusName(r.record->status)},
+                    {"area_m2", r.record->area_m2},
+                    {"sim_time_s", r.record->sim_time_s},
+                    {"determinism_hash", r.record->determinism_hash},
+                    {"machine_id", r.record->machine_id}});
   }
   if (!missing.empty()) throw std::runtime_error("not every run is complete: " + missing);
-  return {{"machine", machine},
+  return {{"kind", kGoldenKind},
+          {"machine", machine},
           {"tolerance", {{"relative", tolerance.relative}, {"absolute_m2", tolerance.absolute_m2}}},
           {"runs", runs}};
+}
+
+nlohmann::json readGolden(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file)) throw FileConfigError(file.string() + ": no such golden file");
+  const nlohmann::json g = nlohmann::json::parse(readFileText(file), nullptr, false);
+  if (g.is_discarded() || !g.is_object()) throw FileConfigError(file.string() + ": not a JSON object (truncated?)");
+  if (!g.contains("runs") || !g["runs"].is_array()) throw FileConfigError(file.string() + ": key 'runs': expected a list");
+  for (size_t i = 0; i < g["runs"].size(); ++i) {
+    const auto& r = g["runs"][i];
+    const std::string key = "runs[" + std::to_string(i) + "]";
+    if (!r.is_object()) throw FileConfigError(file.string() + ": key '" + key + "': expected an object");
+    for (const char* k : {"id", "status", "determinism_hash", "machine_id"})
+      if (!r.contains(k) || !r[k].is_string())
+        throw FileConfigError(file.string() + ": key '" + key + "." + k + "': " + (r.contains(k) ? "expected a string" : "missing"));
+    if (!r.contains("area_m2") || !r["area_m2"].is_number())
+      throw FileConfigError(file.string() + ": key '" + key + ".area_m2': " + (r.contains("area_m2") ? "expected a number" : "missing"));
+  }
+  if (g.contains("tolerance") && !g["tolerance"].is_object())
+    throw FileConfigError(file.string() + ": key 'tolerance': expected an object");
+  return g;
+}
+
+bool isGoldenFile(const std::filesystem::path& file) {
+  const nlohmann::json g = nlohmann::json::parse(readFileText(file), nullptr, false);
+  if (!g.is_object()) return false;
+  if (g.contains("kind")) return g["kind"] == kGoldenKind;
+  // Written before "kind": exactly the keys a golden has.
+  for (const auto& [k, v] : g.items())
+    if (k != "machine" && k != "tolerance" && k != "runs") return false;
+  return g.contains("runs") && g["runs"].is_array();
 }
 
 RegressionOutcome compareWithGolden(const SweepResults& results, const nlohmann::json& golden,
@@ -73,28 +97,35 @@ RegressionOutcome compareWithGolden(const SweepResults& results, const nlohmann:
       out.regressions.push_back(id + ": missing from the sweep");
       continue;
     }
-    const nlohmann::json& m = it->metrics;
-    if (it->status != "complete" || !m.is_object() || m.value("status", std::string()) == "error") {
-      out.regressions.push_back(id + ": did not complete (" + it->status + ")");
+    if (!it->record) {
+      const std::string why = it->failure.is_object() && it->failure.contains("problem") ? ": " + it->failure["problem"].get<std::string>() : "";
+      out.regressions.push_back(id + ": did not complete (" + it->status + why + ")");
       continue;
     }
     ++out.compared;
-    const std::string status = m.value("status", std::string()), g_status = g.value("status", std::string());
-    const double area = areaOf(m), g_area = g.value("area_m2", 0.0);
-    const std::string hash = m.value("determinism_hash", std::string()), g_hash = g.value("determinism_hash", std::string());
-    const bool same_machine = !machineId(m).empty() && machineId(m) == g.value("machine_id", std::string());
+    const MissionRecord& m = *it->record;
+    const std::string status = runStatusName(m.status), g_status = g.value("status", std::string());
+    const double area = m.area_m2, g_area = g.value("area_m2", 0.0);
+    const std::string g_hash = g.value("determinism_hash", std::string()), g_machine = g.value("machine_id", std::string());
     if (status != g_status) out.regressions.push_back(id + ": status " + status + ", golden " + g_status);
-    if (same_machine) {
-      // Same machine, same build inputs: the run must repeat bit for bit.
+    if (!tolerance.band_only && (g_hash.empty() || g_machine.empty() || m.machine_id.empty())) {
+      // Without a hash and a machine id the exact mode cannot be chosen: never fall back silently.
+      out.regressions.push_back(id + ": " + std::string(g_hash.empty() || g_machine.empty() ? "the golden entry" : "the run") +
+                                " has no determinism hash or machine id (use --band to compare areas only)");
+      continue;
+    }
+    const bool same_machine = m.machine_id == g_machine, same_run = m.determinism_hash == g_hash;
+    if (!tolerance.band_only && (same_machine || same_run)) {
+      // Same machine (same build inputs), or the very same run elsewhere: bit for bit.
       ++out.exact;
       if (area != g_area) out.regressions.push_back(id + ": A " + f0(area) + " m², golden " + f0(g_area) + " m² (exact mode)");
-      if (hash != g_hash) out.regressions.push_back(id + ": determinism hash " + hash + ", golden " + g_hash + " (exact mode)");
+      if (!same_run) out.regressions.push_back(id + ": determinism hash " + m.determinism_hash + ", golden " + g_hash + " (exact mode)");
     } else {
       ++out.banded;
       const double band = std::max(tolerance.relative * g_area, tolerance.absolute_m2);
       if (std::fabs(area - g_area) > band)
         out.regressions.push_back(id + ": A " + f0(area) + " m², golden " + f0(g_area) + " m² ± " + f0(band) +
-                                  " (band mode: another machine)");
+                                  " (band mode: " + (tolerance.band_only ? "asked for" : "another machine") + ")");
     }
   }
   for (const ReportRun& r : results.runs) {

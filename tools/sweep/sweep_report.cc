@@ -166,9 +166,17 @@ SweepResults loadSweepResults(const fs::path& dir) {
     if (jr.contains("labels")) run.labels = jr["labels"].get<std::map<std::string, std::string>>();
     if (jr.contains("failure")) run.failure = jr["failure"];
     const fs::path rd = dir / "runs" / run.id;
-    if (run.status == "complete" && fs::exists(rd / "metrics.json")) {
-      run.metrics = nlohmann::json::parse(readFileText(rd / "metrics.json"), nullptr, false);
-      run.coverage = readCoverageCsv(rd / "coverage.csv");
+    if (run.status == "complete") {
+      // A complete run whose metrics.json is missing, truncated or incomplete is a failed run.
+      MissionRecordRead read = readMissionRecord(rd / "metrics.json");
+      if (read.record) {
+        run.metrics = read.record->metrics;
+        run.record = std::move(read.record);
+        run.coverage = readCoverageCsv(rd / "coverage.csv");
+      } else {
+        run.status = "failed";
+        run.failure = {{"problem", read.problem}};
+      }
     }
     r.runs.push_back(std::move(run));
   }
@@ -195,8 +203,8 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     ReportRow& row = *it;
     ++row.runs;
     if (run.status == "failed") ++row.failed;
+    if (!run.record) continue;
     const nlohmann::json& m = run.metrics;
-    if (!m.is_object() || m.value("status", std::string()) == "error") continue;
     ++row.complete;
     if (row.world.empty()) {
       row.world = m.value("world", std::string("?"));
@@ -207,22 +215,22 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
       }
     }
     const nlohmann::json& cov = m["coverage"];
-    const double a = number(cov, "area_m2");
+    const double a = run.record->area_m2;
     add(row.area_m2, a);
     row.area_seeds.push_back(run.seed);
     row.max_area_m2 = std::max(row.max_area_m2, a);
-    if (cov.contains("box_share") && cov["box_share"].is_number()) {
-      add(row.box_share, cov["box_share"].get<double>());
-      row.saturated += cov["box_share"].get<double>() >= kSaturatedBoxShare;
+    if (const auto share = run.record->box_share) {
+      add(row.box_share, *share);
+      row.saturated += *share >= kSaturatedBoxShare;
     }
-    row.vio_lost += m.value("status", std::string()) == "vio_lost";
+    row.vio_lost += run.record->status == RunStatus::kVioLost;
     if (const auto t = timeToBoxShare(run.coverage, 0.5)) add(row.t50_s, *t);
     if (const auto t = timeToBoxShare(run.coverage, 0.9)) add(row.t90_s, *t);
     const double flown = number(m, "distance_flown_m");
     if (flown > 0) add(row.area_per_100m, 100.0 * a / flown);
     if (cov.contains("longest_no_gain_s")) add(row.longest_no_gain_s, number(cov, "longest_no_gain_s"));
     add(row.rtf, number(m, "real_time_factor"));
-    if (m.value("status", std::string()) == "collided") {
+    if (run.record->status == RunStatus::kCollided) {
       ++row.crashes;
       const nlohmann::json& c = m["collision"];
       const std::string kind = c.is_object() && c.contains("kind") && c["kind"].is_string() ? c["kind"].get<std::string>()
@@ -384,8 +392,9 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
       const int sig = f.is_object() ? f.value("signal", 0) : 0;
       const std::string ended = sig ? "signal " + std::to_string(sig) + (f.contains("signal_name") ? " (" + text("signal_name") + ")" : "")
                                     : "exit code " + std::to_string(f.is_object() ? f.value("exit_code", 0) : 0);
-      o << "| " << r.id << " | " << ended << " | " << text("last_progress") << " | " << text("fatal") << " | logs/" << r.id
-        << ".log |\n";
+      const std::string why = f.is_object() && f.contains("problem") ? text("problem") : text("fatal");
+      o << "| " << r.id << " | " << (f.is_object() && f.contains("problem") ? std::string("unreadable results") : ended)
+        << " | " << text("last_progress") << " | " << why << " | logs/" << r.id << ".log |\n";
     }
     o << "\n";
   }

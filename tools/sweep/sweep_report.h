@@ -15,6 +15,7 @@
 
 #include "core/eval/coverage_sample.h"
 #include "tools/config/method_table.h"
+#include "tools/results/run_record.h"
 #include "tools/sweep/statistics.h"
 
 namespace msb {
@@ -25,7 +26,8 @@ struct ReportRun {
   std::map<std::string, std::string> labels;  ///< axis name -> label
   uint64_t seed = 0;
   std::string status;                         ///< the sweep's: complete | failed | pending
-  nlohmann::json metrics;                     ///< metrics.json (complete runs)
+  std::optional<MissionRecord> record;        ///< metrics.json read strictly (complete runs)
+  nlohmann::json metrics;                     ///< metrics.json (complete runs; the record's)
   nlohmann::json failure;                     ///< sweep.json's failure record (failed runs)
   std::vector<CoverageSample> coverage;       ///< coverage.csv (complete runs)
 };

@@ -18,6 +18,7 @@
 #include "core/common/wall_time.h"
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
+#include "tools/results/run_record.h"
 
 namespace msb {
 
@@ -56,13 +57,13 @@ std::string lastLineWith(const std::string& text, const std::string& marker) {
                      (end == std::string::npos ? text.size() : end) - (begin == std::string::npos ? 0 : begin + 1));
 }
 
-// A run's outputs are complete when its metrics.json is readable and not the record of a run
-// that ended in an error (msbench run writes one then, and exits 1): those are redone.
+// A run's outputs are complete when its metrics.json reads as a complete record (the strict
+// reader of tools/results/run_record.h): a missing, truncated or incomplete file, or the record
+// of a run that ended in an error (msbench run writes one then, and exits 1), is redone.
 std::optional<nlohmann::json> completeMetrics(const fs::path& file) {
-  if (!fs::exists(file)) return std::nullopt;
-  nlohmann::json m = nlohmann::json::parse(readFileText(file), nullptr, false);
-  if (!m.is_object() || m.value("status", std::string()) == "error") return std::nullopt;
-  return m;
+  MissionRecordRead read = readMissionRecord(file);
+  if (!read.record) return std::nullopt;
+  return std::move(read.record->metrics);
 }
 
 // The build a sweep's results come from.

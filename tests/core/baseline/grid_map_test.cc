@@ -45,6 +45,59 @@ TEST(GridMap, AHitInTheScanIsNotClearedByAnotherRay) {
   EXPECT_EQ(map.occupancy(Vec3(8.25, 0.25, 2.25)), 1);
 }
 
+// The mechanism of the urban grid collisions (docs/baseline.md, "Why the grid collides in urban"):
+// a sparse surface is hit now and then while rays to points behind it (or farther along it, at a
+// grazing angle) cross its cells far more often. One scan hits the cell, the next three cross
+// it, ten times over.
+GridMap hitOnceMissedThrice(const GridMapConfig& config) {
+  GridMap map(config);
+  const Vec3 o(0.25, 0.25, 2.25), surface(5.25, 0.25, 2.25), behind(9.25, 0.25, 2.25);
+  for (int cycle = 0; cycle < 10; ++cycle) {
+    map.insertScan(o, {surface});
+    for (int k = 0; k < 3; ++k) map.insertScan(o, {behind});
+  }
+  return map;
+}
+
+TEST(GridMap, OctoMapsDefaultModelLetsMissesOutnumberingHitsClearASurface) {
+  GridMapConfig octomap_defaults;  // OctoMap's own: hit 0.7, miss 0.4, clamping 0.1192 - 0.971
+  octomap_defaults.prob_hit = 0.7, octomap_defaults.prob_miss = 0.4;
+  octomap_defaults.clamp_min = 0.1192, octomap_defaults.clamp_max = 0.971;
+  // +0.85 per hit, -0.41 per miss: the log-odds fall by 0.37 a cycle, and the cell ends free.
+  EXPECT_EQ(hitOnceMissedThrice(octomap_defaults).occupancy(Vec3(5.25, 0.25, 2.25)), 0);
+}
+
+TEST(GridMap, TheReferenceSensorModelKeepsASurfaceHitEveryFourthScan) {
+  GridMapConfig reference;  // mrs_octomap_server's: hit 0.95, miss 0.45, clamping 0.3 - 0.7
+  reference.prob_hit = 0.95, reference.prob_miss = 0.45, reference.clamp_min = 0.3, reference.clamp_max = 0.7;
+  // A hit saturates the cell (+2.94, clamped at 0.85); three misses take 0.60 of it.
+  const GridMap map = hitOnceMissedThrice(reference);
+  EXPECT_EQ(map.occupancy(Vec3(5.25, 0.25, 2.25)), 1);
+  // Five misses in a row do clear it (0.85 - 5 x 0.20 < 0).
+  GridMap cleared(reference);
+  cleared.insertScan(Vec3(0.25, 0.25, 2.25), {Vec3(5.25, 0.25, 2.25)});
+  for (int k = 0; k < 5; ++k) cleared.insertScan(Vec3(0.25, 0.25, 2.25), {Vec3(9.25, 0.25, 2.25)});
+  EXPECT_EQ(cleared.occupancy(Vec3(5.25, 0.25, 2.25)), 0);
+}
+
+TEST(GridMap, WatchedCellsListTheRaysThatUpdatedThem) {
+  GridMap map(GridMapConfig{});
+  const Vec3 o(0.25, 0.25, 2.25), cell(5.25, 0.25, 2.25);
+  map.watch({*map.keyOf(cell)});
+  // Point 0 ends in the cell (hit), point 1 crosses it (miss: dropped, the scan hit the cell).
+  map.insertScan(o, {cell, Vec3(9.25, 0.25, 2.25)});
+  ASSERT_EQ(map.lastWatched().size(), 1u);
+  EXPECT_TRUE(map.lastWatched()[0].hit);
+  EXPECT_EQ(map.lastWatched()[0].point, 0);
+  // Next scan only crosses it: one miss, by point 0 of that scan.
+  map.insertScan(o, {Vec3(9.25, 0.25, 2.25)});
+  ASSERT_EQ(map.lastWatched().size(), 1u);
+  EXPECT_FALSE(map.lastWatched()[0].hit);
+  EXPECT_LT((map.centreOf(map.lastWatched()[0].key) - cell).norm(), 1e-6);
+  EXPECT_TRUE(map.probabilityOf(*map.keyOf(cell)).has_value());
+  EXPECT_FALSE(map.probabilityOf(*map.keyOf(Vec3(0.25, 9.25, 2.25))).has_value());  // never seen
+}
+
 TEST(GridMap, ExtrinsicQualityRanksSidewaysMotionAboveMotionAlongTheView) {
   // Buck et al.'s ordering (their Fig. 1): aligned views moved sideways (excellent) > moved
   // partly sideways (good) > moved along the look direction (poor); views 90° apart: bad.

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -269,13 +270,96 @@ TEST(BadInput, PerceptionLogContentsAreCheckedOnRead) {
   refused("world.log", "MSBLOG1\n{\"camera_scale\": 1, \"world\": 7}\n" + good, {"world.log", "'world'", "a string"});
   refused("empty.log", header, {"empty.log", "no frames"});
   t.expectRefused("map-replay " + t.p("missing.log") + " --out " + t.p("o"), {"missing.log", "not found"});
-  t.expectRefused("map-replay " + t.d.string() + " --out " + t.p("o"), {"not a regular file"});
+  t.expectRefused("map-replay " + t.d.string() + " --out " + t.d.string() + "_o", {"not a regular file"});
   // The same log with sane contents replays.
   t.write("good.log", header + good);
   EXPECT_EQ(run("map-replay " + t.p("good.log") + " --out " + t.p("ok"), t.d / "log"), 0) << t.log();
 }
 
 // Starts msbench, sends `sig` once it is running, returns its exit code.
+// Outputs that would overlap an input or another output are refused before anything is written,
+// for every command with inputs and outputs; --overwrite replaces only the same kind of output.
+TEST(BadInput, OutputsNeverOverlapInputsOrEachOther) {
+  const Dir t("overlap");
+  t.write("m.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
+  const std::string m = t.p("m.yaml");
+  t.expectRefused("run " + m + " --record " + t.p("x") + " --out " + t.p("x"), {"--out", "overlaps the output --record"});
+  t.expectRefused("run " + m + " --record " + t.p("x/rec.log") + " --out " + t.p("x"), {"overlaps the output --record"});
+  t.expectRefused("run " + m + " --record " + m + " --overwrite --out " + t.p("o"), {"--record", "overlaps the input SCENARIO"});
+  EXPECT_NE(readText(t.d / "m.yaml").find("base:"), std::string::npos);  // the scenario is intact
+  t.expectRefused("vio-eval " + t.p("f.yaml") + " --record " + t.p("v") + " --out " + t.p("v"), {"overlaps the output"});
+  t.expectRefused("fly " + t.p("f.yaml") + " --out " + t.p("."), {"--out"});
+  // map-replay's output directory may not hold its own input log.
+  fs::create_directories(t.d / "rd");
+  t.write("rd/.msbench-output", "This directory was written by msbench (map-replay); --overwrite may replace it with "
+                                "the same kind of output.\n");
+  t.write("rd/in.log", "MSBLOG2\n");
+  t.expectRefused("map-replay " + t.p("rd/in.log") + " --out " + t.p("rd") + " --overwrite", {"overlaps the input LOG"});
+  // --record --overwrite replaces only a perception log.
+  t.expectRefused("run " + m + " --record " + t.p("sentinel") + " --overwrite --out " + t.p("o"),
+                  {"--record", "not a file msbench wrote as this output"});
+}
+
+TEST(BadInput, ReportAndRegressNeverWriteOverResults) {
+  const Dir t("reports");
+  // A hand-made sweep directory with one complete run.
+  fs::create_directories(t.d / "sw" / "runs" / "a-s1");
+  t.write("sw/sweep.json", R"({"axes": ["a"], "runs": [{"id": "a-s1", "seed": 1, "status": "complete", "labels": {"a": "a"}}]})");
+  t.write("sw/runs/a-s1/metrics.json",
+          R"({"status": "completed", "world": "test", "method": "monospheres", "sim_time_s": 10, "determinism_hash": )"
+          R"("0123456789abcdef", "machine": {"id": "m"}, "coverage": {"area_m2": 100, "box_share": 0.5}})");
+  t.write("sw/runs/a-s1/.msbench-output", "This directory was written by msbench; --overwrite may replace it.\n");
+  t.write("sw/runs/a-s1/coverage.csv", "t_s,area_m2\n0,0\n");
+  t.expectRefused("report " + t.p("sw") + " --out " + t.p("sw/runs/a-s1") + " --no-figures", {"overlaps the input DIR (runs)"});
+  t.expectRefused("report " + t.p("sw") + " --out " + t.p("sw") + " --no-figures", {"overlaps the input"});
+  // regress --update writes only a golden msbench wrote, and never into the sweep it reads.
+  t.expectRefused("regress " + t.p("sw") + " --update --against " + t.p("sw/runs/a-s1/metrics.json"), {"inside the sweep directory"});
+  t.write("other.json", "{\"not\": \"a golden\"}");
+  t.expectRefused("regress " + t.p("sw") + " --update --against " + t.p("other.json"), {"not a golden msbench wrote"});
+  EXPECT_EQ(readText(t.d / "other.json"), "{\"not\": \"a golden\"}");
+  // A malformed golden names the file and the key.
+  t.write("g.json", R"({"runs": [{"id": "a-s1", "status": "completed", "area_m2": "100"}]})");
+  t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g.json"), {"g.json", "runs[0].determinism_hash", "missing"});
+  t.write("g2.json", R"({"runs": [)");
+  t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g2.json"), {"g2.json", "not a JSON object"});
+  // A truncated metrics.json is a failed run in the report, never complete with A = 0.
+  const std::string full = readText(t.d / "sw/runs/a-s1/metrics.json");
+  t.write("sw/runs/a-s1/metrics.json", full.substr(0, 40));
+  ASSERT_EQ(run("report " + t.p("sw") + " --out " + t.p("rep") + " --no-figures", t.d / "log"), 0) << t.log();
+  const std::string md = readText(t.d / "rep" / "report.md");
+  EXPECT_NE(md.find("0 complete, 1 failed"), std::string::npos) << md;
+  EXPECT_NE(md.find("not valid JSON"), std::string::npos) << md;
+  // --overwrite replaces a report with a report, never a run's results with a report.
+  t.write("sw/runs/a-s1/metrics.json", full);
+  t.write("m.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
+  t.expectRefused("run " + t.p("m.yaml") + " --out " + t.p("rep") + " --overwrite", {"another kind"});
+}
+
+TEST(BadInput, ACameraIsMountedOnTheVehicle) {
+  const Dir t("mount");
+  t.write("far.yaml", "world: w.xml\nduration_s: 2\ncamera: {mount_position_B_m: [100, 0, 0]}\n"
+                      "trajectory: {waypoints: [[0, 0, 1]]}\n");
+  t.expectRefused("fly " + t.p("far.yaml") + " --out " + t.p("o"), {"far.yaml", "mount_position_B_m", "within 1 m"});
+}
+
+TEST(BadInput, BaseChainsAreBoundedAndOnlyRegularFiles) {
+  const Dir t("chains");
+  for (int i = 0; i < 100; ++i) {
+    // Built with append(): GCC 12 warns falsely (-Wrestrict) on "x" + std::to_string(i).
+    std::string name = "c", body = "base: c";
+    name.append(std::to_string(i)).append(".yaml");
+    body.append(std::to_string(i + 1)).append(".yaml\n");
+    t.write(name, body);
+  }
+  t.write("c100.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
+  t.expectRefused("run " + t.p("c0.yaml") + " --out " + t.p("o"), {"c0.yaml", "key 'base'", "more than 64 files", "c0.yaml -> c1.yaml"});
+  t.write("z.yaml", "base: /dev/zero\n");
+  t.expectRefused("run " + t.p("z.yaml") + " --out " + t.p("o"), {"z.yaml", "key 'base'", "not a regular file: /dev/zero"});
+  t.write("l1.yaml", "base: l2.yaml\n");
+  t.write("l2.yaml", "base: l1.yaml\n");
+  t.expectRefused("run " + t.p("l1.yaml") + " --out " + t.p("o"), {"circular base files (l1.yaml -> l2.yaml -> l1.yaml)"});
+}
+
 int runAndSignal(const std::string& args, int sig, const fs::path& log) {
   const pid_t pid = fork();
   if (pid == 0) {
@@ -307,7 +391,15 @@ TEST(BadInput, InterruptsLeaveNothingBehind) {
                          t.d / "log"),
             143)
       << t.log();
-  for (const char* gone : {"f", "f.partial", "r", "r.partial", "rec.log", "rec.log.tmp"})
+  // SIGHUP and SIGQUIT stop a command the same way (129, 131).
+  EXPECT_EQ(runAndSignal("run " + t.p("m.yaml") + " --quiet --record " + t.p("rec2.log") + " --out " + t.p("r2"), SIGHUP,
+                         t.d / "log"),
+            129)
+      << t.log();
+  EXPECT_NE(t.log().find("hung up (SIGHUP)"), std::string::npos) << t.log();
+  EXPECT_EQ(runAndSignal("fly " + t.p("long.yaml") + " --out " + t.p("f2"), SIGQUIT, t.d / "log"), 131) << t.log();
+  for (const char* gone : {"f", "f.partial", "r", "r.partial", "rec.log", "rec.log.tmp", "r2", "r2.partial", "rec2.log",
+                           "rec2.log.tmp", "f2", "f2.partial"})
     EXPECT_FALSE(fs::exists(t.d / gone)) << gone;
   EXPECT_EQ(readText(t.d / "sentinel"), "keep me");
 }

@@ -21,8 +21,11 @@ ReportRun madeRun(const std::string& world, const std::string& type, const std::
                {"method", type},
                {"switches", switches},
                {"status", hit_kind.empty() ? "completed" : "collided"},
+               {"sim_time_s", 100.0},
+               {"determinism_hash", "0123456789abcdef"},
                {"coverage", {{"area_m2", area}, {"box_share", box_share}}}};
   if (!hit_kind.empty()) r.metrics["collision"] = {{"object", "x"}, {"kind", hit_kind}};
+  r.record = missionRecordOf(r.metrics, r.id + "/metrics.json").record;
   return r;
 }
 

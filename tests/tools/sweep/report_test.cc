@@ -34,8 +34,11 @@ ReportRun madeRun(const std::string& id, const std::string& world, const std::st
                {"status", status},
                {"distance_flown_m", 200.0},
                {"real_time_factor", 2.0},
+               {"sim_time_s", 100.0},
+               {"determinism_hash", "0123456789abcdef"},
                {"coverage", {{"area_m2", area}, {"box_share", area / 1000.0}, {"longest_no_gain_s", 30.0}}}};
   if (!kind.empty()) r.metrics["collision"] = {{"world_geom", "g"}, {"object", "bus_0"}, {"kind", kind}};
+  r.record = missionRecordOf(r.metrics, id + "/metrics.json").record;
   for (int t = 0; t <= 10; ++t) {
     CoverageSample c;
     c.t_s = 10.0 * t;
@@ -152,14 +155,34 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   editMetrics(run_dir, [](nlohmann::json& j) { j["coverage"]["area_m2"] = j["coverage"]["area_m2"].get<double>() + 6.25; });
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_changed"), 1);
   EXPECT_NE(readText(d / "log_changed").find("REGRESSION no_fff-s2: A"), std::string::npos) << readText(d / "log_changed");
-  // From another machine: compared in a band, so a small change passes and a large one fails.
+  // The same hash from another machine is the same run: still exact, so the changed A fails.
   editMetrics(run_dir, [](nlohmann::json& j) { j["machine"]["id"] = "0000000000000000"; });
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_samehash"), 1);
+  EXPECT_NE(readText(d / "log_samehash").find("(exact mode)"), std::string::npos) << readText(d / "log_samehash");
+  // From another machine with another hash: compared in a band, so a small change passes and a
+  // large one fails.
+  editMetrics(run_dir, [](nlohmann::json& j) { j["determinism_hash"] = "ffffffffffffffff"; });
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_band"), 0)
       << readText(d / "log_band");
   EXPECT_NE(readText(d / "log_band").find("1 in band mode"), std::string::npos) << readText(d / "log_band");
   editMetrics(run_dir, [](nlohmann::json& j) { j["coverage"]["area_m2"] = 5.0 * j["coverage"]["area_m2"].get<double>() + 500; });
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_band2"), 1);
   EXPECT_NE(readText(d / "log_band2").find("band mode"), std::string::npos) << readText(d / "log_band2");
+  // Without a machine id and a hash the mode is not chosen silently: an error unless --band.
+  editMetrics(run_dir, [](nlohmann::json& j) {
+    j["machine"].erase("id");
+    j["coverage"]["area_m2"] = 1.2 * j["coverage"]["area_m2"].get<double>();
+  });
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_noid"), 1);
+  EXPECT_NE(readText(d / "log_noid").find("no determinism hash or machine id (use --band"), std::string::npos)
+      << readText(d / "log_noid");
+  // A truncated metrics.json is a failed run, never a complete one.
+  const std::string edited = readText(run_dir / "metrics.json");
+  std::ofstream(run_dir / "metrics.json") << edited.substr(0, edited.size() / 2);
+  EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "' --band", d / "log_trunc"), 1);
+  EXPECT_NE(readText(d / "log_trunc").find("no_fff-s2: did not complete (failed"), std::string::npos)
+      << readText(d / "log_trunc");
+  EXPECT_NE(readText(d / "log_trunc").find("not valid JSON"), std::string::npos) << readText(d / "log_trunc");
   // A changed status fails in either mode; a missing golden file is bad input.
   std::ofstream(run_dir / "metrics.json") << original;
   editMetrics(run_dir, [](nlohmann::json& j) { j["status"] = "collided"; });
@@ -183,6 +206,10 @@ TEST(SweepReport, ACollisionsAuditIsOneLineOfTheRunsTable) {
   r.labels = {{"world", "urban"}, {"method", "full"}};
   r.status = "complete";
   r.metrics = {{"status", "collided"},
+               {"world", "urban"},
+               {"method", "monospheres"},
+               {"sim_time_s", 100.0},
+               {"determinism_hash", "0123456789abcdef"},
                {"coverage", {{"area_m2", 500.0}, {"box_share", 0.4}}},
                {"collision",
                 {{"world_geom", "building_1_burned"},
@@ -191,6 +218,8 @@ TEST(SweepReport, ACollisionsAuditIsOneLineOfTheRunsTable) {
                  {"audit",
                   {{"cause", "seen-but-freed"}, {"slam_points_on_part", 41}, {"map_points_on_object", 144},
                    {"vio_drift_m", 1.56}, {"inside_free_space", true}}}}}};
+  r.record = missionRecordOf(r.metrics, "m.json").record;
+  ASSERT_TRUE(r.record.has_value());
   s.runs = {r};
   const std::string md = reportMarkdown(s, reportRows(s));
   EXPECT_NE(md.find("building_1 (textureless): seen-but-freed — 41 SLAM points on the part, 144 map points on the "

@@ -85,7 +85,9 @@ TEST(SweepPlan, BadSweepFilesNameTheFileAndKey) {
   expectError("axes: [{name: w, key: world, values: [a/b]}]\n", "label 'a/b'");
   expectError("axes: [{name: w, key: world, values: [a]}]\nseeds: 0\n", "seeds");
   expectError("axes: [{name: w, key: world, values: [a]}]\nexclude: [{v: x}]\n", "exclude[0].v");
-  expectError("axes: [{name: w, key: world, values: [a]}]\ninclude: [{w: z}]\n", "no run left");
+  expectError("axes: [{name: w, key: world, values: [a]}]\ninclude: [{w: z}]\n", "include[0]': matches no combination");
+  // An exclude entry that matches nothing (a misspelt value) is refused, not ignored.
+  expectError("axes: [{name: w, key: world, values: [a, b]}]\nexclude: [{w: a}, {w: c}]\n", "exclude[1]': matches no combination");
 }
 
 // A sweep directory's runs.csv as id → row fields.

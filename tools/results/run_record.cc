@@ -1,0 +1,91 @@
+#include "tools/results/run_record.h"
+
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+namespace msb {
+
+namespace {
+
+// The value at a dotted key, or null when a step is missing.
+const nlohmann::json* at(const nlohmann::json& j, const std::string& dotted) {
+  const nlohmann::json* node = &j;
+  std::istringstream steps(dotted);
+  for (std::string step; std::getline(steps, step, '.');) {
+    if (!node->is_object() || !node->contains(step)) return nullptr;
+    node = &(*node)[step];
+  }
+  return node;
+}
+
+bool isHex16(const std::string& s) {
+  if (s.size() != 16) return false;
+  for (char c : s)
+    if (!std::isxdigit(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+
+}  // namespace
+
+MissionRecordRead missionRecordOf(const nlohmann::json& m, const std::filesystem::path& file) {
+  const std::string where = file.string() + ": ";
+  auto problem = [&](const std::string& key, const std::string& why) {
+    return MissionRecordRead{std::nullopt, where + "key '" + key + "': " + why};
+  };
+  if (!m.is_object()) return {std::nullopt, where + "not a JSON object"};
+  // Types first: every key a reader relies on.
+  const struct {
+    const char* key;
+    bool (nlohmann::json::*is)() const noexcept;
+    const char* type;
+  } kRequired[] = {{"status", &nlohmann::json::is_string, "a string"},
+                   {"world", &nlohmann::json::is_string, "a string"},
+                   {"method", &nlohmann::json::is_string, "a string"},
+                   {"sim_time_s", &nlohmann::json::is_number, "a number"},
+                   {"determinism_hash", &nlohmann::json::is_string, "a string"},
+                   {"coverage", &nlohmann::json::is_object, "an object"},
+                   {"coverage.area_m2", &nlohmann::json::is_number, "a number"}};
+  const nlohmann::json* status = at(m, "status");
+  if (status && status->is_string() && *status == runStatusName(RunStatus::kError))
+    return {std::nullopt, where + "the run ended in an error: " + m.value("error", std::string("(no message)"))};
+  for (const auto& r : kRequired) {
+    const nlohmann::json* v = at(m, r.key);
+    if (!v) return problem(r.key, "missing");
+    if (!(v->*r.is)()) return problem(r.key, std::string("expected ") + r.type);
+  }
+  MissionRecord rec;
+  const auto parsed = parseRunStatus(m["status"].get<std::string>());
+  if (!parsed) return problem("status", "unknown status '" + m["status"].get<std::string>() + "'");
+  rec.status = *parsed;
+  rec.area_m2 = m["coverage"]["area_m2"].get<double>();
+  if (!(rec.area_m2 >= 0.0)) return problem("coverage.area_m2", "negative");
+  if (const nlohmann::json* b = at(m, "coverage.box_share"); b && !b->is_null()) {
+    if (!b->is_number() || b->get<double>() < 0.0 || b->get<double>() > 1.0)
+      return problem("coverage.box_share", "expected a number in [0, 1] or null");
+    rec.box_share = b->get<double>();
+  }
+  rec.sim_time_s = m["sim_time_s"].get<double>();
+  rec.determinism_hash = m["determinism_hash"].get<std::string>();
+  if (!isHex16(rec.determinism_hash)) return problem("determinism_hash", "expected 16 hexadecimal digits");
+  if (const nlohmann::json* id = at(m, "machine.id")) {
+    if (!id->is_string()) return problem("machine.id", "expected a string");
+    rec.machine_id = id->get<std::string>();
+  }
+  rec.world = m["world"].get<std::string>();
+  rec.method = m["method"].get<std::string>();
+  rec.metrics = m;
+  return {std::move(rec), ""};
+}
+
+MissionRecordRead readMissionRecord(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return {std::nullopt, file.string() + ": missing or unreadable"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  const nlohmann::json m = nlohmann::json::parse(text.str(), nullptr, false);
+  if (m.is_discarded()) return {std::nullopt, file.string() + ": not valid JSON (truncated?)"};
+  return missionRecordOf(m, file);
+}
+
+}  // namespace msb

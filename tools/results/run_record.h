@@ -1,0 +1,42 @@
+// A mission's metrics.json read back as a typed record, strictly: the one place the keys every
+// reader needs are checked (report, sweep resume, regress). A file that is missing, truncated,
+// not JSON, or lacks a key or has it mistyped gives a problem naming the file and the key, and the
+// run then counts as failed — never as complete with A = 0.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tools/loop/records.h"
+
+namespace msb {
+
+/// What readers of a finished run rely on.
+struct MissionRecord {
+  RunStatus status = RunStatus::kCompleted;
+  double area_m2 = 0.0;                 ///< coverage.area_m2
+  std::optional<double> box_share;      ///< coverage.box_share (null: no exploration box)
+  double sim_time_s = 0.0;
+  std::string determinism_hash;         ///< 16 hex digits
+  std::string machine_id;               ///< machine.id ("" in records written before it existed)
+  std::string world, method;
+  nlohmann::json metrics;               ///< the whole file, for everything else
+};
+
+/// The record of `metrics` read from `file` (for messages), or the first problem found:
+/// "FILE: key 'coverage.area_m2': missing". An `error` record (a run that threw) is a problem too.
+struct MissionRecordRead {
+  std::optional<MissionRecord> record;
+  std::string problem;
+};
+
+/// Checks and converts a parsed metrics.json.
+MissionRecordRead missionRecordOf(const nlohmann::json& metrics, const std::filesystem::path& file);
+
+/// Reads and checks a metrics.json file (missing, unreadable or not JSON: a problem).
+MissionRecordRead readMissionRecord(const std::filesystem::path& file);
+
+}  // namespace msb
