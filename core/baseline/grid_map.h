@@ -37,10 +37,13 @@ struct GridMapConfig {
   double resolution_m = 0.5;          ///< leaf size
   double max_range_m = 20.0;          ///< points farther give no occupied cell
   double free_ray_length_m = 15.0;    ///< rays clear free space up to this far
-  double prob_hit = 0.7;              ///< OctoMap sensor model (its defaults)
-  double prob_miss = 0.4;
-  double clamp_min = 0.1192;
-  double clamp_max = 0.971;
+  // The sensor model of the reference's mapper, mrs_octomap_server (its config/default.yaml, which
+  // the reference's grid session does not override): a hit saturates a cell at once, a miss takes
+  // a fifth of that away. OctoMap's own defaults are 0.7 / 0.4 / 0.1192 / 0.971.
+  double prob_hit = 0.95;             ///< occupancy update of a point's cell
+  double prob_miss = 0.45;            ///< free update of a cell a ray crosses
+  double clamp_min = 0.3;             ///< clamping of the occupancy probability
+  double clamp_max = 0.7;
   std::string insertion = "standard";  ///< standard | confidence_weighted
   double confidence_depth_gain_per_m = 5.0;  ///< a of Eq. 10 (confidence 0 at 2σ = 100/a m)
 

@@ -89,4 +89,8 @@ auto buildNamingFile(const std::string& file, Build&& build) -> decltype(build()
   }
 }
 
+/// True if `text` is valid UTF-8 (no overlong forms, no surrogates, at most U+10FFFF): names and
+/// paths go into JSON results, which must be valid UTF-8, so they are checked before a run.
+bool isValidUtf8(const std::string& text);
+
 }  // namespace msb

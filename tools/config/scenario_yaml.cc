@@ -169,6 +169,9 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
   ScenarioSpec spec =
       parseConfigNode<ScenarioSpec>(label, tree, [&](MapReader& r, ScenarioSpec& s) { readScenario(r, dir, s); });
   if (spec.name.empty()) spec.name = fs::path(path).stem().string();
+  // Names and paths end up in metrics.json (JSON is UTF-8): checked now, not after the mission.
+  if (!isValidUtf8(path)) throw FileConfigError(path + ": the file name is not valid UTF-8");
+  if (!isValidUtf8(spec.name)) throw FileConfigError(label + ": key 'name': not valid UTF-8");
   return spec;
 }
 

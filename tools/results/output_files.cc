@@ -158,6 +158,7 @@ StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind 
   if (!p.has_filename()) p = p.parent_path();
   final_ = p;
   const std::string name = final_dir.string();
+  if (!isValidUtf8(name)) throw UsageError("--out " + name + ": the path is not valid UTF-8");
   if (p == p.root_path() || isSameOrAncestor(p, fs::current_path().lexically_normal()))
     throw UsageError(name + ": refusing to use the current directory, one of its parents or / as an output directory");
   // An existing target must be a directory; a non-empty one needs --overwrite and must be an

@@ -141,9 +141,12 @@ TEST(GridMap, ConfidenceWeightsScaleTheLogOddsUpdates) {
   EXPECT_NEAR(confidenceWeight(precise, ahead, 5.0), 0.0, 1e-12);
   // In the map: the occupied cell of a weighted point gets weight x OctoMap's hit log-odds,
   // the free cells weight x the miss log-odds; standard insertion the full values.
-  GridMapConfig cfg;
+  // (OctoMap's own sensor model here, whose clamping leaves the scaled updates visible.)
+  GridMapConfig octomap_model;
+  octomap_model.prob_hit = 0.7, octomap_model.prob_miss = 0.4, octomap_model.clamp_min = 0.1192, octomap_model.clamp_max = 0.971;
+  GridMapConfig cfg = octomap_model;
   cfg.insertion = "confidence_weighted";
-  GridMap weighted(cfg), standard(GridMapConfig{});
+  GridMap weighted(cfg), standard(octomap_model);
   SlamPointsFrame frame;
   frame.T_W_C = now;
   frame.points = {uncertain};

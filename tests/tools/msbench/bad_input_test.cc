@@ -335,6 +335,16 @@ TEST(BadInput, ReportAndRegressNeverWriteOverResults) {
   t.expectRefused("run " + t.p("m.yaml") + " --out " + t.p("rep") + " --overwrite", {"another kind"});
 }
 
+TEST(BadInput, NamesAndPathsMustBeUtf8BeforeAnythingRuns) {
+  const Dir t("utf8");
+  t.write("n.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\nname: \"bad\\xff\"\n");
+  t.write("n2.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\nname: \"a\xc3\x28\"\n");
+  t.expectRefused("run " + t.p("n2.yaml") + " --out " + t.p("o"), {"n2.yaml", "key 'name'", "not valid UTF-8"});
+  t.write("ok\xff.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
+  t.expectRefused("run " + t.p("ok\xff.yaml") + " --out " + t.p("o"), {"not valid UTF-8"});
+  t.expectRefused("run " + t.p("n.yaml") + " --out " + t.p("o\xfe"), {"--out", "not valid UTF-8"});
+}
+
 TEST(BadInput, ACameraIsMountedOnTheVehicle) {
   const Dir t("mount");
   t.write("far.yaml", "world: w.xml\nduration_s: 2\ncamera: {mount_position_B_m: [100, 0, 0]}\n"
