@@ -117,7 +117,8 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
   const cv::Size win(config_.klt_window_px, config_.klt_window_px);
   cv::buildOpticalFlowPyramid(img, pyramid, win, config_.klt_pyramid_levels);
 
-  // Track the previous features forward, then backward; keep consistent ones in the mask.
+  // Track the previous features forward (as OpenVINS' TrackKLT), with the optional backward
+  // check; keep the ones inside the valid mask.
   std::vector<Track> tracks;
   if (!prev_tracks_.empty() && !prev_pyramid_.empty()) {
     std::vector<cv::Point2f> p0, p1, p0_back;
@@ -136,7 +137,12 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
       if (st_f[i]) forward_ok.push_back(i), p1_ok.push_back(p1[i]);
     std::vector<uchar> st_b_ok;
     std::vector<cv::Point2f> p0_back_ok;
-    if (!p1_ok.empty()) {
+    if (!config_.forward_backward_check) {
+      // Forward only: every forward-tracked point counts as consistent with itself.
+      p0_back_ok.reserve(forward_ok.size());
+      for (size_t k : forward_ok) p0_back_ok.push_back(p0[k]);
+      st_b_ok.assign(forward_ok.size(), 1);
+    } else if (!p1_ok.empty()) {
       cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1_ok, p0_back_ok, st_b_ok, cv::noArray(), win, config_.klt_pyramid_levels, crit);
       dropOutsideWindowRange(p0_back_ok, win, img.size(), st_b_ok);
     }

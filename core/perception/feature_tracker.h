@@ -57,9 +57,10 @@ struct FeatureTrackerConfig {
   int fast_threshold = 15;           ///< FAST intensity threshold
   double min_distance_px = 20.0;     ///< between features
   int klt_window_px = 15;            ///< LK window side (OpenVINS TrackKLT: 15×15)
-  int klt_pyramid_levels = 3;        ///< pyramid levels above the base
+  int klt_pyramid_levels = 5;        ///< pyramid levels above the base (OpenVINS TrackKLT: pyr_levels 5)
   int klt_max_iterations = 30;
-  double fb_max_error_px = 1.0;      ///< forward–backward consistency threshold
+  bool forward_backward_check = false;  ///< track back and drop inconsistent tracks (TrackKLT does not: off)
+  double fb_max_error_px = 1.0;      ///< forward–backward consistency threshold (with the check)
   int border_px = 8;                 ///< no features this close to the image or FoV border
   bool equalize_histogram = true;
   bool ransac = true;                ///< epipolar outlier rejection of tracked pairs

@@ -257,6 +257,7 @@ void trackerKeys(Keys r, FeatureTrackerConfig& c) {
   r.field("klt_window_px", c.klt_window_px);
   r.field("klt_pyramid_levels", c.klt_pyramid_levels);
   r.field("klt_max_iterations", c.klt_max_iterations);
+  r.field("forward_backward_check", c.forward_backward_check);
   r.field("fb_max_error_px", c.fb_max_error_px);
   r.field("ransac", c.ransac);
   r.field("ransac_threshold_px", c.ransac_threshold_px);

@@ -69,6 +69,30 @@ TEST(KltFeatureTracker, DetectsUpToTheLimitOnAGridAndFollowsAShift) {
   EXPECT_GT(followed, 200);
 }
 
+TEST(KltFeatureTracker, TracksForwardOnlyAsTrackKltUnlessTheBackwardCheckIsAskedFor) {
+  // OpenVINS' TrackKLT: 5 pyramid levels, one forward pass. With the (non-default) backward check
+  // and a threshold no real track meets, every track is dropped; without it, they all survive.
+  const FisheyeCamera cam;
+  cv::setNumThreads(0);
+  const FeatureTrackerConfig defaults;
+  EXPECT_FALSE(defaults.forward_backward_check);
+  EXPECT_EQ(defaults.klt_pyramid_levels, 5);
+  EXPECT_TRUE(defaults.equalize_histogram);
+  FeatureTrackerConfig strict = defaults;
+  strict.forward_backward_check = true;
+  strict.fb_max_error_px = 1e-9;
+  KltFeatureTracker forward(defaults, cam), checked(strict, cam);
+  const CameraFrame f0 = texturedFrame(cam.width(), cam.height(), 0, 0, 0);
+  const CameraFrame f1 = texturedFrame(cam.width(), cam.height(), 3.0, -2.0, 1);
+  forward.process(f0);
+  checked.process(f0);
+  int followed_forward = 0, followed_checked = 0;
+  for (const auto& t : forward.process(f1).tracks) followed_forward += t.age == 1;
+  for (const auto& t : checked.process(f1).tracks) followed_checked += t.age == 1;
+  EXPECT_GT(followed_forward, 200);
+  EXPECT_LT(followed_checked, followed_forward / 10);
+}
+
 TEST(KltFeatureTracker, BlankImagesGiveNoTracksAndTheSameInputGivesTheSameTracks) {
   const FisheyeCamera cam;
   KltFeatureTracker blank(FeatureTrackerConfig{}, cam);
@@ -108,8 +132,9 @@ TEST(KltFeatureTracker, DetectionWithoutTrackingCountsAsLost) {
   for (int64_t i = 0; i < 4; ++i) {
     const TrackFrame f = tracker.process(noiseFrame(cam.width(), cam.height(), 10 + uint64_t(i), i));
     EXPECT_GT(f.tracks.size(), 100u);
-    // A few random matches pass the forward-backward check and RANSAC by chance (≈ 4 %).
-    EXPECT_LE(trackedFromPrevious(f), 20) << "frame " << i;
+    // A few random matches pass forward tracking and RANSAC by chance (≈ 6-7 % with TrackKLT's
+    // single forward pass; ≈ 4 % with the optional backward check).
+    EXPECT_LE(trackedFromPrevious(f), 40) << "frame " << i;
   }
 }
 
