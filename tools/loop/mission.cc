@@ -31,6 +31,7 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
       coverage_(box, truth ? boxExplorableNodes(*truth, box, ColumnCoverage().cellM()) : std::set<ColumnIndex>{}),
       metric_schedule_(spec.flight.physics.physics_hz, spec.mission.metric_rate_hz, "mission.metric_rate_hz"),
       truth_(truth) {
+  if (truth_) frontend_.emplace(*truth_);
   LoopSetup setup;
   setup.explorer = explorer_.get();
   setup.truth = truth;
@@ -56,6 +57,7 @@ const TickRecord& Mission::step() {
     coverage_.setTrueFromEstimate(true_from_est_);
     // The collision audit's record: the object each new SLAM point lies on (its anchor ray from
     // the true camera pose of this frame, where new points are anchored).
+    if (frontend_) frontend_->addFrame(*t.points, t.frame->T_W_C);
     if (truth_)
       for (const SlamPoint& p : t.points->points)
         if (p.anchor_tick == t.tick && audited_tracks_.insert(p.track_id).second) {
@@ -108,6 +110,7 @@ MissionResult Mission::finish() {
   r.box_true_frame_explored_explorable_columns = int(coverage_.trueFrameExploredExplorableColumns());
   r.longest_no_gain = longestIntervalWithoutGain(r.coverage);
   r.map_hash = hashSnapshot(r.final_map);
+  if (frontend_) r.frontend = frontend_->result();
   // The collision audit: what the map knew at contact (the map is the final one: the run ended there).
   if (r.flight.collision && truth_) {
     CollisionAuditInput in;

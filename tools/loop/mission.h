@@ -14,6 +14,7 @@
 
 #include "core/common/aabb.h"
 #include "core/eval/collision_audit.h"
+#include "core/eval/frontend_profile.h"
 #include "core/eval/mission_coverage.h"
 #include "core/explorer/explorer.h"
 #include "tools/loop/closed_loop.h"
@@ -46,6 +47,7 @@ struct MissionResult {
   uint64_t map_hash = 0;                   ///< FNV-1a over the final map snapshot
   uint64_t run_hash = 0;                   ///< trajectory + map + coverage
   std::optional<CollisionAudit> collision_audit;  ///< a collision in a world with ground truth
+  std::optional<FrontEndProfile> frontend;  ///< the SLAM points' errors (worlds with ground truth)
 };
 
 /// A mission in progress.
@@ -84,6 +86,7 @@ class Mission {
   std::vector<double> map_update_ms_;
   // For the collision audit (worlds with ground truth only).
   const WorldTruth* truth_ = nullptr;
+  std::optional<FrontEndProfiler> frontend_;         // the front-end error profile (truth side)
   std::set<uint64_t> audited_tracks_;                // SLAM points already attributed to an object
   std::map<std::string, int> slam_points_by_object_; // SLAM points ever tracked, per object
   std::map<std::string, int> slam_points_by_geom_;   // ... per part (world geom)

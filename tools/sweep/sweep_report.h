@@ -58,6 +58,8 @@ struct ReportRow {
   int vio_lost = 0;    ///< runs ended because the VIO lost track
   int saturated = 0;   ///< runs whose box share reached kSaturatedBoxShare
   MeanOf area_m2, box_share, t50_s, t90_s, area_per_100m, longest_no_gain_s, rtf;
+  MeanOf fe_median_m[3];        ///< front-end profile: median SLAM-point error at 0-5, 5-10, 10-20 m
+  MeanOf fe_wrong_share, fe_moved_share;  ///< points over 2 m off a surface; tracks that moved > 0.3 m
   std::vector<uint64_t> area_seeds;  ///< the seed of each value of area_m2 (pairing across rows)
   double max_area_m2 = 0.0;
   std::map<std::string, int> collisions_by_kind;  ///< textured / textureless / thin / ground / unknown

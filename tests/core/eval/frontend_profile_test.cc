@@ -1,0 +1,72 @@
+// The front-end error profile on a synthetic case with known errors: points on the ground, a wrong
+// point 3 m off any surface, a track whose estimate moves 0.5 m, and a VIO error that the profile
+// must take out before measuring.
+#include "core/eval/frontend_profile.h"
+
+#include <gtest/gtest.h>
+
+namespace msb {
+namespace {
+
+WorldTruth groundOnly() {
+  Shape ground;
+  ground.type = ShapeType::kHalfSpace;
+  ground.kind = ObstacleKind::kGround;
+  ground.name = ground.object = "ground";
+  return WorldTruth({ground});
+}
+
+SlamPoint point(uint64_t id, const Vec3& p) {
+  SlamPoint s;
+  s.track_id = id;
+  s.p_W = p;
+  return s;
+}
+
+SlamPointsFrame frame(const Vec3& camera, std::vector<SlamPoint> points) {
+  SlamPointsFrame f;
+  f.T_W_C = Pose::Identity();
+  f.T_W_C.translation() = camera;
+  f.points = std::move(points);
+  return f;
+}
+
+TEST(FrontEndProfile, ErrorsByDepthBandWrongPointsAndMovedTracks) {
+  const WorldTruth truth = groundOnly();
+  FrontEndProfiler profiler(truth, /*every=*/1);
+  Pose camera_true = Pose::Identity();
+  camera_true.translation() = Vec3(0, 0, 1.5);
+  // The estimate is 1 m off along x: a point published at x + 1 is where the truth has x.
+  const Vec3 off(1, 0, 0);
+  profiler.addFrame(frame(camera_true.translation() + off,
+                          {point(1, Vec3(2, 0, 0) + off), point(2, Vec3(3, 0, 3) + off), point(3, Vec3(8, 0, 0) + off)}),
+                    camera_true);
+  profiler.addFrame(frame(camera_true.translation() + off, {point(1, Vec3(2, 0.5, 0) + off), point(3, Vec3(8, 0, 0) + off)}),
+                    camera_true);
+  const FrontEndProfile p = profiler.result();
+  ASSERT_EQ(p.bands.size(), 4u);
+  EXPECT_EQ(p.points, 5);
+  // 0-5 m: two publications of track 1 on the ground (error 0) and the wrong point (3 m).
+  EXPECT_EQ(p.bands[0].points, 3);
+  EXPECT_NEAR(p.bands[0].median_m, 0.0, 1e-9);
+  EXPECT_NEAR(p.bands[0].p90_m, 3.0, 1e-9);
+  EXPECT_NEAR(p.bands[0].share_over_2_m, 1.0 / 3.0, 1e-9);
+  EXPECT_NEAR(p.bands[0].share_over_half_m, 1.0 / 3.0, 1e-9);
+  // 5-10 m: track 3 twice, on the ground.
+  EXPECT_EQ(p.bands[1].points, 2);
+  EXPECT_NEAR(p.bands[1].share_over_half_m, 0.0, 1e-12);
+  EXPECT_EQ(p.bands[2].points + p.bands[3].points, 0);
+  // Tracks seen twice: 1 (moved 0.5 m) and 3 (still).
+  EXPECT_EQ(p.tracks, 2);
+  EXPECT_NEAR(p.moved_share, 0.5, 1e-12);
+}
+
+TEST(FrontEndProfile, EvaluatesOneFrameInEvery) {
+  const WorldTruth truth = groundOnly();
+  FrontEndProfiler profiler(truth, /*every=*/3);
+  for (int k = 0; k < 7; ++k) profiler.addFrame(frame(Vec3(0, 0, 1.5), {point(1, Vec3(2, 0, 0))}), Pose::Identity());
+  EXPECT_EQ(profiler.result().points, 3);  // frames 0, 3 and 6
+}
+
+}  // namespace
+}  // namespace msb
