@@ -1,10 +1,14 @@
 # Helpers that apply the project's standard, warnings and layout to every target.
 
-# msb_set_options(<target>): C++20, -Wall -Wextra, no -march=native / -ffast-math.
+# msb_set_options(<target>): C++20, -Wall -Wextra -Wpedantic -Wshadow (errors with MSB_WERROR),
+# no -march=native / -ffast-math.
 function(msb_set_options target)
   target_compile_features(${target} PUBLIC cxx_std_20)
   set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF POSITION_INDEPENDENT_CODE ON)
-  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow)
+  if(MSB_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
 endfunction()
 
 # msb_add_library(<name> ALIAS <alias> SOURCES ... DEPS ...): a static module library whose

@@ -109,9 +109,9 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   const size_t nseg = points_.size() - 1;
   auto sharpAfter = [&](size_t seg) {
     if (seg + 1 >= nseg) return false;
-    const Vec3 a = (points_[seg + 1] - points_[seg]).normalized();
-    const Vec3 b = (points_[seg + 2] - points_[seg + 1]).normalized();
-    return (a + b).norm() < 1.0;
+    const Vec3 in = (points_[seg + 1] - points_[seg]).normalized();
+    const Vec3 out = (points_[seg + 2] - points_[seg + 1]).normalized();
+    return (in + out).norm() < 1.0;
   };
   while (nseg > 0) {
     const Vec3& A = points_[segment_];
@@ -120,9 +120,9 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
     const double t = std::clamp((p - A).dot(AB) / AB.squaredNorm(), 0.0, 1.0);
     s_proj_ = std::max(s_proj_, cumulative_[segment_] + t * AB.norm());
     if (segment_ + 1 < nseg) {
-      const Vec3 a = AB.normalized(), b = (points_[segment_ + 2] - B).normalized();
-      Vec3 n = a + b;
-      if (n.norm() < 0.2) n = a;  // (nearly) reversing: pass the vertex first
+      const Vec3 in = AB.normalized(), out = (points_[segment_ + 2] - B).normalized();
+      Vec3 n = in + out;
+      if (n.norm() < 0.2) n = in;  // (nearly) reversing: pass the vertex first
       const bool at_sharp_vertex = sharpAfter(segment_) && (p - B).norm() < 0.3;
       if (t >= 1.0 || (p - B).dot(n) >= 0.0 || at_sharp_vertex) {
         ++segment_;

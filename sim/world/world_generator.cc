@@ -338,8 +338,8 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
           else t -= 2 * ruin.half.x(), local_xy = Vec2(-ruin.half.x() - out_m, -ruin.half.y() + t), normal = Vec2(-1, 0);
           const Eigen::Rotation2Dd R(ruin.yaw);
           xy = ruin.centre + R * local_xy;
-          const Vec2 n = R * normal;
-          yaw = std::atan2(n.y(), n.x());
+          const Vec2 outward = R * normal;
+          yaw = std::atan2(outward.y(), outward.x());
           double d = 1e9;  // from everything but the ruin itself
           for (const auto& sh : b.shapes()) {
             if (sh.kind == ObstacleKind::kGround || sh.object == ruin.object) continue;

@@ -221,9 +221,9 @@ TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
   EXPECT_EQ(a.spheres().size(), b.spheres().size());
   EXPECT_GT(st.new_frontiers, 5);
   EXPECT_EQ(a.frontiers().size(), b.frontiers().size());
-  for (const auto& [id, f] : a.frontiers()) {
-    EXPECT_TRUE(a.frontierNormal(f.position, id));
-    for (const auto& [sid, s] : a.spheres()) EXPECT_GT((f.position - s.centre).norm(), s.radius);
+  for (const auto& [id, frontier] : a.frontiers()) {
+    EXPECT_TRUE(a.frontierNormal(frontier.position, id));
+    for (const auto& [sid, s] : a.spheres()) EXPECT_GT((frontier.position - s.centre).norm(), s.radius);
   }
   // Too few points: skipped.
   SlamPointsFrame few = f;
