@@ -127,6 +127,7 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
   start_z_ = start_T_W_B.translation().z();
   mj_forward(m_, d_);
   try {
+    checkWorldGeometry(world_xml_path);
     checkStartPose(world_xml_path);
   } catch (...) {
     mj_deleteData(d_);
@@ -171,6 +172,13 @@ std::string QuadrotorSim::outsideTheWorld(const Vec3& p) const {
     }
   }
   return "";
+}
+
+void QuadrotorSim::checkWorldGeometry(const std::string& world_xml_path) const {
+  // A world is something to explore and to hit: at least one collision geom besides the vehicle.
+  for (int g = 0; g < m_->ngeom; ++g)
+    if (m_->geom_bodyid[g] != body_id_ && (m_->geom_contype[g] != 0 || m_->geom_conaffinity[g] != 0)) return;
+  throw ConfigError("world", world_xml_path + ": the world has no collision geometry (nothing to explore or to hit)");
 }
 
 void QuadrotorSim::checkStartPose(const std::string& world_xml_path) const {

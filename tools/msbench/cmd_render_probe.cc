@@ -1,5 +1,6 @@
 // msbench render-probe: one grey-scale fisheye frame from a vehicle pose, as PNG.
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -71,7 +72,15 @@ int runRenderProbeCommand(int argc, char** argv) {
   checkOutputFile(args.get("out"), args.has("overwrite"), "out", "\x89PNG");
 
   const Pose T_W_B = poseFromXyzYaw(pose.head<3>(), pose[3] * M_PI / 180.0);
-  QuadrotorSim sim(PhysicsConfig{}, world, T_W_B);
+  // The start pose is what the user gave as --pose: a refusal names that flag, not start.position.
+  std::optional<QuadrotorSim> built;
+  try {
+    built.emplace(PhysicsConfig{}, world, T_W_B);
+  } catch (const ConfigError& e) {
+    if (e.issues().size() != 1 || e.issues()[0].key != "start.position") throw;
+    throw UsageError("--pose " + args.get("pose") + ": " + e.issues()[0].reason);
+  }
+  QuadrotorSim& sim = *built;
   const FisheyeCamera camera(cam_cfg);
   FisheyeRenderer renderer(render_cfg, camera, sim.model());
   CameraFrame frame;

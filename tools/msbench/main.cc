@@ -2,6 +2,7 @@
 // (1 runtime failure, 2 usage or configuration error).
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <exception>
 #include <new>
 #include <string>
@@ -80,6 +81,12 @@ int main(int argc, char** argv) {
     } catch (const cv::Exception& e) {
       std::fprintf(stderr, "msbench %s: error: image processing failed (OpenCV: %s)\n", c.name, e.err.c_str());
       return msb::kExitRuntime;
+    } catch (const std::filesystem::filesystem_error& e) {
+      // A path msbench could not use: the path and the reason in words (a symlink loop, a file
+      // where a directory is needed, no permission), as bad input.
+      const std::string path = e.path1().empty() ? std::string("a path") : e.path1().string();
+      std::fprintf(stderr, "msbench %s: %s: %s\n", c.name, path.c_str(), e.code().message().c_str());
+      return msb::kExitUsage;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "msbench %s: error: %s\n", c.name, e.what());
       return msb::kExitRuntime;

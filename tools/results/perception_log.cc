@@ -69,6 +69,8 @@ class Reader {
     for (double& x : v) x = real();
     const Quat q(v[3], v[4], v[5], v[6]);
     if (q.norm() < 1e-6) fail("degenerate orientation");
+    // The writer stores unit quaternions (to 1e-15): anything else was not written by msbench.
+    if (std::abs(q.norm() - 1.0) > 1e-6) fail("orientation quaternion not normalised (|q| = " + std::to_string(q.norm()) + ")");
     Pose T = Pose::Identity();
     T.translation() = Vec3(v[0], v[1], v[2]);
     T.linear() = q.normalized().toRotationMatrix();
@@ -111,6 +113,7 @@ void checkHeader(const std::string& path, const nlohmann::json& h) {
   };
   for (const char* key : {"world", "scenario"})
     if (h.contains(key) && !h[key].is_string()) bad(key, "a string");
+  if (h.contains("world") && h["world"].get<std::string>().empty()) bad("world", "a world name");
   if (h.contains("seed") && !h["seed"].is_number_unsigned()) bad("seed", "a non-negative integer");
   if (h.contains("camera_scale") && !h["camera_scale"].is_number()) bad("camera_scale", "a number");
 }
@@ -204,7 +207,16 @@ PerceptionLog PerceptionLog::read(const std::string& path) {
   Reader r(path, f.get());
   PerceptionLog log;
   try {
-    log.header = nlohmann::json::parse(r.line(1 << 20));
+    // A key twice in one object is refused (the parser would keep the last one silently).
+    std::vector<std::set<std::string>> keys;
+    const nlohmann::json::parser_callback_t unique = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+      if (event == nlohmann::json::parse_event_t::object_start) keys.emplace_back();
+      else if (event == nlohmann::json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+      else if (event == nlohmann::json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second)
+        throw FileConfigError(path + ": bad log header: key '" + parsed.get<std::string>() + "' appears twice");
+      return true;
+    };
+    log.header = nlohmann::json::parse(r.line(1 << 20), unique);
   } catch (const nlohmann::json::exception& e) {
     throw FileConfigError(path + ": bad log header: " + e.what());
   }

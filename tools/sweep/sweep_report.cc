@@ -172,13 +172,39 @@ SweepResults loadSweepResults(const fs::path& dir) {
     throw std::runtime_error(index.string() + ": not a sweep index (no runs)");
   SweepResults r;
   r.dir = dir;
-  if (j.contains("axes")) r.axes = j["axes"].get<std::vector<std::string>>();
-  for (const auto& jr : j["runs"]) {
+  // Strictly: every key the report reads, with its type; a bad one names the file and the key.
+  auto bad = [&](const std::string& key, const std::string& why) {
+    return std::runtime_error(index.string() + ": key '" + key + "': " + why);
+  };
+  if (j.contains("axes")) {
+    if (!j["axes"].is_array()) throw bad("axes", "expected a list of names");
+    for (size_t k = 0; k < j["axes"].size(); ++k) {
+      if (!j["axes"][k].is_string()) throw bad("axes[" + std::to_string(k) + "]", "expected a name");
+      r.axes.push_back(j["axes"][k].get<std::string>());
+    }
+  }
+  for (size_t k = 0; k < j["runs"].size(); ++k) {
+    const nlohmann::json& jr = j["runs"][k];
+    const std::string key = "runs[" + std::to_string(k) + "]";
+    if (!jr.is_object()) throw bad(key, "expected an object");
+    if (!jr.contains("id") || !jr["id"].is_string() || jr["id"].get<std::string>().empty() ||
+        jr["id"].get<std::string>().find('/') != std::string::npos)
+      throw bad(key + ".id", "expected a run id (a non-empty name without '/')");
     ReportRun run;
-    run.id = jr.value("id", std::string());
+    run.id = jr["id"].get<std::string>();
+    if (jr.contains("seed") && !jr["seed"].is_number_unsigned()) throw bad(key + ".seed", "expected a non-negative integer");
     run.seed = jr.value("seed", uint64_t(0));
+    if (jr.contains("status") && !jr["status"].is_string()) throw bad(key + ".status", "expected complete, failed or pending");
     run.status = jr.value("status", std::string("pending"));
-    if (jr.contains("labels")) run.labels = jr["labels"].get<std::map<std::string, std::string>>();
+    if (run.status != "complete" && run.status != "failed" && run.status != "pending")
+      throw bad(key + ".status", "expected complete, failed or pending, got '" + run.status + "'");
+    if (jr.contains("labels")) {
+      if (!jr["labels"].is_object()) throw bad(key + ".labels", "expected a map of axis names to labels");
+      for (const auto& [axis, label] : jr["labels"].items()) {
+        if (!label.is_string()) throw bad(key + ".labels." + axis, "expected a label");
+        run.labels[axis] = label.get<std::string>();
+      }
+    }
     if (jr.contains("failure")) run.failure = jr["failure"];
     const fs::path rd = dir / "runs" / run.id;
     if (run.status == "complete") {

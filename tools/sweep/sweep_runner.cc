@@ -152,6 +152,9 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
   } else if (fs::exists(dir / "sweep.json")) {
     const auto old = nlohmann::json::parse(readFileText(dir / "sweep.json"), nullptr, false);
     if (!old.is_object()) throw UsageError(dir.string() + "/sweep.json is unreadable: not a sweep directory?");
+    for (const char* key : {"sweep_file_hash", "build"})
+      if (old.contains(key) && !old[key].is_string())
+        throw UsageError((dir / "sweep.json").string() + ": key '" + key + "': expected a string");
     std::vector<std::string> changes;
     if (old.value("sweep_file_hash", "") != plan.file_hash) changes.push_back("the sweep file changed (" + plan.file + ")");
     if (old.value("build", "") != sweepBuildId())

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -269,6 +270,13 @@ TEST(BadInput, PerceptionLogContentsAreCheckedOnRead) {
   refused("back.log", header + good + logFrame(90, 0.18, {{1, 5.0, 50}}), {"back.log", "frame 1", "time goes backwards"});
   refused("world.log", "MSBLOG1\n{\"camera_scale\": 1, \"world\": 7}\n" + good, {"world.log", "'world'", "a string"});
   refused("empty.log", header, {"empty.log", "no frames"});
+  // Header: a key twice, an empty world name; frames: an orientation that is not a unit quaternion.
+  refused("twice.log", "MSBLOG1\n{\"camera_scale\": 1, \"camera_scale\": 2}\n" + good, {"twice.log", "'camera_scale' appears twice"});
+  refused("noworld.log", "MSBLOG1\n{\"world\": \"\"}\n" + good, {"noworld.log", "'world'", "a world name"});
+  std::string skewed = good;
+  const double two = 2.0;
+  std::memcpy(&skewed[16 + 3 * 8], &two, sizeof(two));  // q.w of the estimated pose: |q| = 2
+  refused("skewed.log", header + skewed, {"skewed.log", "frame 0", "not normalised"});
   t.expectRefused("map-replay " + t.p("missing.log") + " --out " + t.p("o"), {"missing.log", "not found"});
   t.expectRefused("map-replay " + t.d.string() + " --out " + t.d.string() + "_o", {"not a regular file"});
   // The same log with sane contents replays.
@@ -322,6 +330,13 @@ TEST(BadInput, ReportAndRegressNeverWriteOverResults) {
   t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g.json"), {"g.json", "runs[0].determinism_hash", "missing"});
   t.write("g2.json", R"({"runs": [)");
   t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g2.json"), {"g2.json", "not a JSON object"});
+  // A malformed sweep index names the file and the key.
+  const std::string index = readText(t.d / "sw/sweep.json");
+  t.write("sw/sweep.json", R"({"axes": ["a"], "runs": [{"id": "a-s1", "seed": -3, "status": "complete"}]})");
+  t.expectRefused("report " + t.p("sw") + " --out " + t.p("rep0") + " --no-figures", {"sweep.json", "runs[0].seed"});
+  t.write("sw/sweep.json", R"({"axes": ["a"], "runs": [{"id": "../x", "status": "complete"}]})");
+  t.expectRefused("report " + t.p("sw") + " --out " + t.p("rep0") + " --no-figures", {"sweep.json", "runs[0].id"});
+  t.write("sw/sweep.json", index);
   // A truncated metrics.json is a failed run in the report, never complete with A = 0.
   const std::string full = readText(t.d / "sw/runs/a-s1/metrics.json");
   t.write("sw/runs/a-s1/metrics.json", full.substr(0, 40));
@@ -343,6 +358,30 @@ TEST(BadInput, NamesAndPathsMustBeUtf8BeforeAnythingRuns) {
   t.write("ok\xff.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
   t.expectRefused("run " + t.p("ok\xff.yaml") + " --out " + t.p("o"), {"not valid UTF-8"});
   t.expectRefused("run " + t.p("n.yaml") + " --out " + t.p("o\xfe"), {"--out", "not valid UTF-8"});
+}
+
+TEST(BadInput, AWorldNeedsCollisionGeometry) {
+  const Dir t("nogeom");
+  t.write("empty.xml", "<mujoco><worldbody/></mujoco>\n");
+  t.write("visual.xml", "<mujoco><worldbody><geom type=\"plane\" size=\"20 20 0.1\" contype=\"0\" conaffinity=\"0\"/>"
+                        "</worldbody></mujoco>\n");
+  for (const char* world : {"empty.xml", "visual.xml"}) {
+    t.write("g.yaml", std::string("world: ") + world + "\nduration_s: 2\ntrajectory: {waypoints: [[0, 0, 1]]}\n");
+    t.expectRefused("fly " + t.p("g.yaml") + " --out " + t.p("o"), {world, "no collision geometry"});
+  }
+}
+
+TEST(BadInput, FlagsAndPathsAreNamedInWords) {
+  const Dir t("words");
+  // render-probe's pose inside a wall names --pose, the flag the user typed.
+  t.expectRefused("render-probe --world " + t.p("w.xml") + " --pose=-14,20,2,0 --out " + t.p("p.png"),
+                  {"--pose -14,20,2,0", "inside geom 'wall_north_1'"});
+  // Symlink loops and files where a directory is needed: the path and the reason in words.
+  fs::create_symlink(t.d / "loop", t.d / "loop");
+  const std::string m = kSrc + "/scenarios/missions/test_world_short.yaml";
+  t.expectRefused("run " + m + " --record " + t.p("loop/r.log") + " --out " + t.p("o"), {"loop", "Too many levels of symbolic links"});
+  t.expectRefused("run " + t.p("loop") + " --out " + t.p("o"), {"loop", "Too many levels of symbolic links"});
+  t.expectRefused("run " + m + " --out " + t.p("sentinel/x"), {"sentinel/x", "Not a directory"});
 }
 
 TEST(BadInput, ACameraIsMountedOnTheVehicle) {
