@@ -55,6 +55,21 @@ void WorldSpec::validate(ConfigChecker& c) const {
   c.require(texture_px == 128 || texture_px == 256 || texture_px == 512 || texture_px == 1024,
             "texture_px", "must be 128, 256, 512 or 1024");
   for (size_t i = 0; i < objects.size(); ++i) c.nested("objects[" + std::to_string(i) + "]", objects[i]);
+  // Everything lies on the ground plane: positions inside its extent, sizes no larger than it.
+  const Vec2 half = 0.5 * ground_size_m;
+  auto onGround = [&](const Vec2& xy) { return (xy.array().abs() <= half.array() + 1e-9).all(); };
+  c.require(onGround(start_position_m.head<2>()), "start.position", "must lie on the ground plane (within ground.size_m)");
+  c.require(onGround(exploration_box.min.head<2>()) && onGround(exploration_box.max.head<2>()), "exploration_box",
+            "must lie over the ground plane (within ground.size_m)");
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const ObjectGroupSpec& o = objects[i];
+    const std::string key = "objects[" + std::to_string(i) + "]";
+    if (o.at) c.require(onGround(*o.at), key + ".at", "must lie on the ground plane (within ground.size_m)");
+    if (o.region_min && o.region_max)
+      c.require(onGround(*o.region_min) && onGround(*o.region_max), key + ".region", "must lie on the ground plane (within ground.size_m)");
+    c.require(o.size_max.allFinite() && o.size_max.maxCoeff() <= ground_size_m.maxCoeff(), key + ".size",
+              "must be no larger than the ground plane");
+  }
   if (cave) {
     c.require((cave->max.array() > cave->min.array()).all(), "cave", "max must exceed min");
     c.require(!cave->chambers.empty(), "cave.chambers", "needs at least one chamber");

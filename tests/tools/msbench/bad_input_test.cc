@@ -228,6 +228,11 @@ TEST(BadInput, WorldSpecsWithNonFiniteOrMisplacedObjects) {
           {"spec.yaml", "cave.chambers[0].min[1]"});
   refused("objects: [{kind: rock, at: [3, 0], size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n",
           {"spec.yaml", "objects[0].at", "inside the start clearance"});
+  // Objects a million metres away or as large as a continent: refused, not "out of memory".
+  refused("objects: [{kind: rock, at: [1e6, -1e6], size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n",
+          {"spec.yaml", "objects[0].at", "on the ground plane"});
+  refused("objects: [{kind: rock, count: 3, region: {min: [-1e6, -10], max: [1e6, 10]}, size_min: [1, 1, 1], size_max: [1e6, 1e6, 1e6]}]\n",
+          {"spec.yaml", "objects[0].region", "objects[0].size"});
 }
 
 // A version-1 perception log (frames back to back) with one frame of the given points.
