@@ -452,8 +452,12 @@ TEST(BadInput, InterruptsLeaveNothingBehind) {
       << t.log();
   EXPECT_NE(t.log().find("hung up (SIGHUP)"), std::string::npos) << t.log();
   EXPECT_EQ(runAndSignal("fly " + t.p("long.yaml") + " --out " + t.p("f2"), SIGQUIT, t.d / "log"), 131) << t.log();
+  EXPECT_EQ(runAndSignal("vio-eval " + t.p("long.yaml") + " --record " + t.p("v.log") + " --out " + t.p("v"), SIGTERM,
+                         t.d / "log"),
+            143)
+      << t.log();
   for (const char* gone : {"f", "f.partial", "r", "r.partial", "rec.log", "rec.log.tmp", "r2", "r2.partial", "rec2.log",
-                           "rec2.log.tmp", "f2", "f2.partial"})
+                           "rec2.log.tmp", "f2", "f2.partial", "v", "v.partial", "v.log", "v.log.tmp"})
     EXPECT_FALSE(fs::exists(t.d / gone)) << gone;
   EXPECT_EQ(readText(t.d / "sentinel"), "keep me");
 }
