@@ -134,8 +134,10 @@ bool isMsbenchOutput(const fs::path& dir, OutputKind kind) {
   if (fs::exists(marker)) {
     const std::string text = readFileText(marker);
     if (text == markerText(kind)) return true;
-    // A marker from before kinds: the kind's characteristic file decides.
-    if (text.find("(") == std::string::npos) return fs::exists(dir / characteristicFile(kind));
+    // A marker from before kinds: the kind's characteristic file decides (a run that ended in an
+    // error left only its metrics.json).
+    if (text.find("(") == std::string::npos)
+      return fs::exists(dir / characteristicFile(kind)) || (kind == OutputKind::kRun && fs::exists(dir / "metrics.json"));
     return false;
   }
   return kind == OutputKind::kRun && isMsbenchOutput(dir);
