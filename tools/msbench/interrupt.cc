@@ -1,6 +1,8 @@
 #include "tools/msbench/interrupt.h"
 
 #include <csignal>
+#include <cstdlib>
+#include <string>
 
 namespace msb {
 
@@ -31,7 +33,32 @@ void installInterruptHandlers() {
 
 bool interruptRequested() { return g_signal != 0; }
 
+namespace {
+// Fault injection for the tests of every command's stop (docs/robustness.md, "Interrupts"):
+// MSBENCH_TEST_SIGNAL=NAME:N raises signal NAME (INT, TERM, HUP, QUIT) to the process itself at
+// the N-th safe point, so a command that finishes in a second is stopped where it would be by a
+// real signal, through the same handler. Unset (always, outside the tests): no effect.
+struct Injection {
+  int signal = 0;
+  long at = 0;
+};
+Injection injectionFromEnvironment() {
+  const char* v = std::getenv("MSBENCH_TEST_SIGNAL");
+  if (!v) return {};
+  const std::string text = v;
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) return {};
+  const std::string name = text.substr(0, colon);
+  const long at = std::strtol(text.c_str() + colon + 1, nullptr, 10);
+  const int sig = name == "INT" ? SIGINT : name == "TERM" ? SIGTERM : name == "HUP" ? SIGHUP : name == "QUIT" ? SIGQUIT : 0;
+  return sig && at > 0 ? Injection{sig, at} : Injection{};
+}
+}  // namespace
+
 void throwIfInterrupted() {
+  static const Injection injection = injectionFromEnvironment();
+  static long safe_points = 0;
+  if (injection.signal && ++safe_points == injection.at) std::raise(injection.signal);
   if (g_signal) throw Interrupted(int(g_signal));
 }
 

@@ -428,6 +428,39 @@ int runAndSignal(const std::string& args, int sig, const fs::path& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// The commands that finish within a second are stopped at their safe points through the same
+// handler by a signal raised there (MSBENCH_TEST_SIGNAL=NAME:N, the N-th safe point): exit
+// 128 + signal, their staging directory removed, nothing written.
+TEST(BadInput, EveryCommandStopsAtItsSafePoints) {
+  const Dir t("stops");
+  const std::string m = kSrc + "/scenarios/missions/test_world_short.yaml";
+  // A perception log and a sweep directory to work on.
+  ASSERT_EQ(run("vio-eval " + t.p("f.yaml") + " --record " + t.p("in.log") + " --out " + t.p("v"), t.d / "log"), 0) << t.log();
+  fs::create_directories(t.d / "sw" / "runs" / "a-s1");
+  t.write("sw/sweep.json", R"({"axes": ["a"], "runs": [{"id": "a-s1", "seed": 1, "status": "complete", "labels": {"a": "a"}}]})");
+  t.write("sw/runs/a-s1/metrics.json",
+          R"({"status": "completed", "world": "test", "method": "monospheres", "sim_time_s": 10, "determinism_hash": )"
+          R"("0123456789abcdef", "machine": {"id": "m"}, "coverage": {"area_m2": 100, "box_share": 0.5}})");
+  const struct {
+    std::string args, signal, out;
+    int code;
+  } kStops[] = {
+      {"map-replay " + t.p("in.log") + " --out " + t.p("mr"), "QUIT:1", "mr", 131},
+      {"report " + t.p("sw") + " --out " + t.p("rep") + " --no-figures", "HUP:2", "rep", 129},
+      {"render-probe --world " + t.p("w.xml") + " --out " + t.p("p.png"), "INT:1", "p.png", 130},
+      {"world show urban --out " + t.p("ws"), "TERM:2", "ws", 143},
+      {"run " + m + " --out " + t.p("r") + " --quiet", "INT:5", "r", 130},
+  };
+  for (const auto& s : kStops) {
+    const std::string cmd = "MSBENCH_TEST_SIGNAL=" + s.signal + " '" + kExe + "' " + s.args + " > '" + (t.d / "log").string() + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.code) << s.args << "\n" << t.log();
+    EXPECT_NE(t.log().find("stopped, no partial results left"), std::string::npos) << s.args << "\n" << t.log();
+    EXPECT_FALSE(fs::exists(t.d / s.out)) << s.args;
+    EXPECT_FALSE(fs::exists(t.d / (s.out + ".partial"))) << s.args;
+  }
+}
+
 TEST(BadInput, InterruptsLeaveNothingBehind) {
   const Dir t("signals");
   // The square is flown 40 times (~750 s simulated, more than the 600 s duration): the flight must
