@@ -129,6 +129,11 @@ int runGridAuditCommand(int argc, char** argv) {
       .option("out", "", "write the audit as JSON to this file");
   if (!args.parse(argc, argv)) return kExitOk;
   const fs::path run = args.get("RUN");
+  // --out is a new file, never one of the inputs or inside the run's directory.
+  if (!args.get("out").empty()) {
+    checkNoOverlap({{"LOG", args.get("LOG")}, {"RUN", run}}, {{"--out", args.get("out")}});
+    checkOutputFile(args.get("out"), /*overwrite=*/false, "out");
+  }
   const double radius = args.getDoubleIn("radius", 0.1, 5.0), window = args.getDoubleIn("window", 0.5, 60.0);
   const Contact contact = readContact(run);
   const ScenarioSpec spec = loadScenario((run / "config.yaml").string(), sets);

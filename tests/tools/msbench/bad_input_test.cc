@@ -301,6 +301,7 @@ TEST(BadInput, OutputsNeverOverlapInputsOrEachOther) {
   t.expectRefused("run " + m + " --record " + m + " --overwrite --out " + t.p("o"), {"--record", "overlaps the input SCENARIO"});
   EXPECT_NE(readText(t.d / "m.yaml").find("base:"), std::string::npos);  // the scenario is intact
   t.expectRefused("vio-eval " + t.p("f.yaml") + " --record " + t.p("v") + " --out " + t.p("v"), {"overlaps the output"});
+  t.expectRefused("grid-audit " + t.p("f.yaml") + " " + t.p(".") + " --out " + t.p("sentinel"), {"--out", "overlaps the input RUN"});
   t.expectRefused("fly " + t.p("f.yaml") + " --out " + t.p("."), {"--out"});
   // map-replay's output directory may not hold its own input log.
   fs::create_directories(t.d / "rd");
