@@ -111,6 +111,7 @@ MissionResult Mission::finish() {
   r.longest_no_gain = longestIntervalWithoutGain(r.coverage);
   r.map_hash = hashSnapshot(r.final_map);
   if (frontend_) r.frontend = frontend_->result();
+  if (truth_) r.map_accuracy = mapAccuracy(r.final_map, *truth_);
   // The collision audit: what the map knew at contact (the map is the final one: the run ended there).
   if (r.flight.collision && truth_) {
     CollisionAuditInput in;

@@ -15,6 +15,7 @@
 #include "core/common/aabb.h"
 #include "core/eval/collision_audit.h"
 #include "core/eval/frontend_profile.h"
+#include "core/eval/map_accuracy.h"
 #include "core/eval/mission_coverage.h"
 #include "core/explorer/explorer.h"
 #include "tools/loop/closed_loop.h"
@@ -48,6 +49,7 @@ struct MissionResult {
   uint64_t run_hash = 0;                   ///< trajectory + map + coverage
   std::optional<CollisionAudit> collision_audit;  ///< a collision in a world with ground truth
   std::optional<FrontEndProfile> frontend;  ///< the SLAM points' errors (worlds with ground truth)
+  std::optional<MapAccuracy> map_accuracy;  ///< the final map against the truth (non-empty map, ground truth)
 };
 
 /// A mission in progress.

@@ -80,29 +80,24 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   } else {
     j["collision"] = nullptr;
   }
-  // Map accuracy against the ground truth (VIO frame, so drift counts against it): obstacle
-  // elements (points, occupied cells) within 0.5 m of a true surface; free elements (spheres,
-  // free cells) whose centre lies outside every obstacle.
-  if (truth && (!r.final_map.obstacles.empty() || !r.final_map.free_space.empty())) {
-    size_t near = 0, free_ok = 0;
-    for (const auto& p : r.final_map.obstacles) near += std::fabs(truth->distance(p, 5.0)) <= 0.5;
-    for (const auto& d : r.final_map.free_space) free_ok += truth->distance(d.centre, 5.0) > 0.0;
-    auto share = [](size_t k, size_t n) { return n ? nlohmann::json(double(k) / double(n)) : nlohmann::json(nullptr); };
-    // The front-end error profile (truth side; docs/perception.md).
-    if (r.frontend) {
-      nlohmann::json bands = nlohmann::json::array();
-      for (const DepthBandErrors& b : r.frontend->bands)
-        bands.push_back({{"depth_from_m", b.lo_m}, {"depth_to_m", b.hi_m > 1e8 ? nlohmann::json() : nlohmann::json(b.hi_m)},
-                         {"points", b.points}, {"median_error_m", b.median_m}, {"p90_error_m", b.p90_m},
-                         {"share_over_0_5_m", b.share_over_half_m}, {"share_over_2_m", b.share_over_2_m}});
-      j["frontend_profile"] = {{"points", r.frontend->points}, {"depth_bands", bands}, {"tracks", r.frontend->tracks},
-                               {"moved_over_0_3_m_share", r.frontend->moved_share},
-                               {"median_track_motion_m", r.frontend->median_motion_m}};
-    }
-    j["map_accuracy"] = {{"obstacles", r.final_map.obstacles.size()},
-                         {"obstacles_near_surface_share", share(near, r.final_map.obstacles.size())},
-                         {"free_elements", r.final_map.free_space.size()},
-                         {"free_really_free_share", share(free_ok, r.final_map.free_space.size())}};
+  // The front-end error profile and the final map's accuracy (truth side; core/eval).
+  if (r.frontend) {
+    nlohmann::json bands = nlohmann::json::array();
+    for (const DepthBandErrors& b : r.frontend->bands)
+      bands.push_back({{"depth_from_m", b.lo_m}, {"depth_to_m", b.hi_m > 1e8 ? nlohmann::json() : nlohmann::json(b.hi_m)},
+                       {"points", b.points}, {"median_error_m", b.median_m}, {"p90_error_m", b.p90_m},
+                       {"share_over_0_5_m", b.share_over_half_m}, {"share_over_2_m", b.share_over_2_m}});
+    j["frontend_profile"] = {{"points", r.frontend->points}, {"depth_bands", bands}, {"tracks", r.frontend->tracks},
+                             {"moved_over_0_3_m_share", r.frontend->moved_share},
+                             {"median_track_motion_m", r.frontend->median_motion_m}};
+  }
+  if (r.map_accuracy) {
+    const MapAccuracy& a = *r.map_accuracy;
+    auto share = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+    j["map_accuracy"] = {{"obstacles", a.obstacles},
+                         {"obstacles_near_surface_share", share(a.nearSurfaceShare())},
+                         {"free_elements", a.free_elements},
+                         {"free_really_free_share", share(a.reallyFreeShare())}};
   }
   j["vio_lost_at_s"] = f.vio_lost_at_s >= 0 ? nlohmann::json(f.vio_lost_at_s) : nlohmann::json(nullptr);
   j["distance_flown_m"] = f.distance_flown_m;

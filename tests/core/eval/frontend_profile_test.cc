@@ -1,7 +1,8 @@
-// The front-end error profile on a synthetic case with known errors: points on the ground, a wrong
-// point 3 m off any surface, a track whose estimate moves 0.5 m, and a VIO error that the profile
-// must take out before measuring.
+// The truth-side evaluation of a run on synthetic cases with known errors: the front-end error
+// profile (points on the ground, a wrong point 3 m off any surface, a track whose estimate moves
+// 0.5 m, a VIO error it must take out first) and the final map's accuracy.
 #include "core/eval/frontend_profile.h"
+#include "core/eval/map_accuracy.h"
 
 #include <gtest/gtest.h>
 
@@ -66,6 +67,29 @@ TEST(FrontEndProfile, EvaluatesOneFrameInEvery) {
   FrontEndProfiler profiler(truth, /*every=*/3);
   for (int k = 0; k < 7; ++k) profiler.addFrame(frame(Vec3(0, 0, 1.5), {point(1, Vec3(2, 0, 0))}), Pose::Identity());
   EXPECT_EQ(profiler.result().points, 3);  // frames 0, 3 and 6
+}
+
+}  // namespace
+}  // namespace msb
+
+// The final map against the truth (core/eval/map_accuracy.h).
+namespace msb {
+namespace {
+
+TEST(MapAccuracy, ObstaclesNearASurfaceAndFreeElementsOutsideObstacles) {
+  const WorldTruth truth = groundOnly();
+  ExplorerSnapshot map;
+  EXPECT_FALSE(mapAccuracy(map, truth).has_value());  // an empty map
+  map.obstacles = {Vec3(1, 0, 0.2), Vec3(2, 0, 3.0)};  // on the ground; 3 m above it (a phantom)
+  map.free_space = {{1, Vec3(0, 0, 2), 1.0, FreeSpaceElement::Footprint::kDisk},
+                    {2, Vec3(0, 0, -1), 0.5, FreeSpaceElement::Footprint::kDisk}};  // the second underground
+  const auto a = mapAccuracy(map, truth);
+  ASSERT_TRUE(a.has_value());
+  EXPECT_EQ(a->obstacles, 2u);
+  EXPECT_EQ(a->obstacles_near_surface, 1u);
+  EXPECT_DOUBLE_EQ(*a->nearSurfaceShare(), 0.5);
+  EXPECT_DOUBLE_EQ(*a->reallyFreeShare(), 0.5);
+  EXPECT_FALSE(MapAccuracy{}.reallyFreeShare().has_value());
 }
 
 }  // namespace

@@ -1,0 +1,27 @@
+#include "core/eval/map_accuracy.h"
+
+#include <cmath>
+
+namespace msb {
+
+std::optional<double> MapAccuracy::nearSurfaceShare() const {
+  if (obstacles == 0) return std::nullopt;
+  return double(obstacles_near_surface) / double(obstacles);
+}
+
+std::optional<double> MapAccuracy::reallyFreeShare() const {
+  if (free_elements == 0) return std::nullopt;
+  return double(free_really_free) / double(free_elements);
+}
+
+std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldTruth& truth) {
+  if (map.obstacles.empty() && map.free_space.empty()) return std::nullopt;
+  MapAccuracy a;
+  a.obstacles = map.obstacles.size();
+  a.free_elements = map.free_space.size();
+  for (const auto& p : map.obstacles) a.obstacles_near_surface += std::fabs(truth.distance(p, 5.0)) <= 0.5;
+  for (const auto& d : map.free_space) a.free_really_free += truth.distance(d.centre, 5.0) > 0.0;
+  return a;
+}
+
+}  // namespace msb

@@ -1,0 +1,29 @@
+// The accuracy of a method's final map against the ground truth (metrics.json → map_accuracy):
+// obstacle elements (points, occupied cells) within 0.5 m of a true surface, free elements
+// (spheres, free cells) whose centre lies outside every obstacle. In the map's own frame (the VIO
+// estimate), so drift counts against it.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+#include "core/explorer/snapshot.h"
+#include "core/geometry/world_truth.h"
+
+namespace msb {
+
+/// Counts of a map against the truth.
+struct MapAccuracy {
+  size_t obstacles = 0, obstacles_near_surface = 0;
+  size_t free_elements = 0, free_really_free = 0;
+
+  /// obstacles_near_surface / obstacles (nullopt: no obstacle).
+  std::optional<double> nearSurfaceShare() const;
+  /// free_really_free / free_elements (nullopt: no free element).
+  std::optional<double> reallyFreeShare() const;
+};
+
+/// The map's accuracy (nullopt for an empty map).
+std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldTruth& truth);
+
+}  // namespace msb
