@@ -83,121 +83,68 @@ cv::Mat annotate(const PerceptionSample& s) {
   return img;
 }
 
-}  // namespace
-
-int runVioEvalCommand(int argc, char** argv) {
-  ArgParser args("msbench vio-eval",
-                 "Fly a scripted path with the feature tracker and SLAM points running and evaluate\n"
-                 "them against the world's ground truth (generated worlds). Writes frames.csv,\n"
-                 "summary.json, trajectory.csv and annotated/*.png into DIR.");
-  args.positional("FILE.yaml", "flight description (as for fly)")
-      .option("out", "", "output directory", true)
-      .option("annotate-every", "30", "write every N-th processed frame annotated (0 = none)")
-      .option("record", "", "also record the perception stream to this log (for map-replay)")
-      .flag("overwrite", "replace an existing output directory");
-  if (!args.parse(argc, argv)) return kExitOk;
-  const std::string file = args.get("FILE.yaml");
-  FlightSpec spec = loadFlightSpec(file);
-  spec.perception.enabled = true;
-  const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
-  const long annotate_every = args.getIntIn("annotate-every", 0, 1000000);
-  checkNoOverlap({{"FILE.yaml", file}}, {{"--out", args.get("out")}, {"--record", args.get("record")}});
-  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
-  std::optional<WorldTruth> truth;
-  if (built) truth.emplace(built->generated.shapes);
-  // The loop (world model, renderer) before any output exists: a bad world writes nothing.
-  LoopSetup setup;
-  setup.truth = truth ? &*truth : nullptr;
-  ClosedLoop loop = buildNamingFile(file, [&] { return ClosedLoop(spec, setup); });
-  StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kVioEval);
-  fs::create_directories(out.staging() / "annotated");
-  const FisheyeCamera camera(spec.camera);
-  std::map<int64_t, Pose> gt_camera;  // ground-truth camera pose per rendered tick
-  VioStats st;
-  std::unique_ptr<PerceptionLogWriter> recorder;
-  if (!args.get("record").empty())
-    recorder = std::make_unique<PerceptionLogWriter>(
-        args.get("record"), nlohmann::json{{"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
-                                           {"seed", spec.seed}, {"camera_scale", spec.camera.scale},
-                                           {"flight", file}});
-
-  // Evaluates one perception frame against the ground truth.
-  auto evaluate = [&](const PerceptionSample& s) {
-    gt_camera[s.frame.tick] = s.frame.T_W_C;
-    if (recorder) recorder->write(s.points, s.frame.T_W_C);
-    std::vector<double> frame_errors;
-    // The premise of OVDE (seed paper §III-B): how far the points the mapper gets lie.
-    for (const auto& p : s.points.points) {
-      const double d = (p.p_W - s.points.T_W_C.translation()).norm();
-      int band = 0;
-      while (band + 1 < kBins && d >= kBinEdges[band + 1]) ++band;
-      ++st.points_by_distance[band];
-    }
-    if (truth) {
-      for (const auto& p : s.points.points) {
-        const PointTruth t = evaluatePoint(p, gt_camera.at(p.anchor_tick), *truth, camera);
-        ++st.point_samples;
-        // Spurious near points: closer than 1 m to the camera and not on a surface (no surface
-        // along the ray, or more than 0.3 m off it).
-        if ((p.p_W - s.points.T_W_C.translation()).norm() < 1.0) {
-          ++st.near_points;
-          st.spurious_near += !t.has_surface || (t.interior && t.error_m > 0.3);
-        }
-        if (!t.has_surface) {
-          ++st.no_surface;
-          ++st.points_by_surface["none"];
-          continue;
-        }
-        ++st.points_by_surface[surfaceClass(truth->shapes()[t.shape])];
-        st.textureless += t.kind == ObstacleKind::kTextureless;
-        st.textureless_interior += t.textureless_interior;
-        st.thin += t.kind == ObstacleKind::kThin;
-        if (!t.interior) {  // silhouette: no single true surface to compare with
-          ++st.silhouette;
-          continue;
-        }
-        int bin = 0;
-        while (bin + 1 < kBins && t.true_depth_m >= kBinEdges[bin + 1]) ++bin;
-        st.errors[bin].push_back(t.error_m);
-        st.depth_std[bin].push_back(p.depth_std_m);
-        frame_errors.push_back(t.error_m);
-      }
-    }
-    ++st.frames;
-    st.ransac_tested += s.tracks.ransac_tested;
-    st.ransac_rejected += s.tracks.ransac_rejected;
-    st.tracks_sum += s.tracks.tracks.size();
-    st.points_sum += s.points.points.size();
-    st.min_tracks = std::min(st.min_tracks, int(s.tracks.tracks.size()));
-    st.tracker_ms += s.tracker_ms;
-    st.tri_ms += s.triangulation_ms;
-    st.render_ms += s.render_ms;
-    char line[256];
-    std::snprintf(line, sizeof(line), "%.3f,%zu,%d,%d,%zu,%.4f,%.3f,%.3f,%.3f\n", s.frame.t_s,
-                  s.tracks.tracks.size(), s.tracks.new_tracks, s.tracks.lost_tracks,
-                  s.points.points.size(), percentile(frame_errors, 0.5), s.tracker_ms,
-                  s.triangulation_ms, s.render_ms);
-    st.csv += line;
-    if (annotate_every > 0 && (st.frames - 1) % annotate_every == 0) {
-      char name[64];
-      std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", st.frames - 1, s.frame.t_s);
-      writePng(out.staging() / "annotated" / name, viewOf(annotate(s)));
-    }
-  };
-  // Fly the path with perception on; evaluate every processed frame; stop on SIGINT/SIGTERM.
-  ProgressLine progress("vio-eval", spec.duration_s);
-  while (loop.running()) {
-    throwIfInterrupted();
-    const TickRecord& t = loop.step();
-    setCrashContext(t.tick, t.t_s);
-    if (t.points)
-      evaluate({*t.frame, *t.tracks, *t.points, t.timing.tracker_ms, t.timing.triangulation_ms, t.timing.render_ms});
-    progress.update(t, loop.physicsHz());
+// Adds one perception frame to the statistics: the points by distance, and against the ground
+// truth (when the world has it) their surfaces and errors; the frame's line of frames.csv.
+void addSample(VioStats& st, const PerceptionSample& s, const std::optional<WorldTruth>& truth, const FisheyeCamera& camera,
+               std::map<int64_t, Pose>& gt_camera) {
+  gt_camera[s.frame.tick] = s.frame.T_W_C;
+  std::vector<double> frame_errors;
+  // The premise of OVDE (seed paper §III-B): how far the points the mapper gets lie.
+  for (const auto& p : s.points.points) {
+    const double d = (p.p_W - s.points.T_W_C.translation()).norm();
+    int band = 0;
+    while (band + 1 < kBins && d >= kBinEdges[band + 1]) ++band;
+    ++st.points_by_distance[band];
   }
-  const FlightResult& r = loop.finish();
-  if (recorder) recorder->close();
+  if (truth) {
+    for (const auto& p : s.points.points) {
+      const PointTruth t = evaluatePoint(p, gt_camera.at(p.anchor_tick), *truth, camera);
+      ++st.point_samples;
+      // Spurious near points: closer than 1 m to the camera and not on a surface (no surface
+      // along the ray, or more than 0.3 m off it).
+      if ((p.p_W - s.points.T_W_C.translation()).norm() < 1.0) {
+        ++st.near_points;
+        st.spurious_near += !t.has_surface || (t.interior && t.error_m > 0.3);
+      }
+      if (!t.has_surface) {
+        ++st.no_surface;
+        ++st.points_by_surface["none"];
+        continue;
+      }
+      ++st.points_by_surface[surfaceClass(truth->shapes()[t.shape])];
+      st.textureless += t.kind == ObstacleKind::kTextureless;
+      st.textureless_interior += t.textureless_interior;
+      st.thin += t.kind == ObstacleKind::kThin;
+      if (!t.interior) {  // silhouette: no single true surface to compare with
+        ++st.silhouette;
+        continue;
+      }
+      int bin = 0;
+      while (bin + 1 < kBins && t.true_depth_m >= kBinEdges[bin + 1]) ++bin;
+      st.errors[bin].push_back(t.error_m);
+      st.depth_std[bin].push_back(p.depth_std_m);
+      frame_errors.push_back(t.error_m);
+    }
+  }
+  ++st.frames;
+  st.ransac_tested += s.tracks.ransac_tested;
+  st.ransac_rejected += s.tracks.ransac_rejected;
+  st.tracks_sum += s.tracks.tracks.size();
+  st.points_sum += s.points.points.size();
+  st.min_tracks = std::min(st.min_tracks, int(s.tracks.tracks.size()));
+  st.tracker_ms += s.tracker_ms;
+  st.tri_ms += s.triangulation_ms;
+  st.render_ms += s.render_ms;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%.3f,%zu,%d,%d,%zu,%.4f,%.3f,%.3f,%.3f\n", s.frame.t_s,
+                s.tracks.tracks.size(), s.tracks.new_tracks, s.tracks.lost_tracks,
+                s.points.points.size(), percentile(frame_errors, 0.5), s.tracker_ms,
+                s.triangulation_ms, s.render_ms);
+  st.csv += line;
+}
 
-  // Summary.
+// summary.json: the statistics of the flight.
+nlohmann::json summaryJson(const VioStats& st, const FlightResult& r, const FlightSpec& spec, bool truth) {
   const double n = std::max(1, st.frames);
   nlohmann::json bins = nlohmann::json::array();
   for (int b = 0; b < kBins; ++b) {
@@ -247,11 +194,15 @@ int runVioEvalCommand(int argc, char** argv) {
                       {"world_geom", r.collision->world_geom},
                       {"vehicle_position_m", {r.collision->vehicle_position_m.x(), r.collision->vehicle_position_m.y(),
                                               r.collision->vehicle_position_m.z()}}};
-  writeFileAtomic(out.staging() / "frames.csv", st.csv);
-  writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
-  writeFileAtomic(out.staging() / "trajectory.csv", trajectoryCsv(r.trajectory));
-  out.commit();
+  return j;
+}
 
+// The summary on stdout.
+void printSummary(const nlohmann::json& j, const VioStats& st, const FlightResult& r, bool truth, const fs::path& dir) {
+  const double n = std::max(1, st.frames);
+  const double ps = std::max<long>(1, st.point_samples);
+  const nlohmann::json& bins = j["point_error_by_distance"];
+  const nlohmann::json& by_surface = j["slam_points_per_frame_by_surface"];
   std::printf("vio-eval %s: %s after %.1f s, %d frames%s\n", j["world"].get<std::string>().c_str(),
               runStatusName(r.status), r.sim_time_s, st.frames,
               r.collision ? (" (hit " + r.collision->world_geom + ")").c_str() : "");
@@ -280,7 +231,77 @@ int runVioEvalCommand(int argc, char** argv) {
                   b["p90_error_m"].get<double>(), b["median_predicted_depth_std_m"].get<double>());
   }
   std::printf("  ms/frame: tracker %.2f, triangulation %.2f, render %.2f -> %s\n", st.tracker_ms / n,
-              st.tri_ms / n, st.render_ms / n, out.finalDir().c_str());
+              st.tri_ms / n, st.render_ms / n, dir.c_str());
+}
+
+}  // namespace
+
+int runVioEvalCommand(int argc, char** argv) {
+  ArgParser args("msbench vio-eval",
+                 "Fly a scripted path with the feature tracker and SLAM points running and evaluate\n"
+                 "them against the world's ground truth (generated worlds). Writes frames.csv,\n"
+                 "summary.json, trajectory.csv and annotated/*.png into DIR.");
+  args.positional("FILE.yaml", "flight description (as for fly)")
+      .option("out", "", "output directory", true)
+      .option("annotate-every", "30", "write every N-th processed frame annotated (0 = none)")
+      .option("record", "", "also record the perception stream to this log (for map-replay)")
+      .flag("overwrite", "replace an existing output directory");
+  if (!args.parse(argc, argv)) return kExitOk;
+  const std::string file = args.get("FILE.yaml");
+  FlightSpec spec = loadFlightSpec(file);
+  spec.perception.enabled = true;
+  const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
+  const long annotate_every = args.getIntIn("annotate-every", 0, 1000000);
+  checkNoOverlap({{"FILE.yaml", file}}, {{"--out", args.get("out")}, {"--record", args.get("record")}});
+  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
+  std::optional<WorldTruth> truth;
+  if (built) truth.emplace(built->generated.shapes);
+  // The loop (world model, renderer) before any output exists: a bad world writes nothing.
+  LoopSetup setup;
+  setup.truth = truth ? &*truth : nullptr;
+  ClosedLoop loop = buildNamingFile(file, [&] { return ClosedLoop(spec, setup); });
+  StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kVioEval);
+  fs::create_directories(out.staging() / "annotated");
+  const FisheyeCamera camera(spec.camera);
+  std::map<int64_t, Pose> gt_camera;  // ground-truth camera pose per rendered tick
+  VioStats st;
+  std::unique_ptr<PerceptionLogWriter> recorder;
+  if (!args.get("record").empty())
+    recorder = std::make_unique<PerceptionLogWriter>(
+        args.get("record"), nlohmann::json{{"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
+                                           {"seed", spec.seed}, {"camera_scale", spec.camera.scale},
+                                           {"flight", file}});
+
+  // Each processed frame: recorded, evaluated, and every N-th one drawn.
+  auto evaluate = [&](const PerceptionSample& s) {
+    if (recorder) recorder->write(s.points, s.frame.T_W_C);
+    addSample(st, s, truth, camera, gt_camera);
+    if (annotate_every > 0 && (st.frames - 1) % annotate_every == 0) {
+      char name[64];
+      std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", st.frames - 1, s.frame.t_s);
+      writePng(out.staging() / "annotated" / name, viewOf(annotate(s)));
+    }
+  };
+  // Fly the path with perception on; evaluate every processed frame; stop on SIGINT/SIGTERM.
+  ProgressLine progress("vio-eval", spec.duration_s);
+  while (loop.running()) {
+    throwIfInterrupted();
+    const TickRecord& t = loop.step();
+    setCrashContext(t.tick, t.t_s);
+    if (t.points)
+      evaluate({*t.frame, *t.tracks, *t.points, t.timing.tracker_ms, t.timing.triangulation_ms, t.timing.render_ms});
+    progress.update(t, loop.physicsHz());
+  }
+  const FlightResult& r = loop.finish();
+  if (recorder) recorder->close();
+
+  const nlohmann::json j = summaryJson(st, r, spec, bool(truth));
+  writeFileAtomic(out.staging() / "frames.csv", st.csv);
+  writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
+  writeFileAtomic(out.staging() / "trajectory.csv", trajectoryCsv(r.trajectory));
+  out.commit();
+
+  printSummary(j, st, r, bool(truth), out.finalDir());
   return kExitOk;
 }
 
