@@ -30,6 +30,65 @@
 
 namespace msb {
 
+namespace {
+
+// map_stats.csv: one line per map update.
+std::string mapStatsCsv(const Replay& r) {
+std::ostringstream csv;
+csv << "t,skipped,input_points,virtual_points,spheres,obstacles,new_spheres,updated_spheres,deleted_spheres,"
+       "sparsified_spheres,deleted_obstacles,protected_obstacles,inserted_obstacles,frontiers,new_frontiers,"
+       "dropped_frontiers,polyhedron_ms,dbof_ms,spheres_ms,sampling_ms,graph_ms,obstacles_ms,frontiers_ms,total_ms\n";
+for (size_t i = 0; i < r.stats.size(); ++i) {
+  const auto& s = r.stats[i];
+  csv << r.t[i] << ',' << s.skipped << ',' << s.input_points << ',' << s.virtual_points << ',' << r.spheres[i] << ','
+      << r.obstacles[i] << ',' << s.new_spheres << ',' << s.updated_spheres << ',' << s.deleted_spheres
+      << ',' << s.sparsified_spheres << ',' << s.deleted_obstacles << ',' << s.protected_obstacles << ','
+      << s.inserted_obstacles << ',' << r.frontiers[i] << ',' << s.new_frontiers << ',' << s.dropped_frontiers << ','
+      << s.polyhedron_ms << ',' << s.dbof_ms << ',' << s.spheres_ms << ',' << s.sampling_ms << ','
+      << s.graph_ms << ',' << s.obstacles_ms << ',' << s.frontiers_ms << ',' << r.total_ms[i] << '\n';
+}
+return csv.str();
+}
+
+// topdown.png: spheres (blue discs), obstacle points (black), frontiers (magenta), the estimated
+// camera path (orange), over 2.5 m column grid lines.
+cv::Mat replayTopDown(const PerceptionLog& log, const SphereMap& map) {
+Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
+for (const auto& f : log.frames) {
+  lo = lo.cwiseMin(f.points.T_W_C.translation().head<2>());
+  hi = hi.cwiseMax(f.points.T_W_C.translation().head<2>());
+}
+for (const auto& [id, s] : map.spheres()) {
+  lo = lo.cwiseMin(Vec2(s.centre.head<2>() - Vec2::Constant(s.radius)));
+  hi = hi.cwiseMax(Vec2(s.centre.head<2>() + Vec2::Constant(s.radius)));
+}
+lo.array() -= 5, hi.array() += 5;
+const double mpp = std::max(0.05, std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 1000.0);
+cv::Mat img(int((hi.y() - lo.y()) / mpp), int((hi.x() - lo.x()) / mpp), CV_8UC3, cv::Scalar(245, 245, 245));
+auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), int((hi.y() - p.y()) / mpp)); };
+// Column grid lines (2.5 m, or coarser on huge extents: at most ~400 lines a direction).
+const double step = std::max(2.5, std::ceil(std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 400.0 / 2.5) * 2.5);
+for (int k = 0; k <= int((hi.x() - lo.x()) / step) + 1; ++k) {
+  const double x = std::floor(lo.x() / step) * step + k * step;
+  cv::line(img, px({x, lo.y(), 0}), px({x, hi.y(), 0}), cv::Scalar(225, 225, 225));
+}
+for (int k = 0; k <= int((hi.y() - lo.y()) / step) + 1; ++k) {
+  const double y = std::floor(lo.y() / step) * step + k * step;
+  cv::line(img, px({lo.x(), y, 0}), px({hi.x(), y, 0}), cv::Scalar(225, 225, 225));
+}
+cv::Mat discs = img.clone();
+for (const auto& [id, s] : map.spheres()) cv::circle(discs, px(s.centre), int(s.radius / mpp), cv::Scalar(230, 160, 90), -1);
+cv::addWeighted(discs, 0.45, img, 0.55, 0, img);
+for (const auto& [id, o] : map.obstacles()) cv::circle(img, px(o.position), 1, cv::Scalar(20, 20, 20), -1);
+for (const auto& [id, f] : map.frontiers()) cv::circle(img, px(f.position), 3, cv::Scalar(200, 40, 200), -1);
+for (size_t i = 1; i < log.frames.size(); ++i)
+  cv::line(img, px(log.frames[i - 1].points.T_W_C.translation()), px(log.frames[i].points.T_W_C.translation()),
+           cv::Scalar(0, 140, 255), 2);
+return img;
+}
+
+}  // namespace
+
 int runMapReplayCommand(int argc, char** argv) {
   const std::vector<std::string> sets = takeRepeatedOption(argc, argv, "set");
   ArgParser args("msbench map-replay",
@@ -63,58 +122,12 @@ int runMapReplayCommand(int argc, char** argv) {
   }
   const Replay r = replay(log, map, rate_hz, truth ? &*truth : nullptr);
 
-  // map_stats.csv
-  std::ostringstream csv;
-  csv << "t,skipped,input_points,virtual_points,spheres,obstacles,new_spheres,updated_spheres,deleted_spheres,"
-         "sparsified_spheres,deleted_obstacles,protected_obstacles,inserted_obstacles,frontiers,new_frontiers,"
-         "dropped_frontiers,polyhedron_ms,dbof_ms,spheres_ms,sampling_ms,graph_ms,obstacles_ms,frontiers_ms,total_ms\n";
-  for (size_t i = 0; i < r.stats.size(); ++i) {
-    const auto& s = r.stats[i];
-    csv << r.t[i] << ',' << s.skipped << ',' << s.input_points << ',' << s.virtual_points << ',' << r.spheres[i] << ','
-        << r.obstacles[i] << ',' << s.new_spheres << ',' << s.updated_spheres << ',' << s.deleted_spheres
-        << ',' << s.sparsified_spheres << ',' << s.deleted_obstacles << ',' << s.protected_obstacles << ','
-        << s.inserted_obstacles << ',' << r.frontiers[i] << ',' << s.new_frontiers << ',' << s.dropped_frontiers << ','
-        << s.polyhedron_ms << ',' << s.dbof_ms << ',' << s.spheres_ms << ',' << s.sampling_ms << ','
-        << s.graph_ms << ',' << s.obstacles_ms << ',' << s.frontiers_ms << ',' << r.total_ms[i] << '\n';
-  }
-  writeFileAtomic(out.staging() / "map_stats.csv", csv.str());
+  writeFileAtomic(out.staging() / "map_stats.csv", mapStatsCsv(r));
 
   // map.ply: spheres (kind 0, with radius), obstacle points (1), frontiers (2).
   writeFileAtomic(out.staging() / "map.ply", mapPly(sphereMapSnapshot(map)));
 
-  // topdown.png: spheres (blue discs), obstacle points (black), estimated camera path (orange).
-  Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
-  for (const auto& f : log.frames) {
-    lo = lo.cwiseMin(f.points.T_W_C.translation().head<2>());
-    hi = hi.cwiseMax(f.points.T_W_C.translation().head<2>());
-  }
-  for (const auto& [id, s] : map.spheres()) {
-    lo = lo.cwiseMin(Vec2(s.centre.head<2>() - Vec2::Constant(s.radius)));
-    hi = hi.cwiseMax(Vec2(s.centre.head<2>() + Vec2::Constant(s.radius)));
-  }
-  lo.array() -= 5, hi.array() += 5;
-  const double mpp = std::max(0.05, std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 1000.0);
-  cv::Mat img(int((hi.y() - lo.y()) / mpp), int((hi.x() - lo.x()) / mpp), CV_8UC3, cv::Scalar(245, 245, 245));
-  auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), int((hi.y() - p.y()) / mpp)); };
-  // Column grid lines (2.5 m, or coarser on huge extents: at most ~400 lines a direction).
-  const double step = std::max(2.5, std::ceil(std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 400.0 / 2.5) * 2.5);
-  for (int k = 0; k <= int((hi.x() - lo.x()) / step) + 1; ++k) {
-    const double x = std::floor(lo.x() / step) * step + k * step;
-    cv::line(img, px({x, lo.y(), 0}), px({x, hi.y(), 0}), cv::Scalar(225, 225, 225));
-  }
-  for (int k = 0; k <= int((hi.y() - lo.y()) / step) + 1; ++k) {
-    const double y = std::floor(lo.y() / step) * step + k * step;
-    cv::line(img, px({lo.x(), y, 0}), px({hi.x(), y, 0}), cv::Scalar(225, 225, 225));
-  }
-  cv::Mat discs = img.clone();
-  for (const auto& [id, s] : map.spheres()) cv::circle(discs, px(s.centre), int(s.radius / mpp), cv::Scalar(230, 160, 90), -1);
-  cv::addWeighted(discs, 0.45, img, 0.55, 0, img);
-  for (const auto& [id, o] : map.obstacles()) cv::circle(img, px(o.position), 1, cv::Scalar(20, 20, 20), -1);
-  for (const auto& [id, f] : map.frontiers()) cv::circle(img, px(f.position), 3, cv::Scalar(200, 40, 200), -1);
-  for (size_t i = 1; i < log.frames.size(); ++i)
-    cv::line(img, px(log.frames[i - 1].points.T_W_C.translation()), px(log.frames[i].points.T_W_C.translation()),
-             cv::Scalar(0, 140, 255), 2);
-  writePng(out.staging() / "topdown.png", viewOf(img));
+  writePng(out.staging() / "topdown.png", viewOf(replayTopDown(log, map)));
 
   // Explored area as in the paper (the metric of core/eval, final map only).
   ColumnCoverage columns;
