@@ -20,6 +20,8 @@ class RngStream {
   /// Seeds from (scenario seed, stream name) through a hash mix.
   RngStream(uint64_t scenario_seed, std::string_view name);
 
+  /// 64 raw random bits (the engine's next output).
+  uint64_t bits() { return engine_(); }
   /// Uniform double in [0, 1) with 53 random bits.
   double uniform();
   /// Uniform double in [lo, hi).

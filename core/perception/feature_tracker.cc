@@ -153,13 +153,15 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
     for (size_t i = 0; i < p0.size(); ++i) {
       if (!st_f[i] || !st_b[i]) continue;
       const double fb = std::hypot(p0[i].x - p0_back[i].x, p0[i].y - p0_back[i].y);
-      const int u = int(std::lround(p1[i].x)), v = int(std::lround(p1[i].y));
+      // A mis-track (degradation, off by default) lands the track a few pixels off.
+      const Vec2 pixel = Vec2(p1[i].x, p1[i].y) + (mistracks_ ? mistracks_->displacement() : Vec2::Zero());
+      const int u = int(std::lround(pixel.x())), v = int(std::lround(pixel.y()));
       if (fb > config_.fb_max_error_px || u < 0 || v < 0 || u >= img.cols || v >= img.rows ||
           !valid_mask_.at<uint8_t>(v, u))
         continue;
       Track t = prev_tracks_[i];
       from.push_back(t.pixel);
-      t.pixel = Vec2(p1[i].x, p1[i].y);
+      t.pixel = pixel;
       to.push_back(t.pixel);
       ++t.age;
       tracks.push_back(t);

@@ -1,7 +1,7 @@
 // Sparse feature tracking on fisheye images, like the OpenVINS KLT front end: FAST corners
-// detected on a grid (threshold 15, ≥ 20 px apart), pyramidal Lucas–Kanade from frame to frame
-// with a forward–backward consistency check, histogram equalisation, up to 400 tracks with
-// stable ids and ages. Works in fisheye pixel space; bearings come from the shared camera model.
+// detected on a grid (threshold 15, ≥ 20 px apart), pyramidal Lucas–Kanade from frame to frame,
+// forward only as TrackKLT (a forward–backward check is an option, off), histogram equalisation,
+// up to 400 tracks with stable ids and ages. Works in fisheye pixel space; bearings come from the shared camera model.
 // Geometric outlier rejection as OpenVINS' front end does it: the tracked pairs' bearings within
 // ransac_max_angle_deg of the axis give an essential matrix by RANSAC (5-point, OpenCV) on
 // normalised coordinates; every tracked pair whose angular epipolar error exceeds the threshold
@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -17,6 +18,7 @@
 #include "core/camera/fisheye_camera.h"
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
+#include "core/perception/frontend_degradation.h"
 
 namespace msb {
 
@@ -88,6 +90,9 @@ class KltFeatureTracker final : public FeatureSource {
 
   TrackFrame process(const CameraFrame& frame) override;
 
+  /// Turns on KLT mis-tracks (a degradation axis; off unless called).
+  void setMistracks(const MistrackModel& model) { mistracks_ = model; }
+
  private:
   void detect(const cv::Mat& img, std::vector<Track>& tracks, int* added);
   // Drops the epipolar outliers among tracked pairs (prev pixel, new pixel); returns the keep mask.
@@ -100,6 +105,7 @@ class KltFeatureTracker final : public FeatureSource {
   std::vector<cv::Mat> prev_pyramid_;
   std::vector<Track> prev_tracks_;
   uint64_t next_id_ = 1;
+  std::optional<MistrackModel> mistracks_;  // degradation: none by default
 };
 
 }  // namespace msb

@@ -81,4 +81,16 @@ Pose VioDriftModel::noisyCameraPose(const Pose& T_W_C_gt) {
   return T;
 }
 
+VioDriftConfig scaledDrift(const VioDriftConfig& config, double scale) {
+  VioDriftConfig c = config;
+  c.position_drift_fraction *= scale;
+  c.drift_rate_wander_per_sqrt_m *= scale;
+  c.position_random_walk_m_per_sqrt_m *= scale;
+  c.yaw_random_walk_deg_per_sqrt_m *= scale;
+  c.frame_position_noise_m *= scale;
+  c.frame_yaw_noise_deg *= scale;
+  c.yaw_error_per_turn_deg_per_rad *= scale;
+  return c;
+}
+
 }  // namespace msb

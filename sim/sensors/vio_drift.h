@@ -42,6 +42,10 @@ struct VioDriftConfig {
   void validate(ConfigChecker& c) const;
 };
 
+/// The drift model with every drift rate and noise multiplied by `scale` (the front end's
+/// drift_scale axis); the feature-count coupling (nominal_tracks, few_tracks_gain) is kept.
+VioDriftConfig scaledDrift(const VioDriftConfig& config, double scale);
+
 /// Drifting pose estimate; owns the "vio_drift" RNG stream.
 class VioDriftModel {
  public:

@@ -286,6 +286,27 @@ void slamPointsKeys(Keys r, SlamPointsConfig& c) {
   r.finish();
 }
 
+// frontend: {preset: NAME, <axis>: value, ...}: a named preset, then overrides.
+template <class Keys>
+void frontendKeys(Keys r, FrontendDegradationConfig& c) {
+  std::string preset;
+  if (Keys::kReading && r.field("preset", preset)) {  // the writer writes every field instead
+    const auto p = frontendPreset(preset);
+    if (!p) {
+      std::string names;
+      for (const auto& n : frontendPresetNames()) names += (names.empty() ? "" : ", ") + n;
+      throw ConfigError(r.keyName("preset"), "unknown preset '" + preset + "' (known: " + names + ")");
+    }
+    c = *p;
+  }
+  r.field("image_noise_sigma", c.image_noise_sigma);
+  r.field("mistrack_share", c.mistrack_share);
+  r.field("mistrack_px", c.mistrack_px);
+  r.field("landmark_jitter_inv_depth", c.landmark_jitter_inv_depth);
+  r.field("drift_scale", c.drift_scale);
+  r.finish();
+}
+
 // The keys of a flight shared by reading and writing; `world` and `start` are the callers'.
 template <class Keys>
 void flightSectionKeys(Keys& r, FlightSpec& s) {
@@ -305,6 +326,7 @@ void flightSectionKeys(Keys& r, FlightSpec& s) {
   if (r.has("perception")) perceptionKeys(r.sub("perception"), s.perception);
   if (r.has("tracker")) trackerKeys(r.sub("tracker"), s.tracker);
   if (r.has("slam_points")) slamPointsKeys(r.sub("slam_points"), s.slam_points);
+  if (r.has("frontend")) frontendKeys(r.sub("frontend"), s.frontend);
 }
 
 }  // namespace

@@ -28,7 +28,10 @@ std::unique_ptr<FeatureSource> makeFeatureSource(const FlightSpec& spec, const F
       throw ConfigError("perception.source", "'oracle' needs a generated world (its ground truth); this world has none");
     return std::make_unique<OracleFeatureSource>(spec.perception.oracle, camera, *truth, spec.seed);
   }
-  return std::make_unique<KltFeatureTracker>(spec.tracker, camera);
+  auto tracker = std::make_unique<KltFeatureTracker>(spec.tracker, camera);
+  if (spec.frontend.mistrack_share > 0.0)
+    tracker->setMistracks(MistrackModel(spec.frontend.mistrack_share, spec.frontend.mistrack_px, spec.seed));
+  return tracker;
 }
 
 }  // namespace
@@ -42,11 +45,13 @@ ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
       controller_(spec.controller, spec.physics.vehicle),
       trajectory_(spec.trajectory, spec.start_position_m, spec.start_yaw_rad),
       imu_(spec.imu, spec.seed),
-      vio_(spec.vio_drift, spec.seed),
+      vio_(scaledDrift(spec.vio_drift, spec.frontend.drift_scale), spec.seed),
       features_(makeFeatureSource(spec, camera_, setup.truth)),
       last_position_(spec.start_position_m),
       wall_start_(WallClock::now()) {
   if (spec.perception.enabled) slam_ = std::make_unique<SlamPointEstimator>(spec.slam_points, camera_, spec.camera_stream.rate_hz);
+  if (spec.frontend.image_noise_sigma > 0.0) image_noise_.emplace(spec.frontend.image_noise_sigma, spec.seed);
+  if (spec.frontend.landmark_jitter_inv_depth > 0.0) jitter_.emplace(spec.frontend.landmark_jitter_inv_depth, spec.seed);
   if (renderer_) result_.gl_description = renderer_->description();
   if (!setup_.explorer) {
     // A scripted path stays inside the world (above its ground, within its extent).
@@ -136,6 +141,7 @@ void ClosedLoop::renderFrame() {
   frame_.tick = record_.tick;
   frame_.t_s = gt_.t_s;
   frame_.T_W_C = T_W_C;
+  if (image_noise_) image_noise_->apply(frame_);  // the camera's noise (degradation, off by default)
   auto& sum = result_.render_time_sum;
   sum.scene_ms += frame_timing_.scene_ms;
   sum.render_ms += frame_timing_.render_ms;
@@ -154,6 +160,7 @@ bool ClosedLoop::perceive() {
   record_.timing.tracker_ms = msSince(t0);
   t0 = WallClock::now();
   points_ = slam_->update(tracks_, vio_.noisyCameraPose(frame_.T_W_C));
+  if (jitter_) jitter_->apply(points_);  // a moving filter estimate (degradation, off by default)
   vio_.setTrackedFeatures(trackedFromPrevious(tracks_));  // drift grows with few features
   record_.timing.triangulation_ms = msSince(t0);
   record_.tracks = &tracks_;

@@ -160,6 +160,8 @@ class ClosedLoop {
   VioDriftModel vio_;
   std::unique_ptr<FeatureSource> features_;
   std::unique_ptr<SlamPointEstimator> slam_;
+  std::optional<ImageNoise> image_noise_;     // front-end degradation (none by default)
+  std::optional<LandmarkJitter> jitter_;
   // Schedules (integer ticks).
   int64_t ctrl_div_ = 1, lost_ticks_ = 0, max_ticks_ = 0, hold_ticks_ = 0;
   double ctrl_dt_ = 0.0;

@@ -41,6 +41,11 @@ void FlightSpec::validate(ConfigChecker& c) const {
   c.nested("perception", perception);
   c.nested("tracker", tracker);
   c.nested("slam_points", slam_points);
+  c.nested("frontend", frontend);
+  if (frontend.drift_scale != 1.0)  // the scaled drift model must itself be valid
+    c.nested("vio_drift (scaled by frontend.drift_scale)", scaledDrift(vio_drift, frontend.drift_scale));
+  c.require(frontend.mistrack_share == 0.0 || perception.source == "klt", "frontend.mistrack_share",
+            "mis-tracks are the KLT tracker's: the oracle source has pixel_noise_px instead");
   c.require(!perception.enabled || camera_stream.enabled, "perception.enabled",
             "needs camera_stream.enabled");
   c.require(!perception.enabled || perception.source != "klt" || camera_stream.renderer != "blank",

@@ -15,6 +15,7 @@
 #include "sim/physics/trajectory_tracker.h"
 #include "sim/render/fisheye_renderer.h"
 #include "core/perception/feature_tracker.h"
+#include "core/perception/frontend_degradation.h"
 #include "core/perception/oracle_features.h"
 #include "core/perception/slam_points.h"
 #include "sim/sensors/imu_model.h"
@@ -67,6 +68,7 @@ struct FlightSpec {
   PerceptionConfig perception;        ///< tracker, SLAM points, tracking loss
   FeatureTrackerConfig tracker;       ///< feature tracker
   SlamPointsConfig slam_points;       ///< triangulation
+  FrontendDegradationConfig frontend; ///< degradation axes of the front end (off by default)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

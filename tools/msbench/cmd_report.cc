@@ -16,6 +16,7 @@
 #include "tools/msbench/interrupt.h"
 #include "tools/results/output_files.h"
 #include "tools/sweep/findings.h"
+#include "tools/sweep/level_sweep.h"
 #include "tools/sweep/sweep_report.h"
 
 namespace msb {
@@ -71,7 +72,9 @@ int runReportCommand(int argc, char** argv) {
                  "Report of a sweep directory: report.md (the paper's Table I layout with its figures\n"
                  "beside, box share, time to 50/90 % of the box, A per 100 m, longest time without\n"
                  "gain, collisions by object kind, RTF; 95 % bootstrap intervals over the seeds,\n"
-                 "paired comparisons, the paper's findings as holds / fails / undecided), table.csv,\n"
+                 "paired comparisons, the paper's findings as holds / fails / undecided; with a\n"
+                 "method axis and one level axis, each method's area ratio to the first across the\n"
+                 "levels), table.csv,\n"
                  "findings.csv, and figures (Table I bars with intervals, coverage over time per\n"
                  "world with a bootstrap band, a gallery of top-down maps) if python3 with\n"
                  "matplotlib is available.");
@@ -97,7 +100,12 @@ int runReportCommand(int argc, char** argv) {
                  {{"--out", out}});
   StagedOutputDir staged(out, /*overwrite=*/true, OutputKind::kReport);
   const std::vector<FindingResult> findings = evaluateFindings(results, rows);
-  writeFileAtomic(staged.staging() / "report.md", reportMarkdown(results, rows) + findingsMarkdown(findings));
+  // A sweep of methods across levels of a condition: each ablation's ratio against the level.
+  const std::optional<LevelSweep> levels = levelSweep(results, rows);
+  writeFileAtomic(staged.staging() / "report.md", reportMarkdown(results, rows) +
+                                                      (levels ? levelSweepMarkdown(*levels) : std::string()) +
+                                                      findingsMarkdown(findings));
+  if (levels) writeFileAtomic(staged.staging() / "ablation_levels.csv", levelSweepCsv(*levels));
   writeFileAtomic(staged.staging() / "findings.csv", findingsCsv(findings));
   writeFileAtomic(staged.staging() / "table.csv", reportTableCsv(results, rows));
   writeFileAtomic(staged.staging() / "report_runs.csv", reportRunsCsv(results));
@@ -115,7 +123,7 @@ int runReportCommand(int argc, char** argv) {
                               shellQuote(staged.staging().string()) + " >/dev/null";
       if (runInterruptible(cmd) != 0)
         throw std::runtime_error("the figure script failed: " + cmd);
-      figures = "figures: coverage_<world>.png, gallery.png";
+      figures = std::string("figures: coverage_<world>.png, gallery.png") + (levels ? ", ablation_levels_<world>.png" : "");
     }
   }
   throwIfInterrupted();

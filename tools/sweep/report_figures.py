@@ -11,6 +11,8 @@ Reads REPORT_DIR/report_runs.csv (run id, world, series, status, run directory),
                         (fixed resampling seed: the same figure every time), like the MonoSpheres
                         paper's Fig. 8/9; a run that ended early (collision) keeps its final A
   gallery.png           every complete run's top-down map, labelled with its id
+  ablation_levels_<world>.png  (sweeps with a method axis and one level axis) each method's mean A
+                        over the full method's at each level, with its 95 % paired bootstrap interval
 Needs Debian's python3-matplotlib (apt-get install python3-matplotlib; it brings numpy).
 """
 import csv
@@ -131,6 +133,43 @@ def table_figure(out_dir):
     plt.close(fig)
 
 
+def ablation_level_figures(out_dir):
+    """Each method's area ratio to the full method against the level, with 95 % intervals
+    (ablation_levels.csv, written for sweeps with a method axis and one level axis)."""
+    path = os.path.join(out_dir, "ablation_levels.csv")
+    if not os.path.exists(path):
+        return
+    with open(path, newline="") as f:
+        cells = list(csv.DictReader(f))
+    worlds = list(dict.fromkeys(c["world"] for c in cells))
+    for world in worlds:
+        mine = [c for c in cells if c["world"] == world]
+        levels = {}
+        for c in mine:
+            levels[int(c["level_index"])] = c["level"]
+        methods = list(dict.fromkeys(c["method"] for c in mine))
+        fig, ax = plt.subplots(figsize=(7.0, 4.5))
+        for k, method in enumerate(methods):
+            pts = sorted((int(c["level_index"]), float(c["ratio"]), float(c["lo"]), float(c["hi"]))
+                         for c in mine if c["method"] == method)
+            x = np.array([p[0] for p in pts]) + (k - (len(methods) - 1) / 2) * 0.06
+            y = np.array([p[1] for p in pts])
+            lo = np.array([p[2] for p in pts])
+            hi = np.array([p[3] for p in pts])
+            ax.errorbar(x, y, yerr=[y - lo, hi - y], marker="o", capsize=3, label=method)
+        ax.axhline(1.0, color="k", lw=0.8)
+        ax.set_xticks(sorted(levels))
+        ax.set_xticklabels([levels[i] for i in sorted(levels)])
+        ax.set_ylabel("mean A / full method's mean A")
+        ax.set_title(f"{world}: each ablation against the full method, 95 % paired bootstrap CI")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        safe = re.sub(r"[^A-Za-z0-9_.-]", "_", world)
+        fig.savefig(os.path.join(out_dir, f"ablation_levels_{safe}.png"), dpi=110)
+        plt.close(fig)
+
+
 def gallery(out_dir, runs):
     pictures = [(r["id"], os.path.join(r["dir"], "topdown.png")) for r in runs]
     pictures = [(i, p) for i, p in pictures if os.path.exists(p)]
@@ -159,6 +198,7 @@ def main():
     table_figure(out_dir)
     coverage_figures(out_dir, runs)
     gallery(out_dir, runs)
+    ablation_level_figures(out_dir)
     print(f"figures written to {out_dir}")
 
 

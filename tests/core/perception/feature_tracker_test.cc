@@ -93,6 +93,35 @@ TEST(KltFeatureTracker, TracksForwardOnlyAsTrackKltUnlessTheBackwardCheckIsAsked
   EXPECT_LT(followed_checked, followed_forward / 10);
 }
 
+TEST(KltFeatureTracker, MistracksLandTheConfiguredShareOfTracksTheConfiguredDistanceOff) {
+  // The same two frames through a clean tracker and one with mis-tracks (share 0.3, 4 px; RANSAC
+  // off so that nothing catches them): the continued tracks of the second differ from the
+  // first's by 0 or by 4 px, in about the configured share.
+  const FisheyeCamera cam;
+  cv::setNumThreads(0);
+  FeatureTrackerConfig config;
+  config.ransac = false;
+  KltFeatureTracker clean(config, cam), degraded(config, cam);
+  degraded.setMistracks(MistrackModel(0.3, 4.0, 7));
+  const CameraFrame f0 = texturedFrame(cam.width(), cam.height(), 0, 0, 0);
+  const CameraFrame f1 = texturedFrame(cam.width(), cam.height(), 3.0, -2.0, 1);
+  clean.process(f0);
+  degraded.process(f0);
+  const TrackFrame a = clean.process(f1), b = degraded.process(f1);
+  int compared = 0, displaced = 0;
+  for (const auto& tb : b.tracks) {
+    if (tb.age != 1) continue;
+    const auto ta = std::find_if(a.tracks.begin(), a.tracks.end(), [&](const Track& t) { return t.id == tb.id; });
+    if (ta == a.tracks.end()) continue;
+    const double d = (tb.pixel - ta->pixel).norm();
+    EXPECT_TRUE(d < 1e-6 || std::abs(d - 4.0) < 1e-6) << d;
+    ++compared;
+    displaced += d > 1e-6;
+  }
+  ASSERT_GT(compared, 200);
+  EXPECT_NEAR(double(displaced) / compared, 0.3, 0.08);
+}
+
 TEST(KltFeatureTracker, BlankImagesGiveNoTracksAndTheSameInputGivesTheSameTracks) {
   const FisheyeCamera cam;
   KltFeatureTracker blank(FeatureTrackerConfig{}, cam);

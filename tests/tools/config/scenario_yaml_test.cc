@@ -129,6 +129,13 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
   expectError("base: base.yaml\n", {"method.planner.carrot", "unknown key"}, {"method.planner.carrot=3"});
   expectError("base: base.yaml\n", {"--set", "KEY=VALUE"}, {"novalue"});
   expectError("base: base.yaml\n", {"--set", "not a map"}, {"seed.x=1"});
+  // Front-end degradation: presets by name, axes range-checked, unknown axes refused.
+  expectError("base: base.yaml\nfrontend: {preset: awful}\n",
+              {"frontend.preset", "unknown preset 'awful'", "clean", "real_flight"});
+  expectError("base: base.yaml\nfrontend: {mistrack_share: 0.9}\n", {"frontend.mistrack_share", "[0, 0.5]"});
+  expectError("base: base.yaml\nfrontend: {blur_px: 2}\n", {"frontend.blur_px", "unknown key"});
+  expectError("base: base.yaml\nfrontend: {drift_scale: 15}\nvio_drift: {position_drift_fraction: 0.1}\n",
+              {"position_drift_fraction", "scaled by frontend.drift_scale"});
 }
 
 }  // namespace
@@ -144,12 +151,15 @@ TEST(ScenarioYaml, TheEffectiveConfigurationReadsBackToItself) {
   const fs::path d = tempDir();
   for (const MethodEntry& method : methodTable()) {
     SCOPED_TRACE(method.type);
-    write(d / "named.yaml", "world: urban\nconditions: {preset: dusk}\nmethod: {type: " + std::string(method.type) + "}\n");
+    write(d / "named.yaml", "world: urban\nconditions: {preset: dusk}\nfrontend: {preset: real_flight, drift_scale: 3}\n"
+                            "method: {type: " + std::string(method.type) + "}\n");
     const ScenarioSpec s = loadScenario((d / "named.yaml").string(), {"camera.mount_pitch_down_deg=7.5", "seed=4"});
     const std::string text = effectiveScenarioYaml(s);
     EXPECT_EQ(text.find("start:"), std::string::npos) << "the world's start applies";
     EXPECT_NE(text.find("world: urban"), std::string::npos);
     EXPECT_NE(text.find("mount_pitch_down_deg: 7.5"), std::string::npos);
+    EXPECT_NE(text.find("image_noise_sigma: 4"), std::string::npos);  // the preset's, written out
+    EXPECT_NE(text.find("drift_scale: 3"), std::string::npos);         // the override wins
     write(d / "effective.yaml", text);
     const ScenarioSpec again = loadScenario((d / "effective.yaml").string());
     EXPECT_TRUE(again.start_from_world);
