@@ -10,6 +10,7 @@ packages=(
   libopencv-features2d-dev libopencv-calib3d-dev
   libcgal-dev libeigen3-dev libyaml-cpp-dev libgtest-dev liboctomap-dev nlohmann-json3-dev
   python3-matplotlib  # figures of `msbench report` (tools/report_figures.py)
+  pybind11-dev python3-dev python3-numpy python3-pandas python3-pytest  # `import msbench` (docs/python.md)
 )
 
 # Collect the packages not yet installed.

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <yaml-cpp/yaml.h>
+
 #include "core/baseline/grid_explorer.h"
 #include "core/baseline/hover_turn/hover_turn_explorer.h"
 #include "core/baseline/star_discovery_explorer.h"
@@ -216,6 +218,38 @@ void hoverTurnKeys(Keys& m, HoverTurnConfig& c) {
   m.field("margin_m", c.margin_m);
 }
 
+// A Python method's keys: entry and path, and `params`, a map passed through to its factory
+// (which validates it) — read as YAML text, written back as the same map.
+template <class Keys>
+void pythonMethodKeys(Keys& m, PythonMethodConfig& c) {
+  m.field("entry", c.entry);
+  m.field("path", c.path);
+  if constexpr (Keys::kReading) {
+    if (m.has("params")) {
+      const YAML::Node n = m.raw("params");
+      if (!n.IsMap()) throw ConfigError(m.keyName("params"), "expected a map of the method's own keys");
+      YAML::Emitter e;
+      e << YAML::Flow << n;
+      c.params_yaml = e.c_str();
+    }
+  } else {
+    m.node()["params"] = YAML::Load(c.params_yaml);
+  }
+}
+
+// The explorer slot of a Python method: the C++ binary cannot build one (the Python module does).
+class PythonMethodStub final : public Explorer {
+ public:
+  PythonMethodStub(const PythonMethodConfig&, const ExplorerContext&) {
+    throw ConfigError("method.type", "'python' methods run through the Python module: msbench run hands them to "
+                                     "/usr/bin/python3 -m msbench (docs/python.md)");
+  }
+  void observe(const SlamPointsFrame&) override {}
+  std::optional<PathCommand> plan(const VehicleState&) override { return std::nullopt; }
+  ExplorerSnapshot snapshot() const override { return {}; }
+  std::map<std::string, double> counters() const override { return {}; }
+};
+
 // One method-table entry from the method's explorer and config types and its keys function
 // (`keys(k, config)` for any key visitor k: MapReader reads, MapWriter writes).
 template <class ExplorerT, class Config, class KeysFn>
@@ -269,6 +303,9 @@ const std::vector<MethodEntry>& methodTable() {
       methodEntry<HoverTurnExplorer, HoverTurnConfig>(
           "hover_turn", "example method: take off, turn once, descend (a template for new methods)",
           [](auto& k, HoverTurnConfig& c) { hoverTurnKeys(k, c); }, {"turn_steps", "points_seen"}),
+      methodEntry<PythonMethodStub, PythonMethodConfig>(
+          kPythonMethodType, "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)",
+          [](auto& k, PythonMethodConfig& c) { pythonMethodKeys(k, c); }, {}),
   };
   return table;
 }

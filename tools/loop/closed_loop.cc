@@ -137,18 +137,21 @@ void ClosedLoop::estimateState() {
 void ClosedLoop::renderFrame() {
   const Pose T_W_C = gt_.T_W_B * camera_.T_B_C();
   frame_timing_ = RenderTiming{};
-  renderer_->render(sim_.data(), T_W_C, &frame_, &frame_timing_);
-  frame_.tick = record_.tick;
-  frame_.t_s = gt_.t_s;
-  frame_.T_W_C = T_W_C;
-  if (image_noise_) image_noise_->apply(frame_);  // the camera's noise (degradation, off by default)
+  // A frame someone still holds (a Python view) is left alone: this one renders into a new one.
+  if (frame_.use_count() > 1) frame_ = std::make_shared<CameraFrame>();
+  CameraFrame& frame = *frame_;
+  renderer_->render(sim_.data(), T_W_C, &frame, &frame_timing_);
+  frame.tick = record_.tick;
+  frame.t_s = gt_.t_s;
+  frame.T_W_C = T_W_C;
+  if (image_noise_) image_noise_->apply(frame);  // the camera's noise (degradation, off by default)
   auto& sum = result_.render_time_sum;
   sum.scene_ms += frame_timing_.scene_ms;
   sum.render_ms += frame_timing_.render_ms;
   sum.readback_ms += frame_timing_.readback_ms;
   sum.remap_ms += frame_timing_.remap_ms;
   ++result_.frames_rendered;
-  record_.frame = &frame_;
+  record_.frame = frame_.get();
   record_.render = &frame_timing_;
   record_.timing.render_ms = frame_timing_.totalMs();
 }
@@ -156,10 +159,10 @@ void ClosedLoop::renderFrame() {
 bool ClosedLoop::perceive() {
   // Tracks, then SLAM points from the (noisy) estimated camera pose.
   auto t0 = WallClock::now();
-  tracks_ = features_->process(frame_);
+  tracks_ = features_->process(*frame_);
   record_.timing.tracker_ms = msSince(t0);
   t0 = WallClock::now();
-  points_ = slam_->update(tracks_, vio_.noisyCameraPose(frame_.T_W_C));
+  points_ = slam_->update(tracks_, vio_.noisyCameraPose(frame_->T_W_C));
   if (jitter_) jitter_->apply(points_);  // a moving filter estimate (degradation, off by default)
   vio_.setTrackedFeatures(trackedFromPrevious(tracks_));  // drift grows with few features
   record_.timing.triangulation_ms = msSince(t0);

@@ -114,6 +114,8 @@ class ClosedLoop {
   const TickRecord& step();
   /// Runs to the end.
   void run();
+  /// The latest rendered frame, shared: it stays valid (and unchanged) while held.
+  std::shared_ptr<const CameraFrame> sharedFrame() const { return frame_; }
   /// Final records (timing, hash); call once the run has ended.
   const FlightResult& finish();
 
@@ -169,7 +171,7 @@ class ClosedLoop {
   // State between ticks.
   Vec4 cmd_ = Vec4::Zero();
   Odometry gt_, est_;
-  CameraFrame frame_;
+  std::shared_ptr<CameraFrame> frame_ = std::make_shared<CameraFrame>();  // shared with Python views
   RenderTiming frame_timing_;
   TrackFrame tracks_;
   SlamPointsFrame points_;

@@ -48,6 +48,26 @@ MethodChoice methodChoice(std::string type, const Config& config) {
   return m;
 }
 
+/// The `method.type` of a method written in Python (docs/python.md).
+inline constexpr char kPythonMethodType[] = "python";
+
+/// A method written in Python: where its factory is and the keys it is given. The C++ binary
+/// embeds no Python, so `msbench run` hands such a scenario to the Python module, which builds
+/// the method from these and runs the same loop (docs/python.md).
+struct PythonMethodConfig {
+  std::string entry;               ///< "package.module:factory"
+  std::string path;                ///< a directory put first on sys.path (relative: to the scenario file)
+  std::string params_yaml = "{}";  ///< the method's own keys (a YAML map), the factory's keyword arguments
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const {
+    const auto colon = entry.find(':');
+    c.require(colon != std::string::npos && colon > 0 && colon + 1 < entry.size() &&
+                  entry.find(':', colon + 1) == std::string::npos,
+              "entry", "must be \"package.module:factory\", got '" + entry + "'");
+  }
+};
+
 /// The `method.type` of MonoSpheres (the default method).
 inline constexpr char kMonoSpheresType[] = "monospheres";
 

@@ -5,9 +5,6 @@
 
 namespace msb {
 
-namespace {
-
-// The method's context: box, start pose, seed.
 ExplorerContext explorerContext(const ScenarioSpec& spec, const Aabb& box) {
   ExplorerContext ctx;
   ctx.exploration_box = box;
@@ -15,6 +12,8 @@ ExplorerContext explorerContext(const ScenarioSpec& spec, const Aabb& box) {
   ctx.seed = spec.flight.seed;
   return ctx;
 }
+
+namespace {
 
 // The loop's flight: the explorer gives the path, so no scripted waypoints.
 FlightSpec missionFlight(const ScenarioSpec& spec) {
@@ -26,8 +25,11 @@ FlightSpec missionFlight(const ScenarioSpec& spec) {
 }  // namespace
 
 Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth)
+    : Mission(spec, box, truth, spec.method.make(FisheyeCamera(checkValid(spec).flight.camera), explorerContext(spec, box))) {}
+
+Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth, std::unique_ptr<Explorer> explorer)
     : spec_(checkValid(spec)),
-      explorer_(spec.method.make(FisheyeCamera(spec.flight.camera), explorerContext(spec, box))),
+      explorer_(std::move(explorer)),
       coverage_(box, truth ? boxExplorableNodes(*truth, box, ColumnCoverage().cellM()) : std::set<ColumnIndex>{}),
       metric_schedule_(spec.flight.physics.physics_hz, spec.mission.metric_rate_hz, "mission.metric_rate_hz"),
       truth_(truth) {

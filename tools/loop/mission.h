@@ -52,6 +52,9 @@ struct MissionResult {
   std::optional<MapAccuracy> map_accuracy;  ///< the final map against the truth (non-empty map, ground truth)
 };
 
+/// The context a mission hands its method: the box, the start pose, the seed.
+ExplorerContext explorerContext(const ScenarioSpec& spec, const Aabb& box);
+
 /// A mission in progress.
 class Mission {
  public:
@@ -59,6 +62,9 @@ class Mission {
   /// `spec.flight.world_path` must be resolved and the start pose set. Throws ConfigError or
   /// std::runtime_error on setup failures.
   Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth);
+  /// The same with an explorer built by the caller (a Python method) instead of the one
+  /// `spec.method` names.
+  Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth, std::unique_ptr<Explorer> explorer);
   ~Mission();
 
   /// True until the run has ended.
@@ -72,6 +78,8 @@ class Mission {
   const Explorer& explorer() const { return *explorer_; }
   /// Explored area so far (VIO frame, m²).
   double areaM2() const { return coverage_.columns().areaM2(); }
+  /// The closed loop (frames, vehicle states) for callers that read more than a TickRecord.
+  const ClosedLoop& loop() const { return *loop_; }
   /// The loop's tick rate.
   int physicsHz() const { return loop_->physicsHz(); }
 

@@ -1,6 +1,11 @@
 // msbench run: one closed-loop exploration mission from a scenario file, headless, to its end
 // (duration, collision or vio_lost), with a progress line and the mission's result files.
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include "core/common/wall_time.h"
@@ -39,9 +44,27 @@ void printProgress(const std::string& name, const std::string& method, double du
                duration_s, rtf, area, counters.c_str(), (duration_s - sim_s) / std::max(rtf, 1e-9));
 }
 
+// A scenario whose method is written in Python runs in the Python module, which binds this same
+// loop (the binary embeds no Python): `MSB_PYTHON -m msbench run ARGS...` replaces this process.
+[[noreturn]] void execPythonRun(const std::vector<std::string>& args) {
+  std::string path = MSB_PYTHON_DIR;
+  if (const char* old = std::getenv("PYTHONPATH"); old && *old) path += ":" + std::string(old);
+  setenv("PYTHONPATH", path.c_str(), 1);
+  std::vector<std::string> all = {MSB_PYTHON, "-m", "msbench", "run"};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  execv(MSB_PYTHON, argv.data());
+  throw std::runtime_error(std::string("cannot start ") + MSB_PYTHON + " for a Python method: " + std::strerror(errno));
+}
+
 }  // namespace
 
 int runRunCommand(int argc, char** argv) {
+  const std::vector<std::string> original_args(argv, argv + argc);
   const std::vector<std::string> sets = takeRepeatedOption(argc, argv, "set");
   ArgParser args("msbench run",
                  "Run one exploration mission headless. Writes config.yaml (effective scenario),\n"
@@ -63,6 +86,7 @@ int runRunCommand(int argc, char** argv) {
   if (args.given("seed")) all_sets.push_back("seed=" + args.get("seed"));
   if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
   ScenarioSpec spec = loadScenario(file, all_sets);
+  if (spec.method.type == kPythonMethodType) execPythonRun(original_args);
   const std::string effective_yaml = effectiveScenarioYaml(spec);  // before the world fills in the start
   MissionWorld world = prepareMissionWorld(file, spec);
   const Aabb& box = world.box;
@@ -74,10 +98,7 @@ int runRunCommand(int argc, char** argv) {
   // does not compile is bad input (exit 2) and leaves nothing behind.
   Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
-  writeFileAtomic(out.staging() / "config.yaml",
-                  "# effective configuration (every key, defaults included) of " + file +
-                      (all_sets.empty() ? "" : " with overrides") + "; `msbench run` reproduces the run from it\n" +
-                      effective_yaml);
+  writeFileAtomic(out.staging() / "config.yaml", configYamlText(file, !all_sets.empty(), effective_yaml));
 
   const bool quiet = args.has("quiet") || !spec.mission.progress;
   std::unique_ptr<PerceptionLogWriter> recorder;
@@ -107,22 +128,14 @@ int runRunCommand(int argc, char** argv) {
     throw;  // unwinds: the recorder and the staging directory remove themselves
   } catch (const std::exception& e) {
     // A crashed run leaves a record saying so (a sweep goes on with the next run).
-    nlohmann::json j = {{"name", spec.name}, {"status", runStatusName(RunStatus::kError)}, {"error", e.what()}, {"seed", spec.flight.seed},
-                        {"versions", versionInfo()}};
-    writeFileAtomic(out.staging() / "metrics.json", j.dump(2) + "\n");
+    writeFileAtomic(out.staging() / "metrics.json", errorMetrics(spec, e.what()).dump(2) + "\n");
     out.commit();
     std::fprintf(stderr, "msbench run: error: %s (recorded in %s)\n", e.what(), out.finalDir().c_str());
     return kExitRuntime;
   }
 
   if (recorder) recorder->close();
-  const nlohmann::json metrics = missionMetrics(spec, r, truth ? &*truth : nullptr);
-  writeFileAtomic(out.staging() / "coverage.csv", coverageCsv(r.coverage));
-  writeFileAtomic(out.staging() / "trajectory.csv", trajectoryCsv(r.flight.trajectory));
-  writeFileAtomic(out.staging() / "timing.csv", timingCsv(r));
-  if (spec.mission.write_map_ply) writeFileAtomic(out.staging() / "map.ply", mapPly(r.final_map));
-  writeTopdown(out.staging() / "topdown.png", r, truth ? &*truth : nullptr);
-  writeFileAtomic(out.staging() / "metrics.json", metrics.dump(2) + "\n");
+  const nlohmann::json metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr);
   out.commit();
 
   const auto& cov = metrics["coverage"];

@@ -328,4 +328,26 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
   writeFileAtomic(file, encodePng(viewOf(img)));
 }
 
+std::string configYamlText(const std::string& scenario_file, bool with_overrides, const std::string& effective_yaml) {
+  return "# effective configuration (every key, defaults included) of " + scenario_file +
+         (with_overrides ? " with overrides" : "") + "; `msbench run` reproduces the run from it\n" + effective_yaml;
+}
+
+nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, const MissionResult& r,
+                                   const WorldTruth* truth) {
+  const nlohmann::json metrics = missionMetrics(spec, r, truth);
+  writeFileAtomic(dir / "coverage.csv", coverageCsv(r.coverage));
+  writeFileAtomic(dir / "trajectory.csv", trajectoryCsv(r.flight.trajectory));
+  writeFileAtomic(dir / "timing.csv", timingCsv(r));
+  if (spec.mission.write_map_ply) writeFileAtomic(dir / "map.ply", mapPly(r.final_map));
+  writeTopdown(dir / "topdown.png", r, truth);
+  writeFileAtomic(dir / "metrics.json", metrics.dump(2) + "\n");
+  return metrics;
+}
+
+nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what) {
+  return {{"name", spec.name}, {"status", runStatusName(RunStatus::kError)}, {"error", what}, {"seed", spec.flight.seed},
+          {"versions", versionInfo()}};
+}
+
 }  // namespace msb

@@ -27,4 +27,16 @@ std::string mapPly(const ExplorerSnapshot& snap);
 /// and a scale bar.
 void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth);
 
+/// config.yaml text: the effective configuration of `scenario_file`, headed by where it came from.
+std::string configYamlText(const std::string& scenario_file, bool with_overrides, const std::string& effective_yaml);
+
+/// Writes a finished mission's result files into `dir` (coverage.csv, trajectory.csv, timing.csv,
+/// map.ply when the scenario asks for it, topdown.png, metrics.json last) and returns metrics.json's
+/// content. What `msbench run` and the Python module write alike.
+nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, const MissionResult& r,
+                                   const WorldTruth* truth);
+
+/// metrics.json of a run that ended in an error (status `error`, the message, seed, versions).
+nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what);
+
 }  // namespace msb

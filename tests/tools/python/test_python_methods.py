@@ -1,0 +1,71 @@
+"""Methods written in Python: the C++/Python twin gives the same hash (in-process and through
+`msbench run`), an exception ends the run with status error and its traceback, seeded streams."""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+import msbench
+from conftest import FAST, MSBENCH_BIN, SOURCE_DIR
+
+sys.path.insert(0, os.path.join(SOURCE_DIR, "examples/python"))
+import hover_turn  # noqa: E402
+
+CPP = os.path.join(SOURCE_DIR, "examples/hover_turn.yaml")
+PY = os.path.join(SOURCE_DIR, "examples/hover_turn_python.yaml")
+
+
+def test_the_python_twin_gives_the_cpp_methods_hash():
+    s = msbench.Scenario.load(CPP, set=FAST)
+    cpp = msbench.Mission(s)
+    cpp.run(progress=False)
+    twin = msbench.Mission(s, method=hover_turn.factory)
+    twin.run(progress=False)
+    assert twin.hash() == cpp.hash()
+    assert twin.result()["coverage"]["area_m2"] > 0  # the sphere was scored
+
+
+def test_msbench_run_runs_a_scenario_naming_a_python_method(tmp_path):
+    sets = sum([["--set", s] for s in FAST], [])
+    cpp = subprocess.run([MSBENCH_BIN, "run", CPP, "--quiet", "--out", str(tmp_path / "cpp")] + sets,
+                         capture_output=True, text=True, check=True)
+    py = subprocess.run([MSBENCH_BIN, "run", PY, "--quiet", "--out", str(tmp_path / "py")] + sets,
+                        capture_output=True, text=True, check=True)
+    h = cpp.stdout.split("hash ")[1].split()[0]
+    assert f"hash {h}" in py.stdout
+    metrics = json.loads((tmp_path / "py" / "metrics.json").read_text())
+    assert metrics["method"] == "python" and metrics["determinism_hash"] == h
+    bad = subprocess.run([MSBENCH_BIN, "run", PY, "--out", str(tmp_path / "bad"), "--set", "method.params.nope=1"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "method.params" in bad.stderr and not (tmp_path / "bad").exists()
+
+
+class Failing(hover_turn.HoverTurn):
+    def plan(self, vehicle):
+        if vehicle.t_s > 3.0:
+            raise ZeroDivisionError("a bug in the method")
+        return super().plan(vehicle)
+
+
+def test_an_exception_in_a_python_method_ends_the_run_with_status_error(tmp_path):
+    m = msbench.Mission(msbench.Scenario.load(CPP, set=FAST), method=lambda c: Failing(c))
+    with pytest.raises(msbench.MethodError, match="ZeroDivisionError: a bug in the method"):
+        m.run(progress=False)
+    assert m.status == "error" and not m.running
+    out = m.write(str(tmp_path / "run"))
+    metrics = json.loads(open(os.path.join(out, "metrics.json")).read())
+    assert metrics["status"] == "error"
+    assert "in plan" in metrics["error"] and "ZeroDivisionError" in metrics["error"]  # the traceback
+    assert 3.0 * 500 <= metrics["error_tick"] < 4.0 * 500
+
+
+def test_method_rng_streams_are_seeded_like_msbenchs():
+    a, b = msbench.RngStream(7, "goals"), msbench.RngStream(7, "goals")
+    assert [a.uniform() for _ in range(5)] == [b.uniform() for _ in range(5)]
+    assert msbench.RngStream(8, "goals").uniform() != msbench.RngStream(7, "goals").uniform()
+    seen = []
+    msbench.Mission(msbench.Scenario.load(CPP, set=FAST), method=lambda c: seen.append(c.rng("x").uniform()) or
+                    hover_turn.HoverTurn(c))
+    assert seen == [msbench.RngStream(1, "x").uniform()]

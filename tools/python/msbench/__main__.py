@@ -1,0 +1,59 @@
+"""`python3 -m msbench run SCENARIO --out DIR [...]`: `msbench run` for scenarios whose method is
+written in Python (msbench run hands them here): the same options, files, summary line and exit
+codes (0 ok, 1 the run ended in an error, 2 bad input, 130 interrupted)."""
+import argparse
+import sys
+
+from . import ConfigError, MethodError, Mission, Scenario
+
+
+def run(argv):
+    p = argparse.ArgumentParser(prog="msbench run")
+    p.add_argument("scenario")
+    p.add_argument("--out", required=True)
+    p.add_argument("--set", action="append", default=[])
+    p.add_argument("--seed")
+    p.add_argument("--duration")
+    p.add_argument("--record")
+    p.add_argument("--quiet", action="store_true")
+    p.add_argument("--overwrite", action="store_true")
+    a = p.parse_args(argv)
+    sets = list(a.set)
+    if a.seed is not None:
+        sets.append(f"seed={a.seed}")
+    if a.duration is not None:
+        sets.append(f"duration_s={a.duration}")
+    try:
+        if a.record:
+            raise ConfigError("--record: not available for Python methods (the perception log is the C++ runner's)")
+        mission = Mission(Scenario.load(a.scenario, set=sets))
+    except ConfigError as e:
+        print(f"msbench run: {e}", file=sys.stderr)
+        return 2
+    try:
+        mission.run(progress=not a.quiet)
+    except MethodError as e:
+        out = mission.write(a.out, overwrite=a.overwrite)
+        print(f"msbench run: error: {e} (recorded in {out})", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("msbench run: interrupted; nothing written", file=sys.stderr)
+        return 130
+    out = mission.write(a.out, overwrite=a.overwrite)
+    r = mission.result()
+    cov = r["coverage"]
+    print(f"run {r['name']}: {r['status']} after {r['sim_time_s']:.0f} s simulated; A = {cov['area_m2']:.0f} m²; "
+          f"hash {r['determinism_hash']} -> {out}")
+    return 0
+
+
+def main():
+    if len(sys.argv) < 2 or sys.argv[1] != "run":
+        print("usage: python3 -m msbench run SCENARIO --out DIR [--set KEY=VALUE]... [--seed S] [--duration D] "
+              "[--quiet] [--overwrite]", file=sys.stderr)
+        return 2
+    return run(sys.argv[2:])
+
+
+if __name__ == "__main__":
+    sys.exit(main())
