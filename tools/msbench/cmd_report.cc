@@ -99,9 +99,10 @@ int runReportCommand(int argc, char** argv) {
                   {"DIR (logs)", dir / "logs"}},
                  {{"--out", out}});
   StagedOutputDir staged(out, /*overwrite=*/true, OutputKind::kReport);
-  const std::vector<FindingResult> findings = evaluateFindings(results, rows);
-  // A sweep of methods across levels of a condition: each ablation's ratio against the level.
+  // A sweep of methods across levels of a condition: each ablation's ratio against the level;
+  // the paper's findings are checked on the first level's rows only (the paper had one).
   const std::optional<LevelSweep> levels = levelSweep(results, rows);
+  const std::vector<FindingResult> findings = evaluateFindings(results, levels ? rowsAtLevel(results, rows, *levels, 0) : rows);
   writeFileAtomic(staged.staging() / "report.md", reportMarkdown(results, rows) +
                                                       (levels ? levelSweepMarkdown(*levels) : std::string()) +
                                                       findingsMarkdown(findings));

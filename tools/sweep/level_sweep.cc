@@ -92,11 +92,21 @@ std::optional<LevelSweep> levelSweep(const SweepResults& results, const std::vec
   return s;
 }
 
+std::vector<ReportRow> rowsAtLevel(const SweepResults& results, const std::vector<ReportRow>& rows, const LevelSweep& s,
+                                   size_t level) {
+  const int axis = axisIndex(results, s.axis);
+  std::vector<ReportRow> out;
+  for (const ReportRow& r : rows)
+    if (axis >= 0 && level < s.levels.size() && r.labels[size_t(axis)] == s.levels[level]) out.push_back(r);
+  return out;
+}
+
 std::string levelSweepMarkdown(const LevelSweep& s) {
   std::ostringstream o;
   o << "\n## Ablations across levels of `" << s.axis << "`\n\nEach method's mean A over the mean A of " << s.reference_method
     << " at the same level, paired on common seeds (95 % percentile bootstrap; independent when fewer than two "
-       "seeds are common). Below 1: the ablated part pays; the figure is ablation_levels_<world>.png.\n";
+       "seeds are common). Below 1: the ablated part pays; the figure is ablation_levels_<world>.png. The paper's "
+       "findings (below) are checked on the first level, `" << s.levels.front() << "`, only.\n";
   // Worlds and methods in cell order.
   std::vector<std::pair<std::string, std::string>> keys;
   for (const LevelCell& c : s.cells)

@@ -34,6 +34,10 @@ struct LevelSweep {
 /// and `world`; cells only where both rows have an area.
 std::optional<LevelSweep> levelSweep(const SweepResults& results, const std::vector<ReportRow>& rows);
 
+/// The rows of one level (by its index in `s.levels`).
+std::vector<ReportRow> rowsAtLevel(const SweepResults& results, const std::vector<ReportRow>& rows, const LevelSweep& s,
+                                   size_t level);
+
 /// The report's section: a table of ratios per level and one statement per method and world.
 std::string levelSweepMarkdown(const LevelSweep& s);
 

@@ -67,6 +67,9 @@ TEST(LevelSweep, RatiosPerLevelArePairedAndTheLowestCostlyLevelIsNamed) {
   EXPECT_NE(md.find("| no_dbof | 1.00 [1.00, 1.01] | 0.50 [0.50, 0.50] | `severe` |"), std::string::npos) << md;
   EXPECT_NE(md.find("| no_fff |"), std::string::npos);
   EXPECT_NE(md.find("none of these levels"), std::string::npos);
+  const auto clean = rowsAtLevel(s, reportRows(s), *ls, 0);
+  ASSERT_EQ(clean.size(), 3u);  // the paper's findings are checked on these
+  for (const ReportRow& r : clean) EXPECT_EQ(r.labels[0], "clean");
   const std::string csv = levelSweepCsv(*ls);
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "world,level_index,level,method,ratio,lo,hi,pairs");
   EXPECT_NE(csv.find("urban,1,severe,no_dbof,0.500000,0.500000,0.500000,4"), std::string::npos) << csv;
