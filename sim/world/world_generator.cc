@@ -262,6 +262,172 @@ void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
   }
 }
 
+// Places the objects of a world spec one by one (in spec order, drawing from one placement
+// stream), keeping the start area and the take-off corridor free, and records the ruins that
+// reinforcement bars are later placed at.
+class ObjectPlacer {
+ public:
+  ObjectPlacer(const WorldSpec& spec, MjcfWorldBuilder& b)
+      : spec_(spec),
+        b_(b),
+        start_xy_(spec.start_position_m.head<2>()),
+        half_ground_(0.5 * spec.ground_size_m),
+        heading_(std::cos(spec.start_yaw_deg * kDeg), std::sin(spec.start_yaw_deg * kDeg)),
+        placement_(spec.seed, "world_gen_" + spec.name) {}
+
+  // Builds every object of group `gi`, counting them by kind in `counts`.
+  void placeGroup(size_t gi, std::map<std::string, int>& counts) {
+    const ObjectGroupSpec& g = spec_.objects[gi];
+    // Sizes and details depend on the spec only (not on the seed).
+    RngStream sizes(0, "world_sizes_" + spec_.name + "_" + std::to_string(gi));
+    for (int n = 0; n < g.count; ++n) {
+      Vec3 size;
+      for (int k = 0; k < 3; ++k) size[k] = sizes.uniform(g.size_min[k], g.size_max[k] + 1e-12);
+      RngStream detail(n, "world_detail_" + spec_.name + "_" + std::to_string(gi));
+      const double r = footprintRadius(g, size);
+      const std::string id = g.kind + "_" + std::to_string(counts[g.kind]++);
+      Vec2 xy;
+      double yaw;
+      if (g.at) {
+        xy = *g.at;
+        yaw = g.yaw_deg.value_or(0.0) * kDeg;
+      } else if (g.near == "ruins") {
+        placeAtRuin(gi, id, r, &xy, &yaw);
+      } else {
+        placeInRegion(g, gi, id, r, &xy, &yaw);
+      }
+      const size_t shapes_before = b_.shapes().size();
+      buildObject(g, id, xy, yaw, size, detail, b_);
+      recordRuin(g, id, xy, yaw, size);
+      if (g.at) checkFixedObjectClearsStart(gi, id, xy, shapes_before);
+    }
+  }
+
+ private:
+  // A footprint ruin (burned part, collapsed building) for reinforcement bars.
+  struct Ruin {
+    std::string object;
+    Vec2 centre, half;
+    double yaw;
+  };
+
+  // Clearance of a candidate footprint disc from everything built so far (exact distance to
+  // the existing shapes, probed at several heights; ground, floor and cave ceilings skipped).
+  double clearance(const Vec2& xy) const {
+    double d = 1e9;
+    for (const auto& s : b_.shapes()) {
+      if (s.kind == ObstacleKind::kGround) continue;
+      for (double z : {0.5, 2.0, 4.0, 7.0, 12.0}) d = std::min(d, s.signedDistance(Vec3(xy.x(), xy.y(), z)));
+    }
+    return d;
+  }
+
+  // Distance from the take-off corridor's centre line (from the start along its heading).
+  double corridorDistance(const Vec2& xy) const {
+    const double t = std::clamp((xy - start_xy_).dot(heading_), 0.0, spec_.start_corridor_m);
+    return (xy - (start_xy_ + t * heading_)).norm();
+  }
+
+  // Clear of the start and the take-off corridor by a footprint of radius r.
+  bool clearOfStart(const Vec2& xy, double r) const {
+    return (xy - start_xy_).norm() >= spec_.start_clearance_m + r &&
+           corridorDistance(xy) >= spec_.start_corridor_half_width_m + r;
+  }
+
+  // Reinforcement bars standing out of a ruin: the base on the ruin's footprint edge (up to
+  // 0.2 m inside its walls, 0.8 m out into the rubble), leaning outwards; clear of the start,
+  // the take-off corridor and every other object.
+  void placeAtRuin(size_t gi, const std::string& id, double r, Vec2* xy, double* yaw) {
+    if (ruins_.empty())
+      throw std::runtime_error("world '" + spec_.name + "': objects[" + std::to_string(gi) +
+                               "] are placed at ruins, but no burned or collapsed building comes before them");
+    bool ok = false;
+    for (int attempt = 0; attempt < 3000 && !ok; ++attempt) {
+      const Ruin& ruin = ruins_[std::min(ruins_.size() - 1, size_t(placement_.uniform(0, double(ruins_.size()))))];
+      const double perimeter = 4 * (ruin.half.x() + ruin.half.y());
+      double t = placement_.uniform(0, perimeter);
+      const double out_m = placement_.uniform(-0.2, 0.8);
+      Vec2 local_xy, normal;
+      if (t < 2 * ruin.half.x()) local_xy = Vec2(-ruin.half.x() + t, ruin.half.y() + out_m), normal = Vec2(0, 1);
+      else if ((t -= 2 * ruin.half.x()) < 2 * ruin.half.y()) local_xy = Vec2(ruin.half.x() + out_m, ruin.half.y() - t), normal = Vec2(1, 0);
+      else if ((t -= 2 * ruin.half.y()) < 2 * ruin.half.x()) local_xy = Vec2(ruin.half.x() - t, -ruin.half.y() - out_m), normal = Vec2(0, -1);
+      else t -= 2 * ruin.half.x(), local_xy = Vec2(-ruin.half.x() - out_m, -ruin.half.y() + t), normal = Vec2(-1, 0);
+      const Eigen::Rotation2Dd R(ruin.yaw);
+      *xy = ruin.centre + R * local_xy;
+      const Vec2 outward = R * normal;
+      *yaw = std::atan2(outward.y(), outward.x());
+      double d = 1e9;  // from everything but the ruin itself
+      for (const auto& sh : b_.shapes()) {
+        if (sh.kind == ObstacleKind::kGround || sh.object == ruin.object) continue;
+        for (double z : {0.5, 2.0, 4.0}) d = std::min(d, sh.signedDistance(Vec3(xy->x(), xy->y(), z)));
+      }
+      ok = clearOfStart(*xy, r) && d >= r + 1.0;
+    }
+    if (!ok)
+      throw std::runtime_error("world '" + spec_.name + "': could not place " + id + " (objects[" +
+                               std::to_string(gi) + "]) at the ruins");
+  }
+
+  // Rejection sampling: inside the region and the ground, clear of the start, the take-off
+  // corridor and other objects (1 m gap), and for caves clear of the rock.
+  void placeInRegion(const ObjectGroupSpec& g, size_t gi, const std::string& id, double r, Vec2* xy, double* yaw) {
+    bool ok = false;
+    for (int attempt = 0; attempt < 3000 && !ok; ++attempt) {
+      *xy = Vec2(placement_.uniform(g.region_min->x(), g.region_max->x()),
+                 placement_.uniform(g.region_min->y(), g.region_max->y()));
+      *yaw = g.yaw_deg ? *g.yaw_deg * kDeg : placement_.uniform(-M_PI, M_PI);
+      ok = clearOfStart(*xy, r) && (xy->cwiseAbs().array() <= (half_ground_.array() - r)).all() &&
+           clearance(*xy) >= r + 1.0;
+    }
+    if (!ok)
+      throw std::runtime_error("world '" + spec_.name + "': could not place " + id + " (objects[" +
+                               std::to_string(gi) + "]) in its region");
+  }
+
+  // A burned building's burned part, or a collapsed building, is a ruin.
+  void recordRuin(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy, double yaw, const Vec3& size) {
+    if (g.kind == "building" && g.variant == "burned") {
+      const double lb = g.burned_fraction * size.x();
+      ruins_.push_back({id, xy + Eigen::Rotation2Dd(yaw) * Vec2(0.5 * size.x() - 0.5 * lb, 0),
+                        Vec2(0.5 * lb, 0.5 * size.y()), yaw});
+    } else if (isCollapsed(g)) {
+      ruins_.push_back({id, xy, Vec2(0.5 * size.x(), 0.5 * size.y()), yaw});
+    }
+  }
+
+  // The start area is kept free of every object, fixed ones too: the nearest surface of what
+  // was just built (probed at several heights above the start) lies outside the clearance, and
+  // nothing lies in the take-off corridor.
+  void checkFixedObjectClearsStart(size_t gi, const std::string& id, const Vec2& xy, size_t shapes_before) const {
+    double d = 1e9;
+    for (size_t k = shapes_before; k < b_.shapes().size(); ++k)
+      for (double z : {0.05, 0.5, 2.0, 4.0})
+        d = std::min(d, b_.shapes()[k].signedDistance(Vec3(start_xy_.x(), start_xy_.y(), z)));
+    for (double t = 1.0; t <= spec_.start_corridor_m; t += 1.0)
+      for (size_t k = shapes_before; k < b_.shapes().size(); ++k)
+        for (double z : {0.5, 2.0, 4.0}) {
+          const Vec2 c = start_xy_ + t * heading_;
+          if (b_.shapes()[k].signedDistance(Vec3(c.x(), c.y(), z)) < spec_.start_corridor_half_width_m)
+            throw ConfigError("objects[" + std::to_string(gi) + "].at",
+                              id + " lies in the take-off corridor (" + std::to_string(spec_.start_corridor_m) +
+                                  " m along the start heading)");
+        }
+    if (d < spec_.start_clearance_m) {
+      char why[200];
+      std::snprintf(why, sizeof(why), "%s at (%g, %g) comes within %.2f m of the start (%g, %g): inside the start "
+                    "clearance of %g m", id.c_str(), xy.x(), xy.y(), std::max(d, 0.0), start_xy_.x(), start_xy_.y(),
+                    spec_.start_clearance_m);
+      throw ConfigError("objects[" + std::to_string(gi) + "].at", why);
+    }
+  }
+
+  const WorldSpec& spec_;
+  MjcfWorldBuilder& b_;
+  Vec2 start_xy_, half_ground_, heading_;
+  RngStream placement_;
+  std::vector<Ruin> ruins_;
+};
+
 }  // namespace
 
 GeneratedWorld generateWorld(const WorldSpec& spec) {
@@ -275,135 +441,10 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
     buildCave(*spec.cave, b);
     out.object_counts["cave_box"] = b.collisionGeoms() - 1;
   }
-  const Vec2 start_xy = spec.start_position_m.head<2>();
-  const Vec2 half_ground = 0.5 * spec.ground_size_m;
-  // Clearance of a candidate footprint disc from everything built so far (exact distance to
-  // the existing shapes, probed at several heights; ground, floor and cave ceilings skipped).
-  auto clearance = [&](const Vec2& xy) {
-    double d = 1e9;
-    for (const auto& s : b.shapes()) {
-      if (s.kind == ObstacleKind::kGround) continue;
-      for (double z : {0.5, 2.0, 4.0, 7.0, 12.0}) d = std::min(d, s.signedDistance(Vec3(xy.x(), xy.y(), z)));
-    }
-    return d;
-  };
-
-  // The take-off corridor: from the start along its heading, kept free of every object.
-  const Vec2 heading(std::cos(spec.start_yaw_deg * kDeg), std::sin(spec.start_yaw_deg * kDeg));
-  auto corridorDistance = [&](const Vec2& xy) {
-    const double t = std::clamp((xy - start_xy).dot(heading), 0.0, spec.start_corridor_m);
-    return (xy - (start_xy + t * heading)).norm();
-  };
-  // Ruins built so far (burned parts, collapsed buildings): footprint rectangles for rods.
-  struct Ruin {
-    std::string object;
-    Vec2 centre, half;
-    double yaw;
-  };
-  std::vector<Ruin> ruins;
-
-  RngStream placement(spec.seed, "world_gen_" + spec.name);
-  for (size_t gi = 0; gi < spec.objects.size(); ++gi) {
-    const auto& g = spec.objects[gi];
-    // Sizes and details depend on the spec only (not on the seed).
-    RngStream sizes(0, "world_sizes_" + spec.name + "_" + std::to_string(gi));
-    for (int n = 0; n < g.count; ++n) {
-      Vec3 size;
-      for (int k = 0; k < 3; ++k) size[k] = sizes.uniform(g.size_min[k], g.size_max[k] + 1e-12);
-      RngStream detail(n, "world_detail_" + spec.name + "_" + std::to_string(gi));
-      const double r = footprintRadius(g, size);
-      const std::string id = g.kind + "_" + std::to_string(out.object_counts[g.kind]++);
-      Vec2 xy;
-      double yaw;
-      if (g.at) {
-        xy = *g.at;
-        yaw = g.yaw_deg.value_or(0.0) * kDeg;
-      } else if (g.near == "ruins") {
-        // Reinforcement bars standing out of a ruin: the base on the ruin's footprint edge (up
-        // to 0.2 m inside its walls, 0.8 m out into the rubble), leaning outwards; clear of the
-        // start, the take-off corridor and every other object.
-        if (ruins.empty())
-          throw std::runtime_error("world '" + spec.name + "': objects[" + std::to_string(gi) +
-                                   "] are placed at ruins, but no burned or collapsed building comes before them");
-        bool ok = false;
-        for (int attempt = 0; attempt < 3000 && !ok; ++attempt) {
-          const Ruin& ruin = ruins[std::min(ruins.size() - 1, size_t(placement.uniform(0, double(ruins.size()))))];
-          const double perimeter = 4 * (ruin.half.x() + ruin.half.y());
-          double t = placement.uniform(0, perimeter);
-          const double out_m = placement.uniform(-0.2, 0.8);
-          Vec2 local_xy, normal;
-          if (t < 2 * ruin.half.x()) local_xy = Vec2(-ruin.half.x() + t, ruin.half.y() + out_m), normal = Vec2(0, 1);
-          else if ((t -= 2 * ruin.half.x()) < 2 * ruin.half.y()) local_xy = Vec2(ruin.half.x() + out_m, ruin.half.y() - t), normal = Vec2(1, 0);
-          else if ((t -= 2 * ruin.half.y()) < 2 * ruin.half.x()) local_xy = Vec2(ruin.half.x() - t, -ruin.half.y() - out_m), normal = Vec2(0, -1);
-          else t -= 2 * ruin.half.x(), local_xy = Vec2(-ruin.half.x() - out_m, -ruin.half.y() + t), normal = Vec2(-1, 0);
-          const Eigen::Rotation2Dd R(ruin.yaw);
-          xy = ruin.centre + R * local_xy;
-          const Vec2 outward = R * normal;
-          yaw = std::atan2(outward.y(), outward.x());
-          double d = 1e9;  // from everything but the ruin itself
-          for (const auto& sh : b.shapes()) {
-            if (sh.kind == ObstacleKind::kGround || sh.object == ruin.object) continue;
-            for (double z : {0.5, 2.0, 4.0}) d = std::min(d, sh.signedDistance(Vec3(xy.x(), xy.y(), z)));
-          }
-          ok = (xy - start_xy).norm() >= spec.start_clearance_m + r &&
-               corridorDistance(xy) >= spec.start_corridor_half_width_m + r && d >= r + 1.0;
-        }
-        if (!ok)
-          throw std::runtime_error("world '" + spec.name + "': could not place " + id + " (objects[" +
-                                   std::to_string(gi) + "]) at the ruins");
-      } else {
-        // Rejection sampling: inside the region and the ground, clear of the start, the
-        // take-off corridor and other objects (1 m gap), and for caves clear of the rock.
-        bool ok = false;
-        for (int attempt = 0; attempt < 3000 && !ok; ++attempt) {
-          xy = Vec2(placement.uniform(g.region_min->x(), g.region_max->x()),
-                    placement.uniform(g.region_min->y(), g.region_max->y()));
-          yaw = g.yaw_deg ? *g.yaw_deg * kDeg : placement.uniform(-M_PI, M_PI);
-          ok = (xy - start_xy).norm() >= spec.start_clearance_m + r &&
-               corridorDistance(xy) >= spec.start_corridor_half_width_m + r &&
-               (xy.cwiseAbs().array() <= (half_ground.array() - r)).all() &&
-               clearance(xy) >= r + 1.0;
-        }
-        if (!ok)
-          throw std::runtime_error("world '" + spec.name + "': could not place " + id +
-                                   " (objects[" + std::to_string(gi) + "]) in its region");
-      }
-      const size_t shapes_before = b.shapes().size();
-      buildObject(g, id, xy, yaw, size, detail, b);
-      if (g.kind == "building" && g.variant == "burned") {
-        const double lb = g.burned_fraction * size.x();
-        ruins.push_back({id, xy + Eigen::Rotation2Dd(yaw) * Vec2(0.5 * size.x() - 0.5 * lb, 0),
-                         Vec2(0.5 * lb, 0.5 * size.y()), yaw});
-      } else if (isCollapsed(g)) {
-        ruins.push_back({id, xy, Vec2(0.5 * size.x(), 0.5 * size.y()), yaw});
-      }
-      // The start area is kept free of every object, fixed ones too: the nearest surface of what
-      // was just built (probed at several heights above the start) lies outside the clearance.
-      if (g.at) {
-        double d = 1e9;
-        for (size_t k = shapes_before; k < b.shapes().size(); ++k)
-          for (double z : {0.05, 0.5, 2.0, 4.0})
-            d = std::min(d, b.shapes()[k].signedDistance(Vec3(start_xy.x(), start_xy.y(), z)));
-        for (double t = 1.0; t <= spec.start_corridor_m; t += 1.0)
-          for (size_t k = shapes_before; k < b.shapes().size(); ++k)
-            for (double z : {0.5, 2.0, 4.0}) {
-              const Vec2 c = start_xy + t * heading;
-              if (b.shapes()[k].signedDistance(Vec3(c.x(), c.y(), z)) < spec.start_corridor_half_width_m)
-                throw ConfigError("objects[" + std::to_string(gi) + "].at",
-                                  id + " lies in the take-off corridor (" + std::to_string(spec.start_corridor_m) +
-                                      " m along the start heading)");
-            }
-        if (d < spec.start_clearance_m) {
-          char why[200];
-          std::snprintf(why, sizeof(why), "%s at (%g, %g) comes within %.2f m of the start (%g, %g): inside the start "
-                        "clearance of %g m", id.c_str(), xy.x(), xy.y(), std::max(d, 0.0), start_xy.x(), start_xy.y(),
-                        spec.start_clearance_m);
-          throw ConfigError("objects[" + std::to_string(gi) + "].at", why);
-        }
-      }
-    }
-  }
-
+  // The objects, group by group.
+  ObjectPlacer placer(spec, b);
+  for (size_t gi = 0; gi < spec.objects.size(); ++gi) placer.placeGroup(gi, out.object_counts);
+  // The world's files and facts.
   out.mjcf = b.mjcf();
   out.textures.assign(b.texturesUsed().begin(), b.texturesUsed().end());
   out.shapes = b.shapes();
