@@ -210,17 +210,11 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   }
   const SlamPointsFrame& frame = filter ? filtered : frame_in;
   const Vec3 cam = frame.T_W_C.translation();
-  const Pose T_C_W = frame.T_W_C.inverse();
   if (last_camera_) flown_m_ += (cam - *last_camera_).norm();
   last_camera_ = cam;
 
   // 1. Input: points in front of the camera.
-  std::vector<Vec3> input;
-  const double min_cos = std::cos(config_.max_view_angle_deg * M_PI / 180.0);
-  for (const auto& p : frame.points) {
-    const Vec3 c = T_C_W * p.p_W;
-    if (c.norm() > 1e-6 && c.z() >= min_cos * c.norm()) input.push_back(p.p_W);
-  }
+  const std::vector<Vec3> input = pointsInView(frame);
   st.input_points = int(input.size());
   // The OVDE pose buffer follows every frame, also those skipped below.
   const std::vector<Vec3> virtual_candidates = config_.ovde ? ovde_.update(frame.T_W_C) : std::vector<Vec3>{};
@@ -244,13 +238,48 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   if (st.virtual_points > 0) ovde_pf.emplace(extended, frame.T_W_C, config_.max_view_angle_deg);
   const FreeSpacePolyhedron& pf = ovde_pf ? *ovde_pf : real_pf;
   st.polyhedron_ms = msSince(t0);
-  const auto [real_lo, real_hi] = real_pf.bounds();
-  const auto [lo, hi] = pf.bounds();
 
-  // 5. DBOF: delete points seen again from close enough inside P_f; protect the others.
-  // Every point of this frame limits radii, also those outside the triangulation cone (side
-  // points 80–90° off-axis or behind the camera): they are obstacles all the same.
+  // 5.–9. DBOF, spheres (updated, new, sparsified), obstacle points.
+  const std::vector<Vec3> constraints = applyDbof(frame, real_pf, st);
+  std::vector<uint64_t> touched;
+  updateSpheresNear(pf, constraints, touched, st);
+  sampleNewSpheres(frame, pf, constraints, touched, st);
+  sparsifyTouched(touched, st);
+  insertFrameObstacles(frame, st);
+
+  // 10. Frontiers: re-validate the old ones against the new map, then sample new ones.
   t0 = Clock::now();
+  st.dropped_frontiers = revalidateDirtyFrontiers();
+  sampleFrontiers(pf, cam, st);
+  st.frontiers_ms = msSince(t0);
+  std::vector<uint64_t> alive;
+  for (uint64_t id : st.changed_spheres)
+    if (spheres_.count(id)) alive.push_back(id);
+  std::sort(alive.begin(), alive.end());
+  alive.erase(std::unique(alive.begin(), alive.end()), alive.end());
+  st.changed_spheres = alive;
+  return st;
+}
+
+std::vector<Vec3> SphereMap::pointsInView(const SlamPointsFrame& frame) const {
+  const Pose T_C_W = frame.T_W_C.inverse();
+  std::vector<Vec3> input;
+  const double min_cos = std::cos(config_.max_view_angle_deg * M_PI / 180.0);
+  for (const auto& p : frame.points) {
+    const Vec3 c = T_C_W * p.p_W;
+    if (c.norm() > 1e-6 && c.z() >= min_cos * c.norm()) input.push_back(p.p_W);
+  }
+  return input;
+}
+
+std::vector<Vec3> SphereMap::applyDbof(const SlamPointsFrame& frame, const FreeSpacePolyhedron& real_pf,
+                                       MapUpdateStats& st) {
+  // DBOF: delete points seen again from close enough inside P_f; protect the others. Every
+  // point of this frame limits radii, also those outside the triangulation cone (side points
+  // 80–90° off-axis or behind the camera): they are obstacles all the same.
+  const auto t0 = Clock::now();
+  const Vec3 cam = frame.T_W_C.translation();
+  const auto [real_lo, real_hi] = real_pf.bounds();
   const double alpha = config_.dbof ? config_.dbof_alpha : 0.0;
   std::vector<Vec3> constraints;
   constraints.reserve(frame.points.size());
@@ -268,10 +297,14 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
     }
   }
   st.dbof_ms = msSince(t0);
+  return constraints;
+}
 
-  // 6. Update spheres near P_f (bounding box inflated by the largest radius).
-  t0 = Clock::now();
-  std::vector<uint64_t> touched;
+void SphereMap::updateSpheresNear(const FreeSpacePolyhedron& pf, const std::vector<Vec3>& constraints,
+                                  std::vector<uint64_t>& touched, MapUpdateStats& st) {
+  // Spheres near P_f (its bounding box inflated by the largest radius) get the rule's radius.
+  const auto t0 = Clock::now();
+  const auto [lo, hi] = pf.bounds();
   for (uint64_t id : sphere_grid_.inBox(lo.array() - config_.r_max_m, hi.array() + config_.r_max_m)) {
     const Sphere& s = spheres_.at(id);
     const double r = ruleRadius(s.centre, s.radius, pf, constraints);
@@ -287,12 +320,17 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
     }
   }
   st.spheres_ms = msSince(t0);
+}
 
-  // 7. New spheres sampled along fisheye rays, uniformly in range up to the depth surface.
+void SphereMap::sampleNewSpheres(const SlamPointsFrame& frame, const FreeSpacePolyhedron& pf,
+                                 const std::vector<Vec3>& constraints, std::vector<uint64_t>& touched,
+                                 MapUpdateStats& st) {
+  // New spheres sampled along fisheye rays, uniformly in range up to the depth surface.
   // Directions are drawn over the image until `new_sphere_samples` fall inside P_f's cone
   // (rejection sampling, at most kSampleAttemptsPerSample tries per sample), so a narrow view
   // gets as many samples as an open one.
-  t0 = Clock::now();
+  const auto t0 = Clock::now();
+  const Vec3 cam = frame.T_W_C.translation();
   const int max_attempts = kSampleAttemptsPerSample * config_.new_sphere_samples;
   for (int attempt = 0; attempt < max_attempts && st.sphere_samples < config_.new_sphere_samples; ++attempt) {
     const Vec2 px(rng_.uniform(0, camera_.width()), rng_.uniform(0, camera_.height()));
@@ -310,9 +348,11 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
     ++st.new_spheres;
   }
   st.sampling_ms = msSince(t0);
+}
 
-  // 8. Sparsify the updated and new spheres, smallest first (ties by id).
-  t0 = Clock::now();
+void SphereMap::sparsifyTouched(std::vector<uint64_t>& touched, MapUpdateStats& st) {
+  // The updated and new spheres, smallest first (ties by id).
+  const auto t0 = Clock::now();
   std::sort(touched.begin(), touched.end(), [&](uint64_t a, uint64_t b) {
     const double ra = spheres_.count(a) ? spheres_.at(a).radius : 0, rb = spheres_.count(b) ? spheres_.at(b).radius : 0;
     return ra != rb ? ra < rb : a < b;
@@ -320,27 +360,17 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   for (uint64_t id : touched)
     if (spheres_.count(id) && sparsify(id)) ++st.sparsified_spheres;
   st.graph_ms = msSince(t0);
+}
 
-  // 9. Obstacle points.
-  t0 = Clock::now();
+void SphereMap::insertFrameObstacles(const SlamPointsFrame& frame, MapUpdateStats& st) {
+  // The frame's points within range, merged by distance (the closer measurement wins).
+  const auto t0 = Clock::now();
+  const Vec3 cam = frame.T_W_C.translation();
   for (const auto& p : frame.points) {
     const double d = (p.p_W - cam).norm();
     if (d <= config_.max_point_range_m && insertObstacle(p.p_W, d)) ++st.inserted_obstacles;
   }
   st.obstacles_ms = msSince(t0);
-
-  // 10. Frontiers: re-validate the old ones against the new map, then sample new ones.
-  t0 = Clock::now();
-  st.dropped_frontiers = revalidateDirtyFrontiers();
-  sampleFrontiers(pf, cam, st);
-  st.frontiers_ms = msSince(t0);
-  std::vector<uint64_t> alive;
-  for (uint64_t id : st.changed_spheres)
-    if (spheres_.count(id)) alive.push_back(id);
-  std::sort(alive.begin(), alive.end());
-  alive.erase(std::unique(alive.begin(), alive.end()), alive.end());
-  st.changed_spheres = alive;
-  return st;
 }
 
 }  // namespace msb

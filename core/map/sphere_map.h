@@ -188,6 +188,16 @@ class SphereMap {
   int revalidate(const std::vector<uint64_t>& ids);  // re-checks ids (ascending), drops failures
   void sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, MapUpdateStats& st);
   void setRadius(uint64_t id, double r);
+  // The steps of update() (numbered as there).
+  std::vector<Vec3> pointsInView(const SlamPointsFrame& frame) const;                          // 1
+  std::vector<Vec3> applyDbof(const SlamPointsFrame& frame, const FreeSpacePolyhedron& real_pf,  // 5
+                              MapUpdateStats& st);
+  void updateSpheresNear(const FreeSpacePolyhedron& pf, const std::vector<Vec3>& constraints,  // 6
+                         std::vector<uint64_t>& touched, MapUpdateStats& st);
+  void sampleNewSpheres(const SlamPointsFrame& frame, const FreeSpacePolyhedron& pf,             // 7
+                        const std::vector<Vec3>& constraints, std::vector<uint64_t>& touched, MapUpdateStats& st);
+  void sparsifyTouched(std::vector<uint64_t>& touched, MapUpdateStats& st);                     // 8
+  void insertFrameObstacles(const SlamPointsFrame& frame, MapUpdateStats& st);                 // 9
 
   SphereMapConfig config_;
   FisheyeCamera camera_;
