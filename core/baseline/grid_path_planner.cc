@@ -135,6 +135,93 @@ void GridPathPlanner::rebuild(const GridMap& map) {
   }
 }
 
+bool GridPathPlanner::passable(int i, int j, int k, const Passability& p) const {
+  const uint8_t b = blocked_[size_t(index(i, j, k))];
+  if (!(b & kBlocked)) return true;
+  return p.start_blocked && !(b & kHard) && (centre(i, j, k) - p.start_c).squaredNorm() <= p.escape2;
+}
+
+GridPathPlanner::Search GridPathPlanner::search(int64_t start, int64_t goal, const Passability& p) const {
+  // A* over cells; g in metres, parent per cell; ties by the lower cell index.
+  const size_t n = blocked_.size();
+  const Vec3 start_c = centre(start), goal_c = centre(goal);
+  std::vector<float> g(n, std::numeric_limits<float>::infinity());
+  Search s;
+  s.parent.assign(n, -1);
+  std::vector<uint8_t> closed(n, 0);
+  using Entry = std::pair<double, int64_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  g[size_t(start)] = 0;
+  open.push({(goal_c - start_c).norm(), start});
+  s.best = start;
+  double best_d = (goal_c - start_c).norm();
+  while (!open.empty() && s.expansions < config_.max_expansions) {
+    const auto [f, cur] = open.top();
+    open.pop();
+    if (closed[size_t(cur)]) continue;
+    closed[size_t(cur)] = 1;
+    ++s.expansions;
+    const int ci = int(cur % nx_), cj = int((cur / nx_) % ny_), ck = int(cur / (int64_t(nx_) * ny_));
+    const double d_goal = (centre(ci, cj, ck) - goal_c).norm();
+    if (d_goal < best_d - 1e-12) best_d = d_goal, s.best = cur;
+    if (cur == goal) break;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if (!dx && !dy && !dz) continue;
+          const int i = ci + dx, j = cj + dy, k = ck + dz;
+          if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_ || !passable(i, j, k, p)) continue;
+          const int64_t nb = index(i, j, k);
+          if (closed[size_t(nb)]) continue;
+          const double ng = g[size_t(cur)] + res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
+          if (ng >= g[size_t(nb)]) continue;
+          g[size_t(nb)] = float(ng);
+          s.parent[size_t(nb)] = cur;
+          open.push({ng + (centre(i, j, k) - goal_c).norm(), nb});
+        }
+  }
+  return s;
+}
+
+bool GridPathPlanner::segmentClear(const Vec3& a, const Vec3& b, const Passability& p) const {
+  auto cellPassable = [&](const Eigen::Vector3i& c) {
+    return c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() < nx_ && c.y() < ny_ && c.z() < nz_ &&
+           passable(c.x(), c.y(), c.z(), p);
+  };
+  const Vec3 p0 = (a - origin_) / res_, d = (b - a) / res_;
+  Eigen::Vector3i c = p0.array().floor().cast<int>();
+  const Eigen::Vector3i last = (p0 + d).array().floor().cast<int>();
+  Eigen::Vector3i step;
+  Vec3 t_max, t_delta;
+  for (int k = 0; k < 3; ++k) {
+    step[k] = d[k] > 0 ? 1 : (d[k] < 0 ? -1 : 0);
+    t_delta[k] = step[k] ? 1.0 / std::abs(d[k]) : 1e300;
+    t_max[k] = step[k] ? ((c[k] + (step[k] > 0)) - p0[k]) / d[k] : 1e300;
+  }
+  for (int guard = 0; guard < 100000; ++guard) {
+    if (!cellPassable(c)) return false;
+    if (c == last) return true;
+    const double t = t_max.minCoeff();
+    if (t > 1.0) return true;
+    bool tied[3];
+    int n_tied = 0;
+    for (int k = 0; k < 3; ++k) n_tied += (tied[k] = t_max[k] <= t + 1e-12);
+    Eigen::Vector3i next = c;
+    for (int k = 0; k < 3; ++k) {
+      if (!tied[k]) continue;
+      if (n_tied > 1) {  // through an edge or a corner: the cells beside it count too
+        Eigen::Vector3i side = c;
+        side[k] += step[k];
+        if (!cellPassable(side)) return false;
+      }
+      next[k] += step[k];
+      t_max[k] += t_delta[k];
+    }
+    c = next;
+  }
+  return false;
+}
+
 std::optional<GridPath> GridPathPlanner::plan(const Vec3& start_in, const Vec3& goal_in) const {
   // Start and goal cells (clamped into the box; a start far outside cannot be planned from).
   auto clampCell = [&](const Vec3& p, int* i, int* j, int* k) {
@@ -148,112 +235,31 @@ std::optional<GridPath> GridPathPlanner::plan(const Vec3& start_in, const Vec3& 
   int si, sj, sk, gi, gj, gk;
   clampCell(start_in, &si, &sj, &sk);
   clampCell(goal_in, &gi, &gj, &gk);
-  const Vec3 start_c = centre(si, sj, sk), goal_c = centre(gi, gj, gk);
   const int64_t start = index(si, sj, sk), goal = index(gi, gj, gk);
   // A vehicle already in blocked cells may leave through blocked cells near it, but never
   // through hard ones (occupied, unknown with unknown_is_occupied, or within the escape clearance).
-  const bool start_blocked = blocked_[size_t(start)] & kBlocked;
-  const double escape2 = config_.escape_radius_m * config_.escape_radius_m;
-  auto passable = [&](int i, int j, int k) {
-    const uint8_t b = blocked_[size_t(index(i, j, k))];
-    if (!(b & kBlocked)) return true;
-    return start_blocked && !(b & kHard) && (centre(i, j, k) - start_c).squaredNorm() <= escape2;
-  };
-
-  // A* over cells; g in metres, parent per cell; ties by the lower cell index.
-  const size_t n = blocked_.size();
-  std::vector<float> g(n, std::numeric_limits<float>::infinity());
-  std::vector<int64_t> parent(n, -1);
-  std::vector<uint8_t> closed(n, 0);
-  using Entry = std::pair<double, int64_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
-  g[size_t(start)] = 0;
-  open.push({(goal_c - start_c).norm(), start});
-  int64_t best = start;
-  double best_d = (goal_c - start_c).norm();
-  int expansions = 0;
-  while (!open.empty() && expansions < config_.max_expansions) {
-    const auto [f, cur] = open.top();
-    open.pop();
-    if (closed[size_t(cur)]) continue;
-    closed[size_t(cur)] = 1;
-    ++expansions;
-    const int ci = int(cur % nx_), cj = int((cur / nx_) % ny_), ck = int(cur / (int64_t(nx_) * ny_));
-    const double d_goal = (centre(ci, cj, ck) - goal_c).norm();
-    if (d_goal < best_d - 1e-12) best_d = d_goal, best = cur;
-    if (cur == goal) break;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (!dx && !dy && !dz) continue;
-          const int i = ci + dx, j = cj + dy, k = ck + dz;
-          if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_ || !passable(i, j, k)) continue;
-          const int64_t nb = index(i, j, k);
-          if (closed[size_t(nb)]) continue;
-          const double ng = g[size_t(cur)] + res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
-          if (ng >= g[size_t(nb)]) continue;
-          g[size_t(nb)] = float(ng);
-          parent[size_t(nb)] = cur;
-          open.push({ng + (centre(i, j, k) - goal_c).norm(), nb});
-        }
-  }
+  Passability pass;
+  pass.start_blocked = blocked_[size_t(start)] & kBlocked;
+  pass.start_c = centre(si, sj, sk);
+  pass.escape2 = config_.escape_radius_m * config_.escape_radius_m;
+  const Search s = search(start, goal, pass);
 
   // Cells from the start to the goal (or the reached cell closest to it).
   GridPath out;
-  out.reaches_goal = best == goal;
-  out.expansions = expansions;
+  out.reaches_goal = s.best == goal;
+  out.expansions = s.expansions;
   std::vector<Vec3> cells;
-  for (int64_t c = best; c >= 0; c = parent[size_t(c)])
-    cells.push_back(centre(int(c % nx_), int((c / nx_) % ny_), int(c / (int64_t(nx_) * ny_))));
+  for (int64_t c = s.best; c >= 0; c = s.parent[size_t(c)]) cells.push_back(centre(c));
   std::reverse(cells.begin(), cells.end());
   cells.front() = start_in;
   if (out.reaches_goal && cells.size() > 1 && traversable(goal_in)) cells.back() = goal_in;
 
-  // Line-of-sight shortcuts: every cell the segment passes through (3D DDA; at an edge or a
-  // corner the cells beside it count too) must be passable.
-  auto cellPassable = [&](const Eigen::Vector3i& c) {
-    return c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() < nx_ && c.y() < ny_ && c.z() < nz_ &&
-           passable(c.x(), c.y(), c.z());
-  };
-  auto clear = [&](const Vec3& a, const Vec3& b) {
-    const Vec3 p0 = (a - origin_) / res_, d = (b - a) / res_;
-    Eigen::Vector3i c = p0.array().floor().cast<int>();
-    const Eigen::Vector3i last = (p0 + d).array().floor().cast<int>();
-    Eigen::Vector3i step;
-    Vec3 t_max, t_delta;
-    for (int k = 0; k < 3; ++k) {
-      step[k] = d[k] > 0 ? 1 : (d[k] < 0 ? -1 : 0);
-      t_delta[k] = step[k] ? 1.0 / std::abs(d[k]) : 1e300;
-      t_max[k] = step[k] ? ((c[k] + (step[k] > 0)) - p0[k]) / d[k] : 1e300;
-    }
-    for (int guard = 0; guard < 100000; ++guard) {
-      if (!cellPassable(c)) return false;
-      if (c == last) return true;
-      const double t = t_max.minCoeff();
-      if (t > 1.0) return true;
-      bool tied[3];
-      int n_tied = 0;
-      for (int k = 0; k < 3; ++k) n_tied += (tied[k] = t_max[k] <= t + 1e-12);
-      Eigen::Vector3i next = c;
-      for (int k = 0; k < 3; ++k) {
-        if (!tied[k]) continue;
-        if (n_tied > 1) {  // through an edge or a corner: the cells beside it count too
-          Eigen::Vector3i side = c;
-          side[k] += step[k];
-          if (!cellPassable(side)) return false;
-        }
-        next[k] += step[k];
-        t_max[k] += t_delta[k];
-      }
-      c = next;
-    }
-    return false;
-  };
+  // Line-of-sight shortcuts: from each kept point, the farthest later cell in clear sight.
   out.points.push_back(cells.front());
   size_t from = 0;
   while (from + 1 < cells.size()) {
     size_t to = cells.size() - 1;
-    while (to > from + 1 && !clear(cells[from], cells[to])) --to;
+    while (to > from + 1 && !segmentClear(cells[from], cells[to], pass)) --to;
     out.points.push_back(cells[to]);
     from = to;
   }

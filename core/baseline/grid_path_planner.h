@@ -65,6 +65,26 @@ class GridPathPlanner {
   int64_t index(int i, int j, int k) const { return (int64_t(k) * ny_ + j) * nx_ + i; }
   bool cellOf(const Vec3& p, int* i, int* j, int* k) const;  // false if outside the box
   Vec3 centre(int i, int j, int k) const;
+  Vec3 centre(int64_t cell) const { return centre(int(cell % nx_), int((cell / nx_) % ny_), int(cell / (int64_t(nx_) * ny_))); }
+  // Where a plan may go: free cells, and for a vehicle already in blocked cells, the soft
+  // blocked ones within the escape radius of its start.
+  struct Passability {
+    bool start_blocked = false;
+    Vec3 start_c = Vec3::Zero();
+    double escape2 = 0.0;
+  };
+  bool passable(int i, int j, int k, const Passability& p) const;
+  // A* over cells from `start` towards `goal`: the reached cell closest to the goal (the goal
+  // itself when reached), the parent of every reached cell, the expansions.
+  struct Search {
+    int64_t best = -1;
+    int expansions = 0;
+    std::vector<int64_t> parent;
+  };
+  Search search(int64_t start, int64_t goal, const Passability& p) const;
+  // True if every cell the segment a–b passes through is passable (3D DDA; at an edge or a
+  // corner the cells beside it count too).
+  bool segmentClear(const Vec3& a, const Vec3& b, const Passability& p) const;
 
   GridPlannerConfig config_;
   Aabb box_;

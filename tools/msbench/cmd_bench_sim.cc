@@ -81,6 +81,130 @@ const RendererSwitch kRendererSwitches[] = {
      " RGBA framebuffer"},
 };
 
+
+// Physics: a controlled hover at 2 m, controller every step; prints steps/s.
+void benchPhysics(const std::string& world, long steps) {
+  const Vec3 p0(0, 0, 2.0);
+  QuadrotorSim sim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
+  const Se3Controller controller(Se3ControllerConfig{}, QuadrotorConfig{});
+  TrajectoryReference ref;
+  ref.position_m = p0;
+  auto t0 = WallClock::now();
+  for (long i = 0; i < steps; ++i) {
+    sim.beginTick();
+    sim.endTick(controller.compute(sim.groundTruth(), ref));
+  }
+  const double phys_s = secondsSince(t0);
+  std::printf("world: %s (%d geoms)\n", world.c_str(), sim.geomCount());
+  std::printf("physics: %.0f steps/s with controller (%.2f us/step, %.0fx real time at 500 Hz)\n",
+              steps / phys_s, 1e6 * phys_s / steps, steps / phys_s / 500.0);
+}
+
+// The renderer settings the flags ask for.
+FisheyeRendererConfig rendererConfigOf(const ArgParser& args) {
+  FisheyeRendererConfig rcfg;
+  rcfg.face_focal_ratio = args.getDouble("face-focal-ratio");
+  rcfg.read_red_channel_only = args.has("red-only");
+  rcfg.sky = !args.has("no-sky");
+  rcfg.sun = !args.has("no-sun");
+  rcfg.cull_per_face = !args.has("no-cull");
+  rcfg.trilinear_textures = args.has("trilinear");
+  rcfg.framebuffer_per_face = !args.has("shared-framebuffer");
+  rcfg.single_channel_textures = !args.has("rgb-textures");
+  rcfg.single_channel_framebuffer = !args.has("rgba-framebuffer");
+  return rcfg;
+}
+
+// What rendering `frames` frames measured, per renderer (one, or two for a --compare-* flag).
+struct RenderBench {
+  std::vector<RenderTiming> sums;
+  std::vector<std::vector<double>> totals;  // per frame, ms
+  std::vector<double> sharpness;
+  double abs_difference = 0.0;
+  long different = 0;
+};
+
+// Renders `frames` frames (after two warm-up frames) turning 6° per frame, with every renderer
+// in turn.
+RenderBench timeRenderers(std::vector<std::unique_ptr<FisheyeRenderer>>& renderers, QuadrotorSim& rsim,
+                          const FisheyeCamera& camera, const Vec3& p0, long frames) {
+  const bool compare = renderers.size() > 1;
+  RenderBench b;
+  b.sums.resize(renderers.size());
+  b.totals.resize(renderers.size());
+  b.sharpness.assign(renderers.size(), 0.0);
+  const std::vector<uint8_t> inner_fov = innerFovMask(camera);
+  std::vector<CameraFrame> frames_out(renderers.size());
+  RenderTiming t;
+  for (long i = 0; i < frames + 2; ++i) {
+    const Pose T_W_B = poseFromXyzYaw(p0, i * 6.0 * M_PI / 180.0);
+    for (size_t k = 0; k < renderers.size(); ++k) {
+      renderers[k]->render(rsim.data(), T_W_B * camera.T_B_C(), &frames_out[k], &t);
+      if (i < 2) continue;  // warm-up
+      RenderTiming& sum = b.sums[k];
+      sum.scene_ms += t.scene_ms, sum.render_ms += t.render_ms;
+      sum.readback_ms += t.readback_ms, sum.remap_ms += t.remap_ms;
+      b.totals[k].push_back(t.totalMs());
+      b.sharpness[k] += meanGradient(frames_out[k], inner_fov);
+    }
+    if (i < 2) continue;
+    if (compare && frames_out[0].pixels != frames_out[1].pixels) ++b.different;
+    if (compare) b.abs_difference += meanAbsDifference(frames_out[0], frames_out[1]);
+  }
+  return b;
+}
+
+// Rendering at one resolution: one renderer, or two that differ in the compared switch
+// rendering every frame alternately; prints each one's split and the comparison.
+void benchRendering(const std::string& world, double scale, const FisheyeRendererConfig& rcfg,
+                    const RendererSwitch* compared, long frames) {
+  const Vec3 p0(0, 0, 2.0);
+  FisheyeCameraConfig cam_cfg;
+  cam_cfg.scale = scale;
+  const FisheyeCamera camera(cam_cfg);
+  QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
+  rsim.beginTick();
+  std::vector<std::unique_ptr<FisheyeRenderer>> renderers;
+  renderers.push_back(std::make_unique<FisheyeRenderer>(rcfg, camera, rsim.model()));
+  if (compared) {
+    FisheyeRendererConfig other = rcfg;
+    other.*compared->field = !(rcfg.*compared->field);
+    renderers.push_back(std::make_unique<FisheyeRenderer>(other, camera, rsim.model()));
+  }
+  RenderBench b = timeRenderers(renderers, rsim, camera, p0, frames);
+  const double n = static_cast<double>(frames);
+  for (size_t k = 0; k < renderers.size(); ++k) {
+    const FisheyeRenderer& renderer = *renderers[k];
+    const RenderTiming& sum = b.sums[k];
+    std::sort(b.totals[k].begin(), b.totals[k].end());
+    const char* label = !compared ? "" : compared->label((k == 0) == (rcfg.*compared->field));
+    std::printf("fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
+                "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
+                "atlas %dx%d, face focal ratio %.2f, sharpness (mean |gradient| in the FoV) %.3f\n",
+                camera.width(), camera.height(), label,
+                sum.totalMs() / n, 1000.0 * n / sum.totalMs(), b.totals[k][b.totals[k].size() / 2], sum.scene_ms / n,
+                sum.render_ms / n, sum.readback_ms / n, sum.remap_ms / n, renderer.renderedPixels(),
+                static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
+                renderer.atlasSize().height, rcfg.face_focal_ratio, b.sharpness[k] / n);
+  }
+  if (compared) {
+    // Time of the default setting over the other, whichever renderer had which.
+    const bool default_value = FisheyeRendererConfig{}.*compared->field;
+    const size_t by_default = rcfg.*compared->field == default_value ? 0 : 1, on = rcfg.*compared->field ? 0 : 1;
+    std::printf("fisheye %dx%d: %s / %s time %.2f; frames with different pixels: %ld of %ld; "
+                "mean |pixel difference| %.4f grey levels",
+                camera.width(), camera.height(), compared->label(default_value) + 1, compared->label(!default_value) + 1,
+                b.sums[by_default].totalMs() / b.sums[1 - by_default].totalMs(), b.different, frames,
+                b.abs_difference / n);
+    if (compared->field == &FisheyeRendererConfig::single_channel_textures)
+      std::printf(" (%d of %d textures grey)", renderers[on]->luminanceTextures(), rsim.model()->ntex);
+    if (compared->field == &FisheyeRendererConfig::single_channel_framebuffer)
+      std::printf(" (model renders grey: %s)", renderers[on]->singleChannelFramebuffer() ? "yes" : "no");
+    std::printf("\n");
+  }
+  if (scale == 1.0) std::printf("gl: %s\n", renderers[0]->description().c_str());
+}
+
 }  // namespace
 
 int runBenchSimCommand(int argc, char** argv) {
@@ -119,106 +243,10 @@ int runBenchSimCommand(int argc, char** argv) {
     if (compared) throw UsageError("the --compare-* flags exclude each other");
     compared = &sw;
   }
-  const bool compare = compared != nullptr;
-
-  // Physics: a controlled hover at 2 m, controller every step.
-  const Vec3 p0(0, 0, 2.0);
-  QuadrotorSim sim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
-  const Se3Controller controller(Se3ControllerConfig{}, QuadrotorConfig{});
-  TrajectoryReference ref;
-  ref.position_m = p0;
-  auto t0 = WallClock::now();
-  for (long i = 0; i < steps; ++i) {
-    sim.beginTick();
-    sim.endTick(controller.compute(sim.groundTruth(), ref));
-  }
-  const double phys_s = secondsSince(t0);
-  std::printf("world: %s (%d geoms)\n", world.c_str(), sim.geomCount());
-  std::printf("physics: %.0f steps/s with controller (%.2f us/step, %.0fx real time at 500 Hz)\n",
-              steps / phys_s, 1e6 * phys_s / steps, steps / phys_s / 500.0);
-
+  benchPhysics(world, steps);
   // Rendering at full and half resolution, turning 6 degrees per frame.
-  for (const double scale : {1.0, 0.5}) {
-    FisheyeCameraConfig cam_cfg;
-    cam_cfg.scale = scale;
-    const FisheyeCamera camera(cam_cfg);
-    FisheyeRendererConfig rcfg;
-    rcfg.face_focal_ratio = args.getDouble("face-focal-ratio");
-    rcfg.read_red_channel_only = args.has("red-only");
-    rcfg.sky = !args.has("no-sky");
-    rcfg.sun = !args.has("no-sun");
-    rcfg.cull_per_face = !args.has("no-cull");
-    rcfg.trilinear_textures = args.has("trilinear");
-    rcfg.framebuffer_per_face = !args.has("shared-framebuffer");
-    rcfg.single_channel_textures = !args.has("rgb-textures");
-    rcfg.single_channel_framebuffer = !args.has("rgba-framebuffer");
-    QuadrotorSim rsim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
-    rsim.beginTick();
-    // One renderer, or two that differ in the compared switch rendering every frame alternately.
-    std::vector<std::unique_ptr<FisheyeRenderer>> renderers;
-    renderers.push_back(std::make_unique<FisheyeRenderer>(rcfg, camera, rsim.model()));
-    if (compare) {
-      FisheyeRendererConfig other = rcfg;
-      other.*compared->field = !(rcfg.*compared->field);
-      renderers.push_back(std::make_unique<FisheyeRenderer>(other, camera, rsim.model()));
-    }
-    std::vector<double> sharpness(renderers.size(), 0.0);
-    const std::vector<uint8_t> inner_fov = innerFovMask(camera);
-    double abs_difference = 0.0;
-    std::vector<RenderTiming> sums(renderers.size());
-    std::vector<std::vector<double>> totals(renderers.size());
-    std::vector<CameraFrame> frames_out(renderers.size());
-    long different = 0;
-    RenderTiming t;
-    for (long i = 0; i < frames + 2; ++i) {
-      const Pose T_W_B = poseFromXyzYaw(p0, i * 6.0 * M_PI / 180.0);
-      for (size_t k = 0; k < renderers.size(); ++k) {
-        renderers[k]->render(rsim.data(), T_W_B * camera.T_B_C(), &frames_out[k], &t);
-        if (i < 2) continue;  // warm-up
-        RenderTiming& sum = sums[k];
-        sum.scene_ms += t.scene_ms, sum.render_ms += t.render_ms;
-        sum.readback_ms += t.readback_ms, sum.remap_ms += t.remap_ms;
-        totals[k].push_back(t.totalMs());
-        sharpness[k] += meanGradient(frames_out[k], inner_fov);
-      }
-      if (i < 2) continue;
-      if (compare && frames_out[0].pixels != frames_out[1].pixels) ++different;
-      if (compare) abs_difference += meanAbsDifference(frames_out[0], frames_out[1]);
-    }
-    const double n = static_cast<double>(frames);
-    for (size_t k = 0; k < renderers.size(); ++k) {
-      const FisheyeRenderer& renderer = *renderers[k];
-      const RenderTiming& sum = sums[k];
-      std::sort(totals[k].begin(), totals[k].end());
-      const char* label = !compare ? "" : compared->label((k == 0) == (rcfg.*compared->field));
-      std::printf("fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
-                  "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
-                  "atlas %dx%d, face focal ratio %.2f, sharpness (mean |gradient| in the FoV) %.3f\n",
-                  camera.width(), camera.height(), label,
-                  sum.totalMs() / n, 1000.0 * n / sum.totalMs(), totals[k][totals[k].size() / 2], sum.scene_ms / n,
-                  sum.render_ms / n, sum.readback_ms / n, sum.remap_ms / n, renderer.renderedPixels(),
-                  static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
-                  renderer.atlasSize().height, rcfg.face_focal_ratio, sharpness[k] / n);
-    }
-    if (compare) {
-      // Time of the default setting over the other, whichever renderer had which.
-      const bool default_value = FisheyeRendererConfig{}.*compared->field;
-      const size_t by_default = rcfg.*compared->field == default_value ? 0 : 1, on = rcfg.*compared->field ? 0 : 1;
-      std::printf("fisheye %dx%d: %s / %s time %.2f; frames with different pixels: %ld of %ld; "
-                  "mean |pixel difference| %.4f grey levels",
-                  camera.width(), camera.height(), compared->label(default_value) + 1, compared->label(!default_value) + 1,
-                  sums[by_default].totalMs() / sums[1 - by_default].totalMs(), different, frames, abs_difference / n);
-      if (compared->field == &FisheyeRendererConfig::single_channel_textures)
-        std::printf(" (%d of %d textures grey)", renderers[on]->luminanceTextures(), rsim.model()->ntex);
-      if (compared->field == &FisheyeRendererConfig::single_channel_framebuffer)
-        std::printf(" (model renders grey: %s)", renderers[on]->singleChannelFramebuffer() ? "yes" : "no");
-      std::printf("\n");
-    }
-    const FisheyeRenderer& renderer = *renderers[0];
-    if (scale == 1.0) std::printf("gl: %s\n", renderer.description().c_str());
-  }
+  for (const double scale : {1.0, 0.5}) benchRendering(world, scale, rendererConfigOf(args), compared, frames);
   return kExitOk;
 }
-
 
 }  // namespace msb
