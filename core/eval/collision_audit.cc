@@ -1,4 +1,5 @@
 #include "core/eval/collision_audit.h"
+#include "core/eval/slam_point_truth.h"
 
 #include <algorithm>
 #include <cmath>
@@ -65,6 +66,36 @@ CollisionAudit auditCollision(const CollisionAuditInput& in, const WorldTruth& t
   else if (a.vio_drift_m > th.clearance_m) a.cause = "drift";
   else a.cause = "other";
   return a;
+}
+
+void CollisionAuditRecorder::addFrame(const SlamPointsFrame& points, const Pose& T_W_C_true, int64_t tick) {
+  for (const SlamPoint& p : points.points)
+    if (p.anchor_tick == tick && audited_tracks_.insert(p.track_id).second) {
+      const PointTruth pt = evaluatePoint(p, T_W_C_true, truth_, camera_);
+      if (!pt.has_surface) continue;
+      ++slam_points_by_object_[truth_.shapes()[pt.shape].object];
+      ++slam_points_by_geom_[truth_.shapes()[pt.shape].name];
+    }
+}
+
+void CollisionAuditRecorder::addSample(double t_s, const std::vector<FreeSpaceElement>& free_space,
+                                       const Pose& true_from_est) {
+  for (const FreeSpaceElement& e : free_space) free_space_first_seen_s_.emplace(e.id, t_s);
+  true_from_est_history_.emplace_back(t_s, true_from_est);
+}
+
+CollisionAuditInput CollisionAuditRecorder::input(const std::string& world_geom) const {
+  CollisionAuditInput in;
+  if (const Shape* hit = truth_.shapeNamed(world_geom)) in.object = hit->object;
+  auto count = [](const std::map<std::string, int>& m, const std::string& k) {
+    const auto it = m.find(k);
+    return it == m.end() ? 0 : it->second;
+  };
+  in.slam_points_on_object = in.object.empty() ? 0 : count(slam_points_by_object_, in.object);
+  in.slam_points_on_part = count(slam_points_by_geom_, world_geom);
+  in.free_space_first_seen_s = &free_space_first_seen_s_;
+  in.true_from_est_history = &true_from_est_history_;
+  return in;
 }
 
 }  // namespace msb

@@ -18,10 +18,13 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/camera/fisheye_camera.h"
+#include "core/common/messages.h"
 #include "core/explorer/snapshot.h"
 #include "core/geometry/world_truth.h"
 
@@ -65,6 +68,32 @@ struct CollisionAudit {
   double commanded_speed_mps = 0.0;
   double since_last_path_s = -1.0;
   std::string cause;                  ///< unseen, planner, seen-but-freed, drift, other
+};
+
+/// What the audit needs from the whole run, recorded as it goes (truth side): the object and
+/// the part each new SLAM point lies on, when each free-space element was first seen, and the
+/// VIO correction at every metric sample.
+class CollisionAuditRecorder {
+ public:
+  CollisionAuditRecorder(const WorldTruth& truth, const FisheyeCamera& camera) : truth_(truth), camera_(camera) {}
+
+  /// A perception frame at `tick`: the points anchored in it are attributed to the surface their
+  /// anchor ray meets from the frame's true camera pose.
+  void addFrame(const SlamPointsFrame& points, const Pose& T_W_C_true, int64_t tick);
+  /// A metric sample: the free space's first-seen times and the VIO → true correction then.
+  void addSample(double t_s, const std::vector<FreeSpaceElement>& free_space, const Pose& true_from_est);
+  /// The run-long part of the audit's input for a contact with `world_geom` (object, SLAM-point
+  /// counts, first-seen times, correction history); the caller adds the moment's facts.
+  CollisionAuditInput input(const std::string& world_geom) const;
+
+ private:
+  const WorldTruth& truth_;
+  FisheyeCamera camera_;
+  std::set<uint64_t> audited_tracks_;                  // SLAM points already attributed
+  std::map<std::string, int> slam_points_by_object_;   // SLAM points ever tracked, per object
+  std::map<std::string, int> slam_points_by_geom_;     // ... per part (world geom)
+  std::map<uint64_t, double> free_space_first_seen_s_; // free-space element id → first sampled
+  std::vector<std::pair<double, Pose>> true_from_est_history_;
 };
 
 /// Audits a collision against the world's ground truth.

@@ -41,6 +41,7 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
   setup.map_rate_hz = spec.mission.map_rate_hz;
   setup.planning_rate_hz = spec.mission.planning_rate_hz;
   loop_ = std::make_unique<ClosedLoop>(missionFlight(spec), setup);
+  if (truth_) audit_.emplace(*truth_, loop_->camera());
 }
 
 Mission::~Mission() = default;
@@ -60,14 +61,7 @@ const TickRecord& Mission::step() {
     // The collision audit's record: the object each new SLAM point lies on (its anchor ray from
     // the true camera pose of this frame, where new points are anchored).
     if (frontend_) frontend_->addFrame(*t.points, t.frame->T_W_C);
-    if (truth_)
-      for (const SlamPoint& p : t.points->points)
-        if (p.anchor_tick == t.tick && audited_tracks_.insert(p.track_id).second) {
-          const PointTruth pt = evaluatePoint(p, t.frame->T_W_C, *truth_, loop_->camera());
-          if (!pt.has_surface) continue;
-          ++slam_points_by_object_[truth_->shapes()[pt.shape].object];
-          ++slam_points_by_geom_[truth_->shapes()[pt.shape].name];
-        }
+    if (audit_) audit_->addFrame(*t.points, t.frame->T_W_C, t.tick);
   }
   if (!t.completed) return t;
   // Coverage sample after this tick's map update.
@@ -83,10 +77,7 @@ void Mission::sample(double t_s) {
   // The metric scores the method's free space (the method only exposes it).
   const std::vector<FreeSpaceElement> free_space = explorer_->freeSpace();
   coverage_.columns().markFreeSpace(free_space);
-  if (truth_) {
-    for (const FreeSpaceElement& e : free_space) free_space_first_seen_s_.emplace(e.id, t_s);
-    true_from_est_history_.emplace_back(t_s, true_from_est_);
-  }
+  if (audit_) audit_->addSample(t_s, free_space, true_from_est_);
   coverage_.sample(t_s, loop_->result().distance_flown_m, free_space);
   stages_.metric_ms += msSince(t0);
 }
@@ -115,17 +106,12 @@ MissionResult Mission::finish() {
   if (frontend_) r.frontend = frontend_->result();
   if (truth_) r.map_accuracy = mapAccuracy(r.final_map, *truth_);
   // The collision audit: what the map knew at contact (the map is the final one: the run ended there).
-  if (r.flight.collision && truth_) {
-    CollisionAuditInput in;
-    if (const Shape* hit = truth_->shapeNamed(r.flight.collision->world_geom)) in.object = hit->object;
+  if (r.flight.collision && audit_) {
+    CollisionAuditInput in = audit_->input(r.flight.collision->world_geom);
     in.contact_W = r.flight.collision->contact_position_m;
     in.T_true_from_est = true_from_est_;
     in.vio_drift_m = (loop_->estimate().T_W_B.translation() - loop_->groundTruth().T_W_B.translation()).norm();
-    in.slam_points_on_object = in.object.empty() ? 0 : slam_points_by_object_[in.object];
-    in.slam_points_on_part = slam_points_by_geom_[r.flight.collision->world_geom];
     in.map = &r.final_map;
-    in.free_space_first_seen_s = &free_space_first_seen_s_;
-    in.true_from_est_history = &true_from_est_history_;
     in.commanded_speed_mps = loop_->reference().velocity_mps.norm();
     in.since_last_path_s = loop_->lastPathTimeS() < 0 ? -1.0 : r.flight.collision->t_s - loop_->lastPathTimeS();
     r.collision_audit = auditCollision(in, *truth_);

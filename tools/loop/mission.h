@@ -94,15 +94,11 @@ class Mission {
   StageTimes stages_;
   std::vector<std::pair<double, StageTimes>> stage_timeline_;
   std::vector<double> map_update_ms_;
-  // For the collision audit (worlds with ground truth only).
+  // Truth-side records (worlds with ground truth only).
   const WorldTruth* truth_ = nullptr;
-  std::optional<FrontEndProfiler> frontend_;         // the front-end error profile (truth side)
-  std::set<uint64_t> audited_tracks_;                // SLAM points already attributed to an object
-  std::map<std::string, int> slam_points_by_object_; // SLAM points ever tracked, per object
-  std::map<std::string, int> slam_points_by_geom_;   // ... per part (world geom)
-  std::map<uint64_t, double> free_space_first_seen_s_;  // free-space element id → first sampled
+  std::optional<FrontEndProfiler> frontend_;         // the front-end error profile
+  std::optional<CollisionAuditRecorder> audit_;      // what a collision audit needs
   Pose true_from_est_ = Pose::Identity();            // the latest frame's VIO → true correction
-  std::vector<std::pair<double, Pose>> true_from_est_history_;  // ... at every metric sample
 };
 
 /// Runs a mission to its end.
