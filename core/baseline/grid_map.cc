@@ -34,11 +34,12 @@ void GridMapConfig::validate(ConfigChecker& c) const {
 
 double extrinsicQuality(const Vec3& a, const Vec3& b, const Vec3& d) {
   const double na = a.norm(), nb = b.norm(), nd = d.norm();
-  if (na < 1e-12 || nb < 1e-12 || nd < 1e-12) return 0.0;  // no baseline: no depth
-  const double h_ab = std::max(a.dot(b) / (na * nb), 0.0);                              // Eq. 3-4
-  const double s_ad = a.dot(d) / (na * nd), s_bd = b.dot(d) / (nb * nd);               // Eq. 5-6
-  const double r_ad = std::sqrt(std::max(0.0, 1 - s_ad * s_ad)), r_bd = std::sqrt(std::max(0.0, 1 - s_bd * s_bd));  // 7-8
-  return std::min({h_ab, r_ad, r_bd});                                                 // Eq. 9
+  if (na < 1e-12 || nb < 1e-12 || nd < 1e-12) return 0.0;                 // no baseline: no depth
+  const double h_ab = std::max(a.dot(b) / (na * nb), 0.0);                // Eq. 3-4
+  const double s_ad = a.dot(d) / (na * nd), s_bd = b.dot(d) / (nb * nd);  // Eq. 5-6
+  const double r_ad = std::sqrt(std::max(0.0, 1 - s_ad * s_ad)),
+               r_bd = std::sqrt(std::max(0.0, 1 - s_bd * s_bd));  // 7-8
+  return std::min({h_ab, r_ad, r_bd});                            // Eq. 9
 }
 
 double confidenceWeight(const SlamPoint& p, const Pose& T_W_C, double depth_gain_per_m) {
@@ -122,18 +123,23 @@ GridUpdateStats GridMap::insertScan(const Vec3& origin, const std::vector<Vec3>&
   // Standard: OctoMap's own hit/miss update; weighted: the log-odds scaled by the weight.
   const float l_hit = octomap::logodds(config_.prob_hit), l_miss = octomap::logodds(config_.prob_miss);
   for (const auto& [k, w] : only_free) {
-    if (config_.weighted()) tree_->updateNode(unpackKey(k), float(w) * l_miss, true);
-    else tree_->updateNode(unpackKey(k), false, true);
+    if (config_.weighted())
+      tree_->updateNode(unpackKey(k), float(w) * l_miss, true);
+    else
+      tree_->updateNode(unpackKey(k), false, true);
   }
   for (const auto& [k, w] : occupied_keys) {
-    if (config_.weighted()) tree_->updateNode(unpackKey(k), float(w) * l_hit, true);
-    else tree_->updateNode(unpackKey(k), true, true);
+    if (config_.weighted())
+      tree_->updateNode(unpackKey(k), float(w) * l_hit, true);
+    else
+      tree_->updateNode(unpackKey(k), true, true);
   }
   tree_->updateInnerOccupancy();
   // Watched misses of cells this scan also hit were not made (occupied wins within a scan).
   std::erase_if(last_watched_, [&](const WatchedUpdate& u) {
-    return !u.hit && std::binary_search(occupied_keys.begin(), occupied_keys.end(), std::pair<uint64_t, double>{u.key, 0.0},
-                                        [](const auto& a, const auto& b) { return a.first < b.first; });
+    return !u.hit &&
+           std::binary_search(occupied_keys.begin(), occupied_keys.end(), std::pair<uint64_t, double>{u.key, 0.0},
+                              [](const auto& a, const auto& b) { return a.first < b.first; });
   });
   st.free_cells = int(only_free.size());
   st.occupied_cells = int(occupied_keys.size());

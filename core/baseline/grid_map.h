@@ -34,17 +34,17 @@ namespace msb {
 
 /// Grid map settings (reference values).
 struct GridMapConfig {
-  double resolution_m = 0.5;          ///< leaf size
-  double max_range_m = 20.0;          ///< points farther give no occupied cell
-  double free_ray_length_m = 15.0;    ///< rays clear free space up to this far
+  double resolution_m = 0.5;        ///< leaf size
+  double max_range_m = 20.0;        ///< points farther give no occupied cell
+  double free_ray_length_m = 15.0;  ///< rays clear free space up to this far
   // The sensor model of the reference's mapper, mrs_octomap_server (its config/default.yaml, which
   // the reference's grid session does not override): a hit saturates a cell at once, a miss takes
   // a fifth of that away. OctoMap's own defaults are 0.7 / 0.4 / 0.1192 / 0.971.
-  double prob_hit = 0.95;             ///< occupancy update of a point's cell
-  double prob_miss = 0.45;            ///< free update of a cell a ray crosses
-  double clamp_min = 0.3;             ///< clamping of the occupancy probability
+  double prob_hit = 0.95;   ///< occupancy update of a point's cell
+  double prob_miss = 0.45;  ///< free update of a cell a ray crosses
+  double clamp_min = 0.3;   ///< clamping of the occupancy probability
   double clamp_max = 0.7;
-  std::string insertion = "standard";  ///< standard | confidence_weighted
+  std::string insertion = "standard";        ///< standard | confidence_weighted
   double confidence_depth_gain_per_m = 5.0;  ///< a of Eq. 10 (confidence 0 at 2σ = 100/a m)
 
   /// True for confidence-weighted insertion.
@@ -57,7 +57,7 @@ struct GridMapConfig {
 struct GridLeaf {
   Vec3 centre;
   double size_m;
-  uint64_t id;   ///< packed key and depth, stable while the leaf exists
+  uint64_t id;  ///< packed key and depth, stable while the leaf exists
 };
 
 /// An update a scan made to a watched cell (GridMap::watch): which ray (the point's index in the
@@ -131,7 +131,6 @@ class GridMap {
   std::vector<uint64_t> watched_;  ///< sorted
   std::vector<WatchedUpdate> last_watched_;
 };
-
 
 /// The grid methods' predicted-path check: true if the first `ahead_m` of the polyline
 /// from -> path[1] -> ... (path[0] is where it was sent from) come within `clearance_m` of an

@@ -37,9 +37,7 @@ bool GridPathPlanner::cellOf(const Vec3& p, int* i, int* j, int* k) const {
   return *i >= 0 && *j >= 0 && *k >= 0 && *i < nx_ && *j < ny_ && *k < nz_;
 }
 
-Vec3 GridPathPlanner::centre(int i, int j, int k) const {
-  return origin_ + res_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
-}
+Vec3 GridPathPlanner::centre(int i, int j, int k) const { return origin_ + res_ * Vec3(i + 0.5, j + 0.5, k + 0.5); }
 
 bool GridPathPlanner::traversable(const Vec3& p) const {
   int i, j, k;
@@ -94,9 +92,10 @@ void GridPathPlanner::rebuild(const GridMap& map) {
   // their neighbourhood (the nearest unknown cell to a known one always borders known space).
   if (config_.unknown_is_occupied) {
     std::vector<uint8_t> known(blocked_.size(), 0);
-    for (auto it = map.tree().begin_leafs_bbx(octomap::point3d(float(origin_.x()), float(origin_.y()), float(origin_.z())),
-                                              octomap::point3d(float(origin_.x() + nx_ * res_), float(origin_.y() + ny_ * res_),
-                                                               float(origin_.z() + nz_ * res_))),
+    for (auto it = map.tree().begin_leafs_bbx(
+                  octomap::point3d(float(origin_.x()), float(origin_.y()), float(origin_.z())),
+                  octomap::point3d(float(origin_.x() + nx_ * res_), float(origin_.y() + ny_ * res_),
+                                   float(origin_.z() + nz_ * res_))),
               end = map.tree().end_leafs_bbx();
          it != end; ++it) {
       const Vec3 c(it.getX(), it.getY(), it.getZ());
@@ -120,7 +119,15 @@ void GridPathPlanner::rebuild(const GridMap& map) {
           dilated[size_t(index(i, j, k))] |= kBlocked | kHard;  // unknown itself
           bool border = false;
           for (int f = 0; f < 6 && !border; ++f) {
-            const int di = f == 0 ? 1 : f == 1 ? -1 : 0, dj = f == 2 ? 1 : f == 3 ? -1 : 0, dk = f == 4 ? 1 : f == 5 ? -1 : 0;
+            const int di = f == 0   ? 1
+                           : f == 1 ? -1
+                                    : 0,
+                      dj = f == 2   ? 1
+                           : f == 3 ? -1
+                                    : 0,
+                      dk = f == 4   ? 1
+                           : f == 5 ? -1
+                                    : 0;
             const int a = i + di, b = j + dj, c = k + dk;
             border = a >= 0 && b >= 0 && c >= 0 && a < nx_ && b < ny_ && c < nz_ && known[size_t(index(a, b, c))];
           }

@@ -5,13 +5,12 @@
 // space as MonoSpheres") also when it is unknown or within `unknown_clearance_m` (by default
 // `clearance_m`) of an unknown cell.
 // With it off, unknown space is traversable (what our design notes record of the reference
-// code; measured to crash into unseen walls and ceilings within a minute, docs/baseline.md). A* (26-neighbour moves, Euclidean heuristic, ties broken by cell index) searches
-// from the vehicle's cell; when the goal cannot be reached it returns the path to the reached
-// cell closest to the goal. A vehicle that finds itself in blocked cells (new points appeared
-// close to it) may leave through blocked cells within `escape_radius_m` of its start, but never
-// through cells within `escape_clearance_m` of an occupied cell (nor unknown ones when unknown
-// is occupied). The path is
-// shortened by line-of-sight shortcuts over traversable cells.
+// code; measured to crash into unseen walls and ceilings within a minute, docs/baseline.md). A* (26-neighbour moves,
+// Euclidean heuristic, ties broken by cell index) searches from the vehicle's cell; when the goal cannot be reached it
+// returns the path to the reached cell closest to the goal. A vehicle that finds itself in blocked cells (new points
+// appeared close to it) may leave through blocked cells within `escape_radius_m` of its start, but never through cells
+// within `escape_clearance_m` of an occupied cell (nor unknown ones when unknown is occupied). The path is shortened by
+// line-of-sight shortcuts over traversable cells.
 #pragma once
 
 #include <cstdint>
@@ -26,13 +25,13 @@ namespace msb {
 
 /// Grid planner settings.
 struct GridPlannerConfig {
-  double clearance_m = 1.5;          ///< distance kept from occupied cells
-  bool unknown_is_occupied = true;   ///< unknown cells and their clearance blocked (the paper; false: traversable)
-  double unknown_clearance_m = -1.0; ///< distance kept from unknown cells when they are blocked (< 0: clearance_m;
-                                     ///< 0: only known free cells, star discovery's rule)
-  double escape_radius_m = 2.0;      ///< from a blocked start, blocked cells this close are passable ...
-  double escape_clearance_m = 0.75;  ///< ... unless this close to an occupied cell
-  int max_expansions = 500000;       ///< A* node budget per search
+  double clearance_m = 1.5;           ///< distance kept from occupied cells
+  bool unknown_is_occupied = true;    ///< unknown cells and their clearance blocked (the paper; false: traversable)
+  double unknown_clearance_m = -1.0;  ///< distance kept from unknown cells when they are blocked (< 0: clearance_m;
+                                      ///< 0: only known free cells, star discovery's rule)
+  double escape_radius_m = 2.0;       ///< from a blocked start, blocked cells this close are passable ...
+  double escape_clearance_m = 0.75;   ///< ... unless this close to an occupied cell
+  int max_expansions = 500000;        ///< A* node budget per search
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -40,8 +39,8 @@ struct GridPlannerConfig {
 
 /// A planned grid path.
 struct GridPath {
-  std::vector<Vec3> points;     ///< start position first, cell centres after
-  bool reaches_goal = false;    ///< false: ends at the reachable cell closest to the goal
+  std::vector<Vec3> points;   ///< start position first, cell centres after
+  bool reaches_goal = false;  ///< false: ends at the reachable cell closest to the goal
   int expansions = 0;
 };
 
@@ -65,7 +64,9 @@ class GridPathPlanner {
   int64_t index(int i, int j, int k) const { return (int64_t(k) * ny_ + j) * nx_ + i; }
   bool cellOf(const Vec3& p, int* i, int* j, int* k) const;  // false if outside the box
   Vec3 centre(int i, int j, int k) const;
-  Vec3 centre(int64_t cell) const { return centre(int(cell % nx_), int((cell / nx_) % ny_), int(cell / (int64_t(nx_) * ny_))); }
+  Vec3 centre(int64_t cell) const {
+    return centre(int(cell % nx_), int((cell / nx_) % ny_), int(cell / (int64_t(nx_) * ny_)));
+  }
   // Where a plan may go: free cells, and for a vehicle already in blocked cells, the soft
   // blocked ones within the escape radius of its start.
   struct Passability {
@@ -89,7 +90,7 @@ class GridPathPlanner {
   GridPlannerConfig config_;
   Aabb box_;
   double res_;
-  Vec3 origin_;           // min corner of cell (0, 0, 0), on the OctoMap grid
+  Vec3 origin_;  // min corner of cell (0, 0, 0), on the OctoMap grid
   int nx_ = 0, ny_ = 0, nz_ = 0;
   static constexpr uint8_t kBlocked = 1, kHard = 2;  // cell flags
   std::vector<uint8_t> blocked_;

@@ -159,8 +159,8 @@ StarDiscoveryExplorer::StarDiscoveryExplorer(const StarDiscoveryConfig& config, 
       planner_(config.planner, context.exploration_box, config.map.resolution_m),
       candidate_rng_(context.seed, "star_candidates"),
       takeoff_(context.start, config) {
-  for (const char* k : {"stars", "star_rays", "global_steps", "fallback_steps", "holds", "interesting_cells", "transits_reached",
-                        "transits_failed", "blocked_stops", "paths_sent", "map_points"})
+  for (const char* k : {"stars", "star_rays", "global_steps", "fallback_steps", "holds", "interesting_cells",
+                        "transits_reached", "transits_failed", "blocked_stops", "paths_sent", "map_points"})
     counters_[k] = 0;
 }
 

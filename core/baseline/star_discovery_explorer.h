@@ -35,23 +35,23 @@ namespace msb {
 
 /// Star discovery settings (the paper's where it gives them).
 struct StarDiscoveryConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, start_forward_m
-  GridMapConfig map;                  ///< OctoMap insertion (as the grid baseline)
+  GridMapConfig map;                          ///< OctoMap insertion (as the grid baseline)
   /// Traversability and A*: occupied cells inflated by clearance_m; only known free cells are
   /// traversable, unknown ones are not inflated (the paper: "inflation of the occupied voxels").
   GridPlannerConfig planner{.clearance_m = 1.5, .unknown_is_occupied = true, .unknown_clearance_m = 0.0};
-  int rays = 8;                       ///< m: rays per star, at equal angles
-  int heights = 3;                    ///< l: heights tried around the origin ...
-  double height_step_m = 0.5;         ///< ... this far apart
-  double max_ray_m = 15.0;            ///< a ray ends here at the latest
-  double min_ray_m = 1.0;             ///< shorter rays are not flown
-  int candidates = 10;                ///< random interesting cells compared per global step
-  double los_range_m = 30.0;          ///< line of sight from an origin reaches this far
-  double look_around_step_deg = 90.0; ///< the look-around turns in steps of this
-  double replan_period_s = 1.0;       ///< transit paths re-planned this often
-  double transit_timeout_s = 60.0;    ///< a target not reached by then is given up
-  double retry_period_s = 5.0;        ///< with no reachable candidate: hold, look again after this
-  double check_ahead_m = 5.0;         ///< predicted-path check length ...
-  double check_clearance_m = 1.0;     ///< ... and clearance from occupied cells
+  int rays = 8;                        ///< m: rays per star, at equal angles
+  int heights = 3;                     ///< l: heights tried around the origin ...
+  double height_step_m = 0.5;          ///< ... this far apart
+  double max_ray_m = 15.0;             ///< a ray ends here at the latest
+  double min_ray_m = 1.0;              ///< shorter rays are not flown
+  int candidates = 10;                 ///< random interesting cells compared per global step
+  double los_range_m = 30.0;           ///< line of sight from an origin reaches this far
+  double look_around_step_deg = 90.0;  ///< the look-around turns in steps of this
+  double replan_period_s = 1.0;        ///< transit paths re-planned this often
+  double transit_timeout_s = 60.0;     ///< a target not reached by then is given up
+  double retry_period_s = 5.0;         ///< with no reachable candidate: hold, look again after this
+  double check_ahead_m = 5.0;          ///< predicted-path check length ...
+  double check_clearance_m = 1.0;      ///< ... and clearance from occupied cells
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -14,8 +14,7 @@ void FisheyeCameraConfig::validate(ConfigChecker& c) const {
   c.inRange("cx_px", cx_px, 0.0, width_px);
   c.inRange("cy_px", cy_px, 0.0, height_px);
   c.inRange("fov_deg", fov_deg, 10.0, 200.0);
-  c.require(scale == 1.0 || scale == 0.5 || scale == 0.25, "scale",
-            "must be 1, 0.5 or 0.25");
+  c.require(scale == 1.0 || scale == 0.5 || scale == 0.25, "scale", "must be 1, 0.5 or 0.25");
   // The camera sits on the vehicle: its centre within a metre of the body origin.
   c.require(mount_position_B_m.allFinite() && mount_position_B_m.norm() <= 1.0, "mount_position_B_m",
             "must lie within 1 m of the body origin (the camera is mounted on the vehicle)");
@@ -55,8 +54,7 @@ double FisheyeCamera::undistort(double theta_d) const {
   for (int i = 0; i < 20; ++i) {
     const double t2 = theta * theta;
     const double f = distort(theta) - theta_d;
-    const double df =
-        1.0 + t2 * (3 * k[0] + t2 * (5 * k[1] + t2 * (7 * k[2] + t2 * 9 * k[3])));
+    const double df = 1.0 + t2 * (3 * k[0] + t2 * (5 * k[1] + t2 * (7 * k[2] + t2 * 9 * k[3])));
     const double step = f / df;
     theta -= step;
     if (std::abs(step) < 1e-14) break;
@@ -82,8 +80,7 @@ Vec2 FisheyeCamera::project(const Vec3& p, Eigen::Matrix<double, 2, 3>* J) const
     } else {
       const auto& k = config_.k;
       const double t2 = theta * theta;
-      const double dthd_dth =
-          1.0 + t2 * (3 * k[0] + t2 * (5 * k[1] + t2 * (7 * k[2] + t2 * 9 * k[3])));
+      const double dthd_dth = 1.0 + t2 * (3 * k[0] + t2 * (5 * k[1] + t2 * (7 * k[2] + t2 * 9 * k[3])));
       const double rho2 = r2 + p.z() * p.z();
       // dθ/dx = z x / (r ρ²), dθ/dy = z y / (r ρ²), dθ/dz = −r / ρ².
       const Vec3 dth(p.z() * p.x() / (r * rho2), p.z() * p.y() / (r * rho2), -r / rho2);

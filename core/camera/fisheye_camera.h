@@ -24,17 +24,17 @@ namespace msb {
 
 /// Intrinsics, image size and mounting of the fisheye camera (docs/architecture.md §5 defaults).
 struct FisheyeCameraConfig {
-  int width_px = 752;                 ///< image width at full resolution
-  int height_px = 480;                ///< image height at full resolution
-  double fx_px = 227.4;               ///< focal length x, full resolution
-  double fy_px = 227.4;               ///< focal length y, full resolution
-  double cx_px = 376.0;               ///< principal point x, full resolution
-  double cy_px = 240.0;               ///< principal point y, full resolution
+  int width_px = 752;                                                    ///< image width at full resolution
+  int height_px = 480;                                                   ///< image height at full resolution
+  double fx_px = 227.4;                                                  ///< focal length x, full resolution
+  double fy_px = 227.4;                                                  ///< focal length y, full resolution
+  double cx_px = 376.0;                                                  ///< principal point x, full resolution
+  double cy_px = 240.0;                                                  ///< principal point y, full resolution
   std::array<double, 4> k = {0.019266, 0.001143, -0.000381, 0.0000634};  ///< KB coefficients
-  double fov_deg = 180.0;             ///< full field of view (cone around the optical axis)
-  double scale = 1.0;                 ///< resolution scale: 1 = full, 0.5 = half (376×240)
+  double fov_deg = 180.0;                            ///< full field of view (cone around the optical axis)
+  double scale = 1.0;                                ///< resolution scale: 1 = full, 0.5 = half (376×240)
   Vec3 mount_position_B_m = Vec3(0.085, 0.0, 0.13);  ///< camera centre in the body frame
-  double mount_pitch_down_deg = 0.0;  ///< downward tilt of the forward-looking camera
+  double mount_pitch_down_deg = 0.0;                 ///< downward tilt of the forward-looking camera
   /// Far clip of the simulated camera: nothing farther (along each cube face's axis, as the
   /// reference's Gazebo wide-angle camera clips its faces) is drawn; the sky colour shows
   /// instead. The reference's camera clips at 40 m (docs/perception.md).

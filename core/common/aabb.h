@@ -11,9 +11,7 @@ struct Aabb {
   Vec3 min = Vec3::Zero();
   Vec3 max = Vec3::Zero();
   /// True if p lies inside or on the box.
-  bool contains(const Vec3& p) const {
-    return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
-  }
+  bool contains(const Vec3& p) const { return (p.array() >= min.array()).all() && (p.array() <= max.array()).all(); }
 };
 
 }  // namespace msb

@@ -36,8 +36,7 @@ void ConfigChecker::nonNegative(const std::string& key, double value) {
 }
 
 void ConfigChecker::inRange(const std::string& key, double value, double lo, double hi) {
-  require(value >= lo && value <= hi, key,
-          "must be in [" + num(lo) + ", " + num(hi) + "] (got " + num(value) + ")");
+  require(value >= lo && value <= hi, key, "must be in [" + num(lo) + ", " + num(hi) + "] (got " + num(value) + ")");
 }
 
 bool isValidUtf8(const std::string& text) {

@@ -28,9 +28,12 @@ void flushNothing(png_structp) {}
 // The libpng colour type of an OpenCV-ordered channel count.
 int colourType(int channels) {
   switch (channels) {
-    case 1: return PNG_COLOR_TYPE_GRAY;
-    case 3: return PNG_COLOR_TYPE_RGB;
-    case 4: return PNG_COLOR_TYPE_RGB_ALPHA;
+    case 1:
+      return PNG_COLOR_TYPE_GRAY;
+    case 3:
+      return PNG_COLOR_TYPE_RGB;
+    case 4:
+      return PNG_COLOR_TYPE_RGB_ALPHA;
   }
   throw std::runtime_error("PNG: " + std::to_string(channels) + " channels (1, 3 or 4 expected)");
 }

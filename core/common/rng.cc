@@ -24,17 +24,16 @@ uint64_t mix64(uint64_t z) {
 }  // namespace
 
 RngStream::RngStream(uint64_t scenario_seed, std::string_view name)
-    : engine_seed_(mix64(scenario_seed ^ mix64(fnv1a64(name.data(), name.size())))),
-      engine_(engine_seed_) {}
+    : engine_seed_(mix64(scenario_seed ^ mix64(fnv1a64(name.data(), name.size())))), engine_(engine_seed_) {}
 
-double RngStream::uniform() {
-  return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-}
+double RngStream::uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
 
 uint64_t RngStream::uniformInt(uint64_t n) {
   const uint64_t limit = UINT64_MAX - UINT64_MAX % n;
   uint64_t x;
-  do { x = engine_(); } while (x >= limit);
+  do {
+    x = engine_();
+  } while (x >= limit);
   return x % n;
 }
 

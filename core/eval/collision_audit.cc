@@ -57,14 +57,20 @@ CollisionAudit auditCollision(const CollisionAuditInput& in, const WorldTruth& t
     a.carved_clearance_m = truth.distance(carved_W);
     a.drift_since_carved_m = (carved_W - in.contact_W).norm();
   }
-  const bool drifted_onto = a.carved_clearance_m && *a.carved_clearance_m > th.clearance_m &&
-                            *a.drift_since_carved_m > th.clearance_m;
-  if (a.slam_points_on_part == 0) a.cause = "unseen";
-  else if (a.nearest_map_point_m >= 0 && a.nearest_map_point_m < th.clearance_m) a.cause = "planner";
-  else if (drifted_onto) a.cause = "drift";
-  else if (a.map_points_on_object == 0 || a.inside_free_space) a.cause = "seen-but-freed";
-  else if (a.vio_drift_m > th.clearance_m) a.cause = "drift";
-  else a.cause = "other";
+  const bool drifted_onto =
+      a.carved_clearance_m && *a.carved_clearance_m > th.clearance_m && *a.drift_since_carved_m > th.clearance_m;
+  if (a.slam_points_on_part == 0)
+    a.cause = "unseen";
+  else if (a.nearest_map_point_m >= 0 && a.nearest_map_point_m < th.clearance_m)
+    a.cause = "planner";
+  else if (drifted_onto)
+    a.cause = "drift";
+  else if (a.map_points_on_object == 0 || a.inside_free_space)
+    a.cause = "seen-but-freed";
+  else if (a.vio_drift_m > th.clearance_m)
+    a.cause = "drift";
+  else
+    a.cause = "other";
   return a;
 }
 

@@ -38,27 +38,27 @@ struct CollisionAuditThresholds {
 
 /// What the audit needs at the moment of contact.
 struct CollisionAuditInput {
-  std::string object;                 ///< the object hit (Shape::object of the world geom)
-  Vec3 contact_W = Vec3::Zero();      ///< contact point, true frame
+  std::string object;                       ///< the object hit (Shape::object of the world geom)
+  Vec3 contact_W = Vec3::Zero();            ///< contact point, true frame
   Pose T_true_from_est = Pose::Identity();  ///< the VIO frame → true frame at contact (latest frame)
-  double vio_drift_m = 0.0;           ///< |estimated − true| vehicle position at contact
-  int slam_points_on_object = 0;      ///< SLAM points ever tracked on the object
-  int slam_points_on_part = 0;        ///< ... on the part hit (the world geom)
-  const ExplorerSnapshot* map = nullptr;  ///< the method's map at contact (VIO frame)
+  double vio_drift_m = 0.0;                 ///< |estimated − true| vehicle position at contact
+  int slam_points_on_object = 0;            ///< SLAM points ever tracked on the object
+  int slam_points_on_part = 0;              ///< ... on the part hit (the world geom)
+  const ExplorerSnapshot* map = nullptr;    ///< the method's map at contact (VIO frame)
   const std::map<uint64_t, double>* free_space_first_seen_s = nullptr;  ///< element id → first seen
   /// (t_s, VIO frame → true frame) over the run, ascending in time (the metric's samples).
   const std::vector<std::pair<double, Pose>>* true_from_est_history = nullptr;
-  double commanded_speed_mps = 0.0;   ///< the tracker's reference speed at contact
-  double since_last_path_s = -1.0;    ///< time since the method's last path command (-1: none)
+  double commanded_speed_mps = 0.0;  ///< the tracker's reference speed at contact
+  double since_last_path_s = -1.0;   ///< time since the method's last path command (-1: none)
 };
 
 /// The audit of one collision.
 struct CollisionAudit {
   int slam_points_on_object = 0;
   int slam_points_on_part = 0;
-  int map_points_on_object = 0;       ///< map obstacle points on the object at contact
-  double nearest_map_point_m = -1.0;  ///< from the contact (VIO frame); -1: the map has none
-  bool inside_free_space = false;     ///< the contact lay inside a free-space element
+  int map_points_on_object = 0;              ///< map obstacle points on the object at contact
+  double nearest_map_point_m = -1.0;         ///< from the contact (VIO frame); -1: the map has none
+  bool inside_free_space = false;            ///< the contact lay inside a free-space element
   std::optional<double> free_space_since_s;  ///< since when (the earliest containing element)
   /// Where the contact lay when that free space was carved (the VIO correction of then): its
   /// distance from the true obstacles, and how far the drift since has moved it.
@@ -67,7 +67,7 @@ struct CollisionAudit {
   double vio_drift_m = 0.0;
   double commanded_speed_mps = 0.0;
   double since_last_path_s = -1.0;
-  std::string cause;                  ///< unseen, planner, seen-but-freed, drift, other
+  std::string cause;  ///< unseen, planner, seen-but-freed, drift, other
 };
 
 /// What the audit needs from the whole run, recorded as it goes (truth side): the object and
@@ -89,10 +89,10 @@ class CollisionAuditRecorder {
  private:
   const WorldTruth& truth_;
   FisheyeCamera camera_;
-  std::set<uint64_t> audited_tracks_;                  // SLAM points already attributed
-  std::map<std::string, int> slam_points_by_object_;   // SLAM points ever tracked, per object
-  std::map<std::string, int> slam_points_by_geom_;     // ... per part (world geom)
-  std::map<uint64_t, double> free_space_first_seen_s_; // free-space element id → first sampled
+  std::set<uint64_t> audited_tracks_;                   // SLAM points already attributed
+  std::map<std::string, int> slam_points_by_object_;    // SLAM points ever tracked, per object
+  std::map<std::string, int> slam_points_by_geom_;      // ... per part (world geom)
+  std::map<uint64_t, double> free_space_first_seen_s_;  // free-space element id → first sampled
   std::vector<std::pair<double, Pose>> true_from_est_history_;
 };
 

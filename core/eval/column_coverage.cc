@@ -52,7 +52,7 @@ int ColumnCoverage::markFreeSpace(const std::vector<FreeSpaceElement>& elements)
   int added = 0;
   for (const FreeSpaceElement& e : elements)
     added += e.footprint == FreeSpaceElement::Footprint::kSquare ? markSquare(e.centre.head<2>(), e.radius)
-                                                                : markDisk(e.centre.head<2>(), e.radius);
+                                                                 : markDisk(e.centre.head<2>(), e.radius);
   return added;
 }
 

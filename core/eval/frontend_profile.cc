@@ -49,7 +49,9 @@ FrontEndProfile FrontEndProfiler::result() const {
     if (!e.empty()) {
       band.median_m = quantile(e, 0.5);
       band.p90_m = quantile(e, 0.9);
-      const auto over = [&](double x) { return double(std::count_if(e.begin(), e.end(), [x](double v) { return v > x; })) / double(e.size()); };
+      const auto over = [&](double x) {
+        return double(std::count_if(e.begin(), e.end(), [x](double v) { return v > x; })) / double(e.size());
+      };
       band.share_over_half_m = over(0.5);
       band.share_over_2_m = over(2.0);
     }
@@ -61,7 +63,8 @@ FrontEndProfile FrontEndProfiler::result() const {
     if (t.seen >= 2) moves.push_back(t.max_move_m);
   out.tracks = static_cast<long>(moves.size());
   if (!moves.empty()) {
-    out.moved_share = double(std::count_if(moves.begin(), moves.end(), [](double m) { return m > kMovedM; })) / double(moves.size());
+    out.moved_share =
+        double(std::count_if(moves.begin(), moves.end(), [](double m) { return m > kMovedM; })) / double(moves.size());
     out.median_motion_m = quantile(moves, 0.5);
   }
   return out;

@@ -4,8 +4,7 @@
 
 namespace msb {
 
-MapSafetyCheck::MapSafetyCheck(const WorldTruth& truth, uint64_t seed, double max_intrusion_m,
-                               int samples_per_sphere)
+MapSafetyCheck::MapSafetyCheck(const WorldTruth& truth, uint64_t seed, double max_intrusion_m, int samples_per_sphere)
     : truth_(truth),
       samples_(seed, "map_safety_samples"),
       max_intrusion_m_(max_intrusion_m),

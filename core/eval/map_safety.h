@@ -18,15 +18,15 @@ namespace msb {
 
 /// Accumulated map-safety statistics.
 struct MapSafetyStats {
-  long events = 0, unsafe = 0;                          ///< spheres checked, unsafe ones
-  double volume = 0, unsafe_volume = 0;                 ///< m³
+  long events = 0, unsafe = 0;           ///< spheres checked, unsafe ones
+  double volume = 0, unsafe_volume = 0;  ///< m³
   std::map<std::string, long> unsafe_by_kind;
   std::map<std::string, double> unsafe_volume_by_kind;
   std::map<std::string, long> unsafe_by_object;
-  std::vector<double> intrusion_m;                      ///< how deep unsafe spheres reach
-  std::map<std::string, double> volume_by_kind;         ///< by the kind nearest the centre
+  std::vector<double> intrusion_m;               ///< how deep unsafe spheres reach
+  std::map<std::string, double> volume_by_kind;  ///< by the kind nearest the centre
   std::map<std::string, double> occupied_volume_by_kind;
-  double occupied_volume = 0;                           ///< Monte Carlo estimate, m³
+  double occupied_volume = 0;  ///< Monte Carlo estimate, m³
 };
 
 /// Checks spheres against a world's ground truth.

@@ -1,13 +1,14 @@
 // Determinism hashes of a run (docs/architecture.md, "Determinism"): FNV-1a over the final map and
-// the coverage record (the trajectory's hash is the loop's: tools/loop/records.h). Same scenario + seed + build on the same machine ⇒ the same hashes.
+// the coverage record (the trajectory's hash is the loop's: tools/loop/records.h). Same scenario + seed + build on the
+// same machine ⇒ the same hashes.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "core/eval/column_coverage.h"
-#include "core/explorer/snapshot.h"
 #include "core/eval/coverage_sample.h"
+#include "core/explorer/snapshot.h"
 
 namespace msb {
 

@@ -2,8 +2,7 @@
 
 namespace msb {
 
-PointTruth evaluatePoint(const SlamPoint& p, const Pose& T, const WorldTruth& truth,
-                         const FisheyeCamera& camera) {
+PointTruth evaluatePoint(const SlamPoint& p, const Pose& T, const WorldTruth& truth, const FisheyeCamera& camera) {
   PointTruth out;
   const Vec3 ray = T.linear() * camera.unproject(p.anchor_pixel);
   const auto hit = truth.raycast(T.translation(), ray, 400.0);

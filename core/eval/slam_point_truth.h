@@ -3,20 +3,20 @@
 #pragma once
 
 #include "core/camera/fisheye_camera.h"
-#include "core/geometry/world_truth.h"
 #include "core/common/messages.h"
+#include "core/geometry/world_truth.h"
 
 namespace msb {
 
 /// Ground-truth evaluation of one SLAM point.
 struct PointTruth {
-  bool has_surface = false;          ///< the anchor ray hits something within 400 m
-  double true_depth_m = 0.0;         ///< distance from the anchor camera to the true surface
-  double error_m = 0.0;              ///< |estimate − truth| in the anchor's estimate frame
+  bool has_surface = false;                     ///< the anchor ray hits something within 400 m
+  double true_depth_m = 0.0;                    ///< distance from the anchor camera to the true surface
+  double error_m = 0.0;                         ///< |estimate − truth| in the anchor's estimate frame
   ObstacleKind kind = ObstacleKind::kTextured;  ///< kind of the surface hit
-  bool interior = false;             ///< the anchor pixel's 3-px neighbours see the same shape
-  bool textureless_interior = false; ///< interior and textureless
-  int shape = -1;                    ///< index of the shape hit (WorldTruth::shapes())
+  bool interior = false;                        ///< the anchor pixel's 3-px neighbours see the same shape
+  bool textureless_interior = false;            ///< interior and textureless
+  int shape = -1;                               ///< index of the shape hit (WorldTruth::shapes())
 };
 
 /// The surface class of a shape for perception tables, from its object's name: ground, walls

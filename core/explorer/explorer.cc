@@ -31,7 +31,8 @@ std::optional<std::vector<Waypoint>> TakeoffSequence::step(bool path_finished) {
       if (path_finished) phase_ = Phase::kForward, sent_ = false;
       return std::nullopt;
     case Phase::kForward:
-      if (!sent_) return sent_ = true, std::vector<Waypoint>{{up + forward_m_ * Vec3(std::cos(yaw_), std::sin(yaw_), 0), yaw_}};
+      if (!sent_)
+        return sent_ = true, std::vector<Waypoint>{{up + forward_m_ * Vec3(std::cos(yaw_), std::sin(yaw_), 0), yaw_}};
       if (path_finished) phase_ = Phase::kDone;
       return std::nullopt;
     case Phase::kDone:

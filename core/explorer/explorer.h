@@ -22,19 +22,19 @@ namespace msb {
 
 /// What every method knows about its mission.
 struct ExplorerContext {
-  Aabb exploration_box;              ///< goals outside are ignored (estimate frame = world frame at start)
-  Pose start = Pose::Identity();     ///< body pose at start
-  uint64_t seed = 1;                 ///< scenario seed (for the method's RNG streams)
+  Aabb exploration_box;           ///< goals outside are ignored (estimate frame = world frame at start)
+  Pose start = Pose::Identity();  ///< body pose at start
+  uint64_t seed = 1;              ///< scenario seed (for the method's RNG streams)
 };
 
 /// The vehicle as the planner sees it (estimate frame), once per planning step.
 struct VehicleState {
   int64_t tick = 0;
   double t_s = 0.0;
-  Pose T_W_B = Pose::Identity();      ///< VIO estimate
-  Vec3 velocity_mps = Vec3::Zero();   ///< VIO estimate
-  TrajectoryReference reference;      ///< the tracker's current reference
-  bool path_finished = true;          ///< the last command is done (at rest, heading reached)
+  Pose T_W_B = Pose::Identity();     ///< VIO estimate
+  Vec3 velocity_mps = Vec3::Zero();  ///< VIO estimate
+  TrajectoryReference reference;     ///< the tracker's current reference
+  bool path_finished = true;         ///< the last command is done (at rest, heading reached)
 };
 
 /// An exploration method.

@@ -8,10 +8,14 @@ namespace msb {
 
 const char* obstacleKindName(ObstacleKind kind) {
   switch (kind) {
-    case ObstacleKind::kTextured: return "textured";
-    case ObstacleKind::kTextureless: return "textureless";
-    case ObstacleKind::kThin: return "thin";
-    case ObstacleKind::kGround: return "ground";
+    case ObstacleKind::kTextured:
+      return "textured";
+    case ObstacleKind::kTextureless:
+      return "textureless";
+    case ObstacleKind::kThin:
+      return "thin";
+    case ObstacleKind::kGround:
+      return "ground";
   }
   return "?";
 }
@@ -43,8 +47,10 @@ double Shape::signedDistance(const Vec3& p) const {
       const double dz = std::abs(q.z()) - size.z();
       return std::hypot(std::max(dr, 0.0), std::max(dz, 0.0)) + std::min(std::max(dr, dz), 0.0);
     }
-    case ShapeType::kSphere: return q.norm() - size.x();
-    case ShapeType::kHalfSpace: return q.z();
+    case ShapeType::kSphere:
+      return q.norm() - size.x();
+    case ShapeType::kHalfSpace:
+      return q.z();
   }
   return std::numeric_limits<double>::infinity();
 }
@@ -88,8 +94,7 @@ std::optional<double> Shape::raycast(const Vec3& o_w, const Vec3& d_w) const {
         for (double zc : {-size.z(), size.z()}) {
           const double t = (zc - o.z()) / d.z();
           const Vec3 hit = o + t * d;
-          if (t >= 0.0 && hit.x() * hit.x() + hit.y() * hit.y() <= size.x() * size.x())
-            best = std::min(best, t);
+          if (t >= 0.0 && hit.x() * hit.x() + hit.y() * hit.y() <= size.x() * size.x()) best = std::min(best, t);
         }
       }
       if (signedDistance(o_w) <= 0.0) return 0.0;
@@ -111,7 +116,9 @@ std::pair<Vec3, Vec3> Shape::bounds() const {
   Vec3 half;
   const Mat3 A = pose.linear().cwiseAbs();
   switch (type) {
-    case ShapeType::kBox: half = A * size; break;
+    case ShapeType::kBox:
+      half = A * size;
+      break;
     case ShapeType::kCylinder:
       // Extent of a disc of radius r with normal n along axis i: r·sqrt(1 − n_i²).
       for (int i = 0; i < 3; ++i) {
@@ -119,7 +126,9 @@ std::pair<Vec3, Vec3> Shape::bounds() const {
         half[i] = size.x() * std::sqrt(std::max(0.0, 1.0 - n * n)) + size.z() * std::abs(n);
       }
       break;
-    default: half = Vec3::Constant(size.x()); break;
+    default:
+      half = Vec3::Constant(size.x());
+      break;
   }
   return {pose.translation() - half, pose.translation() + half};
 }

@@ -30,11 +30,11 @@ enum class ShapeType { kBox, kCylinder, kSphere, kHalfSpace };
 ///  - half-space: everything below the pose's xy plane (pose z axis is the outward normal)
 struct Shape {
   ShapeType type = ShapeType::kBox;
-  Pose pose = Pose::Identity();   ///< T_W_S
-  Vec3 size = Vec3::Ones();       ///< see above
+  Pose pose = Pose::Identity();  ///< T_W_S
+  Vec3 size = Vec3::Ones();      ///< see above
   ObstacleKind kind = ObstacleKind::kTextured;
-  std::string name;               ///< MuJoCo geom name
-  std::string object;             ///< the object it belongs to, e.g. "building_3"
+  std::string name;    ///< MuJoCo geom name
+  std::string object;  ///< the object it belongs to, e.g. "building_3"
 
   /// Signed distance from p to the surface (negative inside).
   double signedDistance(const Vec3& p) const;

@@ -103,14 +103,12 @@ std::optional<RayHit> WorldTruth::raycast(const Vec3& o, const Vec3& dir, double
       if (miss) continue;
     }
     const auto t = shapes_[i].raycast(o, d);
-    if (t && *t <= max_range_m && (!best || *t < best->distance_m))
-      best = RayHit{*t, static_cast<int>(i)};
+    if (t && *t <= max_range_m && (!best || *t < best->distance_m)) best = RayHit{*t, static_cast<int>(i)};
   }
   return best;
 }
 
-std::vector<Column> WorldTruth::explorableColumns(const Aabb& box, double cell_m,
-                                                  double sample_m) const {
+std::vector<Column> WorldTruth::explorableColumns(const Aabb& box, double cell_m, double sample_m) const {
   std::vector<Column> out;
   const int nx = static_cast<int>(std::floor((box.max.x() - box.min.x()) / cell_m + 1e-9));
   const int ny = static_cast<int>(std::floor((box.max.y() - box.min.y()) / cell_m + 1e-9));
@@ -125,8 +123,7 @@ std::vector<Column> WorldTruth::explorableColumns(const Aabb& box, double cell_m
         for (int a = 0; a < ns && !free; ++a)
           for (int b = 0; b < ns && !free; ++b) {
             const Vec3 p(box.min.x() + ix * cell_m + (a + 0.5) * step_xy,
-                         box.min.y() + iy * cell_m + (b + 0.5) * step_xy,
-                         box.min.z() + (kz + 0.5) * step_z);
+                         box.min.y() + iy * cell_m + (b + 0.5) * step_xy, box.min.z() + (kz + 0.5) * step_z);
             free = !inside(p);
           }
       if (free) out.push_back({ix, iy});

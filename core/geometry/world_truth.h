@@ -46,17 +46,14 @@ class WorldTruth {
   /// `max_range_m`; beyond it returns max_range_m and shape -1.
   NearestObstacle nearest(const Vec3& p, double max_range_m = 50.0) const;
   /// Distance to the nearest obstacle surface (see nearest()).
-  double distance(const Vec3& p, double max_range_m = 50.0) const {
-    return nearest(p, max_range_m).distance_m;
-  }
+  double distance(const Vec3& p, double max_range_m = 50.0) const { return nearest(p, max_range_m).distance_m; }
   /// True if p lies inside (or on) any obstacle.
   bool inside(const Vec3& p) const;
   /// First obstacle hit by the ray o + t d (d need not be normalised), within max_range_m.
   std::optional<RayHit> raycast(const Vec3& o, const Vec3& d, double max_range_m = 1e6) const;
   /// Columns of `box` (cells of `cell_m`, from box.min) that are not fully occupied: at least
   /// one sample point on a `sample_m` lattice inside the column lies outside all obstacles.
-  std::vector<Column> explorableColumns(const Aabb& box, double cell_m = 2.5,
-                                        double sample_m = 0.5) const;
+  std::vector<Column> explorableColumns(const Aabb& box, double cell_m = 2.5, double sample_m = 0.5) const;
 
  private:
   template <class F>

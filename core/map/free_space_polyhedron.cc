@@ -39,8 +39,7 @@ struct FreeSpacePolyhedron::Impl {
   bool valid = false;
 };
 
-FreeSpacePolyhedron::FreeSpacePolyhedron(const std::vector<Vec3>& points_W, const Pose& T_W_C,
-                                         double max_angle_deg)
+FreeSpacePolyhedron::FreeSpacePolyhedron(const std::vector<Vec3>& points_W, const Pose& T_W_C, double max_angle_deg)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.T_C_W = T_W_C.inverse();

@@ -24,10 +24,10 @@ namespace msb {
 
 /// Vertices and faces of P_f.
 struct DepthMesh {
-  Vec3 camera_W = Vec3::Zero();               ///< camera centre (the fan apex)
-  std::vector<Vec3> vertices_W;               ///< lifted points (world frame)
-  std::vector<std::array<int, 3>> surface;    ///< depth-surface triangles (vertex indices)
-  std::vector<std::array<int, 2>> boundary;   ///< convex-hull edges of the 2D triangulation
+  Vec3 camera_W = Vec3::Zero();              ///< camera centre (the fan apex)
+  std::vector<Vec3> vertices_W;              ///< lifted points (world frame)
+  std::vector<std::array<int, 3>> surface;   ///< depth-surface triangles (vertex indices)
+  std::vector<std::array<int, 2>> boundary;  ///< convex-hull edges of the 2D triangulation
 };
 
 /// P_f with inside and distance queries. Immutable after construction.

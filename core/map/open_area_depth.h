@@ -23,13 +23,13 @@ namespace msb {
 
 /// OVDE parameters (docs/architecture.md §7 defaults).
 struct OpenAreaDepthConfig {
-  int grid = 6;                        ///< grid × grid virtual points
-  double central_fraction = 0.6;       ///< of the image width and height, centred
-  double range_m = 15.0;               ///< virtual depth
-  int max_poses = 10;                  ///< pose buffer size
-  double min_translation_m = 0.3;      ///< add a pose after this translation ...
-  double min_rotation_deg = 45.0;      ///< ... or this rotation
-  double min_parallax_rad = 0.07;      ///< activation threshold
+  int grid = 6;                    ///< grid × grid virtual points
+  double central_fraction = 0.6;   ///< of the image width and height, centred
+  double range_m = 15.0;           ///< virtual depth
+  int max_poses = 10;              ///< pose buffer size
+  double min_translation_m = 0.3;  ///< add a pose after this translation ...
+  double min_rotation_deg = 45.0;  ///< ... or this rotation
+  double min_parallax_rad = 0.07;  ///< activation threshold
   /// Which buffered poses must have seen a virtual point in their central view:
   /// "whole_buffer" — every buffered pose, as the paper states it (§III-B: "at the current pose
   /// p_k and also at previous poses p_{k-n}, ..., p_{k-1}");

@@ -47,8 +47,7 @@ double nearestDistance(const Vec3& c, const std::vector<Vec3>& pts) {
 }  // namespace
 
 SphereMap::SphereMap(const SphereMapConfig& config, const FisheyeCamera& camera, uint64_t seed)
-    : config_(checkValid(config)), camera_(camera), rng_(seed, "map_sampling"),
-      ovde_(config.ovde_params, camera) {}
+    : config_(checkValid(config)), camera_(camera), rng_(seed, "map_sampling"), ovde_(config.ovde_params, camera) {}
 
 double SphereMap::ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf,
                              const std::vector<Vec3>& constraints) const {
@@ -201,9 +200,8 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   MapUpdateStats st;
   // Points too uncertain in depth are left out of every step (off unless configured).
   SlamPointsFrame filtered;
-  const bool filter = std::any_of(frame_in.points.begin(), frame_in.points.end(), [&](const SlamPoint& p) {
-    return p.depth_std_m > config_.max_point_depth_std_m;
-  });
+  const bool filter = std::any_of(frame_in.points.begin(), frame_in.points.end(),
+                                  [&](const SlamPoint& p) { return p.depth_std_m > config_.max_point_depth_std_m; });
   if (filter) {
     filtered = frame_in;
     std::erase_if(filtered.points, [&](const SlamPoint& p) { return p.depth_std_m > config_.max_point_depth_std_m; });

@@ -53,31 +53,31 @@ class FreeSpacePolyhedron;
 
 /// Mapper parameters (docs/architecture.md §7 defaults).
 struct SphereMapConfig {
-  bool ovde = true;                  ///< open-area virtual depth
-  OpenAreaDepthConfig ovde_params;   ///< its parameters
-  bool dbof = true;                  ///< distance-based obstacle filtering
-  double dbof_alpha = 1.1;           ///< deletion factor α
-  double dbof_age_per_m = 0.0;       ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
-  double r_max_m = 10.0;             ///< sphere radius cap
-  double r_min_m = 1.4;              ///< spheres below are deleted / not created (paper: 1.6; docs/deviations.md)
-  int new_sphere_samples = 150;      ///< samples per update
-  double max_sample_range_m = 20.0;  ///< sampling along rays is capped here
-  double max_point_range_m = 20.0;   ///< SLAM points farther are not inserted as obstacles
-  double obstacle_spacing_m = 0.3;   ///< ρ
-  double sparsify_factor = 0.9;      ///< removal when |c_i − c_j| < factor·(r_i + r_j)/2
-  int min_points = 4;                ///< fewer input points: the update is skipped
-  double max_point_depth_std_m = 1e9;///< points with a larger 1σ depth uncertainty are ignored (off by default)
-  double max_view_angle_deg = 80.0;  ///< points farther off-axis are not triangulated
-  int frontier_surface_samples = 150;   ///< candidates on P_f's faces per update
-  int frontier_shell_samples = 150;     ///< candidates in sphere shells per update
-  double frontier_jitter_m = 0.96;      ///< Gaussian jitter of surface candidates
-  double shell_min_m = 0.48;            ///< shell inner offset from the sphere surface
-  double shell_max_m = 2.72;            ///< shell outer offset
-  double frontier_spacing_m = 1.5;      ///< between frontiers
-  double frontier_obstacle_gap_m = 1.5; ///< from every obstacle point
-  double frontier_range_m = 20.0;       ///< shell sampling around spheres within this range
-  double frontier_min_normal_z = -0.5;  ///< reject normals pointing down harder than this
-  double frontier_min_balance = 0.3;    ///< |mean direction| needed for a one-sided frontier
+  bool ovde = true;                 ///< open-area virtual depth
+  OpenAreaDepthConfig ovde_params;  ///< its parameters
+  bool dbof = true;                 ///< distance-based obstacle filtering
+  double dbof_alpha = 1.1;          ///< deletion factor α
+  double dbof_age_per_m = 0.0;   ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
+  double r_max_m = 10.0;         ///< sphere radius cap
+  double r_min_m = 1.4;          ///< spheres below are deleted / not created (paper: 1.6; docs/deviations.md)
+  int new_sphere_samples = 150;  ///< samples per update
+  double max_sample_range_m = 20.0;      ///< sampling along rays is capped here
+  double max_point_range_m = 20.0;       ///< SLAM points farther are not inserted as obstacles
+  double obstacle_spacing_m = 0.3;       ///< ρ
+  double sparsify_factor = 0.9;          ///< removal when |c_i − c_j| < factor·(r_i + r_j)/2
+  int min_points = 4;                    ///< fewer input points: the update is skipped
+  double max_point_depth_std_m = 1e9;    ///< points with a larger 1σ depth uncertainty are ignored (off by default)
+  double max_view_angle_deg = 80.0;      ///< points farther off-axis are not triangulated
+  int frontier_surface_samples = 150;    ///< candidates on P_f's faces per update
+  int frontier_shell_samples = 150;      ///< candidates in sphere shells per update
+  double frontier_jitter_m = 0.96;       ///< Gaussian jitter of surface candidates
+  double shell_min_m = 0.48;             ///< shell inner offset from the sphere surface
+  double shell_max_m = 2.72;             ///< shell outer offset
+  double frontier_spacing_m = 1.5;       ///< between frontiers
+  double frontier_obstacle_gap_m = 1.5;  ///< from every obstacle point
+  double frontier_range_m = 20.0;        ///< shell sampling around spheres within this range
+  double frontier_min_normal_z = -0.5;   ///< reject normals pointing down harder than this
+  double frontier_min_balance = 0.3;     ///< |mean direction| needed for a one-sided frontier
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -109,10 +109,10 @@ struct Frontier {
 struct MapUpdateStats {
   bool skipped = false;
   int input_points = 0;
-  int virtual_points = 0;            ///< active OVDE points added to P_f
+  int virtual_points = 0;  ///< active OVDE points added to P_f
   int deleted_obstacles = 0, protected_obstacles = 0;
   int updated_spheres = 0, deleted_spheres = 0, new_spheres = 0, sparsified_spheres = 0;
-  int sphere_samples = 0;            ///< step 7 samples that fell inside P_f's cone
+  int sphere_samples = 0;  ///< step 7 samples that fell inside P_f's cone
   int inserted_obstacles = 0;
   int new_frontiers = 0, dropped_frontiers = 0;
   std::vector<uint64_t> changed_spheres;  ///< ids created or grown in this update (still present)
@@ -160,8 +160,7 @@ class SphereMap {
   const SphereMapConfig& config() const { return config_; }
 
   /// The radius rule (step 6) for a centre, given P_f and the constraining points.
-  double ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf,
-                    const std::vector<Vec3>& constraints) const;
+  double ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf, const std::vector<Vec3>& constraints) const;
 
   /// Adds a sphere directly (tests, map loading); returns its id. Links it into the graph.
   uint64_t addSphere(const Vec3& centre, double radius);
@@ -189,15 +188,15 @@ class SphereMap {
   void sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, MapUpdateStats& st);
   void setRadius(uint64_t id, double r);
   // The steps of update() (numbered as there).
-  std::vector<Vec3> pointsInView(const SlamPointsFrame& frame) const;                          // 1
+  std::vector<Vec3> pointsInView(const SlamPointsFrame& frame) const;                            // 1
   std::vector<Vec3> applyDbof(const SlamPointsFrame& frame, const FreeSpacePolyhedron& real_pf,  // 5
                               MapUpdateStats& st);
   void updateSpheresNear(const FreeSpacePolyhedron& pf, const std::vector<Vec3>& constraints,  // 6
                          std::vector<uint64_t>& touched, MapUpdateStats& st);
-  void sampleNewSpheres(const SlamPointsFrame& frame, const FreeSpacePolyhedron& pf,             // 7
+  void sampleNewSpheres(const SlamPointsFrame& frame, const FreeSpacePolyhedron& pf,  // 7
                         const std::vector<Vec3>& constraints, std::vector<uint64_t>& touched, MapUpdateStats& st);
-  void sparsifyTouched(std::vector<uint64_t>& touched, MapUpdateStats& st);                     // 8
-  void insertFrameObstacles(const SlamPointsFrame& frame, MapUpdateStats& st);                 // 9
+  void sparsifyTouched(std::vector<uint64_t>& touched, MapUpdateStats& st);     // 8
+  void insertFrameObstacles(const SlamPointsFrame& frame, MapUpdateStats& st);  // 9
 
   SphereMapConfig config_;
   FisheyeCamera camera_;
@@ -212,7 +211,7 @@ class SphereMap {
   std::vector<std::pair<Vec3, double>> dirty_;  // regions changed since the last re-validation
   PointGrid frontier_grid_{8.0};  // coarse: frontiers are sparse and queries reach 1.5–13 m (docs/performance.md)
   uint64_t next_sphere_ = 1, next_obstacle_ = 1, next_frontier_ = 1;
-  double flown_m_ = 0.0;                       // camera path length over the updates (estimate frame)
+  double flown_m_ = 0.0;  // camera path length over the updates (estimate frame)
   std::optional<Vec3> last_camera_;
 };
 

@@ -10,9 +10,8 @@ namespace msb {
 std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) const {
   const auto& c = config_;
   // Spacing from other frontiers and from every obstacle point.
-  if (obstacle_grid_.anyNear(x, c.frontier_obstacle_gap_m, [&](uint64_t, const Vec3& q) {
-        return (q - x).norm() < c.frontier_obstacle_gap_m;
-      }))
+  if (obstacle_grid_.anyNear(x, c.frontier_obstacle_gap_m,
+                             [&](uint64_t, const Vec3& q) { return (q - x).norm() < c.frontier_obstacle_gap_m; }))
     return std::nullopt;
   if (frontier_grid_.anyNear(x, c.frontier_spacing_m, [&](uint64_t j, const Vec3& q) {
         return j != self && (q - x).norm() < c.frontier_spacing_m;
@@ -33,9 +32,8 @@ std::optional<Vec3> SphereMap::frontierNormal(const Vec3& x, uint64_t self) cons
       bool blocked = false;
       for (double t = c.frontier_obstacle_gap_m; t <= d - s.radius + 0.3 && !blocked; t += 0.2) {
         const Vec3 y = x + t * dir;
-        blocked = obstacle_grid_.anyNear(y, c.obstacle_spacing_m, [&](uint64_t, const Vec3& q) {
-          return (q - y).norm() < c.obstacle_spacing_m;
-        });
+        blocked = obstacle_grid_.anyNear(
+            y, c.obstacle_spacing_m, [&](uint64_t, const Vec3& q) { return (q - y).norm() < c.obstacle_spacing_m; });
       }
       if (blocked) continue;
       dirs.push_back(dir);
@@ -77,8 +75,10 @@ int SphereMap::revalidate(const std::vector<uint64_t>& ids) {
   for (uint64_t id : ids) {
     Frontier& f = frontiers_.at(id);
     const auto n = frontierNormal(f.position, id);
-    if (!n) drop.push_back(id);
-    else f.normal = *n;
+    if (!n)
+      drop.push_back(id);
+    else
+      f.normal = *n;
   }
   for (uint64_t id : drop) {
     frontier_grid_.erase(id, frontiers_.at(id).position);
@@ -97,7 +97,8 @@ void SphereMap::sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, 
   for (const auto& t : tris) cumulative.push_back(total += 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm());
   for (int i = 0; i < c.frontier_surface_samples && total > 0; ++i) {
     const double pick = rng_.uniform(0, total);
-    const size_t k = std::min(tris.size() - 1, size_t(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()));
+    const size_t k = std::min(
+        tris.size() - 1, size_t(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()));
     double a = rng_.uniform(), b = rng_.uniform();
     if (a + b > 1) a = 1 - a, b = 1 - b;
     const auto& t = tris[k];

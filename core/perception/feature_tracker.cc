@@ -33,8 +33,8 @@ void dropOutsideWindowRange(const std::vector<cv::Point2f>& points, cv::Size win
   for (size_t i = 0; i < points.size() && i < status.size(); ++i) {
     if (!status[i]) continue;
     const float x = std::floor(points[i].x - half_w), y = std::floor(points[i].y - half_h);
-    const bool inside = x >= float(-window.width) && x < float(image.width) && y >= float(-window.height) &&
-                        y < float(image.height);
+    const bool inside =
+        x >= float(-window.width) && x < float(image.width) && y >= float(-window.height) && y < float(image.height);
     if (!inside) status[i] = 0;
   }
 }
@@ -95,8 +95,9 @@ KltFeatureTracker::KltFeatureTracker(const FeatureTrackerConfig& config, const F
   if (config_.border_px > 0) {
     cv::Mat padded;
     cv::copyMakeBorder(valid_mask_, padded, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
-    cv::erode(padded, padded,
-              cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * config_.border_px + 1, 2 * config_.border_px + 1)));
+    cv::erode(
+        padded, padded,
+        cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * config_.border_px + 1, 2 * config_.border_px + 1)));
     valid_mask_ = padded(cv::Rect(1, 1, camera.width(), camera.height())).clone();
   }
 }
@@ -127,7 +128,8 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
     const cv::TermCriteria crit(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations, 0.01);
     // No error output: the tracker never reads it, and OpenCV would spend one more window pass
     // per point on it. Its one side effect on the status is reproduced below.
-    cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, cv::noArray(), win, config_.klt_pyramid_levels, crit);
+    cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, cv::noArray(), win, config_.klt_pyramid_levels,
+                             crit);
     dropOutsideWindowRange(p1, win, img.size(), st_f);
     // Backward pass only for the points the forward pass tracked: LK solves every point on its
     // own, so this gives the same results for them and skips the lost ones.
@@ -143,12 +145,14 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
       for (size_t k : forward_ok) p0_back_ok.push_back(p0[k]);
       st_b_ok.assign(forward_ok.size(), 1);
     } else if (!p1_ok.empty()) {
-      cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1_ok, p0_back_ok, st_b_ok, cv::noArray(), win, config_.klt_pyramid_levels, crit);
+      cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1_ok, p0_back_ok, st_b_ok, cv::noArray(), win,
+                               config_.klt_pyramid_levels, crit);
       dropOutsideWindowRange(p0_back_ok, win, img.size(), st_b_ok);
     }
     st_b.assign(p0.size(), 0);
     p0_back.assign(p0.size(), cv::Point2f());
-    for (size_t k = 0; k < forward_ok.size(); ++k) st_b[forward_ok[k]] = st_b_ok[k], p0_back[forward_ok[k]] = p0_back_ok[k];
+    for (size_t k = 0; k < forward_ok.size(); ++k)
+      st_b[forward_ok[k]] = st_b_ok[k], p0_back[forward_ok[k]] = p0_back_ok[k];
     std::vector<Vec2> from, to;
     for (size_t i = 0; i < p0.size(); ++i) {
       if (!st_f[i] || !st_b[i]) continue;
@@ -208,7 +212,10 @@ void KltFeatureTracker::detect(const cv::Mat& img, std::vector<Track>& tracks, i
     const int cy = std::min(config_.grid_rows - 1, int(t.pixel.y() * config_.grid_rows / img.rows));
     ++cell_count[cy * config_.grid_cols + cx];
   }
-  struct Candidate { cv::KeyPoint kp; int cell; };
+  struct Candidate {
+    cv::KeyPoint kp;
+    int cell;
+  };
   std::vector<Candidate> candidates;
   // A cell already full stays full (counts only grow below), so its corners could never be
   // taken: it is not searched.

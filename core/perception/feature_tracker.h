@@ -24,20 +24,20 @@ namespace msb {
 
 /// One tracked feature in the current frame.
 struct Track {
-  uint64_t id = 0;      ///< stable over the track's life
-  Vec2 pixel;           ///< fisheye pixel (continuous, centres at integers)
-  int age = 0;          ///< frames since first detection (0 = new in this frame)
+  uint64_t id = 0;  ///< stable over the track's life
+  Vec2 pixel;       ///< fisheye pixel (continuous, centres at integers)
+  int age = 0;      ///< frames since first detection (0 = new in this frame)
 };
 
 /// Tracks in one frame.
 struct TrackFrame {
   int64_t tick = 0;
   double t_s = 0.0;
-  std::vector<Track> tracks;   ///< sorted by id
-  int new_tracks = 0;          ///< detected in this frame
-  int lost_tracks = 0;         ///< tracks of the previous frame not continued
-  int ransac_rejected = 0;     ///< tracked pairs dropped as epipolar outliers
-  int ransac_tested = 0;       ///< tracked pairs the epipolar test was applied to
+  std::vector<Track> tracks;  ///< sorted by id
+  int new_tracks = 0;         ///< detected in this frame
+  int lost_tracks = 0;        ///< tracks of the previous frame not continued
+  int ransac_rejected = 0;    ///< tracked pairs dropped as epipolar outliers
+  int ransac_tested = 0;      ///< tracked pairs the epipolar test was applied to
 };
 
 /// Tracks continued from the previous frame (age ≥ 1): what tracking loss counts (a frame whose
@@ -53,22 +53,22 @@ void dropOutsideWindowRange(const std::vector<cv::Point2f>& points, cv::Size win
 
 /// Tracker settings (OpenVINS-like defaults, docs/architecture.md §6).
 struct FeatureTrackerConfig {
-  int max_tracks = 400;              ///< total tracks
-  int grid_cols = 5;                 ///< detection grid
+  int max_tracks = 400;  ///< total tracks
+  int grid_cols = 5;     ///< detection grid
   int grid_rows = 3;
-  int fast_threshold = 15;           ///< FAST intensity threshold
-  double min_distance_px = 20.0;     ///< between features
-  int klt_window_px = 15;            ///< LK window side (OpenVINS TrackKLT: 15×15)
-  int klt_pyramid_levels = 5;        ///< pyramid levels above the base (OpenVINS TrackKLT: pyr_levels 5)
+  int fast_threshold = 15;        ///< FAST intensity threshold
+  double min_distance_px = 20.0;  ///< between features
+  int klt_window_px = 15;         ///< LK window side (OpenVINS TrackKLT: 15×15)
+  int klt_pyramid_levels = 5;     ///< pyramid levels above the base (OpenVINS TrackKLT: pyr_levels 5)
   int klt_max_iterations = 30;
   bool forward_backward_check = false;  ///< track back and drop inconsistent tracks (TrackKLT does not: off)
-  double fb_max_error_px = 1.0;      ///< forward–backward consistency threshold (with the check)
-  int border_px = 8;                 ///< no features this close to the image or FoV border
+  double fb_max_error_px = 1.0;         ///< forward–backward consistency threshold (with the check)
+  int border_px = 8;                    ///< no features this close to the image or FoV border
   bool equalize_histogram = true;
-  bool ransac = true;                ///< epipolar outlier rejection of tracked pairs
-  double ransac_threshold_px = 1.0;  ///< epipolar error threshold (pixels at the image centre)
-  double ransac_max_angle_deg = 80.0;///< bearings used for the estimate (normalised coords)
-  int ransac_min_pairs = 10;         ///< fewer usable pairs: no rejection this frame
+  bool ransac = true;                  ///< epipolar outlier rejection of tracked pairs
+  double ransac_threshold_px = 1.0;    ///< epipolar error threshold (pixels at the image centre)
+  double ransac_max_angle_deg = 80.0;  ///< bearings used for the estimate (normalised coords)
+  int ransac_min_pairs = 10;           ///< fewer usable pairs: no rejection this frame
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -101,7 +101,7 @@ class KltFeatureTracker final : public FeatureSource {
 
   FeatureTrackerConfig config_;
   FisheyeCamera camera_;
-  cv::Mat valid_mask_;               // pixels inside the FoV, away from its border
+  cv::Mat valid_mask_;  // pixels inside the FoV, away from its border
   std::vector<cv::Mat> prev_pyramid_;
   std::vector<Track> prev_tracks_;
   uint64_t next_id_ = 1;

@@ -24,15 +24,15 @@ namespace msb {
 
 /// Oracle feature source settings.
 struct OracleFeatureConfig {
-  int max_tracks = 400;               ///< tracks per frame, as the KLT tracker
-  double min_distance_px = 20.0;      ///< between new features and existing ones
-  double pixel_noise_px = 0.5;        ///< 1σ Gaussian noise per observation and axis
-  double landmark_spacing_m = 1.0;    ///< one landmark per spacing² of surface
-  double max_range_m = 60.0;          ///< landmarks farther from the camera are not seen
-  double ground_margin_m = 20.0;      ///< ground planes carry landmarks this far beyond the objects
-  int border_px = 8;                  ///< no features this close to the image or FoV border
-  bool textureless_landmarks = false; ///< landmarks on textureless surfaces too (a perfect front end)
-  bool thin_landmarks = false;        ///< landmarks on thin rods too
+  int max_tracks = 400;                ///< tracks per frame, as the KLT tracker
+  double min_distance_px = 20.0;       ///< between new features and existing ones
+  double pixel_noise_px = 0.5;         ///< 1σ Gaussian noise per observation and axis
+  double landmark_spacing_m = 1.0;     ///< one landmark per spacing² of surface
+  double max_range_m = 60.0;           ///< landmarks farther from the camera are not seen
+  double ground_margin_m = 20.0;       ///< ground planes carry landmarks this far beyond the objects
+  int border_px = 8;                   ///< no features this close to the image or FoV border
+  bool textureless_landmarks = false;  ///< landmarks on textureless surfaces too (a perfect front end)
+  bool thin_landmarks = false;         ///< landmarks on thin rods too
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -64,10 +64,10 @@ class OracleFeatureSource final : public FeatureSource {
   FisheyeCamera camera_;
   const WorldTruth& truth_;
   RngStream noise_;
-  std::vector<Landmark> landmarks_;       // shuffled once, so index order is spatially random
-  std::vector<uint64_t> track_of_;        // landmark → current track id (0 = not tracked)
-  std::vector<size_t> tracked_;           // landmarks tracked in the previous frame
-  std::vector<int> age_;                  // per landmark
+  std::vector<Landmark> landmarks_;  // shuffled once, so index order is spatially random
+  std::vector<uint64_t> track_of_;   // landmark → current track id (0 = not tracked)
+  std::vector<size_t> tracked_;      // landmarks tracked in the previous frame
+  std::vector<int> age_;             // per landmark
   uint64_t next_id_ = 1;
 };
 

@@ -26,7 +26,8 @@ SlamPointEstimator::SlamPointEstimator(const SlamPointsConfig& config, const Fis
     : config_(checkValid(config)),
       camera_(camera),
       window_clones_(std::max(2, int(std::lround(config.max_clones * frame_rate_hz / config.reference_rate_hz)))) {
-  if (!(frame_rate_hz > 0)) throw ConfigError("camera_stream.rate_hz", "the SLAM-point window needs a positive frame rate");
+  if (!(frame_rate_hz > 0))
+    throw ConfigError("camera_stream.rate_hz", "the SLAM-point window needs a positive frame rate");
 }
 
 namespace {
@@ -40,7 +41,8 @@ void tangentBasis(const Vec3& b, Vec3* e1, Vec3* e2) {
 
 }  // namespace
 
-bool SlamPointEstimator::refine(const std::vector<std::pair<Vec2, Pose>>& obs, double init_depth, SlamPoint* out) const {
+bool SlamPointEstimator::refine(const std::vector<std::pair<Vec2, Pose>>& obs, double init_depth,
+                                SlamPoint* out) const {
   if (obs.size() < 2 || !(init_depth > 0)) return false;
   const Pose& T_W_A = obs.front().second;
   const Vec3 b0 = camera_.unproject(obs.front().first);

@@ -97,18 +97,16 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
       map_(config.map, camera, context.seed),
       viewpoints_(config.planner.viewpoints, context.seed),
       takeoff_(context.start, config.planner) {
-  for (const char* k : {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress",
-                        "goals_failed_unreachable", "goals_failed_blocked", "goals_global", "blocked_stops",
-                        "paths_sent", "idle_turns", "returns_to_free_space", "returns_refused", "edges_blocked", "bridges",
-                        "relaxed_steps", "links_used", "clearance_escapes"})
+  for (const char* k :
+       {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress", "goals_failed_unreachable",
+        "goals_failed_blocked", "goals_global", "blocked_stops", "paths_sent", "idle_turns", "returns_to_free_space",
+        "returns_refused", "edges_blocked", "bridges", "relaxed_steps", "links_used", "clearance_escapes"})
     counters_[k] = 0;
 }
 
 MonoSpheresExplorer::~MonoSpheresExplorer() = default;
 
-void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) {
-  map_.update(frame);
-}
+void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) { map_.update(frame); }
 
 PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
   last_send_s_ = s.t_s;
@@ -261,8 +259,10 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   updateViewpoints(s, reachable);
   checkActiveGoal(s, field);
   if (!goal_) takeNewGoal(s, field);
-  if (goal_) no_goal_since_s_ = -1.0;
-  else if (no_goal_since_s_ < 0) no_goal_since_s_ = s.t_s;
+  if (goal_)
+    no_goal_since_s_ = -1.0;
+  else if (no_goal_since_s_ < 0)
+    no_goal_since_s_ = s.t_s;
   // 5. Without a goal: bridge out of the vehicle's part of the graph, or look around.
   if (!goal_) return withoutGoal(s, field, reachable);
   // 6. Fly the route to the goal.
@@ -298,7 +298,8 @@ std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleS
 }
 
 bool MonoSpheresExplorer::keepsClearance(const Vec3& a, const Vec3& b) const {
-  return everySample(a, b, 0.3, [&](const Vec3& x) { return !map_.anyObstacleNear(x, config_.planner.check_clearance_m); });
+  return everySample(a, b, 0.3,
+                     [&](const Vec3& x) { return !map_.anyObstacleNear(x, config_.planner.check_clearance_m); });
 }
 
 bool MonoSpheresExplorer::nearTrail(const Vec3& x, size_t from, size_t to) const {
@@ -359,9 +360,10 @@ SphereLinks MonoSpheresExplorer::linkParts() const {
   // The shortest acceptable candidate of each pair becomes a link.
   for (auto& [key, list] : candidates) {
     std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end(), [](const Candidate& x, const Candidate& y) {
-                 return x.a == y.a && x.b == y.b && x.from == y.from;
-               }), list.end());
+    list.erase(std::unique(
+                   list.begin(), list.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.a == y.a && x.b == y.b && x.from == y.from; }),
+               list.end());
     int tests = 0;
     for (const Candidate& c : list) {
       if (tests++ >= pc.link_tests_per_pair) break;
@@ -388,8 +390,9 @@ void MonoSpheresExplorer::updateViewpoints(const VehicleState& s, const std::vec
   const bool relaxed = !goal_ && no_goal_since_s_ >= 0 && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s &&
                        viewpoints_.viewpoints().empty();
   if (relaxed) ++counters_["relaxed_steps"];
-  viewpoints_.update(map_, reachable, s.T_W_B.translation(), yawOf(s.T_W_B.linear()), s.t_s, goal_,
-                     [&box](const Vec3& x) { return box.contains(x); }, relaxed);
+  viewpoints_.update(
+      map_, reachable, s.T_W_B.translation(), yawOf(s.T_W_B.linear()), s.t_s, goal_,
+      [&box](const Vec3& x) { return box.contains(x); }, relaxed);
 }
 
 void MonoSpheresExplorer::checkActiveGoal(const VehicleState& s, const SphereCostField& field) {
@@ -525,7 +528,8 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
 std::vector<FreeSpaceElement> MonoSpheresExplorer::freeSpace() const {
   std::vector<FreeSpaceElement> out;
   out.reserve(map_.spheres().size());
-  for (const auto& [id, sp] : map_.spheres()) out.push_back({id, sp.centre, sp.radius, FreeSpaceElement::Footprint::kDisk});
+  for (const auto& [id, sp] : map_.spheres())
+    out.push_back({id, sp.centre, sp.radius, FreeSpaceElement::Footprint::kDisk});
   return out;
 }
 
@@ -579,6 +583,5 @@ std::map<std::string, double> MonoSpheresExplorer::counters() const {
   c["frontiers_reachable"] = reachable_frontiers;
   return c;
 }
-
 
 }  // namespace msb

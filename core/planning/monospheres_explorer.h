@@ -39,52 +39,52 @@
 #include <memory>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/map/sphere_map.h"
 #include "core/explorer/explorer.h"
+#include "core/explorer/takeoff.h"
+#include "core/map/sphere_map.h"
 #include "core/planning/path_shaping.h"
 #include "core/planning/sphere_graph_search.h"
-#include "core/explorer/takeoff.h"
 #include "core/planning/viewpoint_set.h"
 
 namespace msb {
 
 /// Planner parameters (docs/architecture.md §8 defaults).
 struct MonoSpheresPlannerConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, start_forward_m
-  bool fff = true;                          ///< forced forward flight
-  double fff_turn_rate_rad_per_m = 0.314;   ///< heading change allowed per metre before a viewpoint
-  double align_before_route_deg = 90.0;     ///< FFF: turn in place first if the route starts this far off
-  ViewpointConfig viewpoints;               ///< sampling, value, VPB
-  SafetyCostConfig safety;                  ///< A* edge cost
-  double start_max_outside_m = 1.5;         ///< start sphere may be this far outside
-  double local_radius_m = 15.0;             ///< local goals lie within this distance
-  int local_misses_before_global = 3;       ///< steps without a local goal before searching all
-  int max_goal_candidates = 10;             ///< FFF feasibility checks per goal choice
-  double carrot_distance_m = 15.0;          ///< path sent up to this far along the route
-  double replan_period_s = 0.4;             ///< how often the path is re-sent
-  double check_ahead_m = 5.0;               ///< predicted-trajectory check length ...
-  double check_clearance_m = 1.0;           ///< ... and clearance from obstacle points
-  bool allow_moving_away = true;            ///< true: a sample inside the clearance passes if it is farther
-                                            ///< from that point than the vehicle (the "approach rule");
-                                            ///< false: any point inside the clearance blocks (the design)
-  int max_blocked_steps = 5;                ///< consecutive blocked steps fail the goal
-  int max_route_repairs = 8;                ///< searches per step, each blocking one too-close edge
-  double blocked_edge_timeout_s = 30.0;     ///< a graph edge found too close to obstacles stays blocked this long
-  double escape_margin_m = 0.3;             ///< a blocked vehicle inside a clearance backs out this far beyond it
-  int bridge_below_reachable = 10;          ///< without a goal and fewer reachable spheres than this ...
-  double bridge_range_m = 15.0;             ///< ... fly straight to the nearest other sphere within this range
-  double bridge_after_idle_s = 5.0;         ///< ... or after this long without any goal
-  double link_gap_m = 4.0;                  ///< parts are linked across gaps up to this wide ...
-  double link_trail_radius_m = 2.0;         ///< ... or along the vehicle's path (within this) ...
-  double link_trail_max_m = 25.0;           ///< ... over at most this much of it
-  double trail_spacing_m = 1.0;             ///< the path is remembered every this far
-  int link_tests_per_pair = 4;              ///< candidate links tested per pair of parts
-  double return_range_m = 6.0;              ///< return to free space: spheres this far outside
-  double shortcut_depth_m = 0.3;            ///< shortcut samples must lie this deep inside a sphere
-  double reach_distance_m = 1.0;            ///< goal reached within ...
-  double reach_angle_deg = 90.0;            ///< ... and this heading difference
-  double no_progress_timeout_s = 10.0;      ///< goal failed without 0.5 m progress for this long
-  double idle_turn_deg = 90.0;              ///< without goals, turn in place by this much ...
-  double idle_turn_period_s = 3.0;          ///< ... this often
+  bool fff = true;                                 ///< forced forward flight
+  double fff_turn_rate_rad_per_m = 0.314;          ///< heading change allowed per metre before a viewpoint
+  double align_before_route_deg = 90.0;            ///< FFF: turn in place first if the route starts this far off
+  ViewpointConfig viewpoints;                      ///< sampling, value, VPB
+  SafetyCostConfig safety;                         ///< A* edge cost
+  double start_max_outside_m = 1.5;                ///< start sphere may be this far outside
+  double local_radius_m = 15.0;                    ///< local goals lie within this distance
+  int local_misses_before_global = 3;              ///< steps without a local goal before searching all
+  int max_goal_candidates = 10;                    ///< FFF feasibility checks per goal choice
+  double carrot_distance_m = 15.0;                 ///< path sent up to this far along the route
+  double replan_period_s = 0.4;                    ///< how often the path is re-sent
+  double check_ahead_m = 5.0;                      ///< predicted-trajectory check length ...
+  double check_clearance_m = 1.0;                  ///< ... and clearance from obstacle points
+  bool allow_moving_away = true;                   ///< true: a sample inside the clearance passes if it is farther
+                                                   ///< from that point than the vehicle (the "approach rule");
+                                                   ///< false: any point inside the clearance blocks (the design)
+  int max_blocked_steps = 5;                       ///< consecutive blocked steps fail the goal
+  int max_route_repairs = 8;                       ///< searches per step, each blocking one too-close edge
+  double blocked_edge_timeout_s = 30.0;  ///< a graph edge found too close to obstacles stays blocked this long
+  double escape_margin_m = 0.3;          ///< a blocked vehicle inside a clearance backs out this far beyond it
+  int bridge_below_reachable = 10;       ///< without a goal and fewer reachable spheres than this ...
+  double bridge_range_m = 15.0;          ///< ... fly straight to the nearest other sphere within this range
+  double bridge_after_idle_s = 5.0;      ///< ... or after this long without any goal
+  double link_gap_m = 4.0;               ///< parts are linked across gaps up to this wide ...
+  double link_trail_radius_m = 2.0;      ///< ... or along the vehicle's path (within this) ...
+  double link_trail_max_m = 25.0;        ///< ... over at most this much of it
+  double trail_spacing_m = 1.0;          ///< the path is remembered every this far
+  int link_tests_per_pair = 4;           ///< candidate links tested per pair of parts
+  double return_range_m = 6.0;           ///< return to free space: spheres this far outside
+  double shortcut_depth_m = 0.3;         ///< shortcut samples must lie this deep inside a sphere
+  double reach_distance_m = 1.0;         ///< goal reached within ...
+  double reach_angle_deg = 90.0;         ///< ... and this heading difference
+  double no_progress_timeout_s = 10.0;   ///< goal failed without 0.5 m progress for this long
+  double idle_turn_deg = 90.0;           ///< without goals, turn in place by this much ...
+  double idle_turn_period_s = 3.0;       ///< ... this often
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -130,20 +130,20 @@ class MonoSpheresExplorer : public Explorer {
  private:
   // One exploration step, in the order of the file comment; each step below is one part of it.
   std::optional<PathCommand> explore(const VehicleState& s);
-  EdgeFilter passable() const;                                        // graph edges not blocked
+  EdgeFilter passable() const;                                          // graph edges not blocked
   std::optional<PathCommand> returnToFreeSpace(const VehicleState& s);  // outside every sphere
-  SphereLinks linkParts() const;                                      // links between graph parts
-  bool keepsClearance(const Vec3& a, const Vec3& b) const;            // no sample near a point
-  bool nearTrail(const Vec3& x, size_t from, size_t to) const;        // within reach of the trail
+  SphereLinks linkParts() const;                                        // links between graph parts
+  bool keepsClearance(const Vec3& a, const Vec3& b) const;              // no sample near a point
+  bool nearTrail(const Vec3& x, size_t from, size_t to) const;          // within reach of the trail
   void updateViewpoints(const VehicleState& s, const std::vector<uint64_t>& reachable);
   void checkActiveGoal(const VehicleState& s, const SphereCostField& field);  // reached / failed
   void takeNewGoal(const VehicleState& s, const SphereCostField& field);
   std::optional<PathCommand> withoutGoal(const VehicleState& s, const SphereCostField& field,
-                                         const std::vector<uint64_t>& reachable);  // bridge or turn
+                                         const std::vector<uint64_t>& reachable);       // bridge or turn
   std::optional<PathCommand> followGoal(const VehicleState& s, uint64_t start_sphere);  // route, carrot
   std::optional<uint64_t> chooseGoal(const VehicleState& s, const SphereCostField& field);
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
-  bool segmentFree(const Vec3& a, const Vec3& b) const;   // inside the sphere union and clear
+  bool segmentFree(const Vec3& a, const Vec3& b) const;  // inside the sphere union and clear
   // True if x lies within the clearance of an obstacle point; with allow_moving_away only if x is
   // also closer to it than `here` (the vehicle), so a vehicle already too close may move away.
   bool tooClose(const Vec3& x, const Vec3& here) const;
@@ -167,10 +167,10 @@ class MonoSpheresExplorer : public Explorer {
   int local_misses_ = 0, blocked_steps_ = 0;
   double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9, no_goal_since_s_ = -1.0;
   std::vector<Vec3> last_path_;
-  std::vector<Vec3> trail_;                    // estimated vehicle positions, trail_spacing_m apart
-  SphereLinks links_;                          // this step's links between graph parts
-  std::vector<uint64_t> reachable_;            // this step's reachable spheres (ascending)
-  uint64_t transit_sphere_ = 0;                // far end of the link being crossed
+  std::vector<Vec3> trail_;          // estimated vehicle positions, trail_spacing_m apart
+  SphereLinks links_;                // this step's links between graph parts
+  std::vector<uint64_t> reachable_;  // this step's reachable spheres (ascending)
+  uint64_t transit_sphere_ = 0;      // far end of the link being crossed
   double transit_until_s_ = -1.0;
   std::map<std::pair<uint64_t, uint64_t>, double> blocked_edges_;  // (low id, high id) → until
   std::map<std::string, double> counters_;

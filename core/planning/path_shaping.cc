@@ -29,9 +29,8 @@ double pathLength(const std::vector<Vec3>& pts) {
   return l;
 }
 
-HeadingPlan assignHeadings(const std::vector<Vec3>& pts, double goal_heading, bool fff,
-                           double turn_rate_per_m, double spacing_m,
-                           std::optional<double> current_heading) {
+HeadingPlan assignHeadings(const std::vector<Vec3>& pts, double goal_heading, bool fff, double turn_rate_per_m,
+                           double spacing_m, std::optional<double> current_heading) {
   HeadingPlan plan;
   if (pts.size() < 2) {
     if (!pts.empty()) plan.waypoints.push_back({pts.back(), goal_heading});
@@ -79,8 +78,8 @@ HeadingPlan assignHeadings(const std::vector<Vec3>& pts, double goal_heading, bo
     }
     s += len;
     const bool turning = plan.turn_stretch_m > 0 && s > turn_start + 1e-6;
-    plan.waypoints.push_back({pts[i], turning || i + 1 == pts.size() ? std::optional<double>(heading_at(s))
-                                                                      : std::nullopt});
+    plan.waypoints.push_back(
+        {pts[i], turning || i + 1 == pts.size() ? std::optional<double>(heading_at(s)) : std::nullopt});
   }
   plan.waypoints.back().heading_rad = goal_heading;
   return plan;

@@ -17,8 +17,7 @@ using SegmentCheck = std::function<bool(const Vec3& a, const Vec3& b)>;
 /// Greedy shortcutting: from each kept point, jump to the farthest later point (at most
 /// `max_skip` ahead) that the check accepts; consecutive points are always kept connected.
 /// The first and last points are always kept.
-std::vector<Vec3> shortcutPath(const std::vector<Vec3>& points, const SegmentCheck& free,
-                               int max_skip = 12);
+std::vector<Vec3> shortcutPath(const std::vector<Vec3>& points, const SegmentCheck& free, int max_skip = 12);
 
 /// Polyline length.
 double pathLength(const std::vector<Vec3>& points);
@@ -38,8 +37,7 @@ struct HeadingPlan {
 /// the goal heading (the reference's behaviour). When the vehicle is already inside the final
 /// stretch (re-planning during the approach) and `current_heading_rad` is given, the heading
 /// turns from the current heading to the goal heading over the whole remaining path.
-HeadingPlan assignHeadings(const std::vector<Vec3>& points, double goal_heading_rad, bool fff,
-                           double turn_rate_per_m, double spacing_m = 1.0,
-                           std::optional<double> current_heading_rad = std::nullopt);
+HeadingPlan assignHeadings(const std::vector<Vec3>& points, double goal_heading_rad, bool fff, double turn_rate_per_m,
+                           double spacing_m = 1.0, std::optional<double> current_heading_rad = std::nullopt);
 
 }  // namespace msb

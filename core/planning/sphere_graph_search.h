@@ -19,11 +19,11 @@ namespace msb {
 
 /// Parameters of the safety-aware cost.
 struct SafetyCostConfig {
-  double weight = 50.0;        ///< w
+  double weight = 50.0;  ///< w
   /// Radius at which the penalty is largest; smaller spheres unused. Not a key of its own: the
   /// explorer sets it to the map's r_min_m (one quantity, one key: method.map.r_min_m).
   double r_min_m = 1.4;
-  double r_safe_m = 8.0;       ///< radius from which there is no penalty
+  double r_safe_m = 8.0;  ///< radius from which there is no penalty
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -7,8 +7,7 @@
 
 namespace msb {
 
-namespace {
-}
+namespace {}
 
 void ViewpointConfig::validate(ConfigChecker& c) const {
   // Bounded: each candidate is valued every planning step (5 Hz).
@@ -16,15 +15,15 @@ void ViewpointConfig::validate(ConfigChecker& c) const {
   c.inRange("frontier_range_m", frontier_range_m, 0.1, 1000.0);
   c.inRange("fov_half_angle_deg", fov_half_angle_deg, 1.0, 100.0);
   c.inRange("min_value", min_value, 1, 100000);
-  c.require(relaxed_min_value >= 1 && relaxed_min_value <= min_value, "relaxed_min_value",
-            "must be in [1, min_value]");
+  c.require(relaxed_min_value >= 1 && relaxed_min_value <= min_value, "relaxed_min_value", "must be in [1, min_value]");
   c.nonNegative("block_distance_m", block_distance_m);
   c.inRange("block_angle_deg", block_angle_deg, 0.0, 180.0);
   c.nonNegative("blacklist_radius_m", blacklist_radius_m);
   c.nonNegative("blacklist_duration_s", blacklist_duration_s);
   c.inRange("frontier_view_limit", frontier_view_limit, 0, 1000);  // 0 = off
-  c.require(frontier_view_limit == 0 || !vpb_new_frontiers, "frontier_view_limit",
-            "cannot be combined with vpb_new_frontiers (both replace pose blocking); set it to 0 to use vpb_new_frontiers");
+  c.require(
+      frontier_view_limit == 0 || !vpb_new_frontiers, "frontier_view_limit",
+      "cannot be combined with vpb_new_frontiers (both replace pose blocking); set it to 0 to use vpb_new_frontiers");
 }
 
 bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double distance_m, double angle_rad) {
@@ -39,8 +38,8 @@ bool ViewpointSet::sees(const Vec3& p, double yaw, const Frontier& f) const {
   const double d = ray.norm();
   if (d < 1e-6 || d > config_.frontier_range_m) return false;
   if (ray.dot(Vec3(std::cos(yaw), std::sin(yaw), 0.0)) < std::cos(config_.fov_half_angle_deg * kDeg) * d)
-    return false;                    // outside the useful field of view
-  return f.normal.dot(ray) < 0;      // not from its unknown side
+    return false;                // outside the useful field of view
+  return f.normal.dot(ray) < 0;  // not from its unknown side
 }
 
 std::vector<uint64_t> ViewpointSet::visibleFrontiers(const SphereMap& map, const Vec3& p, double yaw) const {
@@ -64,7 +63,8 @@ int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_
     if (limit > 0) {
       if (views(map, id) >= limit) continue;  // retired: looked at often enough
       const Frontier& f = map.frontiers().at(id);
-      if (std::any_of(close.begin(), close.end(), [&](const VisitedMarker* m) { return sees(m->position, m->yaw_rad, f); }))
+      if (std::any_of(close.begin(), close.end(),
+                      [&](const VisitedMarker* m) { return sees(m->position, m->yaw_rad, f); }))
         continue;  // already looked at from about here
     }
     ++n;
@@ -152,8 +152,8 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     const int val = value(map, p, yaw, newer_than);
     if (val < min_value) {
       // Refused because of visits: a newer-than bound, or retired frontiers it would otherwise see.
-      const bool by_visits = newer_than > 0 || (config_.frontier_view_limit > 0 &&
-                                                int(visibleFrontiers(map, p, yaw).size()) >= min_value);
+      const bool by_visits =
+          newer_than > 0 || (config_.frontier_view_limit > 0 && int(visibleFrontiers(map, p, yaw).size()) >= min_value);
       ++(by_visits ? rejected_.visited : val > 0 ? rejected_.low_value : rejected_.no_frontier);
       continue;
     }
@@ -162,8 +162,10 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     std::vector<uint64_t> replaced;
     for (const auto& [id, v] : viewpoints_) {
       if (!posesClose(p, yaw, v.position, v.yaw_rad, d, a)) continue;
-      if (v.value >= val || id == goal_id) dominated = true;
-      else replaced.push_back(id);
+      if (v.value >= val || id == goal_id)
+        dominated = true;
+      else
+        replaced.push_back(id);
     }
     if (dominated) {
       ++rejected_.dominated;

@@ -19,13 +19,13 @@ namespace msb {
 
 /// Viewpoint sampling, value and blocking parameters.
 struct ViewpointConfig {
-  int candidates = 300;               ///< samples per planning step
-  double frontier_range_m = 10.0;     ///< frontiers farther do not count
-  double fov_half_angle_deg = 60.0;   ///< useful field of view about the optical axis
-  int min_value = 7;                  ///< viewpoints seeing fewer frontiers are dropped
-  int relaxed_min_value = 2;          ///< used instead while the set is empty and the planner idles
-  bool vpb = true;                    ///< visited-viewpoint blocking
-  bool vpb_new_frontiers = false;     ///< markers block only frontiers older than themselves
+  int candidates = 300;              ///< samples per planning step
+  double frontier_range_m = 10.0;    ///< frontiers farther do not count
+  double fov_half_angle_deg = 60.0;  ///< useful field of view about the optical axis
+  int min_value = 7;                 ///< viewpoints seeing fewer frontiers are dropped
+  int relaxed_min_value = 2;         ///< used instead while the set is empty and the planner idles
+  bool vpb = true;                   ///< visited-viewpoint blocking
+  bool vpb_new_frontiers = false;    ///< markers block only frontiers older than themselves
   /// > 0: VPB per frontier instead of per pose. A frontier is "seen" from a marker if it passes
   /// the value test at the marker's pose (by position: frontier ids churn as the map changes).
   /// Near a marker only the frontiers it does not see count, and a frontier seen from this many
@@ -33,10 +33,10 @@ struct ViewpointConfig {
   /// blocks the poses near it). Default 2: measured better in the cave, not worse elsewhere
   /// (docs/planner.md). Without vpb there are no markers, so it has no effect.
   int frontier_view_limit = 2;
-  double block_distance_m = 7.0;      ///< VPB / blocking radius
-  double block_angle_deg = 60.0;      ///< VPB / blocking heading difference
-  double blacklist_radius_m = 2.0;    ///< failed goals block new viewpoints this close ...
-  double blacklist_duration_s = 60.0; ///< ... for this long
+  double block_distance_m = 7.0;       ///< VPB / blocking radius
+  double block_angle_deg = 60.0;       ///< VPB / blocking heading difference
+  double blacklist_radius_m = 2.0;     ///< failed goals block new viewpoints this close ...
+  double blacklist_duration_s = 60.0;  ///< ... for this long
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -88,9 +88,8 @@ class ViewpointSet {
   /// `goal_id` is exempt) and samples new candidates among `reachable` sphere ids accepted by
   /// `allowed` (e.g. inside the exploration box). `relaxed` uses relaxed_min_value instead of
   /// min_value (nothing else worth flying to). Returns the number of new viewpoints.
-  int update(const SphereMap& map, const std::vector<uint64_t>& reachable, const Vec3& vehicle,
-             double vehicle_yaw, double t_s, uint64_t goal_id,
-             const std::function<bool(const Vec3&)>& allowed, bool relaxed = false);
+  int update(const SphereMap& map, const std::vector<uint64_t>& reachable, const Vec3& vehicle, double vehicle_yaw,
+             double t_s, uint64_t goal_id, const std::function<bool(const Vec3&)>& allowed, bool relaxed = false);
 
   /// Removes a viewpoint (reached goal): leaves a marker at the vehicle pose if VPB is on (with
   /// the map's next frontier id as its watermark).

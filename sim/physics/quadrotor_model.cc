@@ -41,19 +41,18 @@ std::string vehicleBody(const QuadrotorConfig& q, const Pose& T) {
   const auto rotors = q.rotorPositions();
   std::ostringstream os;
   os.precision(17);
-  os << "<body name=\"" << mjcf_names::kVehicleBody << "\" pos=\"" << vec(T.translation())
-     << "\" quat=\"" << qr.w() << ' ' << qr.x() << ' ' << qr.y() << ' ' << qr.z() << "\">\n"
+  os << "<body name=\"" << mjcf_names::kVehicleBody << "\" pos=\"" << vec(T.translation()) << "\" quat=\"" << qr.w()
+     << ' ' << qr.x() << ' ' << qr.y() << ' ' << qr.z() << "\">\n"
      << "  <freejoint name=\"vehicle_root\"/>\n"
-     << "  <inertial pos=\"0 0 0\" mass=\"" << q.mass_kg << "\" diaginertia=\""
-     << vec(q.inertia_kgm2) << "\"/>\n"
+     << "  <inertial pos=\"0 0 0\" mass=\"" << q.mass_kg << "\" diaginertia=\"" << vec(q.inertia_kgm2) << "\"/>\n"
      << "  <geom name=\"vehicle_core\" type=\"box\" size=\"0.12 0.08 0.05\" contype=\"2\" "
-        "conaffinity=\"1\" group=\"" << kVehicleGeomGroup << "\" rgba=\"0.2 0.2 0.2 1\"/>\n";
+        "conaffinity=\"1\" group=\""
+     << kVehicleGeomGroup << "\" rgba=\"0.2 0.2 0.2 1\"/>\n";
   for (int i = 0; i < 4; ++i) {
-    os << "  <geom name=\"vehicle_rotor_" << names[i] << "\" type=\"cylinder\" pos=\""
-       << vec(rotors[i]) << "\" size=\"" << q.rotor_radius_m << " 0.015\" contype=\"2\" "
+    os << "  <geom name=\"vehicle_rotor_" << names[i] << "\" type=\"cylinder\" pos=\"" << vec(rotors[i]) << "\" size=\""
+       << q.rotor_radius_m << " 0.015\" contype=\"2\" "
        << "conaffinity=\"1\" group=\"" << kVehicleGeomGroup << "\" rgba=\"0.3 0.3 0.3 1\"/>\n"
-       << "  <site name=\"vehicle_thrust_" << names[i] << "\" pos=\"" << vec(rotors[i])
-       << "\"/>\n";
+       << "  <site name=\"vehicle_thrust_" << names[i] << "\" pos=\"" << vec(rotors[i]) << "\"/>\n";
   }
   os << "  <site name=\"" << mjcf_names::kImuSite << "\" pos=\"0 0 0\"/>\n</body>\n";
   return os.str();
@@ -73,17 +72,15 @@ std::string actuators(const QuadrotorConfig& q) {
        << QuadrotorConfig::kYawSign[i] * q.yaw_torque_per_thrust_m << "\"/>\n";
   }
   os << "</actuator>\n<sensor>\n"
-     << "  <accelerometer name=\"" << mjcf_names::kAccelSensor << "\" site=\""
-     << mjcf_names::kImuSite << "\"/>\n"
-     << "  <gyro name=\"" << mjcf_names::kGyroSensor << "\" site=\"" << mjcf_names::kImuSite
-     << "\"/>\n</sensor>\n";
+     << "  <accelerometer name=\"" << mjcf_names::kAccelSensor << "\" site=\"" << mjcf_names::kImuSite << "\"/>\n"
+     << "  <gyro name=\"" << mjcf_names::kGyroSensor << "\" site=\"" << mjcf_names::kImuSite << "\"/>\n</sensor>\n";
   return os.str();
 }
 
 }  // namespace
 
-std::string composeModelXml(const std::string& world_file_name, const QuadrotorConfig& vehicle,
-                            const Pose& start_T_W_B, double timestep_s) {
+std::string composeModelXml(const std::string& world_file_name, const QuadrotorConfig& vehicle, const Pose& start_T_W_B,
+                            double timestep_s) {
   // A wrapper model: the world by MuJoCo's own <include> (parsed, never searched as text),
   // then the simulation options, the vehicle body and its actuators and sensors.
   std::ostringstream xml;
@@ -91,7 +88,8 @@ std::string composeModelXml(const std::string& world_file_name, const QuadrotorC
   xml << "<mujoco model=\"msbench\">\n"
       << "<include file=\"" << world_file_name << "\"/>\n"
       << "<option timestep=\"" << timestep_s << "\" integrator=\"Euler\" gravity=\"0 0 -9.81\"/>\n"
-      << "<worldbody>\n" << vehicleBody(vehicle, start_T_W_B) << "</worldbody>\n"
+      << "<worldbody>\n"
+      << vehicleBody(vehicle, start_T_W_B) << "</worldbody>\n"
       << actuators(vehicle) << "</mujoco>\n";
   return xml.str();
 }

@@ -12,13 +12,13 @@ namespace msb {
 
 /// Physical parameters of the quadrotor.
 struct QuadrotorConfig {
-  double mass_kg = 1.325;                          ///< total mass
-  Vec3 inertia_kgm2 = Vec3(0.037, 0.025, 0.061);   ///< principal inertia (body axes)
-  double arm_length_m = 0.23;                      ///< centre to rotor axis
-  double rotor_radius_m = 0.13;                    ///< collision disc of each rotor
-  double max_thrust_n = 13.0;                      ///< per motor
-  double yaw_torque_per_thrust_m = 0.0201;         ///< reaction torque coefficient, N·m/N
-  double motor_time_constant_s = 0.03;             ///< first-order motor lag
+  double mass_kg = 1.325;                         ///< total mass
+  Vec3 inertia_kgm2 = Vec3(0.037, 0.025, 0.061);  ///< principal inertia (body axes)
+  double arm_length_m = 0.23;                     ///< centre to rotor axis
+  double rotor_radius_m = 0.13;                   ///< collision disc of each rotor
+  double max_thrust_n = 13.0;                     ///< per motor
+  double yaw_torque_per_thrust_m = 0.0201;        ///< reaction torque coefficient, N·m/N
+  double motor_time_constant_s = 0.03;            ///< first-order motor lag
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -43,7 +43,7 @@ inline constexpr int kVehicleGeomGroup = 3;
 /// The model MuJoCo compiles: a wrapper that includes the world file `world_file_name` (a
 /// <mujoco> document, resolved next to the wrapper) and adds the simulation options, the vehicle
 /// body, its actuators and sensors.
-std::string composeModelXml(const std::string& world_file_name, const QuadrotorConfig& vehicle,
-                            const Pose& start_T_W_B, double timestep_s);
+std::string composeModelXml(const std::string& world_file_name, const QuadrotorConfig& vehicle, const Pose& start_T_W_B,
+                            double timestep_s);
 
 }  // namespace msb

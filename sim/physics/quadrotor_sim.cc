@@ -23,7 +23,8 @@ std::string readFile(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) throw ConfigError("world", path + ": world file not found");
-  if (!fs::is_regular_file(path, ec)) throw ConfigError("world", path + ": not a regular file (a world is an MJCF file)");
+  if (!fs::is_regular_file(path, ec))
+    throw ConfigError("world", path + ": not a regular file (a world is an MJCF file)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError("world", path + ": cannot open world file");
   std::ostringstream ss;
@@ -48,8 +49,7 @@ std::string quotedGeomName(const mjModel* m, int g) {
 
 }  // namespace
 
-QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world_xml_path,
-                           const Pose& start_T_W_B)
+QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world_xml_path, const Pose& start_T_W_B)
     : config_(checkValid(config)) {
   namespace fs = std::filesystem;
   installMujocoHandlers();
@@ -91,8 +91,7 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
   if (error[0] != '\0' || !g_mj_warning.empty()) {
     mj_deleteModel(m_);
     m_ = nullptr;
-    throw ConfigError("world", world_xml_path + ": MuJoCo warning: " +
-                             (error[0] ? std::string(error) : g_mj_warning));
+    throw ConfigError("world", world_xml_path + ": MuJoCo warning: " + (error[0] ? std::string(error) : g_mj_warning));
   }
   // The simulator owns the options: a world that sets its own would change the physics.
   if (m_->opt.timestep != 1.0 / config_.physics_hz || m_->opt.integrator != mjINT_EULER) {
@@ -117,7 +116,8 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
     mj_deleteModel(m_);
     d_ = nullptr;
     m_ = nullptr;
-    throw ConfigError("world", world_xml_path + ": the composed model lacks the vehicle (a world element collides with its names?)");
+    throw ConfigError(
+        "world", world_xml_path + ": the composed model lacks the vehicle (a world element collides with its names?)");
   }
   const int jnt = m_->body_jntadr[body_id_];
   qpos_adr_ = m_->jnt_qposadr[jnt];
@@ -201,8 +201,7 @@ QuadrotorSim::~QuadrotorSim() {
 
 std::optional<CollisionEvent> QuadrotorSim::beginTick() {
   mj_step1(m_, d_);
-  if (!airborne_ && d_->qpos[qpos_adr_ + 2] > start_z_ + config_.takeoff_clearance_m)
-    airborne_ = true;
+  if (!airborne_ && d_->qpos[qpos_adr_ + 2] > start_z_ + config_.takeoff_clearance_m) airborne_ = true;
   auto hit = checkContacts();
   if (hit && !collision_) collision_ = hit;
   return hit;
@@ -222,8 +221,7 @@ std::optional<CollisionEvent> QuadrotorSim::checkContacts() const {
     CollisionEvent ev;
     ev.tick = tick_;
     ev.t_s = timeSeconds();
-    ev.vehicle_position_m = Vec3(d_->qpos[qpos_adr_], d_->qpos[qpos_adr_ + 1],
-                                 d_->qpos[qpos_adr_ + 2]);
+    ev.vehicle_position_m = Vec3(d_->qpos[qpos_adr_], d_->qpos[qpos_adr_ + 1], d_->qpos[qpos_adr_ + 2]);
     ev.contact_position_m = Vec3(c.pos[0], c.pos[1], c.pos[2]);
     const char* vn = mj_id2name(m_, mjOBJ_GEOM, vg);
     const char* wn = mj_id2name(m_, mjOBJ_GEOM, wg);
@@ -235,8 +233,7 @@ std::optional<CollisionEvent> QuadrotorSim::checkContacts() const {
 }
 
 void QuadrotorSim::endTick(const Vec4& cmd) {
-  for (int i = 0; i < 4; ++i)
-    d_->ctrl[i] = std::clamp(cmd[i], 0.0, config_.vehicle.max_thrust_n);
+  for (int i = 0; i < 4; ++i) d_->ctrl[i] = std::clamp(cmd[i], 0.0, config_.vehicle.max_thrust_n);
   mj_step2(m_, d_);
   // Sensors of mj_step2 describe the state before integration (x_n).
   const mjtNum* s = d_->sensordata;
@@ -259,9 +256,7 @@ Odometry QuadrotorSim::groundTruth() const {
   return o;
 }
 
-Vec4 QuadrotorSim::motorThrusts() const {
-  return Vec4(d_->act[0], d_->act[1], d_->act[2], d_->act[3]);
-}
+Vec4 QuadrotorSim::motorThrusts() const { return Vec4(d_->act[0], d_->act[1], d_->act[2], d_->act[3]); }
 
 std::map<std::string, int> QuadrotorSim::warningCounts() const { return mujocoWarningCounts(d_); }
 

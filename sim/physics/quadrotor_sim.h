@@ -22,9 +22,9 @@ namespace msb {
 
 /// Configuration of the physical simulation.
 struct PhysicsConfig {
-  int physics_hz = 500;              ///< physics rate (one tick = one step)
-  QuadrotorConfig vehicle;           ///< vehicle parameters
-  double takeoff_clearance_m = 0.15; ///< ground contact is allowed until first this high
+  int physics_hz = 500;               ///< physics rate (one tick = one step)
+  QuadrotorConfig vehicle;            ///< vehicle parameters
+  double takeoff_clearance_m = 0.15;  ///< ground contact is allowed until first this high
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -32,12 +32,12 @@ struct PhysicsConfig {
 
 /// Details of the contact that ended a run.
 struct CollisionEvent {
-  int64_t tick = 0;                 ///< tick of detection
-  double t_s = 0.0;                 ///< simulated time
-  Vec3 vehicle_position_m;          ///< body origin at detection
-  Vec3 contact_position_m;          ///< contact point
-  std::string vehicle_geom;         ///< name of the vehicle's geom
-  std::string world_geom;           ///< name (or "geom#id") of the world's geom
+  int64_t tick = 0;          ///< tick of detection
+  double t_s = 0.0;          ///< simulated time
+  Vec3 vehicle_position_m;   ///< body origin at detection
+  Vec3 contact_position_m;   ///< contact point
+  std::string vehicle_geom;  ///< name of the vehicle's geom
+  std::string world_geom;    ///< name (or "geom#id") of the world's geom
 };
 
 /// Noise-free IMU quantities at the last completed tick (body frame).
@@ -48,9 +48,9 @@ struct ImuTruth {
 
 /// A world's ground: a colliding horizontal plane (MuJoCo collides with it as a half-space).
 struct GroundPlane {
-  std::string name;                 ///< the geom, quoted ('ground')
-  Vec3 centre = Vec3::Zero();       ///< its position (z = the ground's height)
-  Vec2 half_size = Vec2::Zero();    ///< its drawn extent (the world's); 0 = unbounded
+  std::string name;               ///< the geom, quoted ('ground')
+  Vec3 centre = Vec3::Zero();     ///< its position (z = the ground's height)
+  Vec2 half_size = Vec2::Zero();  ///< its drawn extent (the world's); 0 = unbounded
 };
 
 /// MuJoCo quadrotor in a world. Owns mjModel and mjData; single-threaded.
@@ -60,8 +60,7 @@ class QuadrotorSim {
   /// ConfigError (key `world`) naming the file and MuJoCo's message when the world does not load,
   /// and ConfigError (key `start.position`) when the start pose lies below the ground, beyond
   /// the ground plane's extent or inside a world geom.
-  QuadrotorSim(const PhysicsConfig& config, const std::string& world_xml_path,
-               const Pose& start_T_W_B);
+  QuadrotorSim(const PhysicsConfig& config, const std::string& world_xml_path, const Pose& start_T_W_B);
   ~QuadrotorSim();
   QuadrotorSim(const QuadrotorSim&) = delete;
   QuadrotorSim& operator=(const QuadrotorSim&) = delete;

@@ -39,8 +39,8 @@ Vec4 Se3Controller::compute(const Odometry& s, const TrajectoryReference& r) con
   // Desired force with tilt limit: the horizontal part is scaled down if it tilts too far.
   const Vec3 ex = s.T_W_B.translation() - r.position_m;
   const Vec3 ev = s.v_W_mps - r.velocity_mps;
-  Vec3 F = -config_.k_position.cwiseProduct(ex) - config_.k_velocity.cwiseProduct(ev) +
-           m * kGravity * e3 + m * r.accel_mps2;
+  Vec3 F =
+      -config_.k_position.cwiseProduct(ex) - config_.k_velocity.cwiseProduct(ev) + m * kGravity * e3 + m * r.accel_mps2;
   F.z() = std::max(F.z(), 0.2 * m * kGravity);
   const double max_h = F.z() * std::tan(config_.max_tilt_deg * M_PI / 180.0);
   const double h = std::hypot(F.x(), F.y());
@@ -66,8 +66,7 @@ Vec4 Se3Controller::compute(const Odometry& s, const TrajectoryReference& r) con
   const Vec3 eW = s.omega_B_radps - R.transpose() * Rd * Omega_d;
   const Vec3 J = vehicle_.inertia_kgm2;
   const Vec3 JW = J.cwiseProduct(s.omega_B_radps);
-  Vec3 M = -config_.k_attitude.cwiseProduct(eR) - config_.k_rate.cwiseProduct(eW) +
-           s.omega_B_radps.cross(JW);
+  Vec3 M = -config_.k_attitude.cwiseProduct(eR) - config_.k_rate.cwiseProduct(eW) + s.omega_B_radps.cross(JW);
 
   // Allocation. Thrust, roll and pitch come first; yaw torque (weak on a quadrotor: it comes
   // from rotor drag only) is scaled down to what the motors can still give.

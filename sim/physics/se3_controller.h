@@ -21,11 +21,11 @@ namespace msb {
 
 /// Controller gains (defaults tuned for the X2-like vehicle with 30 ms motor lag).
 struct Se3ControllerConfig {
-  Vec3 k_position = Vec3(7.0, 7.0, 10.0);   ///< N/m
-  Vec3 k_velocity = Vec3(5.5, 5.5, 7.0);    ///< N·s/m
-  Vec3 k_attitude = Vec3(8.0, 5.5, 0.6);    ///< N·m/rad (yaw: ω_n ≈ 3 rad/s)
-  Vec3 k_rate = Vec3(0.75, 0.5, 0.3);       ///< N·m·s/rad
-  double max_tilt_deg = 40.0;               ///< limit on the commanded tilt
+  Vec3 k_position = Vec3(7.0, 7.0, 10.0);  ///< N/m
+  Vec3 k_velocity = Vec3(5.5, 5.5, 7.0);   ///< N·s/m
+  Vec3 k_attitude = Vec3(8.0, 5.5, 0.6);   ///< N·m/rad (yaw: ω_n ≈ 3 rad/s)
+  Vec3 k_rate = Vec3(0.75, 0.5, 0.3);      ///< N·m·s/rad
+  double max_tilt_deg = 40.0;              ///< limit on the commanded tilt
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

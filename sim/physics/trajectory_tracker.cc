@@ -29,8 +29,7 @@ void TrajectoryTrackerConfig::validate(ConfigChecker& c) const {
   c.positive("arrive_tolerance_m", arrive_tolerance_m);
 }
 
-TrajectoryTracker::TrajectoryTracker(const TrajectoryTrackerConfig& config, const Vec3& start_m,
-                                     double yaw_rad)
+TrajectoryTracker::TrajectoryTracker(const TrajectoryTrackerConfig& config, const Vec3& start_m, double yaw_rad)
     : config_(checkValid(config)) {
   ref_.position_m = start_m;
   ref_.yaw_rad = wrapAngle(yaw_rad);
@@ -88,7 +87,7 @@ double TrajectoryTracker::speedLimit(double s, double end_dist) const {
   for (size_t i = segment_ + 1; i < points_.size(); ++i) {
     double d = std::max(0.0, cumulative_[i] - s);
     if (i + 1 == points_.size()) d = std::max(d, end_dist);  // overshoot: brake towards the end
-    if (2.0 * a_brake * d > v * v) break;  // this and later corners cannot bind
+    if (2.0 * a_brake * d > v * v) break;                    // this and later corners cannot bind
     v = std::min(v, std::sqrt(corner_speed_[i] * corner_speed_[i] + 2.0 * a_brake * d));
   }
   return v;
@@ -169,16 +168,14 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
     target = std::atan2(v.y(), v.x());
   }
   const double yaw_err = wrapAngle(target - ref_.yaw_rad);
-  double rate = std::clamp(config_.yaw_gain_per_s * yaw_err, -lim.max_yaw_rate_radps,
-                           lim.max_yaw_rate_radps);
+  double rate = std::clamp(config_.yaw_gain_per_s * yaw_err, -lim.max_yaw_rate_radps, lim.max_yaw_rate_radps);
   // Limit yaw acceleration to 4x the rate limit per second for a smooth heading.
   const double max_dr = 4.0 * lim.max_yaw_rate_radps * dt;
   rate = std::clamp(rate, ref_.yaw_rate_radps - max_dr, ref_.yaw_rate_radps + max_dr);
   ref_.yaw_rate_radps = rate;
   ref_.yaw_rad = wrapAngle(ref_.yaw_rad + rate * dt);
 
-  finished_ = at_end && dist < config_.arrive_tolerance_m && v.norm() < 0.05 &&
-              std::abs(yaw_err) < 0.02;
+  finished_ = at_end && dist < config_.arrive_tolerance_m && v.norm() < 0.05 && std::abs(yaw_err) < 0.02;
   return ref_;
 }
 

@@ -30,14 +30,14 @@ struct TrajectoryLimits {
 
 /// Tracker configuration.
 struct TrajectoryTrackerConfig {
-  TrajectoryLimits limits;             ///< motion limits
-  double corner_cut_m = 2.0;           ///< length over which a sharp corner is rounded
-  double lookahead_base_m = 0.8;       ///< pursuit look-ahead at rest
-  double lookahead_per_speed_s = 0.25; ///< extra look-ahead per m/s of speed
-  double velocity_gain_per_s = 4.0;    ///< how fast the reference velocity converges
-  double yaw_gain_per_s = 2.0;         ///< heading error to yaw rate
-  double heading_min_speed_mps = 0.5;  ///< below this speed the heading is held
-  double arrive_tolerance_m = 0.05;    ///< path is finished within this distance at rest
+  TrajectoryLimits limits;              ///< motion limits
+  double corner_cut_m = 2.0;            ///< length over which a sharp corner is rounded
+  double lookahead_base_m = 0.8;        ///< pursuit look-ahead at rest
+  double lookahead_per_speed_s = 0.25;  ///< extra look-ahead per m/s of speed
+  double velocity_gain_per_s = 4.0;     ///< how fast the reference velocity converges
+  double yaw_gain_per_s = 2.0;          ///< heading error to yaw rate
+  double heading_min_speed_mps = 0.5;   ///< below this speed the heading is held
+  double arrive_tolerance_m = 0.05;     ///< path is finished within this distance at rest
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -68,12 +68,12 @@ class TrajectoryTracker {
 
   TrajectoryTrackerConfig config_;
   TrajectoryReference ref_;
-  std::vector<Vec3> points_;        // path polyline: start point then waypoints
+  std::vector<Vec3> points_;  // path polyline: start point then waypoints
   std::vector<std::optional<double>> headings_;
   std::vector<double> cumulative_;  // arc length at each polyline vertex
   std::vector<double> corner_speed_;
-  size_t segment_ = 0;              // index of the segment holding the projection
-  double s_proj_ = 0.0;             // arc length of the reference's projection on the path
+  size_t segment_ = 0;   // index of the segment holding the projection
+  double s_proj_ = 0.0;  // arc length of the reference's projection on the path
   bool finished_ = true;
 };
 

@@ -38,10 +38,8 @@ std::vector<CubeFace> nominalFaces() {
     f.R_C_F.col(2) = z;
     return f;
   };
-  return {face("front", {1, 0, 0}, {0, 1, 0}, {0, 0, 1}),
-          face("right", {0, 0, -1}, {0, 1, 0}, {1, 0, 0}),
-          face("left", {0, 0, 1}, {0, 1, 0}, {-1, 0, 0}),
-          face("down", {1, 0, 0}, {0, 0, -1}, {0, 1, 0}),
+  return {face("front", {1, 0, 0}, {0, 1, 0}, {0, 0, 1}), face("right", {0, 0, -1}, {0, 1, 0}, {1, 0, 0}),
+          face("left", {0, 0, 1}, {0, 1, 0}, {-1, 0, 0}), face("down", {1, 0, 0}, {0, 0, -1}, {0, 1, 0}),
           face("up", {1, 0, 0}, {0, 0, 1}, {0, -1, 0})};
 }
 
@@ -78,8 +76,7 @@ bool modelRendersGrey(const mjModel* m) {
   return true;
 }
 
-FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
-                                 const FisheyeCamera& camera, const mjModel* model)
+FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config, const FisheyeCamera& camera, const mjModel* model)
     : config_(checkValid(config)),
       camera_(camera),
       model_copy_(mj_copyModel(nullptr, model), mj_deleteModel),
@@ -136,8 +133,8 @@ FisheyeRenderer::FisheyeRenderer(const FisheyeRendererConfig& config,
   for (int g = 0; g < model_->ngeom; ++g) has_sky = has_sky || model_->geom_group[g] == kSkyGeomGroup;
   const RenderConditions& cond = config_.conditions;
   for (int k = 0; k < 3; ++k)
-    backdrop_[k] = cond.fog_end_m > 0              ? static_cast<float>(cond.fog_colour[k])
-                   : !(config_.sky && has_sky)     ? 0.0f
+    backdrop_[k] = cond.fog_end_m > 0                ? static_cast<float>(cond.fog_colour[k])
+                   : !(config_.sky && has_sky)       ? 0.0f
                    : std::isnan(cond.sky_brightness) ? 1.0f
                                                      : static_cast<float>(cond.sky_brightness);
 }
@@ -155,7 +152,7 @@ void FisheyeRenderer::configureRenderModel() {
   // Worlds without lights (caves) keep the bright ambient headlight.
   for (int l = 0; l < model_->nlight; ++l) model_->light_active[l] = config_.sun ? 1 : 0;
   const RenderConditions& cond = config_.conditions;
-  const double ambient = !std::isnan(cond.ambient)               ? cond.ambient
+  const double ambient = !std::isnan(cond.ambient)           ? cond.ambient
                          : config_.sun && model_->nlight > 0 ? config_.sun_ambient
                                                              : config_.ambient;
   // Conditions: the sun's direction (applied to the scene's lights every frame), intensity and
@@ -163,9 +160,11 @@ void FisheyeRenderer::configureRenderModel() {
   for (int l = 0; l < model_->nlight; ++l) {
     if (!model_->light_directional[l]) continue;
     if (!std::isnan(cond.sun_elevation_deg) || !std::isnan(cond.sun_azimuth_deg)) {
-      const Vec3 to_sun = -Vec3(model_->light_dir[3 * l], model_->light_dir[3 * l + 1], model_->light_dir[3 * l + 2]).normalized();
+      const Vec3 to_sun =
+          -Vec3(model_->light_dir[3 * l], model_->light_dir[3 * l + 1], model_->light_dir[3 * l + 2]).normalized();
       const double e = std::isnan(cond.sun_elevation_deg) ? std::asin(to_sun.z()) : cond.sun_elevation_deg * M_PI / 180;
-      const double a = std::isnan(cond.sun_azimuth_deg) ? std::atan2(to_sun.y(), to_sun.x()) : cond.sun_azimuth_deg * M_PI / 180;
+      const double a =
+          std::isnan(cond.sun_azimuth_deg) ? std::atan2(to_sun.y(), to_sun.x()) : cond.sun_azimuth_deg * M_PI / 180;
       sun_direction_ = -Vec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
     }
     for (int k = 0; k < 3; ++k) {
@@ -180,17 +179,22 @@ void FisheyeRenderer::configureRenderModel() {
     Vec3 to_sun = Vec3::Zero(), sun_diffuse = Vec3::Zero();
     for (int l = 0; l < model_->nlight; ++l) {
       if (!model_->light_directional[l] || !model_->light_active[l]) continue;
-      to_sun = sun_direction_ ? Vec3(-*sun_direction_)
-                              : Vec3(-Vec3(model_->light_dir[3 * l], model_->light_dir[3 * l + 1], model_->light_dir[3 * l + 2]).normalized());
-      sun_diffuse = Vec3(model_->light_diffuse[3 * l], model_->light_diffuse[3 * l + 1], model_->light_diffuse[3 * l + 2]);
+      to_sun = sun_direction_
+                   ? Vec3(-*sun_direction_)
+                   : Vec3(-Vec3(model_->light_dir[3 * l], model_->light_dir[3 * l + 1], model_->light_dir[3 * l + 2])
+                               .normalized());
+      sun_diffuse =
+          Vec3(model_->light_diffuse[3 * l], model_->light_diffuse[3 * l + 1], model_->light_diffuse[3 * l + 2]);
     }
     for (int g = 0; g < model_->ngeom; ++g) {
       if (model_->geom_group[g] != kSkyGeomGroup) continue;
       const mjtNum* q = model_->geom_quat + 4 * g;  // w, x, y, z: the plane faces its local +z
-      const Vec3 normal(2 * (q[1] * q[3] + q[0] * q[2]), 2 * (q[2] * q[3] - q[0] * q[1]), 1 - 2 * (q[1] * q[1] + q[2] * q[2]));
+      const Vec3 normal(2 * (q[1] * q[3] + q[0] * q[2]), 2 * (q[2] * q[3] - q[0] * q[1]),
+                        1 - 2 * (q[1] * q[1] + q[2] * q[2]));
       const double lit = std::max(0.0, normal.dot(to_sun));
       float* rgba = model_->geom_rgba + 4 * g;
-      for (int k = 0; k < 3; ++k) rgba[k] = static_cast<float>(cond.sky_brightness / (1.0 + ambient + lit * sun_diffuse[k]));
+      for (int k = 0; k < 3; ++k)
+        rgba[k] = static_cast<float>(cond.sky_brightness / (1.0 + ambient + lit * sun_diffuse[k]));
       // A geom colour other than MuJoCo's default overrides its material's; emission stays 1.
       if (model_->geom_matid[g] >= 0) model_->mat_emission[model_->geom_matid[g]] = 1.0f;
     }
@@ -263,8 +267,8 @@ void FisheyeRenderer::storeGreyTexturesAsLuminance() {
     }
     if (!grey || levels.empty()) continue;
     for (const Level& l : levels)
-      glTexImage2D(l.image_target, l.level, GL_LUMINANCE8, l.width, l.height, 0, GL_LUMINANCE,
-                   GL_UNSIGNED_BYTE, l.luminance.data());
+      glTexImage2D(l.image_target, l.level, GL_LUMINANCE8, l.width, l.height, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE,
+                   l.luminance.data());
     ++luminance_textures_;
   }
 }
@@ -300,7 +304,8 @@ void FisheyeRenderer::makeFaceFramebuffers() {
     glBindRenderbuffer(GL_RENDERBUFFER, face_depth_rb_[i]);
     glRenderbufferStorage(GL_RENDERBUFFER, GLenum(depth_format), faces_[i].width, faces_[i].height);
     const GLenum attachment = depth_format == GL_DEPTH24_STENCIL8 || depth_format == GL_DEPTH32F_STENCIL8
-                                  ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
+                                  ? GL_DEPTH_STENCIL_ATTACHMENT
+                                  : GL_DEPTH_ATTACHMENT;
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, face_depth_rb_[i]);
     glDrawBuffer(GL_COLOR_ATTACHMENT0);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -337,8 +342,7 @@ void FisheyeRenderer::buildFacesAndLut() {
       pixel_face[i] = f;
       pixel_tan[i] = t;
       auto& b = bounds[f];
-      b = {std::min(b[0], t.x()), std::max(b[1], t.x()), std::min(b[2], t.y()),
-           std::max(b[3], t.y())};
+      b = {std::min(b[0], t.x()), std::max(b[1], t.x()), std::min(b[2], t.y()), std::max(b[3], t.y())};
     }
   }
 
@@ -359,8 +363,7 @@ void FisheyeRenderer::buildFacesAndLut() {
   // Shelf packing of the rectangles into one atlas (tallest first, 2-pixel gaps).
   std::vector<size_t> order(faces_.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return faces_[a].height > faces_[b].height; });
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return faces_[a].height > faces_[b].height; });
   int max_w = 0;
   long area = 0;
   for (const auto& f : faces_) max_w = std::max(max_w, f.width), area += long{f.width} * f.height;
@@ -394,12 +397,11 @@ void FisheyeRenderer::buildFacesAndLut() {
   remap_ = FixedPointRemap(map_xy, map_interp, cv::Size(atlas_width_, atlas_height_));
 }
 
-void FisheyeRenderer::cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0, double tx1, double ty0,
-                                 double ty1) {
+void FisheyeRenderer::cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0, double tx1, double ty0, double ty1) {
   // The frustum's side planes in the face frame (inward normals through the eye): x >= tx0 z,
   // x <= tx1 z, y >= ty0 z, y <= ty1 z; and the half-space in front of the eye.
-  const Vec3 normals[5] = {Vec3(1, 0, -tx0).normalized(), Vec3(-1, 0, tx1).normalized(),
-                           Vec3(0, 1, -ty0).normalized(), Vec3(0, -1, ty1).normalized(), Vec3(0, 0, 1)};
+  const Vec3 normals[5] = {Vec3(1, 0, -tx0).normalized(), Vec3(-1, 0, tx1).normalized(), Vec3(0, 1, -ty0).normalized(),
+                           Vec3(0, -1, ty1).normalized(), Vec3(0, 0, 1)};
   int kept = 0;
   for (const mjvGeom& g : scene_geoms_) {
     bool visible = true;
@@ -462,13 +464,11 @@ void FisheyeRenderer::paintBeyondClip(int x, int y, int width, int height) {
   glPopAttrib();
 }
 
-void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame* frame,
-                             RenderTiming* timing) {
+void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame* frame, RenderTiming* timing) {
   RenderTiming t;
   auto t0 = WallClock::now();
   context_->makeCurrent();
-  mjv_updateScene(model_, const_cast<mjData*>(data), &options_, nullptr, &free_camera_,
-                  mjCAT_ALL, &scene_);
+  mjv_updateScene(model_, const_cast<mjData*>(data), &options_, nullptr, &free_camera_, mjCAT_ALL, &scene_);
   if (sun_direction_)
     for (int i = 0; i < scene_.nlight; ++i)
       if (scene_.lights[i].directional && !scene_.lights[i].headlight)

@@ -45,8 +45,8 @@
 #include "core/camera/fisheye_camera.h"
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
-#include "sim/render/frame_renderer.h"
 #include "sim/render/fixed_point_remap.h"
+#include "sim/render/frame_renderer.h"
 #include "sim/render/gl_context.h"
 #include "sim/render/render_conditions.h"
 
@@ -57,27 +57,27 @@ inline constexpr int kSkyGeomGroup = 5;
 
 /// Benchmark render settings (docs/architecture.md §5).
 struct FisheyeRendererConfig {
-  double face_focal_ratio = 1.0;   ///< cube-face focal length / fisheye fx
-  double ambient = 0.9;            ///< headlight ambient intensity (no diffuse/specular)
-  int tessellation_slices = 12;    ///< MuJoCo quality.numslices (coarse)
-  int tessellation_stacks = 8;     ///< MuJoCo quality.numstacks (coarse)
-  double plane_grid_m = 20.0;      ///< minimum rendering grid spacing of planes
-  double near_clip_m = 0.03;       ///< near clipping distance
-  bool read_red_channel_only = false;  ///< read one channel (exact for grey-scale worlds)
-  int max_visible_geom_group = 2;  ///< groups above are not drawn (3: vehicle, 4: collision-only)
-  bool sky = true;                  ///< draw the world's sky planes (outdoor worlds; else black)
-  bool sun = true;                  ///< use the world's directional lights (outdoor worlds' sun)
-  double sun_ambient = 0.55;        ///< headlight ambient when the sun is on
-  RenderConditions conditions;      ///< light and visibility (docs/conditions.md)
-  bool cull_per_face = true;        ///< draw in each face only geoms whose bounding sphere meets
-                                    ///< its frustum (same pixels, fewer draw calls)
-  bool trilinear_textures = false;  ///< true: blend two mip levels per texture sample (MuJoCo's
-                                    ///< own setting); false: the nearest mip level, bilinear in
-                                    ///< it (≈ 0.8× the frame, same sharpness and tracking)
-  bool single_channel_textures = true;  ///< keep grey textures as one byte per texel instead of
-                                        ///< MuJoCo's RGB (same texel values and pixels)
-  bool framebuffer_per_face = true;   ///< render each face into its own framebuffer, so that
-                                     ///< MuJoCo's clear covers a whole buffer (fast in llvmpipe)
+  double face_focal_ratio = 1.0;           ///< cube-face focal length / fisheye fx
+  double ambient = 0.9;                    ///< headlight ambient intensity (no diffuse/specular)
+  int tessellation_slices = 12;            ///< MuJoCo quality.numslices (coarse)
+  int tessellation_stacks = 8;             ///< MuJoCo quality.numstacks (coarse)
+  double plane_grid_m = 20.0;              ///< minimum rendering grid spacing of planes
+  double near_clip_m = 0.03;               ///< near clipping distance
+  bool read_red_channel_only = false;      ///< read one channel (exact for grey-scale worlds)
+  int max_visible_geom_group = 2;          ///< groups above are not drawn (3: vehicle, 4: collision-only)
+  bool sky = true;                         ///< draw the world's sky planes (outdoor worlds; else black)
+  bool sun = true;                         ///< use the world's directional lights (outdoor worlds' sun)
+  double sun_ambient = 0.55;               ///< headlight ambient when the sun is on
+  RenderConditions conditions;             ///< light and visibility (docs/conditions.md)
+  bool cull_per_face = true;               ///< draw in each face only geoms whose bounding sphere meets
+                                           ///< its frustum (same pixels, fewer draw calls)
+  bool trilinear_textures = false;         ///< true: blend two mip levels per texture sample (MuJoCo's
+                                           ///< own setting); false: the nearest mip level, bilinear in
+                                           ///< it (≈ 0.8× the frame, same sharpness and tracking)
+  bool single_channel_textures = true;     ///< keep grey textures as one byte per texel instead of
+                                           ///< MuJoCo's RGB (same texel values and pixels)
+  bool framebuffer_per_face = true;        ///< render each face into its own framebuffer, so that
+                                           ///< MuJoCo's clear covers a whole buffer (fast in llvmpipe)
   bool single_channel_framebuffer = true;  ///< with framebuffer_per_face, a one-channel colour
                                            ///< buffer when the model renders grey (same pixels)
 
@@ -91,10 +91,10 @@ bool modelRendersGrey(const mjModel* m);
 
 /// One cube face as rendered: orientation and its rectangle in face and atlas pixels.
 struct CubeFace {
-  std::string name;          ///< front, right, left, down, up
-  Mat3 R_C_F;                ///< face frame (z = face normal, x right, y down) in camera frame
+  std::string name;               ///< front, right, left, down, up
+  Mat3 R_C_F;                     ///< face frame (z = face normal, x right, y down) in camera frame
   double tan_x0 = 0, tan_y0 = 0;  ///< top-left corner of the rendered rectangle, tangent units
-  int width = 0, height = 0; ///< rendered rectangle in pixels
+  int width = 0, height = 0;      ///< rendered rectangle in pixels
   int atlas_x = 0, atlas_y = 0;   ///< bottom-left corner in the atlas (GL coordinates)
 };
 
@@ -106,16 +106,14 @@ class FisheyeRenderer final : public FrameRenderer {
   /// lights, sky colour, fog) go into the renderer's own copy of the model, so the physics sees
   /// the world as loaded. `render()` takes the physics' mjData of the same model. Throws
   /// ConfigError or std::runtime_error.
-  FisheyeRenderer(const FisheyeRendererConfig& config, const FisheyeCamera& camera,
-                  const mjModel* model);
+  FisheyeRenderer(const FisheyeRendererConfig& config, const FisheyeCamera& camera, const mjModel* model);
   ~FisheyeRenderer() override;
   FisheyeRenderer(const FisheyeRenderer&) = delete;
   FisheyeRenderer& operator=(const FisheyeRenderer&) = delete;
 
   /// Renders the image seen from the camera pose T_W_C (optical frame) for the state in
   /// `data` into `frame` (pixels, size; tick/time/pose are left to the caller).
-  void render(const mjData* data, const Pose& T_W_C, CameraFrame* frame,
-              RenderTiming* timing = nullptr) override;
+  void render(const mjData* data, const Pose& T_W_C, CameraFrame* frame, RenderTiming* timing = nullptr) override;
   /// GL renderer description.
   std::string description() const override { return context_->description(); }
 
@@ -162,13 +160,13 @@ class FisheyeRenderer final : public FrameRenderer {
   double face_focal_px_ = 0;
   std::vector<CubeFace> faces_;
   int atlas_width_ = 0, atlas_height_ = 0;
-  FixedPointRemap remap_;          // atlas pixels to fisheye pixels (bilinear, fixed point)
+  FixedPointRemap remap_;  // atlas pixels to fisheye pixels (bilinear, fixed point)
   cv::Mat atlas_raw_, atlas_grey_, fisheye_;
-  std::optional<Vec3> sun_direction_;  // world direction of the sun's light, if conditions set it
-  std::vector<mjvGeom> scene_geoms_;  // the full scene of a frame, culled per face into scene_
-  long drawn_geoms_ = 0;              // geoms drawn in the last frame, over all faces
-  float backdrop_[3] = {0, 0, 0};     // colour beyond the camera's far clip (sky, fog or black)
-  int luminance_textures_ = 0;        // textures re-stored as one-byte luminance
+  std::optional<Vec3> sun_direction_;        // world direction of the sun's light, if conditions set it
+  std::vector<mjvGeom> scene_geoms_;         // the full scene of a frame, culled per face into scene_
+  long drawn_geoms_ = 0;                     // geoms drawn in the last frame, over all faces
+  float backdrop_[3] = {0, 0, 0};            // colour beyond the camera's far clip (sky, fog or black)
+  int luminance_textures_ = 0;               // textures re-stored as one-byte luminance
   bool single_channel_framebuffer_ = false;  // face colour buffers hold one channel (grey model)
   // Per-face framebuffers (framebuffer_per_face): framebuffer, colour and depth renderbuffers.
   std::vector<unsigned> face_fbo_, face_colour_rb_, face_depth_rb_;

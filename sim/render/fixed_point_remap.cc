@@ -5,7 +5,7 @@
 namespace msb {
 
 namespace {
-constexpr int kTabBits = 5;               // cv::INTER_BITS: 32 sub-pixel positions per axis
+constexpr int kTabBits = 5;  // cv::INTER_BITS: 32 sub-pixel positions per axis
 constexpr int kTab = 1 << kTabBits;
 }  // namespace
 
@@ -51,7 +51,8 @@ void FixedPointRemap::apply(const cv::Mat& source, cv::Mat& out) const {
       return x >= 0 && y >= 0 && x < W && y < source_size_.height ? s[y * W + x] : 0;
     };
     const int a = kTab - p.fx, b = p.fx, c = kTab - p.fy, e = p.fy;
-    const int sum = (at(p.x, p.y) * a + at(p.x + 1, p.y) * b) * c + (at(p.x, p.y + 1) * a + at(p.x + 1, p.y + 1) * b) * e;
+    const int sum =
+        (at(p.x, p.y) * a + at(p.x + 1, p.y) * b) * c + (at(p.x, p.y + 1) * a + at(p.x + 1, p.y + 1) * b) * e;
     d[p.out_index] = uint8_t((sum + (1 << (2 * kTabBits - 1))) >> (2 * kTabBits));
   }
 }

@@ -24,8 +24,10 @@ void rasteriseInTheCallingThread() {
   static const bool once = [] {
     const char* given = std::getenv("LP_NUM_THREADS");
     if (given && std::string(given) != "0")
-      std::fprintf(stderr, "msbench: LP_NUM_THREADS=%s ignored: llvmpipe rasterises in the rendering thread "
-                           "(worker threads race in Mesa 22.3; docs/robustness.md)\n", given);
+      std::fprintf(stderr,
+                   "msbench: LP_NUM_THREADS=%s ignored: llvmpipe rasterises in the rendering thread "
+                   "(worker threads race in Mesa 22.3; docs/robustness.md)\n",
+                   given);
     return ::setenv("LP_NUM_THREADS", "0", 1) == 0;
   }();
   (void)once;

@@ -19,14 +19,14 @@ namespace msb {
 
 /// Light and visibility of a scene; NaN = the world's own value.
 struct RenderConditions {
-  double sun_elevation_deg = NAN;   ///< sun above the horizon, (0, 90]
-  double sun_azimuth_deg = NAN;     ///< direction the sun stands in, from +x towards +y
-  double sun_intensity = NAN;       ///< diffuse intensity of the sun, [0, 1.5] (worlds: 0.45)
+  double sun_elevation_deg = NAN;                      ///< sun above the horizon, (0, 90]
+  double sun_azimuth_deg = NAN;                        ///< direction the sun stands in, from +x towards +y
+  double sun_intensity = NAN;                          ///< diffuse intensity of the sun, [0, 1.5] (worlds: 0.45)
   std::array<double, 3> sun_colour = {1.0, 1.0, 1.0};  ///< RGB multiplier of the sun, [0, 1]
-  double ambient = NAN;             ///< ambient light level, [0, 1] (worlds: 0.55 with sun, 0.9 without)
-  double sky_brightness = NAN;      ///< grey level of the sky, [0, 1] (worlds: saturated white)
-  double fog_start_m = 0.0;         ///< linear fog from this distance ...
-  double fog_end_m = 0.0;           ///< ... to full fog colour at this one; 0 = no fog
+  double ambient = NAN;         ///< ambient light level, [0, 1] (worlds: 0.55 with sun, 0.9 without)
+  double sky_brightness = NAN;  ///< grey level of the sky, [0, 1] (worlds: saturated white)
+  double fog_start_m = 0.0;     ///< linear fog from this distance ...
+  double fog_end_m = 0.0;       ///< ... to full fog colour at this one; 0 = no fog
   std::array<double, 3> fog_colour = {0.75, 0.75, 0.75};  ///< RGB of the fog, [0, 1]
 
   /// True if anything differs from the world's own lighting.

@@ -12,8 +12,7 @@ void ImuConfig::validate(ConfigChecker& c) const {
   c.nonNegative("gyro_random_walk", gyro_random_walk);
 }
 
-ImuModel::ImuModel(const ImuConfig& config, uint64_t seed)
-    : config_(checkValid(config)), rng_(seed, "imu") {}
+ImuModel::ImuModel(const ImuConfig& config, uint64_t seed) : config_(checkValid(config)), rng_(seed, "imu") {}
 
 ImuSample ImuModel::sample(int64_t tick, double t_s, double dt, const Vec3& f, const Vec3& w) {
   // Bias random walk first, then white noise, in a fixed draw order (acc xyz, gyro xyz, ...).

@@ -15,11 +15,11 @@ namespace msb {
 
 /// IMU rate and noise densities (defaults of the reference setup, docs/architecture.md §4).
 struct ImuConfig {
-  double rate_hz = 200.0;                   ///< sample rate
-  double accel_noise_density = 2.0e-3;      ///< m/s²/√Hz
-  double accel_random_walk = 3.0e-3;        ///< m/s³/√Hz
-  double gyro_noise_density = 1.6968e-4;    ///< rad/s/√Hz
-  double gyro_random_walk = 1.9393e-5;      ///< rad/s²/√Hz
+  double rate_hz = 200.0;                 ///< sample rate
+  double accel_noise_density = 2.0e-3;    ///< m/s²/√Hz
+  double accel_random_walk = 3.0e-3;      ///< m/s³/√Hz
+  double gyro_noise_density = 1.6968e-4;  ///< rad/s/√Hz
+  double gyro_random_walk = 1.9393e-5;    ///< rad/s²/√Hz
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -59,8 +59,7 @@ Odometry VioDriftModel::update(const Odometry& gt) {
     const double sq = std::sqrt(ds);
     addYaw(growth * config_.yaw_random_walk_deg_per_sqrt_m * kDeg * sq * rng_.normal());
     // Position: drift rate times distance plus a random walk; the rate's direction wanders.
-    T_drift_.translation() +=
-        growth * (rate_ * ds + config_.position_random_walk_m_per_sqrt_m * sq * rng_.normal3());
+    T_drift_.translation() += growth * (rate_ * ds + config_.position_random_walk_m_per_sqrt_m * sq * rng_.normal3());
     rate_ += config_.drift_rate_wander_per_sqrt_m * sq * rng_.normal3();
     if (rate_.norm() > 0) rate_ *= config_.position_drift_fraction / rate_.norm();
   } else if (!config_.enabled) {

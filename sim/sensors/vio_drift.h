@@ -27,16 +27,16 @@ namespace msb {
 
 /// Drift process parameters (docs/architecture.md §6 defaults).
 struct VioDriftConfig {
-  bool enabled = true;                        ///< false: estimate = ground truth
-  double position_drift_fraction = 0.01;      ///< drift-rate size, metres per metre travelled
-  double drift_rate_wander_per_sqrt_m = 0.001;///< how fast the drift direction changes
+  bool enabled = true;                               ///< false: estimate = ground truth
+  double position_drift_fraction = 0.01;             ///< drift-rate size, metres per metre travelled
+  double drift_rate_wander_per_sqrt_m = 0.001;       ///< how fast the drift direction changes
   double position_random_walk_m_per_sqrt_m = 0.002;  ///< extra random walk of the position
-  double yaw_random_walk_deg_per_sqrt_m = 0.1;///< yaw random walk
-  double frame_position_noise_m = 0.005;      ///< white noise per camera-frame pose
-  double frame_yaw_noise_deg = 0.02;          ///< white noise per camera-frame yaw
-  int nominal_tracks = 100;                   ///< tracked features at (and above) which drift is nominal
-  double few_tracks_gain = 4.0;               ///< drift growth at zero tracked features: × (1 + gain)
-  double yaw_error_per_turn_deg_per_rad = 2.0;///< yaw error σ per radian turned, at zero tracked features
+  double yaw_random_walk_deg_per_sqrt_m = 0.1;       ///< yaw random walk
+  double frame_position_noise_m = 0.005;             ///< white noise per camera-frame pose
+  double frame_yaw_noise_deg = 0.02;                 ///< white noise per camera-frame yaw
+  int nominal_tracks = 100;                          ///< tracked features at (and above) which drift is nominal
+  double few_tracks_gain = 4.0;                      ///< drift growth at zero tracked features: × (1 + gain)
+  double yaw_error_per_turn_deg_per_rad = 2.0;       ///< yaw error σ per radian turned, at zero tracked features
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -56,7 +56,8 @@ void cylinderSurface(const Pose& T, double radius, double half_height, int n, st
   const int side = int(v.size());
   for (int k = 0; k < n; ++k) {
     const double ang = 2 * M_PI * k / n;
-    for (double z : {-half_height, half_height}) v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
+    for (double z : {-half_height, half_height})
+      v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
   }
   for (int k = 0; k < n; ++k) {
     const int a = side + 2 * k, b = side + 2 * ((k + 1) % n);  // bottom vertices; +1 = top
@@ -73,8 +74,10 @@ void cylinderSurface(const Pose& T, double radius, double half_height, int n, st
     }
     for (int k = 0; k < n; ++k) {
       const int a = ring + k, b = ring + (k + 1) % n;
-      if (z > 0) f.push_back({centre, a, b});
-      else f.push_back({centre, b, a});
+      if (z > 0)
+        f.push_back({centre, a, b});
+      else
+        f.push_back({centre, b, a});
     }
   }
 }
@@ -98,7 +101,8 @@ std::string MjcfWorldBuilder::material(const Look& look) {
       textures_.insert(look.texture);
       cube_textures_.insert(look.texture);
       return "matcube_" + look.texture;
-    case Look::kHidden: return "";
+    case Look::kHidden:
+      return "";
     case Look::kFlat: {
       const int g = std::clamp(int(std::lround(look.grey * 255)), 0, 255);
       auto it = flat_materials_.find(g);
@@ -109,29 +113,29 @@ std::string MjcfWorldBuilder::material(const Look& look) {
   return "";
 }
 
-std::string MjcfWorldBuilder::collisionGeom(const Shape& s, const Look& look,
-                                            const std::string& mat) {
+std::string MjcfWorldBuilder::collisionGeom(const Shape& s, const Look& look, const std::string& mat) {
   std::ostringstream g;
   const char* type = s.type == ShapeType::kBox ? "box" : s.type == ShapeType::kCylinder ? "cylinder" : "sphere";
-  g << "    <geom name=\"" << s.name << "\" type=\"" << type << "\" pos=\""
-    << vec(s.pose.translation()) << "\"";
+  g << "    <geom name=\"" << s.name << "\" type=\"" << type << "\" pos=\"" << vec(s.pose.translation()) << "\"";
   if (s.type != ShapeType::kSphere) g << " quat=\"" << quat(s.pose.linear()) << "\"";
   g << " size=\"";
-  if (s.type == ShapeType::kBox) g << vec(s.size);
-  else if (s.type == ShapeType::kCylinder) g << num(s.size.x()) << " " << num(s.size.z());
-  else g << num(s.size.x());
+  if (s.type == ShapeType::kBox)
+    g << vec(s.size);
+  else if (s.type == ShapeType::kCylinder)
+    g << num(s.size.x()) << " " << num(s.size.z());
+  else
+    g << num(s.size.x());
   g << "\"";
   if (look.type == Look::kTextured || look.type == Look::kHidden || merged(look))
     g << " group=\"" << geom_groups::kCollisionOnly << "\" rgba=\"0.5 0.5 0.5 1\"";
-  else g << " group=\"" << geom_groups::kRendered << "\" material=\"" << mat << "\"";
+  else
+    g << " group=\"" << geom_groups::kRendered << "\" material=\"" << mat << "\"";
   g << "/>\n";
   return g.str();
 }
 
-void MjcfWorldBuilder::addMesh(const std::string& name, const std::vector<Vec3>& v,
-                               const std::vector<Vec2>& uv,
-                               const std::vector<std::array<int, 3>>& faces,
-                               const std::string& mat) {
+void MjcfWorldBuilder::addMesh(const std::string& name, const std::vector<Vec3>& v, const std::vector<Vec2>& uv,
+                               const std::vector<std::array<int, 3>>& faces, const std::string& mat) {
   assets_ << "    <mesh name=\"" << name << "\" vertex=\"";
   for (size_t i = 0; i < v.size(); ++i) assets_ << (i ? " " : "") << vec(v[i]);
   assets_ << "\" texcoord=\"";
@@ -140,14 +144,13 @@ void MjcfWorldBuilder::addMesh(const std::string& name, const std::vector<Vec3>&
   for (size_t i = 0; i < faces.size(); ++i)
     assets_ << (i ? " " : "") << faces[i][0] << " " << faces[i][1] << " " << faces[i][2];
   assets_ << "\"/>\n";
-  bodies_ << "    <geom name=\"" << name << "\" type=\"mesh\" mesh=\"" << name << "\" material=\""
-          << mat << "\" contype=\"0\" conaffinity=\"0\" group=\"" << geom_groups::kVisualMesh
-          << "\"/>\n";
+  bodies_ << "    <geom name=\"" << name << "\" type=\"mesh\" mesh=\"" << name << "\" material=\"" << mat
+          << "\" contype=\"0\" conaffinity=\"0\" group=\"" << geom_groups::kVisualMesh << "\"/>\n";
   ++visual_geoms_;
 }
 
-void MjcfWorldBuilder::addBox(const std::string& name, const std::string& object, const Pose& T,
-                              const Vec3& half, ObstacleKind kind, const Look& look) {
+void MjcfWorldBuilder::addBox(const std::string& name, const std::string& object, const Pose& T, const Vec3& half,
+                              ObstacleKind kind, const Look& look) {
   Shape s{ShapeType::kBox, T, half, kind, name, object};
   const std::string mat = material(look);
   bodies_ << collisionGeom(s, look, mat);
@@ -170,8 +173,8 @@ void MjcfWorldBuilder::addVisualSlab(const std::string& name, const Pose& T, con
   addBoxMesh(name, T, half, texture);
 }
 
-void MjcfWorldBuilder::addBoxMesh(const std::string& name, const Pose& T, const Vec3& half,
-                                  const std::string& texture, const std::string& top_texture) {
+void MjcfWorldBuilder::addBoxMesh(const std::string& name, const Pose& T, const Vec3& half, const std::string& texture,
+                                  const std::string& top_texture) {
   // Visual mesh: 6 quads with texture coordinates in tiles (the top one separately for roofs).
   std::vector<Vec3> v;
   std::vector<Vec2> uv;
@@ -186,9 +189,8 @@ void MjcfWorldBuilder::addBoxMesh(const std::string& name, const Pose& T, const 
   }
 }
 
-void MjcfWorldBuilder::addCylinder(const std::string& name, const std::string& object,
-                                   const Pose& T, double radius, double half_height,
-                                   ObstacleKind kind, const Look& look) {
+void MjcfWorldBuilder::addCylinder(const std::string& name, const std::string& object, const Pose& T, double radius,
+                                   double half_height, ObstacleKind kind, const Look& look) {
   Shape s{ShapeType::kCylinder, T, Vec3(radius, radius, half_height), kind, name, object};
   const std::string mat = material(look);
   bodies_ << collisionGeom(s, look, mat);
@@ -232,16 +234,17 @@ void MjcfWorldBuilder::addCylinder(const std::string& name, const std::string& o
     }
     for (int k = 0; k < n; ++k) {
       const int a = ring + k, b = ring + (k + 1) % n;
-      if (z > 0) f.push_back({centre, a, b});
-      else f.push_back({centre, b, a});
+      if (z > 0)
+        f.push_back({centre, a, b});
+      else
+        f.push_back({centre, b, a});
     }
   }
   addMesh(name + "_vis", v, uv, f, mat);
 }
 
-void MjcfWorldBuilder::addSphere(const std::string& name, const std::string& object,
-                                 const Vec3& centre, double radius, ObstacleKind kind,
-                                 const Look& look) {
+void MjcfWorldBuilder::addSphere(const std::string& name, const std::string& object, const Vec3& centre, double radius,
+                                 ObstacleKind kind, const Look& look) {
   Pose T = Pose::Identity();
   T.translation() = centre;
   Shape s{ShapeType::kSphere, T, Vec3::Constant(radius), kind, name, object};
@@ -256,11 +259,10 @@ void MjcfWorldBuilder::setGround(const Vec2& size_m, const std::string& texture)
   Pose T = Pose::Identity();
   shapes_.push_back({ShapeType::kHalfSpace, T, Vec3::Zero(), ObstacleKind::kGround, "ground", "ground"});
   const double rep = 1.0 / textureTileMeters(texture);
-  assets_ << "    <material name=\"mat_ground\" texture=\"tex_" << texture << "\" texrepeat=\""
-          << num(rep) << " " << num(rep) << "\" texuniform=\"true\"/>\n";
-  bodies_ << "    <geom name=\"ground\" type=\"plane\" size=\"" << num(size_m.x() / 2) << " "
-          << num(size_m.y() / 2) << " 20\" material=\"mat_ground\" group=\""
-          << geom_groups::kRendered << "\"/>\n";
+  assets_ << "    <material name=\"mat_ground\" texture=\"tex_" << texture << "\" texrepeat=\"" << num(rep) << " "
+          << num(rep) << "\" texuniform=\"true\"/>\n";
+  bodies_ << "    <geom name=\"ground\" type=\"plane\" size=\"" << num(size_m.x() / 2) << " " << num(size_m.y() / 2)
+          << " 20\" material=\"mat_ground\" group=\"" << geom_groups::kRendered << "\"/>\n";
 }
 
 void MjcfWorldBuilder::setOutdoorSky(const Vec2& ground_size_m) {
@@ -271,15 +273,21 @@ void MjcfWorldBuilder::setOutdoorSky(const Vec2& ground_size_m) {
   // (an overcast bright sky, as the reference's Gazebo sky is to a grey-scale camera).
   const double D = 0.5 * ground_size_m.maxCoeff() + 100.0;
   assets_ << "    <material name=\"mat_sky\" rgba=\"0.85 0.85 0.85 1\" emission=\"1\"/>\n";
-  struct Plane { const char* name; Vec3 pos; const char* euler; };
-  const Plane planes[] = {{"sky_top", Vec3(0, 0, D), "180 0 0"},     {"sky_east", Vec3(D, 0, 0), "0 -90 0"},
-                          {"sky_west", Vec3(-D, 0, 0), "0 90 0"},    {"sky_north", Vec3(0, D, 0), "90 0 0"},
+  struct Plane {
+    const char* name;
+    Vec3 pos;
+    const char* euler;
+  };
+  const Plane planes[] = {{"sky_top", Vec3(0, 0, D), "180 0 0"},
+                          {"sky_east", Vec3(D, 0, 0), "0 -90 0"},
+                          {"sky_west", Vec3(-D, 0, 0), "0 90 0"},
+                          {"sky_north", Vec3(0, D, 0), "90 0 0"},
                           {"sky_south", Vec3(0, -D, 0), "-90 0 0"}};
   for (const Plane& p : planes)
-    bodies_ << "    <geom name=\"" << p.name << "\" type=\"plane\" size=\"" << num(D) << " " << num(D)
-            << " " << num(D) << "\" pos=\"" << num(p.pos.x()) << " " << num(p.pos.y()) << " " << num(p.pos.z())
-            << "\" euler=\"" << p.euler << "\" material=\"mat_sky\" contype=\"0\" conaffinity=\"0\" group=\""
-            << geom_groups::kSky << "\"/>\n";
+    bodies_ << "    <geom name=\"" << p.name << "\" type=\"plane\" size=\"" << num(D) << " " << num(D) << " " << num(D)
+            << "\" pos=\"" << num(p.pos.x()) << " " << num(p.pos.y()) << " " << num(p.pos.z()) << "\" euler=\""
+            << p.euler << "\" material=\"mat_sky\" contype=\"0\" conaffinity=\"0\" group=\"" << geom_groups::kSky
+            << "\"/>\n";
   visual_geoms_ += 5;
 }
 

@@ -25,17 +25,17 @@ namespace msb {
 
 /// Geom groups of generated worlds.
 namespace geom_groups {
-inline constexpr int kRendered = 0;      ///< collision geoms drawn as they are
-inline constexpr int kVisualMesh = 1;    ///< textured visual meshes (no collision)
-inline constexpr int kCollisionOnly = 4; ///< collision geoms hidden from the camera
-inline constexpr int kSky = 5;           ///< sky planes (drawn with the renderer's `sky` switch)
+inline constexpr int kRendered = 0;       ///< collision geoms drawn as they are
+inline constexpr int kVisualMesh = 1;     ///< textured visual meshes (no collision)
+inline constexpr int kCollisionOnly = 4;  ///< collision geoms hidden from the camera
+inline constexpr int kSky = 5;            ///< sky planes (drawn with the renderer's `sky` switch)
 }  // namespace geom_groups
 
 /// How a solid looks.
 struct Look {
   enum Type { kTextured, kFlat, kCube, kHidden } type = kFlat;
-  std::string texture;  ///< pattern name (textured, cube)
-  double grey = 0.5;    ///< intensity in [0, 1] (flat)
+  std::string texture;      ///< pattern name (textured, cube)
+  double grey = 0.5;        ///< intensity in [0, 1] (flat)
   std::string top_texture;  ///< textured boxes: a different pattern on the top face (roofs)
   std::string merge_group;  ///< flat boxes and cylinders: drawn as part of this group's mesh
 
@@ -61,18 +61,17 @@ class MjcfWorldBuilder {
   explicit MjcfWorldBuilder(std::string model_name) : model_name_(std::move(model_name)) {}
 
   /// A box with half extents `half` at pose T (world frame).
-  void addBox(const std::string& name, const std::string& object, const Pose& T, const Vec3& half,
-              ObstacleKind kind, const Look& look);
+  void addBox(const std::string& name, const std::string& object, const Pose& T, const Vec3& half, ObstacleKind kind,
+              const Look& look);
   /// A cylinder (radius, half height) along T's z axis.
-  void addCylinder(const std::string& name, const std::string& object, const Pose& T,
-                   double radius, double half_height, ObstacleKind kind, const Look& look);
+  void addCylinder(const std::string& name, const std::string& object, const Pose& T, double radius, double half_height,
+                   ObstacleKind kind, const Look& look);
   /// A sphere.
-  void addSphere(const std::string& name, const std::string& object, const Vec3& centre,
-                 double radius, ObstacleKind kind, const Look& look);
+  void addSphere(const std::string& name, const std::string& object, const Vec3& centre, double radius,
+                 ObstacleKind kind, const Look& look);
   /// A visual-only textured box (no collision, no ground-truth shape), e.g. the skin of a
   /// larger collision solid whose hidden faces need not be drawn.
-  void addVisualSlab(const std::string& name, const Pose& T, const Vec3& half,
-                     const std::string& texture);
+  void addVisualSlab(const std::string& name, const Pose& T, const Vec3& half, const std::string& texture);
   /// An outdoor sky: five inward-facing planes (a lid and four walls) well beyond the ground,
   /// flat and self-lit (no collision, no ground-truth shape), and a world-fixed sun. Worlds
   /// without it (caves) have neither.

@@ -18,8 +18,8 @@ struct Pattern {
 };
 
 constexpr Pattern kPatterns[] = {
-    {"grass", 2.0},  {"bricks", 2.0}, {"facade", 3.0},  {"concrete", 2.0}, {"rock", 3.0},
-    {"bark", 1.0},   {"foliage", 2.0}, {"wood", 1.5},    {"gravel", 1.5},
+    {"grass", 2.0}, {"bricks", 2.0},  {"facade", 3.0}, {"concrete", 2.0}, {"rock", 3.0},
+    {"bark", 1.0},  {"foliage", 2.0}, {"wood", 1.5},   {"gravel", 1.5},
 };
 
 // Periodic value noise: a lattice of `period` × `period` random values, smoothly interpolated.
@@ -70,8 +70,7 @@ cv::Mat toGrey(const cv::Mat& f, double lo, double hi) {
   cv::Mat out(f.size(), CV_8UC1);
   for (int y = 0; y < f.rows; ++y)
     for (int x = 0; x < f.cols; ++x)
-      out.at<uint8_t>(y, x) =
-          cv::saturate_cast<uint8_t>(lo + (hi - lo) * std::clamp(f.at<double>(y, x), 0.0, 1.0));
+      out.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(lo + (hi - lo) * std::clamp(f.at<double>(y, x), 0.0, 1.0));
   return out;
 }
 
@@ -88,8 +87,8 @@ void wrapDisc(cv::Mat& img, double cx, double cy, double r, int value) {
   for (int y = int(cy - r); y <= int(cy + r); ++y)
     for (int x = int(cx - r); x <= int(cx + r); ++x)
       if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r)
-        img.at<uint8_t>(((y % img.rows) + img.rows) % img.rows,
-                        ((x % img.cols) + img.cols) % img.cols) = static_cast<uint8_t>(value);
+        img.at<uint8_t>(((y % img.rows) + img.rows) % img.rows, ((x % img.cols) + img.cols) % img.cols) =
+            static_cast<uint8_t>(value);
 }
 
 // Adds fine noise (amplitude in grey levels) to break up flat areas.
@@ -97,8 +96,8 @@ void addGrain(cv::Mat& img, double amplitude, RngStream& rng) {
   const cv::Mat n = fbm(img.rows, 64, 2, 0.5, rng);
   for (int y = 0; y < img.rows; ++y)
     for (int x = 0; x < img.cols; ++x)
-      img.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(img.at<uint8_t>(y, x) +
-                                                         amplitude * (n.at<double>(y, x) - 0.5));
+      img.at<uint8_t>(y, x) =
+          cv::saturate_cast<uint8_t>(img.at<uint8_t>(y, x) + amplitude * (n.at<double>(y, x) - 0.5));
 }
 
 cv::Mat bricks(int s, RngStream& rng) {
@@ -107,8 +106,8 @@ cv::Mat bricks(int s, RngStream& rng) {
   for (int r = 0; r < rows; ++r) {
     const int offset = (r % 2) * brick_w / 2;
     for (int b = 0; b < 6; ++b)
-      wrapRect(img, b * brick_w + offset + mortar, r * row_h + mortar, brick_w - mortar,
-               row_h - mortar, int(rng.uniform(55, 150)));
+      wrapRect(img, b * brick_w + offset + mortar, r * row_h + mortar, brick_w - mortar, row_h - mortar,
+               int(rng.uniform(55, 150)));
   }
   addGrain(img, 40, rng);
   return img;
@@ -159,8 +158,8 @@ cv::Mat rock(int s, RngStream& rng) {
   for (int y = 0; y < s; ++y)
     for (int x = 0; x < s; ++x) {
       const double crack = std::abs(ridged.at<double>(y, x) - 0.5) < 0.02 ? -0.45 : 0.0;
-      img.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(255 * std::clamp(
-          0.15 + 1.1 * (base.at<double>(y, x) - 0.25) + crack, 0.0, 1.0));
+      img.at<uint8_t>(y, x) =
+          cv::saturate_cast<uint8_t>(255 * std::clamp(0.15 + 1.1 * (base.at<double>(y, x) - 0.25) + crack, 0.0, 1.0));
     }
   addGrain(img, 30, rng);
   return img;

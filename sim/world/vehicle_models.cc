@@ -11,12 +11,12 @@ constexpr auto kPaint = ObstacleKind::kTextureless;
 
 // Proportions of one kind (fractions of the overall size unless stated).
 struct VehicleShape {
-  double wheel_radius;    ///< of the height
-  double body_top;        ///< top of the lower body (of the height)
-  double cabin_length;    ///< of the length (the upper box)
-  double cabin_offset;    ///< centre of the upper box along x (of the length; + = front)
-  double cabin_width;     ///< of the width
-  int axles;              ///< 2 or 3
+  double wheel_radius;          ///< of the height
+  double body_top;              ///< top of the lower body (of the height)
+  double cabin_length;          ///< of the length (the upper box)
+  double cabin_offset;          ///< centre of the upper box along x (of the length; + = front)
+  double cabin_width;           ///< of the width
+  int axles;                    ///< 2 or 3
   double paint_min, paint_max;  ///< grey range of the paint
 };
 
@@ -41,8 +41,8 @@ bool isVehicleKind(const std::string& kind) {
   return kind == "car" || kind == "suv" || kind == "bus" || kind == "fire_truck" || kind == "ambulance";
 }
 
-void buildVehicle(const std::string& kind, const std::string& id, const Pose& base, const Vec3& size,
-                  RngStream& detail, MjcfWorldBuilder& b) {
+void buildVehicle(const std::string& kind, const std::string& id, const Pose& base, const Vec3& size, RngStream& detail,
+                  MjcfWorldBuilder& b) {
   const VehicleShape v = shapeOf(kind);
   // Every part is drawn as part of one mesh per grey level of this vehicle (a few draws instead
   // of one per part); the parts stay separate collision geoms.
@@ -59,8 +59,9 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
   b.addBox(id + "_body", id, at(base, Vec3(0, 0, 0.5 * (clearance + body_top))),
            Vec3(0.5 * L, 0.5 * W, 0.5 * (body_top - clearance)), kPaint, body);
   const double cl = v.cabin_length * L, cw = v.cabin_width * W, cx = v.cabin_offset * L;
-  b.addBox(id + "_upper", id, at(base, Vec3(cx, 0, 0.5 * (body_top + H))), Vec3(0.5 * cl, 0.5 * cw, 0.5 * (H - body_top)),
-           kPaint, kind == "ambulance" ? flat(std::min(1.0, paint + 0.05)) : body);
+  b.addBox(id + "_upper", id, at(base, Vec3(cx, 0, 0.5 * (body_top + H))),
+           Vec3(0.5 * cl, 0.5 * cw, 0.5 * (H - body_top)), kPaint,
+           kind == "ambulance" ? flat(std::min(1.0, paint + 0.05)) : body);
 
   // Windows: dark panes standing 2 cm proud of the upper box's sides and front.
   const double win_h = kind == "bus" ? 0.45 * (H - body_top) : 0.6 * (H - body_top);
@@ -74,20 +75,23 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
       for (int p = 0; p < panes; ++p) {
         const double x = cx - 0.5 * 0.85 * cl + (p + 0.5) * pane_l;
         b.addBox(id + "_win" + (side > 0 ? "l" : "r") + std::to_string(p), id,
-                 at(base, Vec3(x, side * (0.5 * cw + 0.01), win_z)), Vec3(0.42 * pane_l, 0.02, 0.5 * win_h), kPaint, dark);
+                 at(base, Vec3(x, side * (0.5 * cw + 0.01), win_z)), Vec3(0.42 * pane_l, 0.02, 0.5 * win_h), kPaint,
+                 dark);
       }
   }
   // Windscreen (front of the upper box) and, for cars, the rear window.
   const double front_x = cx + 0.5 * cl;
-  b.addBox(id + "_windscreen", id, at(base, Vec3(front_x + 0.01, 0, win_z)), Vec3(0.02, 0.4 * cw, 0.5 * win_h), kPaint, dark);
+  b.addBox(id + "_windscreen", id, at(base, Vec3(front_x + 0.01, 0, win_z)), Vec3(0.02, 0.4 * cw, 0.5 * win_h), kPaint,
+           dark);
   if (kind == "car" || kind == "suv")
-    b.addBox(id + "_rearwin", id, at(base, Vec3(cx - 0.5 * cl - 0.01, 0, win_z)), Vec3(0.02, 0.38 * cw, 0.45 * win_h), kPaint,
-             dark);
+    b.addBox(id + "_rearwin", id, at(base, Vec3(cx - 0.5 * cl - 0.01, 0, win_z)), Vec3(0.02, 0.38 * cw, 0.45 * win_h),
+             kPaint, dark);
   if (kind == "ambulance") {
     // A dark band along the box and a light bar on the cab.
     for (int side : {-1, 1})
-      b.addBox(id + "_band" + (side > 0 ? "l" : "r"), id, at(base, Vec3(cx, side * (0.5 * cw + 0.01), body_top + 0.15 * H)),
-               Vec3(0.45 * cl, 0.02, 0.06 * H), kPaint, flat(0.25));
+      b.addBox(id + "_band" + (side > 0 ? "l" : "r"), id,
+               at(base, Vec3(cx, side * (0.5 * cw + 0.01), body_top + 0.15 * H)), Vec3(0.45 * cl, 0.02, 0.06 * H),
+               kPaint, flat(0.25));
     b.addBox(id + "_lightbar", id, at(base, Vec3(front_x + 0.1 * L, 0, 0.5 * (body_top + H) + 0.02)),
              Vec3(0.06 * L, 0.35 * W, 0.05), kPaint, flat(0.6));
   }
@@ -117,7 +121,8 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
       const std::string w = id + "_wheel" + std::to_string(a) + (side > 0 ? "l" : "r");
       const double y = side * (0.5 * W - 0.5 * tyre_w + 0.04);
       b.addCylinder(w + "_tyre", id, at(base, Vec3(axles[a], y, rw), axis_y), rw, 0.5 * tyre_w, kPaint, dark);
-      b.addCylinder(w + "_rim", id, at(base, Vec3(axles[a], y + side * 0.5 * tyre_w, rw), axis_y), 0.55 * rw, 0.02, kPaint, rim);
+      b.addCylinder(w + "_rim", id, at(base, Vec3(axles[a], y + side * 0.5 * tyre_w, rw), axis_y), 0.55 * rw, 0.02,
+                    kPaint, rim);
     }
 
   // Bumpers and lights, front (+x) and rear.
@@ -127,8 +132,8 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
              Vec3(0.05, 0.5 * W, 0.05 * H), kPaint, bumper);
     for (int side : {-1, 1})
       b.addBox(id + (end > 0 ? "_light_f" : "_light_r") + (side > 0 ? "l" : "r"), id,
-               at(base, Vec3(x - end * 0.02, side * 0.36 * W, body_top - 0.12 * H)), Vec3(0.03, 0.08 * W, 0.04 * H), kPaint,
-               end > 0 ? light : rear_light);
+               at(base, Vec3(x - end * 0.02, side * 0.36 * W, body_top - 0.12 * H)), Vec3(0.03, 0.08 * W, 0.04 * H),
+               kPaint, end > 0 ? light : rear_light);
   }
 }
 

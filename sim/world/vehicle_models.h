@@ -19,7 +19,7 @@ bool isVehicleKind(const std::string& kind);
 
 /// Emits the parts of one vehicle of `kind` with overall size `size` (length along the base
 /// frame's x, width, height), standing on the base pose. `detail` draws the paint shade.
-void buildVehicle(const std::string& kind, const std::string& id, const Pose& base, const Vec3& size,
-                  RngStream& detail, MjcfWorldBuilder& b);
+void buildVehicle(const std::string& kind, const std::string& id, const Pose& base, const Vec3& size, RngStream& detail,
+                  MjcfWorldBuilder& b);
 
 }  // namespace msb

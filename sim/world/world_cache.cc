@@ -8,7 +8,6 @@
 #include <fstream>
 #include <stdexcept>
 
-
 #include "core/common/png.h"
 #include "core/common/wall_time.h"
 
@@ -32,12 +31,14 @@ std::string shapesCsv(const std::vector<Shape>& shapes) {
   char line[512];
   for (const auto& sh : shapes) {
     const Quat q(sh.pose.linear());
-    const char* type = sh.type == ShapeType::kBox ? "box" : sh.type == ShapeType::kCylinder ? "cylinder"
-                       : sh.type == ShapeType::kSphere ? "sphere" : "halfspace";
+    const char* type = sh.type == ShapeType::kBox        ? "box"
+                       : sh.type == ShapeType::kCylinder ? "cylinder"
+                       : sh.type == ShapeType::kSphere   ? "sphere"
+                                                         : "halfspace";
     std::snprintf(line, sizeof(line), "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-                  sh.name.c_str(), sh.object.c_str(), obstacleKindName(sh.kind), type,
-                  sh.pose.translation().x(), sh.pose.translation().y(), sh.pose.translation().z(),
-                  q.w(), q.x(), q.y(), q.z(), sh.size.x(), sh.size.y(), sh.size.z());
+                  sh.name.c_str(), sh.object.c_str(), obstacleKindName(sh.kind), type, sh.pose.translation().x(),
+                  sh.pose.translation().y(), sh.pose.translation().z(), q.w(), q.x(), q.y(), q.z(), sh.size.x(),
+                  sh.size.y(), sh.size.z());
     s += line;
   }
   return s;
@@ -51,8 +52,8 @@ BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
   out.generated = generateWorld(spec);
 
   // Cache key: generator version, texture size and the generated MJCF text.
-  const std::string key_text = std::to_string(kWorldGeneratorVersion) + "|" +
-                               std::to_string(spec.texture_px) + "|" + out.generated.mjcf;
+  const std::string key_text =
+      std::to_string(kWorldGeneratorVersion) + "|" + std::to_string(spec.texture_px) + "|" + out.generated.mjcf;
   char key[17];
   std::snprintf(key, sizeof(key), "%016llx",
                 static_cast<unsigned long long>(fnv1a64(key_text.data(), key_text.size())));

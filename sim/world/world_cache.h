@@ -11,11 +11,11 @@ namespace msb {
 
 /// A world ready for the simulator.
 struct BuiltWorld {
-  std::string world_xml;      ///< path of the MJCF file
-  std::string directory;      ///< its cache directory
-  GeneratedWorld generated;   ///< shapes, start, exploration box, counts
-  bool reused = false;        ///< found in the cache
-  double build_seconds = 0.0; ///< wall time of generation (+ writing, if built)
+  std::string world_xml;       ///< path of the MJCF file
+  std::string directory;       ///< its cache directory
+  GeneratedWorld generated;    ///< shapes, start, exploration box, counts
+  bool reused = false;         ///< found in the cache
+  double build_seconds = 0.0;  ///< wall time of generation (+ writing, if built)
 };
 
 /// Generates `spec` and makes sure its files exist under `cache_root`. Throws on I/O errors.

@@ -1,9 +1,9 @@
 #include "sim/world/world_generator.h"
 #include "sim/world/vehicle_models.h"
 
-#include <cstdio>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 #include <tuple>
@@ -15,7 +15,6 @@
 namespace msb {
 
 namespace {
-
 
 // Pose from a ground position, base height, yaw and optional roll/pitch tilt.
 Pose placed(const Vec2& xy, double z, double yaw, double roll = 0, double pitch = 0) {
@@ -48,16 +47,15 @@ bool isCollapsed(const ObjectGroupSpec& g) {
 double footprintRadius(const ObjectGroupSpec& g, const Vec3& s) {
   const std::string& k = g.kind;
   if (k == "tree") return std::max(0.5 * s.x(), 0.3);
-  if (k == "rod" || k == "pole" || k == "pillar")
-    return s.x() + s.z() * std::sin(g.tilt_max_deg * kDeg);
+  if (k == "rod" || k == "pole" || k == "pillar") return s.x() + s.z() * std::sin(g.tilt_max_deg * kDeg);
   if (isCollapsed(g)) return 0.5 * std::hypot(s.x(), s.y()) + 0.4 * s.z();
   if (k == "gazebo" || k == "house") return 0.5 * std::hypot(s.x(), s.y()) + 0.5;
   return 0.5 * std::hypot(s.x(), s.y());
 }
 
 // Emits the solids of one object. `detail` draws spec-only randomness (rubble, tilt).
-void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy, double yaw,
-                 const Vec3& s, RngStream& detail, MjcfWorldBuilder& b) {
+void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy, double yaw, const Vec3& s,
+                 RngStream& detail, MjcfWorldBuilder& b) {
   const std::string& k = g.kind;
   const auto T = ObstacleKind::kTextured;
   const Pose base = placed(xy, g.base_z_m, yaw);
@@ -69,8 +67,7 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
       b.addBox(id + "_intact", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lt, 0, 0.5 * s.z())),
                Vec3(0.5 * lt, 0.5 * s.y(), 0.5 * s.z()), T, look);
       b.addBox(id + "_burned", id, local(base, Vec3(0.5 * s.x() - 0.5 * lb, 0, 0.45 * s.z())),
-               Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), ObstacleKind::kTextureless,
-               Look::flat(0.12));
+               Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
     } else if (isCollapsed(g)) {
       // A lower remaining block, a slab leaning against it, and rubble. `collapsed_burned`: the
       // far end of the block (burned_fraction of its length, away from the slab) is burned,
@@ -84,17 +81,15 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
                  Vec3(0.5 * lb, 0.5 * s.y(), 0.3 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
       const double pitch = detail.uniform(25, 40) * kDeg;
       const Mat3 R = Eigen::AngleAxisd(-pitch, Vec3::UnitY()).toRotationMatrix();
-      b.addBox(id + "_slab", id,
-               local(base, Vec3(0.2 * s.x() + 0.25 * s.z() * std::cos(pitch), 0,
-                                0.25 * s.z() * std::sin(pitch) + 0.2),
-                     R),
-               Vec3(0.25 * s.z(), 0.45 * s.y(), 0.2), T, Look::textured("concrete"));
+      b.addBox(
+          id + "_slab", id,
+          local(base, Vec3(0.2 * s.x() + 0.25 * s.z() * std::cos(pitch), 0, 0.25 * s.z() * std::sin(pitch) + 0.2), R),
+          Vec3(0.25 * s.z(), 0.45 * s.y(), 0.2), T, Look::textured("concrete"));
       for (int r = 0; r < 4; ++r) {
         const Vec3 half(detail.uniform(0.4, 1.2), detail.uniform(0.4, 1.0), detail.uniform(0.3, 0.7));
         const Vec3 off(detail.uniform(0.25, 0.5) * s.x(), detail.uniform(-0.4, 0.4) * s.y(), 0.5 * half.z());
         const Mat3 Rr = Eigen::AngleAxisd(detail.uniform(0, M_PI), Vec3::UnitZ()).toRotationMatrix();
-        b.addBox(id + "_rubble" + std::to_string(r), id, local(base, off, Rr), half, T,
-                 Look::textured("concrete"));
+        b.addBox(id + "_rubble" + std::to_string(r), id, local(base, off, Rr), half, T, Look::textured("concrete"));
       }
     } else {
       b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T, look);
@@ -117,14 +112,14 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
     // Bark trunk up into a foliage canopy (sphere of diameter size.x, top at size.z).
     const double r = 0.5 * s.x(), trunk_r = std::max(0.12, 0.05 * s.x());
     const double trunk_h = s.z() - r;
-    b.addCylinder(id + "_trunk", id, local(base, Vec3(0, 0, 0.5 * trunk_h)), trunk_r, 0.5 * trunk_h,
-                  T, Look::textured("bark"));
-    b.addSphere(id + "_canopy", id, base * Vec3(0, 0, s.z() - r), r, T,
-                Look::textured(pick(g.texture, "foliage")));
+    b.addCylinder(id + "_trunk", id, local(base, Vec3(0, 0, 0.5 * trunk_h)), trunk_r, 0.5 * trunk_h, T,
+                  Look::textured("bark"));
+    b.addSphere(id + "_canopy", id, base * Vec3(0, 0, s.z() - r), r, T, Look::textured(pick(g.texture, "foliage")));
   } else if (k == "rod" || k == "pole" || k == "pillar") {
     // Rods at ruins lean outwards (`yaw` is the ruin's outward normal there), others anywhere.
     const double tilt = detail.uniform(0, g.tilt_max_deg) * kDeg;
-    const double dir = g.near == "ruins" ? yaw + detail.uniform(-0.25 * M_PI, 0.25 * M_PI) : detail.uniform(-M_PI, M_PI);
+    const double dir =
+        g.near == "ruins" ? yaw + detail.uniform(-0.25 * M_PI, 0.25 * M_PI) : detail.uniform(-M_PI, M_PI);
     const Mat3 R = (Eigen::AngleAxisd(dir, Vec3::UnitZ()) * Eigen::AngleAxisd(tilt, Vec3::UnitY())).toRotationMatrix();
     Pose T_axis = base;
     T_axis.linear() = R;
@@ -133,25 +128,22 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
     b.addCylinder(id, id, T_axis, s.x(), 0.5 * s.z(), thin ? ObstacleKind::kThin : T,
                   thin ? Look::flat(0.55) : Look::textured(pick(g.texture, k == "pillar" ? "rock" : "concrete")));
   } else if (k == "wall") {
-    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T,
-             Look::textured(pick(g.texture, "bricks")));
+    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T, Look::textured(pick(g.texture, "bricks")));
   } else if (k == "rock") {
     const Mat3 R = (Eigen::AngleAxisd(detail.uniform(-1, 1) * g.tilt_max_deg * kDeg, Vec3::UnitX()) *
                     Eigen::AngleAxisd(detail.uniform(-1, 1) * g.tilt_max_deg * kDeg, Vec3::UnitY()))
                        .toRotationMatrix();
-    b.addBox(id, id, local(base, Vec3(0, 0, 0.3 * s.z()), R), 0.5 * s, T,
-             Look::textured(pick(g.texture, "rock")));
+    b.addBox(id, id, local(base, Vec3(0, 0, 0.3 * s.z()), R), 0.5 * s, T, Look::textured(pick(g.texture, "rock")));
   } else if (k == "gazebo") {
     // Four posts and a roof slab.
     const std::string tex = pick(g.texture, "wood");
     int p = 0;
     for (double sx : {-0.5, 0.5})
       for (double sy : {-0.5, 0.5})
-        b.addCylinder(id + "_post" + std::to_string(p++), id,
-                      local(base, Vec3(sx * s.x(), sy * s.y(), 0.5 * s.z())), 0.1, 0.5 * s.z(), T,
-                      Look::textured(tex));
-    b.addBox(id + "_roof", id, local(base, Vec3(0, 0, s.z() + 0.15)),
-             Vec3(0.5 * s.x() + 0.4, 0.5 * s.y() + 0.4, 0.15), T, Look::textured(tex));
+        b.addCylinder(id + "_post" + std::to_string(p++), id, local(base, Vec3(sx * s.x(), sy * s.y(), 0.5 * s.z())),
+                      0.1, 0.5 * s.z(), T, Look::textured(tex));
+    b.addBox(id + "_roof", id, local(base, Vec3(0, 0, s.z() + 0.15)), Vec3(0.5 * s.x() + 0.4, 0.5 * s.y() + 0.4, 0.15),
+             T, Look::textured(tex));
   }
 }
 
@@ -170,8 +162,7 @@ void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
       const Vec2 c = centre(i, j);
       double& h = height[size_t(j) * nx + i];
       for (const auto& ch : cave.chambers)
-        if ((c.array() >= ch.min.array()).all() && (c.array() <= ch.max.array()).all())
-          h = std::max(h, ch.ceiling_m);
+        if ((c.array() >= ch.min.array()).all() && (c.array() <= ch.max.array()).all()) h = std::max(h, ch.ceiling_m);
       for (const auto& t : cave.tunnels) {
         const Vec2 ab = t.to - t.from;
         const double u = std::clamp((c - t.from).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
@@ -189,10 +180,13 @@ void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
       int w = 1;
       while (i + w < nx && !used[size_t(j) * nx + i + w] && height[size_t(j) * nx + i + w] == h) ++w;
       int d = 1;
-      for (bool ok = true; ok && j + d < ny; ) {
+      for (bool ok = true; ok && j + d < ny;) {
         for (int k = 0; k < w; ++k) {
           const size_t q = size_t(j + d) * nx + i + k;
-          if (used[q] || height[q] != h) { ok = false; break; }
+          if (used[q] || height[q] != h) {
+            ok = false;
+            break;
+          }
         }
         if (ok) ++d;
       }
@@ -204,22 +198,25 @@ void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
       Pose T = Pose::Identity();
       T.translation() = Vec3(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), 0.5 * (z0 + cave.rock_top_m));
       const Vec3 half(0.5 * (hi.x() - lo.x()), 0.5 * (hi.y() - lo.y()), 0.5 * (cave.rock_top_m - z0));
-      const std::string name = h == 0.0 ? "cave_rock_" + std::to_string(rock++)
-                                        : "cave_ceiling_" + std::to_string(ceiling++);
+      const std::string name =
+          h == 0.0 ? "cave_rock_" + std::to_string(rock++) : "cave_ceiling_" + std::to_string(ceiling++);
       b.addBox(name, h == 0.0 ? "cave_rock" : "cave_ceiling", T, half,
                h == 0.0 ? ObstacleKind::kTextured : ObstacleKind::kGround, Look::hidden());
       if (h > 0.0) {  // visible skin: the ceiling's underside
         Pose S = Pose::Identity();
         S.translation() = Vec3(T.translation().x(), T.translation().y(), h + 0.5 * kSkin);
-        b.addVisualSlab("cave_ceiling_skin_" + std::to_string(ceiling - 1), S,
-                        Vec3(half.x(), half.y(), 0.5 * kSkin), cave.texture);
+        b.addVisualSlab("cave_ceiling_skin_" + std::to_string(ceiling - 1), S, Vec3(half.x(), half.y(), 0.5 * kSkin),
+                        cave.texture);
       }
     }
 
   // Wall skins: wherever a carved cell borders rock (or a lower ceiling), a thin textured slab
   // just inside the rock. Drawing only these faces, not the rock boxes, avoids rendering hidden
   // faces and overdraw. Faces along one boundary line with equal heights are merged.
-  struct Face { int axis, sign, line; double zlo, zhi; };
+  struct Face {
+    int axis, sign, line;
+    double zlo, zhi;
+  };
   std::map<std::tuple<int, int, int, double, double>, std::vector<int>> runs;
   auto heightAt = [&](int i, int j) {
     return (i < 0 || j < 0 || i >= nx || j >= ny) ? 0.0 : height[size_t(j) * nx + i];
@@ -348,10 +345,14 @@ class ObjectPlacer {
       double t = placement_.uniform(0, perimeter);
       const double out_m = placement_.uniform(-0.2, 0.8);
       Vec2 local_xy, normal;
-      if (t < 2 * ruin.half.x()) local_xy = Vec2(-ruin.half.x() + t, ruin.half.y() + out_m), normal = Vec2(0, 1);
-      else if ((t -= 2 * ruin.half.x()) < 2 * ruin.half.y()) local_xy = Vec2(ruin.half.x() + out_m, ruin.half.y() - t), normal = Vec2(1, 0);
-      else if ((t -= 2 * ruin.half.y()) < 2 * ruin.half.x()) local_xy = Vec2(ruin.half.x() - t, -ruin.half.y() - out_m), normal = Vec2(0, -1);
-      else t -= 2 * ruin.half.x(), local_xy = Vec2(-ruin.half.x() - out_m, -ruin.half.y() + t), normal = Vec2(-1, 0);
+      if (t < 2 * ruin.half.x())
+        local_xy = Vec2(-ruin.half.x() + t, ruin.half.y() + out_m), normal = Vec2(0, 1);
+      else if ((t -= 2 * ruin.half.x()) < 2 * ruin.half.y())
+        local_xy = Vec2(ruin.half.x() + out_m, ruin.half.y() - t), normal = Vec2(1, 0);
+      else if ((t -= 2 * ruin.half.y()) < 2 * ruin.half.x())
+        local_xy = Vec2(ruin.half.x() - t, -ruin.half.y() - out_m), normal = Vec2(0, -1);
+      else
+        t -= 2 * ruin.half.x(), local_xy = Vec2(-ruin.half.x() - out_m, -ruin.half.y() + t), normal = Vec2(-1, 0);
       const Eigen::Rotation2Dd R(ruin.yaw);
       *xy = ruin.centre + R * local_xy;
       const Vec2 outward = R * normal;
@@ -364,8 +365,8 @@ class ObjectPlacer {
       ok = clearOfStart(*xy, r) && d >= r + 1.0;
     }
     if (!ok)
-      throw std::runtime_error("world '" + spec_.name + "': could not place " + id + " (objects[" +
-                               std::to_string(gi) + "]) at the ruins");
+      throw std::runtime_error("world '" + spec_.name + "': could not place " + id + " (objects[" + std::to_string(gi) +
+                               "]) at the ruins");
   }
 
   // Rejection sampling: inside the region and the ground, clear of the start, the take-off
@@ -380,16 +381,16 @@ class ObjectPlacer {
            clearance(*xy) >= r + 1.0;
     }
     if (!ok)
-      throw std::runtime_error("world '" + spec_.name + "': could not place " + id + " (objects[" +
-                               std::to_string(gi) + "]) in its region");
+      throw std::runtime_error("world '" + spec_.name + "': could not place " + id + " (objects[" + std::to_string(gi) +
+                               "]) in its region");
   }
 
   // A burned building's burned part, or a collapsed building, is a ruin.
   void recordRuin(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy, double yaw, const Vec3& size) {
     if (g.kind == "building" && g.variant == "burned") {
       const double lb = g.burned_fraction * size.x();
-      ruins_.push_back({id, xy + Eigen::Rotation2Dd(yaw) * Vec2(0.5 * size.x() - 0.5 * lb, 0),
-                        Vec2(0.5 * lb, 0.5 * size.y()), yaw});
+      ruins_.push_back(
+          {id, xy + Eigen::Rotation2Dd(yaw) * Vec2(0.5 * size.x() - 0.5 * lb, 0), Vec2(0.5 * lb, 0.5 * size.y()), yaw});
     } else if (isCollapsed(g)) {
       ruins_.push_back({id, xy, Vec2(0.5 * size.x(), 0.5 * size.y()), yaw});
     }
@@ -408,14 +409,16 @@ class ObjectPlacer {
         for (double z : {0.5, 2.0, 4.0}) {
           const Vec2 c = start_xy_ + t * heading_;
           if (b_.shapes()[k].signedDistance(Vec3(c.x(), c.y(), z)) < spec_.start_corridor_half_width_m)
-            throw ConfigError("objects[" + std::to_string(gi) + "].at",
-                              id + " lies in the take-off corridor (" + std::to_string(spec_.start_corridor_m) +
-                                  " m along the start heading)");
+            throw ConfigError("objects[" + std::to_string(gi) + "].at", id + " lies in the take-off corridor (" +
+                                                                            std::to_string(spec_.start_corridor_m) +
+                                                                            " m along the start heading)");
         }
     if (d < spec_.start_clearance_m) {
       char why[200];
-      std::snprintf(why, sizeof(why), "%s at (%g, %g) comes within %.2f m of the start (%g, %g): inside the start "
-                    "clearance of %g m", id.c_str(), xy.x(), xy.y(), std::max(d, 0.0), start_xy_.x(), start_xy_.y(),
+      std::snprintf(why, sizeof(why),
+                    "%s at (%g, %g) comes within %.2f m of the start (%g, %g): inside the start "
+                    "clearance of %g m",
+                    id.c_str(), xy.x(), xy.y(), std::max(d, 0.0), start_xy_.x(), start_xy_.y(),
                     spec_.start_clearance_m);
       throw ConfigError("objects[" + std::to_string(gi) + "].at", why);
     }

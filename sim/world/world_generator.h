@@ -15,10 +15,10 @@ namespace msb {
 /// A generated world, before its files are written.
 struct GeneratedWorld {
   std::string name;
-  std::string mjcf;                       ///< world.xml text
-  std::vector<std::string> textures;      ///< pattern names to write as textures/<name>.png
-  std::vector<Shape> shapes;              ///< ground truth, same names as the collision geoms
-  Pose start = Pose::Identity();          ///< vehicle start pose
+  std::string mjcf;                   ///< world.xml text
+  std::vector<std::string> textures;  ///< pattern names to write as textures/<name>.png
+  std::vector<Shape> shapes;          ///< ground truth, same names as the collision geoms
+  Pose start = Pose::Identity();      ///< vehicle start pose
   Aabb exploration_box;
   std::map<std::string, int> object_counts;  ///< objects per kind
   int collision_geoms = 0, visual_geoms = 0;
@@ -29,6 +29,7 @@ struct GeneratedWorld {
 GeneratedWorld generateWorld(const WorldSpec& spec);
 
 /// Version of the generator; part of the cache key so cached worlds rebuild when it changes.
-inline constexpr int kWorldGeneratorVersion = 4;  // 2: skybox texture, 3: sun light, 4: sky planes, outdoor sun only, vehicles
+inline constexpr int kWorldGeneratorVersion =
+    4;  // 2: skybox texture, 3: sun light, 4: sky planes, outdoor sun only, vehicles
 
 }  // namespace msb

@@ -18,19 +18,21 @@ const std::vector<std::string>& worldObjectKinds();
 
 /// A group of objects of one kind.
 struct ObjectGroupSpec {
-  std::string kind;                  ///< building, tower, car, suv, bus, fire_truck, ambulance, tree, rod, pole, wall, rock, gazebo, house, pillar
-  int count = 1;                     ///< number of objects
-  std::optional<Vec2> at;            ///< fixed position (count must be 1)
-  std::optional<Vec2> region_min;    ///< random placement region (with region_max)
+  std::string kind;  ///< building, tower, car, suv, bus, fire_truck, ambulance, tree, rod, pole, wall, rock, gazebo,
+                     ///< house, pillar
+  int count = 1;     ///< number of objects
+  std::optional<Vec2> at;          ///< fixed position (count must be 1)
+  std::optional<Vec2> region_min;  ///< random placement region (with region_max)
   std::optional<Vec2> region_max;
-  std::optional<double> yaw_deg;     ///< fixed yaw; default random (region) or 0 (at)
-  Vec3 size_min = Vec3::Zero();      ///< size range (kind-specific meaning, see docs/worlds.md)
+  std::optional<double> yaw_deg;  ///< fixed yaw; default random (region) or 0 (at)
+  Vec3 size_min = Vec3::Zero();   ///< size range (kind-specific meaning, see docs/worlds.md)
   Vec3 size_max = Vec3::Zero();
-  std::string variant;               ///< kind-specific: building burned|collapsed|collapsed_burned, ...
-  std::string texture;               ///< texture override (default per kind)
-  double tilt_max_deg = 0.0;         ///< random tilt (rods, poles, rocks)
-  double burned_fraction = 0.4;      ///< textureless share of a burned building's length (collapsed_burned: of its remaining block)
-  double base_z_m = 0.0;             ///< height of the object's base
+  std::string variant;        ///< kind-specific: building burned|collapsed|collapsed_burned, ...
+  std::string texture;        ///< texture override (default per kind)
+  double tilt_max_deg = 0.0;  ///< random tilt (rods, poles, rocks)
+  double burned_fraction =
+      0.4;  ///< textureless share of a burned building's length (collapsed_burned: of its remaining block)
+  double base_z_m = 0.0;  ///< height of the object's base
   /// "ruins": placed at the ruins built before (burned parts and collapsed buildings), not in a
   /// region — rods as reinforcement bars standing out of the ruins and their rubble.
   std::string near;
@@ -55,8 +57,8 @@ struct CaveTunnelSpec {
 /// An enclosed cave: everything inside [min, max] is rock except chambers and tunnels.
 struct CaveSpec {
   Vec2 min = Vec2::Zero(), max = Vec2::Zero();
-  double rock_top_m = 20.0;          ///< height of the rock mass (ceiling top)
-  double cell_m = 2.5;               ///< carving resolution
+  double rock_top_m = 20.0;  ///< height of the rock mass (ceiling top)
+  double cell_m = 2.5;       ///< carving resolution
   std::vector<CaveChamberSpec> chambers;
   std::vector<CaveTunnelSpec> tunnels;
   std::string texture = "rock";
@@ -64,18 +66,18 @@ struct CaveSpec {
 
 /// A whole world.
 struct WorldSpec {
-  std::string name;                  ///< world name (folder under worlds/)
-  std::string description;           ///< one line for `world list`
-  uint64_t seed = 1;                 ///< placement seed
+  std::string name;                     ///< world name (folder under worlds/)
+  std::string description;              ///< one line for `world list`
+  uint64_t seed = 1;                    ///< placement seed
   Vec2 ground_size_m = Vec2(120, 120);  ///< ground plane extent, centred on the origin
   std::string ground_texture = "grass";
-  Vec3 start_position_m = Vec3::Zero(); ///< vehicle start (on the ground: z = 0)
+  Vec3 start_position_m = Vec3::Zero();  ///< vehicle start (on the ground: z = 0)
   double start_yaw_deg = 0.0;
-  Aabb exploration_box;              ///< where exploration goals may lie
-  double start_clearance_m = 6.0;    ///< free radius kept around the start
-  double start_corridor_m = 0.0;     ///< length of the free corridor along the start heading (take-off direction)
+  Aabb exploration_box;            ///< where exploration goals may lie
+  double start_clearance_m = 6.0;  ///< free radius kept around the start
+  double start_corridor_m = 0.0;   ///< length of the free corridor along the start heading (take-off direction)
   double start_corridor_half_width_m = 3.0;  ///< its half width
-  int texture_px = 512;              ///< texture resolution
+  int texture_px = 512;                      ///< texture resolution
   std::vector<ObjectGroupSpec> objects;
   std::optional<CaveSpec> cave;
 

@@ -55,7 +55,8 @@ const std::regex kForbiddenInCore(R"(^\s*#\s*include\s*[<"](mujoco/|GL/|EGL/|yam
 
 TEST(Architecture, CoreIncludesNoSimulatorGlYamlSimOrTools) {
   int files = 0;
-  for (const auto& hit : matchingLines(fs::path(MSB_SOURCE_DIR) / "core", kForbiddenInCore, &files)) ADD_FAILURE() << hit;
+  for (const auto& hit : matchingLines(fs::path(MSB_SOURCE_DIR) / "core", kForbiddenInCore, &files))
+    ADD_FAILURE() << hit;
   EXPECT_GT(files, 5);
 }
 
@@ -76,7 +77,8 @@ TEST(Architecture, TheMethodInterfaceDependsOnCommonAlone) {
   for (const auto& hit : matchingLines(dir, other, &files)) ADD_FAILURE() << hit;
   EXPECT_GT(files, 2);
   const std::regex link(R"(msb::(?!common\b|explorer\b)\w+)");
-  for (const auto& [path, text] : cmakeFiles(dir)) EXPECT_FALSE(std::regex_search(text, link)) << path << " links more than msb::common";
+  for (const auto& [path, text] : cmakeFiles(dir))
+    EXPECT_FALSE(std::regex_search(text, link)) << path << " links more than msb::common";
 }
 
 TEST(Architecture, MethodsCannotSeeGroundTruthOrTheMetric) {
@@ -119,9 +121,7 @@ TEST(Architecture, SimHasNoMappingOrPlanningAndTheLoopNoYaml) {
 
 TEST(Architecture, ToolsLibrariesKeepTheirConcerns) {
   const fs::path tools = fs::path(MSB_SOURCE_DIR) / "tools";
-  auto rule = [](const std::string& forbidden) {
-    return std::regex(R"(^\s*#\s*include\s*[<"]()" + forbidden + ")");
-  };
+  auto rule = [](const std::string& forbidden) { return std::regex(R"(^\s*#\s*include\s*[<"]()" + forbidden + ")"); };
   const struct {
     const char* folder;
     std::string forbidden;

@@ -29,18 +29,30 @@ inline std::string readFile(const fs::path& p) {
 
 // One mutation of `text`, chosen by the stream.
 inline std::string mutate(std::string text, RngStream& rng) {
-  static const char* const kTokens[] = {"nan", "-inf", "1e308", "-1", "99999999999999999999", "[", "]", "{", "}",
-                                        ":", "- ", "\n", "''", "~", "&a", "*a", "!!binary", "\t", "\0", ",,"};
+  static const char* const kTokens[] = {"nan", "-inf",     "1e308", "-1", "99999999999999999999",
+                                        "[",   "]",        "{",     "}",  ":",
+                                        "- ",  "\n",       "''",    "~",  "&a",
+                                        "*a",  "!!binary", "\t",    "\0", ",,"};
   const int kinds = 5;
   const int rounds = 1 + int(rng.uniformInt(3));
   for (int r = 0; r < rounds && !text.empty(); ++r) {
     const size_t at = size_t(rng.uniformInt(text.size()));
     switch (int(rng.uniformInt(kinds))) {
-      case 0: text[at] = char(rng.uniformInt(256)); break;                                    // flip a byte
-      case 1: text.erase(at, 1 + size_t(rng.uniformInt(8))); break;                           // delete a run
-      case 2: text.insert(at, kTokens[rng.uniformInt(sizeof(kTokens) / sizeof(*kTokens))]); break;  // hostile token
-      case 3: text.resize(at); break;                                                           // truncate
-      default: text.insert(at, text.substr(at, size_t(rng.uniformInt(32)))); break;            // repeat a run
+      case 0:
+        text[at] = char(rng.uniformInt(256));
+        break;  // flip a byte
+      case 1:
+        text.erase(at, 1 + size_t(rng.uniformInt(8)));
+        break;  // delete a run
+      case 2:
+        text.insert(at, kTokens[rng.uniformInt(sizeof(kTokens) / sizeof(*kTokens))]);
+        break;  // hostile token
+      case 3:
+        text.resize(at);
+        break;  // truncate
+      default:
+        text.insert(at, text.substr(at, size_t(rng.uniformInt(32))));
+        break;  // repeat a run
     }
   }
   return text;
@@ -65,7 +77,8 @@ void fuzz(const std::string& seed_text, const fs::path& file, int n, const char*
       ++refused;
     } catch (const std::exception& e) {  // anything else (yaml-cpp's own, a bare runtime_error) is a defect
       ADD_FAILURE() << stream << " input " << i << ": unexpected " << typeid(e).name() << ": " << e.what()
-                    << "\n--- input ---\n" << input;
+                    << "\n--- input ---\n"
+                    << input;
     }
   }
   EXPECT_EQ(loaded + refused, n);
@@ -76,7 +89,8 @@ void fuzz(const std::string& seed_text, const fs::path& file, int n, const char*
 inline fs::path dir(const std::string& name) {
   const fs::path d = fs::path(::testing::TempDir()) / ("msb_fuzz_" + name);
   fs::create_directories(d);
-  fs::copy_file(fs::path(MSB_SOURCE_DIR) / "worlds/test/world.xml", d / "world.xml", fs::copy_options::overwrite_existing);
+  fs::copy_file(fs::path(MSB_SOURCE_DIR) / "worlds/test/world.xml", d / "world.xml",
+                fs::copy_options::overwrite_existing);
   return d;
 }
 

@@ -1,5 +1,5 @@
-#include "tools/config/flight_keys.h"
 #include "tools/config/flight_yaml.h"
+#include "tools/config/flight_keys.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -14,7 +14,6 @@ namespace msb {
 namespace {
 
 namespace fs = std::filesystem;
-
 
 template <class Keys>
 void vehicleKeys(Keys r, QuadrotorConfig& q) {
@@ -335,8 +334,10 @@ void readFlightKeys(MapReader& r, const fs::path& dir, FlightSpec& s) {
   std::string world;
   // A value ending in .xml is an MJCF file relative to this file; anything else a world name.
   if (r.read("world", world)) {
-    if (fs::path(world).extension() == ".xml") s.world_path = (dir / world).lexically_normal().string();
-    else s.world_name = world;
+    if (fs::path(world).extension() == ".xml")
+      s.world_path = (dir / world).lexically_normal().string();
+    else
+      s.world_name = world;
   }
   if (r.has("start")) {
     MapReader st = r.sub("start");

@@ -241,8 +241,9 @@ void pythonMethodKeys(Keys& m, PythonMethodConfig& c) {
 class PythonMethodStub final : public Explorer {
  public:
   PythonMethodStub(const PythonMethodConfig&, const ExplorerContext&) {
-    throw ConfigError("method.type", "'python' methods run through the Python module: msbench run hands them to "
-                                     "/usr/bin/python3 -m msbench (docs/python.md)");
+    throw ConfigError("method.type",
+                      "'python' methods run through the Python module: msbench run hands them to "
+                      "/usr/bin/python3 -m msbench (docs/python.md)");
   }
   void observe(const SlamPointsFrame&) override {}
   std::optional<PathCommand> plan(const VehicleState&) override { return std::nullopt; }
@@ -287,14 +288,21 @@ const std::vector<MethodEntry>& methodTable() {
           [](auto& k, MonoSpheresConfig& c) { monoSpheresKeys(k, c); },
           {"spheres", "reachable_spheres", "viewpoints", "goals_reached", "goals_chosen"},
           // Collisions (§V-C): two of the six urban runs; none in the cave; not given for the rest.
-          {{"urban", "", 4919, 6081, 6, 2}, {"cave", "", 7627, 8006, 3, 0}, {"rooftops", "", 3760, 4606, 3},
-           {"sparse", "", 5127, 5150, 3}, {"urban", "fff", 2470, 3181, 3}, {"urban", "dbof", 2308, 3081, 3},
-           {"urban", "ovde", 747, 862, 3}, {"urban", "vpb", 3697, 4175, 3}}),
+          {{"urban", "", 4919, 6081, 6, 2},
+           {"cave", "", 7627, 8006, 3, 0},
+           {"rooftops", "", 3760, 4606, 3},
+           {"sparse", "", 5127, 5150, 3},
+           {"urban", "fff", 2470, 3181, 3},
+           {"urban", "dbof", 2308, 3081, 3},
+           {"urban", "ovde", 747, 862, 3},
+           {"urban", "vpb", 3697, 4175, 3}}),
       methodEntry<GridExplorer, GridExplorerConfig>(
           "grid_random", "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)",
           [](auto& k, GridExplorerConfig& c) { gridRandomKeys(k, c); }, {"leaves", "goals_reached", "goals_chosen"},
           // Collisions (§V-C): one of the six urban runs (a metal rod); none in the cave.
-          {{"urban", "", 1911, 2306, 6, 1}, {"cave", "", 3171, 3375, 3, 0}, {"rooftops", "", 1360, 1556, 3},
+          {{"urban", "", 1911, 2306, 6, 1},
+           {"cave", "", 3171, 3375, 3, 0},
+           {"rooftops", "", 1360, 1556, 3},
            {"sparse", "", 2108, 2168, 3}}),
       methodEntry<StarDiscoveryExplorer, StarDiscoveryConfig>(
           "star_discovery", "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",

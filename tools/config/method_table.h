@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "tools/loop/methods.h"
 #include "tools/config/yaml_reader.h"
 #include "tools/config/yaml_writer.h"
+#include "tools/loop/methods.h"
 
 namespace msb {
 
@@ -22,20 +22,20 @@ namespace msb {
 /// runs; the runs that ended in a collision where §V-C says how many). The one source of the
 /// paper's figures: the report's rows and its findings read them from here.
 struct PaperRow {
-  const char* world;           ///< urban, cave, rooftops, sparse
-  const char* switched_off;    ///< "" for the full method, else the one switch an ablation turns off
+  const char* world;         ///< urban, cave, rooftops, sparse
+  const char* switched_off;  ///< "" for the full method, else the one switch an ablation turns off
   double mean_area_m2, max_area_m2;
-  int runs = 0;                ///< Table I's "Runs"
-  int collisions = -1;         ///< runs ended by a collision (-1: the paper does not say)
+  int runs = 0;         ///< Table I's "Runs"
+  int collisions = -1;  ///< runs ended by a collision (-1: the paper does not say)
 };
 
 /// One registered method.
 struct MethodEntry {
-  const char* type;      ///< `method.type`
-  const char* summary;   ///< for help texts and errors
+  const char* type;                                     ///< `method.type`
+  const char* summary;                                  ///< for help texts and errors
   std::function<MethodChoice(MapReader& method)> read;  ///< reads the keys under `method:` (except `type`) and finishes
   std::function<void(const std::any& config, MapWriter& method)> write;  ///< writes every key of its config
-  std::vector<PaperRow> paper_rows;         ///< the Table I rows it answers to (none: not in the paper)
+  std::vector<PaperRow> paper_rows;            ///< the Table I rows it answers to (none: not in the paper)
   std::vector<std::string> progress_counters;  ///< the counters the progress line shows, in order
 };
 

@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "core/common/config_check.h"
-#include "tools/config/method_table.h"
 #include "tools/config/flight_keys.h"
 #include "tools/config/flight_yaml.h"
+#include "tools/config/method_table.h"
 #include "tools/config/yaml_reader.h"
 #include "tools/config/yaml_writer.h"
 

@@ -43,8 +43,7 @@ bool parseInteger(std::string_view text, int64_t* out, std::string* why) {
   int64_t v = 0;
   const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
   if (ec == std::errc::result_out_of_range) return *why = quoted(s, "is out of range"), false;
-  if (ec != std::errc() || ptr != digits.data() + digits.size())
-    return *why = quoted(s, "is not an integer"), false;
+  if (ec != std::errc() || ptr != digits.data() + digits.size()) return *why = quoted(s, "is not an integer"), false;
   *out = v;
   return true;
 }

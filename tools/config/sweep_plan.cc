@@ -84,8 +84,10 @@ Axis readAxis(MapReader& r, const fs::path& dir) {
       checkLabel(av.label, vkey);
       if (!kv.second.IsMap()) throw ConfigError(vkey, "expected a map of key paths to values ({} for none)");
       for (auto& [k, v] : overrides(kv.second, vkey)) {
-        if (k == "scenario") av.scenario = (dir / v).lexically_normal().string();
-        else av.sets.emplace_back(k, v);
+        if (k == "scenario")
+          av.scenario = (dir / v).lexically_normal().string();
+        else
+          av.sets.emplace_back(k, v);
       }
       a.values.push_back(av);
     }
@@ -199,9 +201,11 @@ SweepPlan loadSweepPlan(const std::string& path) {
       if (k == 0) break;
     }
     for (size_t i = 0; i < include.size(); ++i)
-      if (!include_used[i]) throw ConfigError("include[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
+      if (!include_used[i])
+        throw ConfigError("include[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
     for (size_t i = 0; i < exclude.size(); ++i)
-      if (!exclude_used[i]) throw ConfigError("exclude[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
+      if (!exclude_used[i])
+        throw ConfigError("exclude[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
     for (size_t i = 0; i < plan.runs.size(); ++i)
       for (size_t j = 0; j < i; ++j)
         if (plan.runs[i].id == plan.runs[j].id) throw ConfigError("axes", "two runs share the id " + plan.runs[i].id);

@@ -26,19 +26,19 @@ namespace msb {
 
 /// One run of a sweep: `msbench run <scenario> --seed <seed> --set k=v ...`.
 struct SweepRun {
-  std::string id;                                     ///< stable, readable, unique
-  std::string scenario;                               ///< scenario file (absolute)
+  std::string id;        ///< stable, readable, unique
+  std::string scenario;  ///< scenario file (absolute)
   uint64_t seed = 1;
   std::vector<std::pair<std::string, std::string>> sets;  ///< key path → YAML value, in order
-  std::map<std::string, std::string> labels;          ///< axis name → label
+  std::map<std::string, std::string> labels;              ///< axis name → label
 };
 
 /// An expanded sweep.
 struct SweepPlan {
-  std::string file;                 ///< the sweep file
-  std::string file_hash;            ///< FNV-1a of its bytes (changes are detected on resume)
-  std::vector<std::string> axes;    ///< axis names in order
-  std::vector<SweepRun> runs;       ///< in run order
+  std::string file;               ///< the sweep file
+  std::string file_hash;          ///< FNV-1a of its bytes (changes are detected on resume)
+  std::vector<std::string> axes;  ///< axis names in order
+  std::vector<SweepRun> runs;     ///< in run order
 };
 
 /// Reads and expands a sweep file. Throws FileConfigError naming the file and key.

@@ -177,8 +177,8 @@ ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed)
   }
   std::string names;
   for (const auto& w : worlds) names += (names.empty() ? "" : ", ") + w.name;
-  throw UsageError("world '" + arg + "': no such file and no world of that name in " +
-                           worldsDir() + " (available: " + (names.empty() ? "none" : names) + ")");
+  throw UsageError("world '" + arg + "': no such file and no world of that name in " + worldsDir() +
+                   " (available: " + (names.empty() ? "none" : names) + ")");
 }
 
 }  // namespace msb

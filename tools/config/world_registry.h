@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/world/world_cache.h"
 #include "core/geometry/world_truth.h"
+#include "sim/world/world_cache.h"
 #include "tools/loop/flight_spec.h"
 #include "tools/loop/scenario_spec.h"
 
@@ -22,8 +22,8 @@ std::string worldCacheDir();
 struct WorldEntry {
   std::string name;
   std::string description;
-  std::string path;     ///< spec.yaml or world.xml
-  bool generated;       ///< true for spec.yaml worlds
+  std::string path;  ///< spec.yaml or world.xml
+  bool generated;    ///< true for spec.yaml worlds
 };
 
 /// All worlds in the worlds directory, sorted by name.
@@ -34,8 +34,8 @@ WorldSpec loadWorldSpec(const std::string& path);
 
 /// A world ready to load into the simulator.
 struct ResolvedWorld {
-  std::string world_xml;             ///< MJCF path
-  std::optional<BuiltWorld> built;   ///< generated worlds: shapes, start, box, counts
+  std::string world_xml;            ///< MJCF path
+  std::optional<BuiltWorld> built;  ///< generated worlds: shapes, start, box, counts
 };
 
 /// Resolves a world argument (name or MJCF path); generated worlds are built into the cache
@@ -50,8 +50,8 @@ std::optional<BuiltWorld> resolveFlightWorld(const std::string& file, FlightSpec
 /// A mission's world as the runner needs it: the exploration box and, for generated worlds,
 /// the ground truth.
 struct MissionWorld {
-  Aabb box;                          ///< the scenario's box, else the world's, else unbounded
-  std::optional<WorldTruth> truth;   ///< generated worlds only
+  Aabb box;                         ///< the scenario's box, else the world's, else unbounded
+  std::optional<WorldTruth> truth;  ///< generated worlds only
 };
 
 /// Resolves the scenario's world (resolveFlightWorld), sets the start pose from a generated

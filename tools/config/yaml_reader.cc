@@ -7,7 +7,8 @@ namespace msb {
 void rejectDuplicateKeys(const YAML::Node& node, const std::string& label, const std::string& prefix) {
   if (node.IsSequence()) {
     size_t i = 0;
-    for (const YAML::Node& element : node) rejectDuplicateKeys(element, label, prefix + "[" + std::to_string(i++) + "]");
+    for (const YAML::Node& element : node)
+      rejectDuplicateKeys(element, label, prefix + "[" + std::to_string(i++) + "]");
     return;
   }
   if (!node.IsMap()) return;

@@ -99,8 +99,7 @@ class MapReader {
   }
 
   std::string keyName(const std::string& key) const {
-    return key.empty() ? (prefix_.empty() ? "<root>" : prefix_.substr(0, prefix_.size() - 1))
-                       : prefix_ + key;
+    return key.empty() ? (prefix_.empty() ? "<root>" : prefix_.substr(0, prefix_.size() - 1)) : prefix_ + key;
   }
 
  private:
@@ -116,7 +115,8 @@ class MapReader {
     if (!n.IsScalar()) typeError(n, key, want);
     double v;
     std::string why;
-    if (!parseNumber(n.Scalar(), &v, &why)) throw ConfigError(keyName(key), std::string("expected ") + want + ": " + why);
+    if (!parseNumber(n.Scalar(), &v, &why))
+      throw ConfigError(keyName(key), std::string("expected ") + want + ": " + why);
     return v;
   }
   void convert(const YAML::Node& n, const std::string& key, double& out) const { out = number(n, key, "a number"); }
@@ -125,13 +125,15 @@ class MapReader {
     int64_t v;
     std::string why;
     if (!parseInteger(n.Scalar(), &v, &why)) throw ConfigError(keyName(key), "expected an integer: " + why);
-    if (v < INT32_MIN || v > INT32_MAX) throw ConfigError(keyName(key), "expected an integer: '" + n.Scalar() + "' is out of range");
+    if (v < INT32_MIN || v > INT32_MAX)
+      throw ConfigError(keyName(key), "expected an integer: '" + n.Scalar() + "' is out of range");
     out = int(v);
   }
   void convert(const YAML::Node& n, const std::string& key, uint64_t& out) const {
     if (!n.IsScalar()) typeError(n, key, "a non-negative integer");
     std::string why;
-    if (!parseUnsigned(n.Scalar(), &out, &why)) throw ConfigError(keyName(key), "expected a non-negative integer: " + why);
+    if (!parseUnsigned(n.Scalar(), &out, &why))
+      throw ConfigError(keyName(key), "expected a non-negative integer: " + why);
   }
   void convert(const YAML::Node& n, const std::string& key, bool& out) const {
     if (!n.IsScalar() || !YAML::convert<bool>::decode(n, out)) typeError(n, key, "true or false");
@@ -166,7 +168,6 @@ class MapReader {
   std::string prefix_;
   std::set<std::string> used_;
 };
-
 
 /// Throws FileConfigError (naming `label` and both lines) if a map anywhere in `node` holds
 /// the same key twice (YAML forbids it; yaml-cpp keeps both and lookups would pick one).

@@ -8,9 +8,9 @@
 
 #include <array>
 #include <cmath>
-#include <type_traits>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 
 #include "core/common/types.h"
 
@@ -60,7 +60,9 @@ class MapWriter {
   static YAML::Node encode(const Vec2& v) { return numbers(v.data(), 2); }
   static YAML::Node encode(const Vec3& v) { return numbers(v.data(), 3); }
   template <size_t N>
-  static YAML::Node encode(const std::array<double, N>& v) { return numbers(v.data(), N); }
+  static YAML::Node encode(const std::array<double, N>& v) {
+    return numbers(v.data(), N);
+  }
 
  private:
   static YAML::Node numbers(const double* v, size_t n);

@@ -25,7 +25,8 @@ std::unique_ptr<FeatureSource> makeFeatureSource(const FlightSpec& spec, const F
   if (!spec.perception.enabled) return nullptr;
   if (spec.perception.source == "oracle") {
     if (!truth)
-      throw ConfigError("perception.source", "'oracle' needs a generated world (its ground truth); this world has none");
+      throw ConfigError("perception.source",
+                        "'oracle' needs a generated world (its ground truth); this world has none");
     return std::make_unique<OracleFeatureSource>(spec.perception.oracle, camera, *truth, spec.seed);
   }
   auto tracker = std::make_unique<KltFeatureTracker>(spec.tracker, camera);
@@ -49,9 +50,11 @@ ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
       features_(makeFeatureSource(spec, camera_, setup.truth)),
       last_position_(spec.start_position_m),
       wall_start_(WallClock::now()) {
-  if (spec.perception.enabled) slam_ = std::make_unique<SlamPointEstimator>(spec.slam_points, camera_, spec.camera_stream.rate_hz);
+  if (spec.perception.enabled)
+    slam_ = std::make_unique<SlamPointEstimator>(spec.slam_points, camera_, spec.camera_stream.rate_hz);
   if (spec.frontend.image_noise_sigma > 0.0) image_noise_.emplace(spec.frontend.image_noise_sigma, spec.seed);
-  if (spec.frontend.landmark_jitter_inv_depth > 0.0) jitter_.emplace(spec.frontend.landmark_jitter_inv_depth, spec.seed);
+  if (spec.frontend.landmark_jitter_inv_depth > 0.0)
+    jitter_.emplace(spec.frontend.landmark_jitter_inv_depth, spec.seed);
   if (renderer_) result_.gl_description = renderer_->description();
   if (!setup_.explorer) {
     // A scripted path stays inside the world (above its ground, within its extent).
@@ -163,7 +166,7 @@ bool ClosedLoop::perceive() {
   record_.timing.tracker_ms = msSince(t0);
   t0 = WallClock::now();
   points_ = slam_->update(tracks_, vio_.noisyCameraPose(frame_->T_W_C));
-  if (jitter_) jitter_->apply(points_);  // a moving filter estimate (degradation, off by default)
+  if (jitter_) jitter_->apply(points_);                   // a moving filter estimate (degradation, off by default)
   vio_.setTrackedFeatures(trackedFromPrevious(tracks_));  // drift grows with few features
   record_.timing.triangulation_ms = msSince(t0);
   record_.tracks = &tracks_;
@@ -232,8 +235,7 @@ void ClosedLoop::recordTick() {
   if (traj_schedule_->due(record_.tick)) {
     const auto& ref = trajectory_.reference();
     result_.trajectory.push_back({gt_.t_s, gt_.T_W_B.translation(), Quat(gt_.T_W_B.linear()), gt_.v_W_mps,
-                                  est_.T_W_B.translation(), yawOf(est_.T_W_B.linear()), ref.position_m,
-                                  ref.yaw_rad});
+                                  est_.T_W_B.translation(), yawOf(est_.T_W_B.linear()), ref.position_m, ref.yaw_rad});
     result_.final_drift_m = (est_.T_W_B.translation() - gt_.T_W_B.translation()).norm();
   }
   result_.distance_flown_m += (gt_.T_W_B.translation() - last_position_).norm();
@@ -246,16 +248,21 @@ void ClosedLoop::actuateAndSampleImu() {
   if (!imu_schedule_->due(record_.tick)) return;
   const double tick_s = 1.0 / spec_.physics.physics_hz;
   const double dt = record_.tick == 0 ? 1.0 / spec_.imu.rate_hz : double(record_.tick - last_imu_tick_) * tick_s;
-  result_.imu.push_back(imu_.sample(record_.tick, gt_.t_s, dt, sim_.imuTruth().specific_force_mps2,
-                                    sim_.imuTruth().angular_rate_radps));
+  result_.imu.push_back(
+      imu_.sample(record_.tick, gt_.t_s, dt, sim_.imuTruth().specific_force_mps2, sim_.imuTruth().angular_rate_radps));
   last_imu_tick_ = record_.tick;
 }
 
 uint64_t ClosedLoop::stateHash() const {
   uint64_t h = hashTrajectory(result_.trajectory);
   const Odometry now = sim_.groundTruth();
-  const double v[7] = {now.t_s, now.T_W_B.translation().x(), now.T_W_B.translation().y(),
-                       now.T_W_B.translation().z(), now.v_W_mps.x(), now.v_W_mps.y(), now.v_W_mps.z()};
+  const double v[7] = {now.t_s,
+                       now.T_W_B.translation().x(),
+                       now.T_W_B.translation().y(),
+                       now.T_W_B.translation().z(),
+                       now.v_W_mps.x(),
+                       now.v_W_mps.y(),
+                       now.v_W_mps.z()};
   h = fnv1a64(v, sizeof(v), h);
   for (const auto& s : result_.imu) {
     const double a[6] = {s.accel_mps2.x(), s.accel_mps2.y(), s.accel_mps2.z(),

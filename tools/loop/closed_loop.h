@@ -26,10 +26,9 @@
 
 #include "core/common/clock.h"
 #include "core/eval/run_hash.h"
-#include "tools/loop/records.h"
+#include "core/explorer/explorer.h"
 #include "core/perception/feature_tracker.h"
 #include "core/perception/slam_points.h"
-#include "core/explorer/explorer.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/physics/se3_controller.h"
 #include "sim/physics/trajectory_tracker.h"
@@ -37,6 +36,7 @@
 #include "sim/sensors/imu_model.h"
 #include "sim/sensors/vio_drift.h"
 #include "tools/loop/flight_spec.h"
+#include "tools/loop/records.h"
 
 namespace msb {
 
@@ -52,20 +52,20 @@ struct FlightResult {
   std::vector<TrajectoryRow> trajectory;  ///< at trajectory_rate_hz
   std::vector<ImuSample> imu;             ///< every IMU sample
   int frames_rendered = 0;
-  RenderTiming render_time_sum;           ///< summed over frames
-  double tracking_rms_m = 0.0;            ///< RMS |estimate − reference| over controller ticks
-  double tracking_max_m = 0.0;            ///< max |estimate − reference|
-  double distance_flown_m = 0.0;          ///< ground truth, summed every tick
-  double final_drift_m = 0.0;             ///< |estimated − true position| at the end
-  double vio_lost_at_s = -1.0;            ///< when tracking was declared lost
-  int perception_frames = 0;              ///< frames the feature source processed
-  double tracked_sum = 0.0;               ///< features tracked from the previous frame, summed
-  int tracked_min = -1;                   ///< fewest tracked in a frame (after the first)
-  int frames_few_tracks = 0;              ///< frames below perception.lost_min_tracks
+  RenderTiming render_time_sum;   ///< summed over frames
+  double tracking_rms_m = 0.0;    ///< RMS |estimate − reference| over controller ticks
+  double tracking_max_m = 0.0;    ///< max |estimate − reference|
+  double distance_flown_m = 0.0;  ///< ground truth, summed every tick
+  double final_drift_m = 0.0;     ///< |estimated − true position| at the end
+  double vio_lost_at_s = -1.0;    ///< when tracking was declared lost
+  int perception_frames = 0;      ///< frames the feature source processed
+  double tracked_sum = 0.0;       ///< features tracked from the previous frame, summed
+  int tracked_min = -1;           ///< fewest tracked in a frame (after the first)
+  int frames_few_tracks = 0;      ///< frames below perception.lost_min_tracks
   bool path_finished = false;
-  std::string gl_description;             ///< what rendered the frames
+  std::string gl_description;                  ///< what rendered the frames
   std::map<std::string, int> mujoco_warnings;  ///< MuJoCo's warning counters (non-zero ones)
-  uint64_t trajectory_hash = 0;           ///< FNV-1a over the trajectory rows
+  uint64_t trajectory_hash = 0;                ///< FNV-1a over the trajectory rows
 
   /// Simulated seconds per wall-clock second.
   double realTimeFactor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
@@ -73,11 +73,11 @@ struct FlightResult {
 
 /// What the loop needs besides the flight: the optional explorer and its rates.
 struct LoopSetup {
-  Explorer* explorer = nullptr;        ///< exploration method (not owned), or none: fly spec.waypoints
-  const WorldTruth* truth = nullptr;   ///< ground truth (needed by the oracle feature source only)
-  double trajectory_rate_hz = 50.0;    ///< trajectory rows
-  double map_rate_hz = 5.0;            ///< explorer map updates (latest SLAM points)
-  double planning_rate_hz = 5.0;       ///< explorer planning steps
+  Explorer* explorer = nullptr;       ///< exploration method (not owned), or none: fly spec.waypoints
+  const WorldTruth* truth = nullptr;  ///< ground truth (needed by the oracle feature source only)
+  double trajectory_rate_hz = 50.0;   ///< trajectory rows
+  double map_rate_hz = 5.0;           ///< explorer map updates (latest SLAM points)
+  double planning_rate_hz = 5.0;      ///< explorer planning steps
 };
 
 /// Wall time of the stages of one tick (ms; recorded, never used).
@@ -87,14 +87,14 @@ struct TickTiming {
 
 /// What one tick produced; pointers are valid until the next step().
 struct TickRecord {
-  int64_t tick = 0;                          ///< the tick that was stepped
-  double t_s = 0.0;                          ///< its simulated time
-  bool completed = false;                    ///< false: the run ended inside this tick
-  const CameraFrame* frame = nullptr;        ///< rendered this tick
-  const TrackFrame* tracks = nullptr;        ///< perceived this tick
-  const SlamPointsFrame* points = nullptr;   ///< SLAM points of this tick's frame
-  const RenderTiming* render = nullptr;      ///< render split of this tick's frame
-  bool map_updated = false;                  ///< the explorer integrated SLAM points this tick
+  int64_t tick = 0;                         ///< the tick that was stepped
+  double t_s = 0.0;                         ///< its simulated time
+  bool completed = false;                   ///< false: the run ended inside this tick
+  const CameraFrame* frame = nullptr;       ///< rendered this tick
+  const TrackFrame* tracks = nullptr;       ///< perceived this tick
+  const SlamPointsFrame* points = nullptr;  ///< SLAM points of this tick's frame
+  const RenderTiming* render = nullptr;     ///< render split of this tick's frame
+  bool map_updated = false;                 ///< the explorer integrated SLAM points this tick
   TickTiming timing;
 };
 
@@ -162,7 +162,7 @@ class ClosedLoop {
   VioDriftModel vio_;
   std::unique_ptr<FeatureSource> features_;
   std::unique_ptr<SlamPointEstimator> slam_;
-  std::optional<ImageNoise> image_noise_;     // front-end degradation (none by default)
+  std::optional<ImageNoise> image_noise_;  // front-end degradation (none by default)
   std::optional<LandmarkJitter> jitter_;
   // Schedules (integer ticks).
   int64_t ctrl_div_ = 1, lost_ticks_ = 0, max_ticks_ = 0, hold_ticks_ = 0;

@@ -25,11 +25,9 @@ void FlightSpec::validate(ConfigChecker& c) const {
   c.inRange("duration_s", duration_s, 0.01, 36000.0);
   c.nonNegative("hold_after_s", hold_after_s);
   c.inRange("controller_hz", controller_hz, 50.0, physics.physics_hz);
-  c.require(std::abs(physics.physics_hz / controller_hz -
-                     std::round(physics.physics_hz / controller_hz)) < 1e-9,
+  c.require(std::abs(physics.physics_hz / controller_hz - std::round(physics.physics_hz / controller_hz)) < 1e-9,
             "controller_hz", "must divide physics.physics_hz");
-  c.require(camera_stream.rate_hz <= physics.physics_hz, "camera_stream.rate_hz",
-            "must not exceed physics.physics_hz");
+  c.require(camera_stream.rate_hz <= physics.physics_hz, "camera_stream.rate_hz", "must not exceed physics.physics_hz");
   c.nested("physics", physics);
   c.nested("controller", controller);
   c.nested("trajectory", trajectory);
@@ -46,10 +44,10 @@ void FlightSpec::validate(ConfigChecker& c) const {
     c.nested("vio_drift (scaled by frontend.drift_scale)", scaledDrift(vio_drift, frontend.drift_scale));
   c.require(frontend.mistrack_share == 0.0 || perception.source == "klt", "frontend.mistrack_share",
             "mis-tracks are the KLT tracker's: the oracle source has pixel_noise_px instead");
-  c.require(!perception.enabled || camera_stream.enabled, "perception.enabled",
-            "needs camera_stream.enabled");
+  c.require(!perception.enabled || camera_stream.enabled, "perception.enabled", "needs camera_stream.enabled");
   c.require(!perception.enabled || perception.source != "klt" || camera_stream.renderer != "blank",
-            "camera_stream.renderer", "'blank' draws no images: the klt tracker needs the fisheye renderer "
+            "camera_stream.renderer",
+            "'blank' draws no images: the klt tracker needs the fisheye renderer "
             "(or perception.source: oracle)");
 }
 

@@ -10,14 +10,14 @@
 #include "core/camera/fisheye_camera.h"
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
-#include "sim/physics/quadrotor_sim.h"
-#include "sim/physics/se3_controller.h"
-#include "sim/physics/trajectory_tracker.h"
-#include "sim/render/fisheye_renderer.h"
 #include "core/perception/feature_tracker.h"
 #include "core/perception/frontend_degradation.h"
 #include "core/perception/oracle_features.h"
 #include "core/perception/slam_points.h"
+#include "sim/physics/quadrotor_sim.h"
+#include "sim/physics/se3_controller.h"
+#include "sim/physics/trajectory_tracker.h"
+#include "sim/render/fisheye_renderer.h"
 #include "sim/sensors/imu_model.h"
 #include "sim/sensors/vio_drift.h"
 
@@ -25,10 +25,10 @@ namespace msb {
 
 /// Camera stream settings of a flight.
 struct CameraStreamConfig {
-  bool enabled = true;            ///< render fisheye frames at all
+  bool enabled = true;               ///< render fisheye frames at all
   std::string renderer = "fisheye";  ///< fisheye (OSMesa cube map) | blank (uniform grey frames, no GL: tests)
-  double rate_hz = 15.0;          ///< render rate (first tick at or after each period)
-  int save_every_n = 15;          ///< write every N-th rendered frame as PNG (0 = none)
+  double rate_hz = 15.0;             ///< render rate (first tick at or after each period)
+  int save_every_n = 15;             ///< write every N-th rendered frame as PNG (0 = none)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -36,11 +36,11 @@ struct CameraStreamConfig {
 
 /// Perception in the loop: tracker + SLAM points on every rendered frame, tracking loss.
 struct PerceptionConfig {
-  bool enabled = false;              ///< run the tracker and triangulation (vio-eval, missions)
-  std::string source = "klt";        ///< klt (tracker on the rendered image) | oracle (ground truth)
-  OracleFeatureConfig oracle;        ///< settings of the oracle source
-  int lost_min_tracks = 15;          ///< fewer features tracked from the previous frame than this ...
-  double lost_after_s = 2.0;         ///< ... for this long ends the run as vio_lost
+  bool enabled = false;        ///< run the tracker and triangulation (vio-eval, missions)
+  std::string source = "klt";  ///< klt (tracker on the rendered image) | oracle (ground truth)
+  OracleFeatureConfig oracle;  ///< settings of the oracle source
+  int lost_min_tracks = 15;    ///< fewer features tracked from the previous frame than this ...
+  double lost_after_s = 2.0;   ///< ... for this long ends the run as vio_lost
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -48,27 +48,27 @@ struct PerceptionConfig {
 
 /// Everything `msbench fly` needs.
 struct FlightSpec {
-  std::string world_path;             ///< MJCF world file (absolute after loading), or
-  std::string world_name;             ///< a world name (worlds/<name>/), resolved when flying
-  uint64_t seed = 1;                  ///< scenario seed for all RNG streams
-  double duration_s = 60.0;           ///< hard limit on simulated time
-  double hold_after_s = 2.0;          ///< keep flying this long after the path is finished
+  std::string world_path;                    ///< MJCF world file (absolute after loading), or
+  std::string world_name;                    ///< a world name (worlds/<name>/), resolved when flying
+  uint64_t seed = 1;                         ///< scenario seed for all RNG streams
+  double duration_s = 60.0;                  ///< hard limit on simulated time
+  double hold_after_s = 2.0;                 ///< keep flying this long after the path is finished
   Vec3 start_position_m = Vec3(0, 0, 0.05);  ///< body origin at start (0.05 m = on the ground)
-  double start_yaw_rad = 0.0;         ///< heading at start
-  std::vector<Waypoint> waypoints;    ///< the scripted path
-  double controller_hz = 500.0;       ///< controller rate (divides physics_hz)
-  PhysicsConfig physics;              ///< physics and vehicle
-  Se3ControllerConfig controller;     ///< controller gains
-  TrajectoryTrackerConfig trajectory; ///< tracker and limits
-  ImuConfig imu;                      ///< IMU noise and rate
-  FisheyeCameraConfig camera;         ///< camera model
-  FisheyeRendererConfig render;       ///< render settings
-  CameraStreamConfig camera_stream;   ///< render rate and frame saving
-  VioDriftConfig vio_drift;           ///< the drifting pose estimate the controller flies on
-  PerceptionConfig perception;        ///< tracker, SLAM points, tracking loss
-  FeatureTrackerConfig tracker;       ///< feature tracker
-  SlamPointsConfig slam_points;       ///< triangulation
-  FrontendDegradationConfig frontend; ///< degradation axes of the front end (off by default)
+  double start_yaw_rad = 0.0;                ///< heading at start
+  std::vector<Waypoint> waypoints;           ///< the scripted path
+  double controller_hz = 500.0;              ///< controller rate (divides physics_hz)
+  PhysicsConfig physics;                     ///< physics and vehicle
+  Se3ControllerConfig controller;            ///< controller gains
+  TrajectoryTrackerConfig trajectory;        ///< tracker and limits
+  ImuConfig imu;                             ///< IMU noise and rate
+  FisheyeCameraConfig camera;                ///< camera model
+  FisheyeRendererConfig render;              ///< render settings
+  CameraStreamConfig camera_stream;          ///< render rate and frame saving
+  VioDriftConfig vio_drift;                  ///< the drifting pose estimate the controller flies on
+  PerceptionConfig perception;               ///< tracker, SLAM points, tracking loss
+  FeatureTrackerConfig tracker;              ///< feature tracker
+  SlamPointsConfig slam_points;              ///< triangulation
+  FrontendDegradationConfig frontend;        ///< degradation axes of the front end (off by default)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -22,9 +22,9 @@ namespace msb {
 
 /// The method of a scenario: its type, its validated config and a factory.
 struct MethodChoice {
-  std::string type;                       ///< as in `method.type`
-  std::any config;                        ///< the method's config struct (e.g. MonoSpheresConfig)
-  std::map<std::string, bool> switches;   ///< the method's on/off switches (ablations), for reports
+  std::string type;                      ///< as in `method.type`
+  std::any config;                       ///< the method's config struct (e.g. MonoSpheresConfig)
+  std::map<std::string, bool> switches;  ///< the method's on/off switches (ablations), for reports
   /// Creates the explorer for a mission.
   std::function<std::unique_ptr<Explorer>(const FisheyeCamera&, const ExplorerContext&)> make;
 };

@@ -25,7 +25,8 @@ FlightSpec missionFlight(const ScenarioSpec& spec) {
 }  // namespace
 
 Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth)
-    : Mission(spec, box, truth, spec.method.make(FisheyeCamera(checkValid(spec).flight.camera), explorerContext(spec, box))) {}
+    : Mission(spec, box, truth,
+              spec.method.make(FisheyeCamera(checkValid(spec).flight.camera), explorerContext(spec, box))) {}
 
 Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* truth, std::unique_ptr<Explorer> explorer)
     : spec_(checkValid(spec)),

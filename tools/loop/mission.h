@@ -39,16 +39,16 @@ struct MissionResult {
   std::map<std::string, double> counters;  ///< the method's counters at the end
   StageTimes stages;
   std::vector<std::pair<double, StageTimes>> stage_timeline;  ///< cumulative, every 10 simulated s
-  std::vector<double> map_update_ms;       ///< wall time of every map update (recorded only)
+  std::vector<double> map_update_ms;                          ///< wall time of every map update (recorded only)
   Aabb exploration_box;
-  int box_explorable_columns = 0;          ///< 0 if the world has no ground truth
-  int box_explored_explorable_columns = 0; ///< explored columns among those (box_share numerator)
+  int box_explorable_columns = 0;                      ///< 0 if the world has no ground truth
+  int box_explored_explorable_columns = 0;             ///< explored columns among those (box_share numerator)
   int box_true_frame_explored_explorable_columns = 0;  ///< the same with true-frame columns
-  NoGainInterval longest_no_gain;          ///< longest stretch without coverage gain
-  uint64_t map_hash = 0;                   ///< FNV-1a over the final map snapshot
-  uint64_t run_hash = 0;                   ///< trajectory + map + coverage
-  std::optional<CollisionAudit> collision_audit;  ///< a collision in a world with ground truth
-  std::optional<FrontEndProfile> frontend;  ///< the SLAM points' errors (worlds with ground truth)
+  NoGainInterval longest_no_gain;                      ///< longest stretch without coverage gain
+  uint64_t map_hash = 0;                               ///< FNV-1a over the final map snapshot
+  uint64_t run_hash = 0;                               ///< trajectory + map + coverage
+  std::optional<CollisionAudit> collision_audit;       ///< a collision in a world with ground truth
+  std::optional<FrontEndProfile> frontend;             ///< the SLAM points' errors (worlds with ground truth)
   std::optional<MapAccuracy> map_accuracy;  ///< the final map against the truth (non-empty map, ground truth)
 };
 
@@ -96,9 +96,9 @@ class Mission {
   std::vector<double> map_update_ms_;
   // Truth-side records (worlds with ground truth only).
   const WorldTruth* truth_ = nullptr;
-  std::optional<FrontEndProfiler> frontend_;         // the front-end error profile
-  std::optional<CollisionAuditRecorder> audit_;      // what a collision audit needs
-  Pose true_from_est_ = Pose::Identity();            // the latest frame's VIO → true correction
+  std::optional<FrontEndProfiler> frontend_;     // the front-end error profile
+  std::optional<CollisionAuditRecorder> audit_;  // what a collision audit needs
+  Pose true_from_est_ = Pose::Identity();        // the latest frame's VIO → true correction
 };
 
 /// Runs a mission to its end.

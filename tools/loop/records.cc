@@ -29,18 +29,23 @@ uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows) {
 
 const char* runStatusName(RunStatus s) {
   switch (s) {
-    case RunStatus::kCompleted: return "completed";
-    case RunStatus::kCollided: return "collided";
-    case RunStatus::kVioLost: return "vio_lost";
-    case RunStatus::kDiverged: return "diverged";
-    case RunStatus::kError: return "error";
+    case RunStatus::kCompleted:
+      return "completed";
+    case RunStatus::kCollided:
+      return "collided";
+    case RunStatus::kVioLost:
+      return "vio_lost";
+    case RunStatus::kDiverged:
+      return "diverged";
+    case RunStatus::kError:
+      return "error";
   }
   return "?";
 }
 
 std::optional<RunStatus> parseRunStatus(const std::string& word) {
-  for (RunStatus s : {RunStatus::kCompleted, RunStatus::kCollided, RunStatus::kVioLost, RunStatus::kDiverged,
-                      RunStatus::kError})
+  for (RunStatus s :
+       {RunStatus::kCompleted, RunStatus::kCollided, RunStatus::kVioLost, RunStatus::kDiverged, RunStatus::kError})
     if (word == runStatusName(s)) return s;
   return std::nullopt;
 }

@@ -15,12 +15,12 @@ namespace msb {
 /// One row of trajectory.csv: ground truth, the VIO estimate and the reference.
 struct TrajectoryRow {
   double t_s;
-  Vec3 position_m;       ///< ground truth
-  Quat orientation;      ///< ground truth
-  Vec3 velocity_mps;     ///< ground truth
-  Vec3 est_position_m;   ///< VIO estimate
-  double est_yaw_rad;    ///< VIO estimate
-  Vec3 ref_position_m;   ///< trajectory reference (estimate frame)
+  Vec3 position_m;      ///< ground truth
+  Quat orientation;     ///< ground truth
+  Vec3 velocity_mps;    ///< ground truth
+  Vec3 est_position_m;  ///< VIO estimate
+  double est_yaw_rad;   ///< VIO estimate
+  Vec3 ref_position_m;  ///< trajectory reference (estimate frame)
   double ref_yaw_rad;
 };
 

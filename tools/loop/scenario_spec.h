@@ -9,19 +9,19 @@
 #include <vector>
 
 #include "core/common/aabb.h"
-#include "tools/loop/methods.h"
 #include "tools/loop/flight_spec.h"
+#include "tools/loop/methods.h"
 
 namespace msb {
 
 /// The closed loop's rates and outputs.
 struct MissionSettings {
-  double map_rate_hz = 5.0;         ///< map updates (latest SLAM frame)
-  double planning_rate_hz = 5.0;    ///< planning steps
-  double metric_rate_hz = 1.0;      ///< coverage samples
-  double trajectory_rate_hz = 10.0; ///< trajectory.csv rows
-  bool write_map_ply = true;        ///< final map as map.ply
-  bool progress = true;             ///< progress line on stderr
+  double map_rate_hz = 5.0;          ///< map updates (latest SLAM frame)
+  double planning_rate_hz = 5.0;     ///< planning steps
+  double metric_rate_hz = 1.0;       ///< coverage samples
+  double trajectory_rate_hz = 10.0;  ///< trajectory.csv rows
+  bool write_map_ply = true;         ///< final map as map.ply
+  bool progress = true;              ///< progress line on stderr
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -34,11 +34,11 @@ FlightSpec missionFlightDefaults();
 /// Everything `msbench run` needs. Default-constructed, it is a valid mission once it names a
 /// world (`flight.world_path` or `flight.world_name`).
 struct ScenarioSpec {
-  std::string name;                 ///< run name (defaults to the file's stem)
+  std::string name;                             ///< run name (defaults to the file's stem)
   FlightSpec flight = missionFlightDefaults();  ///< world, seed, duration, start, vehicle, sensors
-  bool start_from_world = true;     ///< take start pose from the generated world unless `start` is given
-  std::optional<Aabb> exploration_box;  ///< overrides the world's box
-  MethodChoice method = monospheresMethod();  ///< the exploration method and its config
+  bool start_from_world = true;                 ///< take start pose from the generated world unless `start` is given
+  std::optional<Aabb> exploration_box;          ///< overrides the world's box
+  MethodChoice method = monospheresMethod();    ///< the exploration method and its config
   MissionSettings mission;
 
   /// Records invalid fields.

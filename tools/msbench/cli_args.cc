@@ -12,8 +12,7 @@ namespace msb {
 ArgParser::ArgParser(std::string command, std::string summary)
     : command_(std::move(command)), summary_(std::move(summary)) {}
 
-ArgParser& ArgParser::option(const std::string& name, const std::string& def,
-                             const std::string& help, bool required) {
+ArgParser& ArgParser::option(const std::string& name, const std::string& def, const std::string& help, bool required) {
   options_.push_back({name, def, help, false, required});
   return *this;
 }
@@ -64,8 +63,7 @@ bool ArgParser::parse(int argc, char** argv) {
     values_[positionals_[next_positional++].first] = a;
   }
   if (next_positional < positionals_.size())
-    throw UsageError("missing argument " + positionals_[next_positional].first + " (see " +
-                     command_ + " --help)");
+    throw UsageError("missing argument " + positionals_[next_positional].first + " (see " + command_ + " --help)");
   for (const auto& o : options_) {
     if (values_.count(o.name)) continue;
     if (o.required) throw UsageError("option --" + o.name + " is required");
@@ -133,7 +131,8 @@ std::string ArgParser::help() const {
     os << "  " << std::left << std::setw(22) << (flag.size() < 22 ? flag : flag + " ") << std::setw(14) << def << o.help
        << "\n";
   }
-  os << "  " << std::left << std::setw(36) << "--help" << "show this help\n";
+  os << "  " << std::left << std::setw(36) << "--help"
+     << "show this help\n";
   return os.str();
 }
 
@@ -144,9 +143,12 @@ std::vector<std::string> takeRepeatedOption(int& argc, char** argv, const std::s
   for (int i = 0; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == flag && i + 1 >= argc) throw UsageError(flag + " needs a value (" + flag + " KEY=VALUE)");
-    if (a == flag) values.push_back(argv[++i]);
-    else if (a.rfind(prefix, 0) == 0) values.push_back(a.substr(prefix.size()));
-    else argv[w++] = argv[i];
+    if (a == flag)
+      values.push_back(argv[++i]);
+    else if (a.rfind(prefix, 0) == 0)
+      values.push_back(a.substr(prefix.size()));
+    else
+      argv[w++] = argv[i];
   }
   argc = w;
   return values;

@@ -21,8 +21,7 @@ class ArgParser {
   /// `command` and `summary` head the help text.
   ArgParser(std::string command, std::string summary);
   /// A value option "--name VALUE" with a default ("" = required when `required`).
-  ArgParser& option(const std::string& name, const std::string& def, const std::string& help,
-                    bool required = false);
+  ArgParser& option(const std::string& name, const std::string& def, const std::string& help, bool required = false);
   /// A boolean flag "--name".
   ArgParser& flag(const std::string& name, const std::string& help);
   /// A positional argument (all declared positionals are required).

@@ -6,14 +6,14 @@
 
 #include "core/common/wall_time.h"
 #include "core/geometry/world_truth.h"
+#include "tools/config/scenario_yaml.h"
+#include "tools/config/world_registry.h"
 #include "tools/loop/mission.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
-#include "tools/results/provenance.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/config/scenario_yaml.h"
-#include "tools/config/world_registry.h"
+#include "tools/results/provenance.h"
 
 namespace msb {
 
@@ -54,8 +54,8 @@ int runBenchLoopCommand(int argc, char** argv) {
   const double total = f.wall_time_s * 1000.0;
   const double known = s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
   std::printf("bench-loop %s seed %s: %.0f s simulated, %ld frames, %s; wall %.1f s, RTF %.2f, peak RSS %.0f MiB\n",
-              spec.name.c_str(), args.get("seed").c_str(), f.sim_time_s, long(f.frames_rendered), runStatusName(f.status),
-              f.wall_time_s, f.realTimeFactor(), peakRssMb());
+              spec.name.c_str(), args.get("seed").c_str(), f.sim_time_s, long(f.frames_rendered),
+              runStatusName(f.status), f.wall_time_s, f.realTimeFactor(), peakRssMb());
   std::printf("%-14s %12s %12s %8s\n", "stage", "ms/sim-s", "ms/frame", "share");
   auto row = [&](const char* name, double ms) {
     std::printf("%-14s %12.1f %12.2f %7.1f%%\n", name, ms / sim, ms / frames, 100.0 * ms / std::max(total, 1e-9));

@@ -25,8 +25,8 @@ int runBenchMapCommand(int argc, char** argv) {
   for (int k = 0; k < 7; ++k) {
     std::vector<double> v;
     for (const auto& s : r.stats) {
-      const double ms[] = {s.polyhedron_ms, s.dbof_ms, s.spheres_ms, s.sampling_ms, s.graph_ms, s.obstacles_ms,
-                           s.frontiers_ms};
+      const double ms[] = {s.polyhedron_ms, s.dbof_ms,      s.spheres_ms,  s.sampling_ms,
+                           s.graph_ms,      s.obstacles_ms, s.frontiers_ms};
       v.push_back(ms[k]);
     }
     std::printf("  %-11s median %.3f  p99 %.3f ms\n", names[k], percentile(v, 0.5), percentile(v, 0.99));

@@ -12,13 +12,12 @@
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/physics/se3_controller.h"
 #include "sim/render/fisheye_renderer.h"
+#include "tools/config/strict_number.h"
+#include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
-#include "tools/config/strict_number.h"
-#include "tools/config/world_registry.h"
-
 
 namespace msb {
 
@@ -61,7 +60,6 @@ double meanAbsDifference(const CameraFrame& a, const CameraFrame& b) {
   return sum / double(a.pixels.size());
 }
 
-
 // A renderer switch bench-sim can compare: its --compare-* flag, the config field, and the
 // labels of its two settings (each with a leading space).
 struct RendererSwitch {
@@ -75,12 +73,12 @@ struct RendererSwitch {
 const RendererSwitch kRendererSwitches[] = {
     {"compare-cull", &FisheyeRendererConfig::cull_per_face, " culled", " not culled"},
     {"compare-textures", &FisheyeRendererConfig::trilinear_textures, " trilinear", " nearest mip"},
-    {"compare-framebuffers", &FisheyeRendererConfig::framebuffer_per_face, " framebuffer per face", " shared framebuffer"},
+    {"compare-framebuffers", &FisheyeRendererConfig::framebuffer_per_face, " framebuffer per face",
+     " shared framebuffer"},
     {"compare-texture-format", &FisheyeRendererConfig::single_channel_textures, " one-byte textures", " RGB textures"},
     {"compare-framebuffer-format", &FisheyeRendererConfig::single_channel_framebuffer, " one-channel framebuffer",
      " RGBA framebuffer"},
 };
-
 
 // Physics: a controlled hover at 2 m, controller every step; prints steps/s.
 void benchPhysics(const std::string& world, long steps) {
@@ -96,8 +94,8 @@ void benchPhysics(const std::string& world, long steps) {
   }
   const double phys_s = secondsSince(t0);
   std::printf("world: %s (%d geoms)\n", world.c_str(), sim.geomCount());
-  std::printf("physics: %.0f steps/s with controller (%.2f us/step, %.0fx real time at 500 Hz)\n",
-              steps / phys_s, 1e6 * phys_s / steps, steps / phys_s / 500.0);
+  std::printf("physics: %.0f steps/s with controller (%.2f us/step, %.0fx real time at 500 Hz)\n", steps / phys_s,
+              1e6 * phys_s / steps, steps / phys_s / 500.0);
 }
 
 // The renderer settings the flags ask for.
@@ -178,24 +176,24 @@ void benchRendering(const std::string& world, double scale, const FisheyeRendere
     const RenderTiming& sum = b.sums[k];
     std::sort(b.totals[k].begin(), b.totals[k].end());
     const char* label = !compared ? "" : compared->label((k == 0) == (rcfg.*compared->field));
-    std::printf("fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
-                "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
-                "atlas %dx%d, face focal ratio %.2f, sharpness (mean |gradient| in the FoV) %.3f\n",
-                camera.width(), camera.height(), label,
-                sum.totalMs() / n, 1000.0 * n / sum.totalMs(), b.totals[k][b.totals[k].size() / 2], sum.scene_ms / n,
-                sum.render_ms / n, sum.readback_ms / n, sum.remap_ms / n, renderer.renderedPixels(),
-                static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
-                renderer.atlasSize().height, rcfg.face_focal_ratio, b.sharpness[k] / n);
+    std::printf(
+        "fisheye %dx%d%s: %.1f ms/frame (%.1f frames/s, median %.1f ms) = scene %.2f + "
+        "render %.2f + read-back %.2f + remap %.2f ms; %ld face pixels in %d faces, "
+        "atlas %dx%d, face focal ratio %.2f, sharpness (mean |gradient| in the FoV) %.3f\n",
+        camera.width(), camera.height(), label, sum.totalMs() / n, 1000.0 * n / sum.totalMs(),
+        b.totals[k][b.totals[k].size() / 2], sum.scene_ms / n, sum.render_ms / n, sum.readback_ms / n, sum.remap_ms / n,
+        renderer.renderedPixels(), static_cast<int>(renderer.faces().size()), renderer.atlasSize().width,
+        renderer.atlasSize().height, rcfg.face_focal_ratio, b.sharpness[k] / n);
   }
   if (compared) {
     // Time of the default setting over the other, whichever renderer had which.
     const bool default_value = FisheyeRendererConfig{}.*compared->field;
     const size_t by_default = rcfg.*compared->field == default_value ? 0 : 1, on = rcfg.*compared->field ? 0 : 1;
-    std::printf("fisheye %dx%d: %s / %s time %.2f; frames with different pixels: %ld of %ld; "
-                "mean |pixel difference| %.4f grey levels",
-                camera.width(), camera.height(), compared->label(default_value) + 1, compared->label(!default_value) + 1,
-                b.sums[by_default].totalMs() / b.sums[1 - by_default].totalMs(), b.different, frames,
-                b.abs_difference / n);
+    std::printf(
+        "fisheye %dx%d: %s / %s time %.2f; frames with different pixels: %ld of %ld; "
+        "mean |pixel difference| %.4f grey levels",
+        camera.width(), camera.height(), compared->label(default_value) + 1, compared->label(!default_value) + 1,
+        b.sums[by_default].totalMs() / b.sums[1 - by_default].totalMs(), b.different, frames, b.abs_difference / n);
     if (compared->field == &FisheyeRendererConfig::single_channel_textures)
       std::printf(" (%d of %d textures grey)", renderers[on]->luminanceTextures(), rsim.model()->ntex);
     if (compared->field == &FisheyeRendererConfig::single_channel_framebuffer)
@@ -220,19 +218,24 @@ int runBenchSimCommand(int argc, char** argv) {
       .flag("no-sun", "no sun, ambient light only (render.sun: false)")
       .flag("no-cull", "draw every geom in every cube face (render.cull_per_face: false)")
       .flag("trilinear", "blend two mip levels per texture sample (render.trilinear_textures: true)")
-      .flag("compare-cull", "time per-face culling on and off side by side, frame by frame, and check\n"
-                            "that both give the same pixels")
-      .flag("compare-textures", "time trilinear and nearest-mip texture filtering side by side, frame\n"
-                                "by frame, with the mean pixel difference and each one's sharpness")
+      .flag("compare-cull",
+            "time per-face culling on and off side by side, frame by frame, and check\n"
+            "that both give the same pixels")
+      .flag("compare-textures",
+            "time trilinear and nearest-mip texture filtering side by side, frame\n"
+            "by frame, with the mean pixel difference and each one's sharpness")
       .flag("rgb-textures", "keep grey textures as RGB (render.single_channel_textures: false)")
-      .flag("compare-texture-format", "time one-byte and RGB grey textures side by side, frame by frame,\n"
-                                      "and check that both give the same pixels")
+      .flag("compare-texture-format",
+            "time one-byte and RGB grey textures side by side, frame by frame,\n"
+            "and check that both give the same pixels")
       .flag("shared-framebuffer", "render all faces into one framebuffer (render.framebuffer_per_face: false)")
-      .flag("compare-framebuffers", "time one framebuffer per face and one shared by all faces side by side,\n"
-                                    "frame by frame, and check that both give the same pixels")
+      .flag("compare-framebuffers",
+            "time one framebuffer per face and one shared by all faces side by side,\n"
+            "frame by frame, and check that both give the same pixels")
       .flag("rgba-framebuffer", "keep RGBA face buffers in grey worlds (render.single_channel_framebuffer: false)")
-      .flag("compare-framebuffer-format", "time one-channel and RGBA face buffers side by side, frame by frame,\n"
-                                          "and check that both give the same pixels");
+      .flag("compare-framebuffer-format",
+            "time one-channel and RGBA face buffers side by side, frame by frame,\n"
+            "and check that both give the same pixels");
   if (!args.parse(argc, argv)) return kExitOk;
   const std::string world = resolveWorld(args.get("world")).world_xml;
   const long steps = args.getInt("steps"), frames = args.getInt("frames");

@@ -8,16 +8,16 @@
 #include <sstream>
 
 #include "core/geometry/world_truth.h"
+#include "tools/config/flight_yaml.h"
+#include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/results/provenance.h"
-#include "tools/results/flight_records.h"
 #include "tools/msbench/progress.h"
+#include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
-#include "tools/config/world_registry.h"
-#include "tools/config/flight_yaml.h"
+#include "tools/results/provenance.h"
 
 namespace msb {
 
@@ -45,14 +45,13 @@ nlohmann::json flightMetrics(const FlightSpec& spec, const FlightResult& r) {
   j["trajectory_hash"] = hexHash(r.trajectory_hash);
   if (r.collision) {
     const auto& c = *r.collision;
-    j["collision"] = {{"t_s", c.t_s},
-                      {"tick", c.tick},
-                      {"vehicle_position_m", {c.vehicle_position_m.x(), c.vehicle_position_m.y(),
-                                              c.vehicle_position_m.z()}},
-                      {"contact_position_m", {c.contact_position_m.x(), c.contact_position_m.y(),
-                                              c.contact_position_m.z()}},
-                      {"vehicle_geom", c.vehicle_geom},
-                      {"world_geom", c.world_geom}};
+    j["collision"] = {
+        {"t_s", c.t_s},
+        {"tick", c.tick},
+        {"vehicle_position_m", {c.vehicle_position_m.x(), c.vehicle_position_m.y(), c.vehicle_position_m.z()}},
+        {"contact_position_m", {c.contact_position_m.x(), c.contact_position_m.y(), c.contact_position_m.z()}},
+        {"vehicle_geom", c.vehicle_geom},
+        {"world_geom", c.world_geom}};
   } else {
     j["collision"] = nullptr;
   }
@@ -74,9 +73,10 @@ nlohmann::json flightMetrics(const FlightSpec& spec, const FlightResult& r) {
 }  // namespace
 
 int runFlyCommand(int argc, char** argv) {
-  ArgParser args("msbench fly", "Fly a scripted waypoint list in a world (no perception yet).\n"
-                                "Writes trajectory.csv, imu.csv, frames/*.png, config.yaml and "
-                                "metrics.json into DIR.");
+  ArgParser args("msbench fly",
+                 "Fly a scripted waypoint list in a world (no perception yet).\n"
+                 "Writes trajectory.csv, imu.csv, frames/*.png, config.yaml and "
+                 "metrics.json into DIR.");
   args.positional("FILE.yaml", "flight description (world, start, waypoints, sensors)")
       .option("out", "", "output directory (created; must not hold results)", true)
       .flag("overwrite", "replace an existing non-empty output directory");
@@ -126,16 +126,16 @@ int runFlyCommand(int argc, char** argv) {
   writeFileAtomic(out.staging() / "metrics.json", metrics.dump(2) + "\n");
   out.commit();
 
-  std::printf("fly: %s after %.2f s simulated (%.2f s wall, real-time factor %.2f); "
-              "tracking RMS %.3f m; %d frames (%d saved); hash %s -> %s\n",
-              runStatusName(r.status), r.sim_time_s, r.wall_time_s, r.realTimeFactor(),
-              r.tracking_rms_m, r.frames_rendered, saved, hexHash(r.trajectory_hash).c_str(),
-              out.finalDir().c_str());
+  std::printf(
+      "fly: %s after %.2f s simulated (%.2f s wall, real-time factor %.2f); "
+      "tracking RMS %.3f m; %d frames (%d saved); hash %s -> %s\n",
+      runStatusName(r.status), r.sim_time_s, r.wall_time_s, r.realTimeFactor(), r.tracking_rms_m, r.frames_rendered,
+      saved, hexHash(r.trajectory_hash).c_str(), out.finalDir().c_str());
   if (r.collision)
-    std::printf("fly: collision at t=%.3f s, vehicle at (%.2f, %.2f, %.2f), %s hit %s\n",
-                r.collision->t_s, r.collision->vehicle_position_m.x(),
-                r.collision->vehicle_position_m.y(), r.collision->vehicle_position_m.z(),
-                r.collision->vehicle_geom.c_str(), r.collision->world_geom.c_str());
+    std::printf("fly: collision at t=%.3f s, vehicle at (%.2f, %.2f, %.2f), %s hit %s\n", r.collision->t_s,
+                r.collision->vehicle_position_m.x(), r.collision->vehicle_position_m.y(),
+                r.collision->vehicle_position_m.z(), r.collision->vehicle_geom.c_str(),
+                r.collision->world_geom.c_str());
   return kExitOk;
 }
 

@@ -47,8 +47,13 @@ Contact readContact(const fs::path& run) {
   if (!m.contains("collision") || !m["collision"].is_object())
     throw UsageError((run / "metrics.json").string() + ": the run did not collide (no collision to audit)");
   const auto& c = m["collision"];
-  Contact k{c.at("t_s").get<double>(), vec3(c.at("contact_position_m")), vec3(c.at("vehicle_position_m")),
-            c.value("object", ""), c.value("world_geom", ""), c.value("kind", ""), ""};
+  Contact k{c.at("t_s").get<double>(),
+            vec3(c.at("contact_position_m")),
+            vec3(c.at("vehicle_position_m")),
+            c.value("object", ""),
+            c.value("world_geom", ""),
+            c.value("kind", ""),
+            ""};
   if (c.contains("audit")) k.cause = c["audit"].value("cause", "");
   return k;
 }
@@ -138,7 +143,8 @@ int runGridAuditCommand(int argc, char** argv) {
   const Contact contact = readContact(run);
   const ScenarioSpec spec = loadScenario((run / "config.yaml").string(), sets);
   const auto* grid = std::any_cast<GridExplorerConfig>(&spec.method.config);
-  if (!grid) throw UsageError((run / "config.yaml").string() + ": method.type is " + spec.method.type + ", not grid_random");
+  if (!grid)
+    throw UsageError((run / "config.yaml").string() + ": method.type is " + spec.method.type + ", not grid_random");
   const PerceptionLog log = readReplayableLog(args.get("LOG"));
   const ResolvedWorld world = resolveWorld(log.header.at("world").get<std::string>());
   if (!world.built) throw UsageError(args.get("LOG") + ": its world is not a generated world (no ground truth)");
@@ -183,7 +189,8 @@ int runGridAuditCommand(int argc, char** argv) {
       const Vec3 p = f.points.points[size_t(u.point)].p_W, dir = (p - o).normalized();
       const Vec3 p_true = corr.inverse() * p;
       const NearestObstacle near = truth.nearest(p_true, 5.0);
-      const std::string object = near.shape >= 0 && near.distance_m < 0.5 ? truth.shapes()[size_t(near.shape)].object : "";
+      const std::string object =
+          near.shape >= 0 && near.distance_m < 0.5 ? truth.shapes()[size_t(near.shape)].object : "";
       notes.push_back({f.points.t_s, u.hit, (p - o).norm() - (map.centreOf(u.key) - o).norm(),
                        std::asin(std::min(1.0, std::abs(dir.dot(normal_map)))) * 180.0 / M_PI,
                        (f.points.T_W_C.translation() - f.T_W_C_truth.translation()).norm(),
@@ -225,23 +232,39 @@ int runGridAuditCommand(int argc, char** argv) {
   int misses_via_object = 0;
   std::map<std::string, int> misses_by_object;  // the true object of each clearing ray's point
   for (const RayNote& r : notes)
-    if (!r.hit) ++misses_by_object[r.object.empty() ? "(none within 0.5 m)" : r.object], misses_via_object += r.object == contact.object;
+    if (!r.hit)
+      ++misses_by_object[r.object.empty() ? "(none within 0.5 m)" : r.object],
+          misses_via_object += r.object == contact.object;
   int occupied_at_contact = 0;
   for (uint64_t k : keys)
     if (const auto p = map.probabilityOf(k); p && *p > 0.5) ++occupied_at_contact;
   const std::string state = !contact_p ? "unknown" : *contact_p > 0.5 ? "occupied" : "free";
   nlohmann::json j = {
-      {"run", run.string()}, {"t_contact_s", contact.t_s}, {"object", contact.object}, {"geom", contact.geom},
-      {"kind", contact.kind}, {"audit_cause", contact.cause},
+      {"run", run.string()},
+      {"t_contact_s", contact.t_s},
+      {"object", contact.object},
+      {"geom", contact.geom},
+      {"kind", contact.kind},
+      {"audit_cause", contact.cause},
       {"vio_error_at_contact_m", (c_map - contact.point).norm()},
-      {"watched_cells", keys.size()}, {"hits", hits}, {"hits_of_the_object", on_object}, {"misses", misses},
-      {"misses_after_last_hit", misses_after_hit}, {"misses_to_points_on_the_object", misses_via_object},
-      {"misses_by_point_object", misses_by_object}, {"watched_cells_occupied_at_contact", occupied_at_contact},
-      {"last_hit_s", last_hit_t}, {"contact_cell_at_contact", state},
-      {"contact_cell_max_probability", max_p.value_or(0.0)}, {"contact_cell_last_occupied_s", last_occupied_t},
-      {"miss_median_beyond_m", median(beyond)}, {"miss_median_angle_deg", median(angle)},
-      {"miss_median_pose_error_m", median(pose_error)}, {"median_contact_shift_m", median(shift)},
-      {"path_checks", checks}, {"path_checks_fired", fired},
+      {"watched_cells", keys.size()},
+      {"hits", hits},
+      {"hits_of_the_object", on_object},
+      {"misses", misses},
+      {"misses_after_last_hit", misses_after_hit},
+      {"misses_to_points_on_the_object", misses_via_object},
+      {"misses_by_point_object", misses_by_object},
+      {"watched_cells_occupied_at_contact", occupied_at_contact},
+      {"last_hit_s", last_hit_t},
+      {"contact_cell_at_contact", state},
+      {"contact_cell_max_probability", max_p.value_or(0.0)},
+      {"contact_cell_last_occupied_s", last_occupied_t},
+      {"miss_median_beyond_m", median(beyond)},
+      {"miss_median_angle_deg", median(angle)},
+      {"miss_median_pose_error_m", median(pose_error)},
+      {"median_contact_shift_m", median(shift)},
+      {"path_checks", checks},
+      {"path_checks_fired", fired},
       {"first_fired_before_contact_s", first_check_fired ? nlohmann::json(*first_check_fired) : nlohmann::json()}};
   std::printf("%s\n", j.dump(2).c_str());
   if (!args.get("out").empty()) writeFileAtomic(args.get("out"), j.dump(2) + "\n");

@@ -2,31 +2,30 @@
 // map (map.ply, map_stats.csv, topdown.png, summary.json).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <set>
-#include <cstdio>
 #include <sstream>
 
 #include <opencv2/imgproc.hpp>
 
-#include "core/common/wall_time.h"
 #include "core/common/png.h"
+#include "core/common/wall_time.h"
+#include "core/eval/column_coverage.h"
 #include "core/eval/map_safety.h"
 #include "core/map/sphere_map.h"
-#include "core/eval/column_coverage.h"
 #include "core/planning/monospheres_explorer.h"
-#include "tools/msbench/cli_args.h"
-#include "tools/results/mission_outputs.h"
-#include "tools/msbench/commands.h"
-#include "tools/msbench/map_replay.h"
-#include "tools/results/flight_records.h"
-#include "tools/results/output_files.h"
-#include "tools/results/perception_log.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/strict_number.h"
 #include "tools/config/world_registry.h"
-
+#include "tools/msbench/cli_args.h"
+#include "tools/msbench/commands.h"
+#include "tools/msbench/map_replay.h"
+#include "tools/results/flight_records.h"
+#include "tools/results/mission_outputs.h"
+#include "tools/results/output_files.h"
+#include "tools/results/perception_log.h"
 
 namespace msb {
 
@@ -34,57 +33,58 @@ namespace {
 
 // map_stats.csv: one line per map update.
 std::string mapStatsCsv(const Replay& r) {
-std::ostringstream csv;
-csv << "t,skipped,input_points,virtual_points,spheres,obstacles,new_spheres,updated_spheres,deleted_spheres,"
-       "sparsified_spheres,deleted_obstacles,protected_obstacles,inserted_obstacles,frontiers,new_frontiers,"
-       "dropped_frontiers,polyhedron_ms,dbof_ms,spheres_ms,sampling_ms,graph_ms,obstacles_ms,frontiers_ms,total_ms\n";
-for (size_t i = 0; i < r.stats.size(); ++i) {
-  const auto& s = r.stats[i];
-  csv << r.t[i] << ',' << s.skipped << ',' << s.input_points << ',' << s.virtual_points << ',' << r.spheres[i] << ','
-      << r.obstacles[i] << ',' << s.new_spheres << ',' << s.updated_spheres << ',' << s.deleted_spheres
-      << ',' << s.sparsified_spheres << ',' << s.deleted_obstacles << ',' << s.protected_obstacles << ','
-      << s.inserted_obstacles << ',' << r.frontiers[i] << ',' << s.new_frontiers << ',' << s.dropped_frontiers << ','
-      << s.polyhedron_ms << ',' << s.dbof_ms << ',' << s.spheres_ms << ',' << s.sampling_ms << ','
-      << s.graph_ms << ',' << s.obstacles_ms << ',' << s.frontiers_ms << ',' << r.total_ms[i] << '\n';
-}
-return csv.str();
+  std::ostringstream csv;
+  csv << "t,skipped,input_points,virtual_points,spheres,obstacles,new_spheres,updated_spheres,deleted_spheres,"
+         "sparsified_spheres,deleted_obstacles,protected_obstacles,inserted_obstacles,frontiers,new_frontiers,"
+         "dropped_frontiers,polyhedron_ms,dbof_ms,spheres_ms,sampling_ms,graph_ms,obstacles_ms,frontiers_ms,total_ms\n";
+  for (size_t i = 0; i < r.stats.size(); ++i) {
+    const auto& s = r.stats[i];
+    csv << r.t[i] << ',' << s.skipped << ',' << s.input_points << ',' << s.virtual_points << ',' << r.spheres[i] << ','
+        << r.obstacles[i] << ',' << s.new_spheres << ',' << s.updated_spheres << ',' << s.deleted_spheres << ','
+        << s.sparsified_spheres << ',' << s.deleted_obstacles << ',' << s.protected_obstacles << ','
+        << s.inserted_obstacles << ',' << r.frontiers[i] << ',' << s.new_frontiers << ',' << s.dropped_frontiers << ','
+        << s.polyhedron_ms << ',' << s.dbof_ms << ',' << s.spheres_ms << ',' << s.sampling_ms << ',' << s.graph_ms
+        << ',' << s.obstacles_ms << ',' << s.frontiers_ms << ',' << r.total_ms[i] << '\n';
+  }
+  return csv.str();
 }
 
 // topdown.png: spheres (blue discs), obstacle points (black), frontiers (magenta), the estimated
 // camera path (orange), over 2.5 m column grid lines.
 cv::Mat replayTopDown(const PerceptionLog& log, const SphereMap& map) {
-Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
-for (const auto& f : log.frames) {
-  lo = lo.cwiseMin(f.points.T_W_C.translation().head<2>());
-  hi = hi.cwiseMax(f.points.T_W_C.translation().head<2>());
-}
-for (const auto& [id, s] : map.spheres()) {
-  lo = lo.cwiseMin(Vec2(s.centre.head<2>() - Vec2::Constant(s.radius)));
-  hi = hi.cwiseMax(Vec2(s.centre.head<2>() + Vec2::Constant(s.radius)));
-}
-lo.array() -= 5, hi.array() += 5;
-const double mpp = std::max(0.05, std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 1000.0);
-cv::Mat img(int((hi.y() - lo.y()) / mpp), int((hi.x() - lo.x()) / mpp), CV_8UC3, cv::Scalar(245, 245, 245));
-auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), int((hi.y() - p.y()) / mpp)); };
-// Column grid lines (2.5 m, or coarser on huge extents: at most ~400 lines a direction).
-const double step = std::max(2.5, std::ceil(std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 400.0 / 2.5) * 2.5);
-for (int k = 0; k <= int((hi.x() - lo.x()) / step) + 1; ++k) {
-  const double x = std::floor(lo.x() / step) * step + k * step;
-  cv::line(img, px({x, lo.y(), 0}), px({x, hi.y(), 0}), cv::Scalar(225, 225, 225));
-}
-for (int k = 0; k <= int((hi.y() - lo.y()) / step) + 1; ++k) {
-  const double y = std::floor(lo.y() / step) * step + k * step;
-  cv::line(img, px({lo.x(), y, 0}), px({hi.x(), y, 0}), cv::Scalar(225, 225, 225));
-}
-cv::Mat discs = img.clone();
-for (const auto& [id, s] : map.spheres()) cv::circle(discs, px(s.centre), int(s.radius / mpp), cv::Scalar(230, 160, 90), -1);
-cv::addWeighted(discs, 0.45, img, 0.55, 0, img);
-for (const auto& [id, o] : map.obstacles()) cv::circle(img, px(o.position), 1, cv::Scalar(20, 20, 20), -1);
-for (const auto& [id, f] : map.frontiers()) cv::circle(img, px(f.position), 3, cv::Scalar(200, 40, 200), -1);
-for (size_t i = 1; i < log.frames.size(); ++i)
-  cv::line(img, px(log.frames[i - 1].points.T_W_C.translation()), px(log.frames[i].points.T_W_C.translation()),
-           cv::Scalar(0, 140, 255), 2);
-return img;
+  Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (const auto& f : log.frames) {
+    lo = lo.cwiseMin(f.points.T_W_C.translation().head<2>());
+    hi = hi.cwiseMax(f.points.T_W_C.translation().head<2>());
+  }
+  for (const auto& [id, s] : map.spheres()) {
+    lo = lo.cwiseMin(Vec2(s.centre.head<2>() - Vec2::Constant(s.radius)));
+    hi = hi.cwiseMax(Vec2(s.centre.head<2>() + Vec2::Constant(s.radius)));
+  }
+  lo.array() -= 5, hi.array() += 5;
+  const double mpp = std::max(0.05, std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 1000.0);
+  cv::Mat img(int((hi.y() - lo.y()) / mpp), int((hi.x() - lo.x()) / mpp), CV_8UC3, cv::Scalar(245, 245, 245));
+  auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), int((hi.y() - p.y()) / mpp)); };
+  // Column grid lines (2.5 m, or coarser on huge extents: at most ~400 lines a direction).
+  const double step = std::max(2.5, std::ceil(std::max(hi.x() - lo.x(), hi.y() - lo.y()) / 400.0 / 2.5) * 2.5);
+  for (int k = 0; k <= int((hi.x() - lo.x()) / step) + 1; ++k) {
+    const double x = std::floor(lo.x() / step) * step + k * step;
+    cv::line(img, px({x, lo.y(), 0}), px({x, hi.y(), 0}), cv::Scalar(225, 225, 225));
+  }
+  for (int k = 0; k <= int((hi.y() - lo.y()) / step) + 1; ++k) {
+    const double y = std::floor(lo.y() / step) * step + k * step;
+    cv::line(img, px({lo.x(), y, 0}), px({hi.x(), y, 0}), cv::Scalar(225, 225, 225));
+  }
+  cv::Mat discs = img.clone();
+  for (const auto& [id, s] : map.spheres())
+    cv::circle(discs, px(s.centre), int(s.radius / mpp), cv::Scalar(230, 160, 90), -1);
+  cv::addWeighted(discs, 0.45, img, 0.55, 0, img);
+  for (const auto& [id, o] : map.obstacles()) cv::circle(img, px(o.position), 1, cv::Scalar(20, 20, 20), -1);
+  for (const auto& [id, f] : map.frontiers()) cv::circle(img, px(f.position), 3, cv::Scalar(200, 40, 200), -1);
+  for (size_t i = 1; i < log.frames.size(); ++i)
+    cv::line(img, px(log.frames[i - 1].points.T_W_C.translation()), px(log.frames[i].points.T_W_C.translation()),
+             cv::Scalar(0, 140, 255), 2);
+  return img;
 }
 
 }  // namespace
@@ -144,21 +144,24 @@ int runMapReplayCommand(int argc, char** argv) {
     path_covered += inside;
     if (log.frames[i].T_W_C_truth.translation().z() >= 1.0) ++high_samples, high_covered += inside;
   }
-  const nlohmann::json j = {{"updates", r.stats.size()},
-                            {"covered_columns", columns.count()},
-                            {"covered_area_m2", columns.areaM2()},
-                            {"flown_path_in_free_space_share", double(path_covered) / std::max(1L, path_samples)},
-                            {"flown_path_above_1m_in_free_space_share", double(high_covered) / std::max(1L, high_samples)},
-                            {"flown_path_above_1m_in_free_space_at_the_time_share",
-                             double(r.live_covered) / std::max(1L, r.live_samples)},
-                            {"sphere_volume_sum_m3", volume},
-                            {"spheres", map.spheres().size()},
-                            {"obstacle_points", map.obstacles().size()},
-                            {"frontiers", map.frontiers().size()},
-                            {"graph_connected", map.connected()},
-                            {"update_ms", {{"median", percentile(r.total_ms, 0.5)}, {"p95", percentile(r.total_ms, 0.95)},
-                                           {"p99", percentile(r.total_ms, 0.99)}, {"max", percentile(r.total_ms, 1.0)}}},
-                            {"log", args.get("LOG")}};
+  const nlohmann::json j = {
+      {"updates", r.stats.size()},
+      {"covered_columns", columns.count()},
+      {"covered_area_m2", columns.areaM2()},
+      {"flown_path_in_free_space_share", double(path_covered) / std::max(1L, path_samples)},
+      {"flown_path_above_1m_in_free_space_share", double(high_covered) / std::max(1L, high_samples)},
+      {"flown_path_above_1m_in_free_space_at_the_time_share", double(r.live_covered) / std::max(1L, r.live_samples)},
+      {"sphere_volume_sum_m3", volume},
+      {"spheres", map.spheres().size()},
+      {"obstacle_points", map.obstacles().size()},
+      {"frontiers", map.frontiers().size()},
+      {"graph_connected", map.connected()},
+      {"update_ms",
+       {{"median", percentile(r.total_ms, 0.5)},
+        {"p95", percentile(r.total_ms, 0.95)},
+        {"p99", percentile(r.total_ms, 0.99)},
+        {"max", percentile(r.total_ms, 1.0)}}},
+      {"log", args.get("LOG")}};
   nlohmann::json summary = j;
   if (truth) {
     const auto& sf = r.safety;
@@ -173,7 +176,8 @@ int runMapReplayCommand(int argc, char** argv) {
                              {"unsafe_by_kind", by_kind},
                              {"unsafe_by_object", sf.unsafe_by_object},
                              {"free_volume_share", 1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)},
-                             {"free_volume_share_by_nearest_kind", [&] {
+                             {"free_volume_share_by_nearest_kind",
+                              [&] {
                                 nlohmann::json k;
                                 for (const auto& [kind, v] : sf.volume_by_kind)
                                   k[kind] = 1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v);
@@ -184,19 +188,23 @@ int runMapReplayCommand(int argc, char** argv) {
     std::printf("map safety: %ld sphere creations/growths, %.2f %% unsafe (%.2f %% of volume)", sf.events,
                 100.0 * sf.unsafe / std::max(1L, sf.events), 100.0 * sf.unsafe_volume / std::max(1e-9, sf.volume));
     for (const auto& [k, n] : sf.unsafe_by_kind) std::printf("; %s %ld", k.c_str(), n);
-    std::printf("\nmap safety: %.2f %% of the sphere volume is really free", 100.0 * (1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)));
+    std::printf("\nmap safety: %.2f %% of the sphere volume is really free",
+                100.0 * (1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)));
     for (const auto& [kind, v] : sf.volume_by_kind)
-      std::printf("; near %s %.2f %%", kind.c_str(), 100.0 * (1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v)));
+      std::printf("; near %s %.2f %%", kind.c_str(),
+                  100.0 * (1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v)));
     std::printf("\n");
   }
   writeFileAtomic(out.staging() / "summary.json", summary.dump(2) + "\n");
   out.commit();
-  std::printf("map-replay: %zu updates, %zu spheres, %zu obstacle points, %zu columns covered (%.0f m2), "
-              "%.0f %% of the flown path in free space (%.0f %% above 1 m; %.0f %% at the time); update ms median %.2f, p99 %.2f -> %s\n",
-              r.stats.size(), map.spheres().size(), map.obstacles().size(), columns.count(), columns.areaM2(),
-              100.0 * path_covered / std::max(1L, path_samples), 100.0 * high_covered / std::max(1L, high_samples),
-              100.0 * r.live_covered / std::max(1L, r.live_samples),
-              percentile(r.total_ms, 0.5), percentile(r.total_ms, 0.99), out.finalDir().c_str());
+  std::printf(
+      "map-replay: %zu updates, %zu spheres, %zu obstacle points, %zu columns covered (%.0f m2), "
+      "%.0f %% of the flown path in free space (%.0f %% above 1 m; %.0f %% at the time); update ms median %.2f, p99 "
+      "%.2f -> %s\n",
+      r.stats.size(), map.spheres().size(), map.obstacles().size(), columns.count(), columns.areaM2(),
+      100.0 * path_covered / std::max(1L, path_samples), 100.0 * high_covered / std::max(1L, high_samples),
+      100.0 * r.live_covered / std::max(1L, r.live_samples), percentile(r.total_ms, 0.5), percentile(r.total_ms, 0.99),
+      out.finalDir().c_str());
   return kExitOk;
 }
 

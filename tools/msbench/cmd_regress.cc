@@ -44,7 +44,8 @@ int runRegressCommand(int argc, char** argv) {
       throw UsageError("--against " + golden_file.string() + ": inside the sweep directory " + args.get("DIR") +
                        " (an input); refusing to write there");
     if (fs::exists(golden_file) && !isGoldenFile(golden_file))
-      throw UsageError("--against " + golden_file.string() + ": exists and is not a golden msbench wrote; refusing to replace it");
+      throw UsageError("--against " + golden_file.string() +
+                       ": exists and is not a golden msbench wrote; refusing to replace it");
   }
   RegressionTolerance tolerance = toleranceOf(golden);
   if (args.given("tolerance")) tolerance.relative = args.getDoubleIn("tolerance", 0.0, 10.0);
@@ -68,9 +69,10 @@ int runRegressCommand(int argc, char** argv) {
   const RegressionOutcome out = compareWithGolden(results, golden, tolerance);
   for (const auto& n : out.notes) std::printf("regress: note: %s\n", n.c_str());
   for (const auto& r : out.regressions) std::printf("regress: REGRESSION %s\n", r.c_str());
-  std::printf("regress: %d runs compared (%d exactly, %d in band mode: ±%.0f %% or %.0f m²): %s\n", out.compared,
-              out.exact, out.banded, 100.0 * tolerance.relative, tolerance.absolute_m2,
-              out.regressions.empty() ? "no regression" : (std::to_string(out.regressions.size()) + " regressions").c_str());
+  std::printf(
+      "regress: %d runs compared (%d exactly, %d in band mode: ±%.0f %% or %.0f m²): %s\n", out.compared, out.exact,
+      out.banded, 100.0 * tolerance.relative, tolerance.absolute_m2,
+      out.regressions.empty() ? "no regression" : (std::to_string(out.regressions.size()) + " regressions").c_str());
   return out.regressions.empty() ? kExitOk : kExitRuntime;
 }
 

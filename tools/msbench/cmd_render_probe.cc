@@ -31,7 +31,8 @@ Vec4 parsePose(const std::string& s) {
   Vec4 v;
   for (int i = 0; i < 4; ++i) {
     std::string why;
-    if (!parseNumber(parts[size_t(i)], &v[i], &why)) throw UsageError("--pose: value " + std::to_string(i + 1) + ": " + why);
+    if (!parseNumber(parts[size_t(i)], &v[i], &why))
+      throw UsageError("--pose: value " + std::to_string(i + 1) + ": " + why);
   }
   return v;
 }
@@ -55,8 +56,9 @@ int runRenderProbeCommand(int argc, char** argv) {
       .option("face-focal-ratio", "1.0", "cube-face focal length / fisheye focal length")
       .flag("no-sky", "leave the sky black (render.sky: false)")
       .flag("no-sun", "no sun, ambient light only (render.sun: false)")
-      .option("conditions", "default", "light and visibility preset (docs/conditions.md): default, noon,\n"
-                                        "low_sun, dusk, overcast, haze, fog, dusk_haze");
+      .option("conditions", "default",
+              "light and visibility preset (docs/conditions.md): default, noon,\n"
+              "low_sun, dusk, overcast, haze, fog, dusk_haze");
   if (!args.parse(argc, argv)) return kExitOk;
   const Vec4 pose = parsePose(args.get("pose"));
   FisheyeCameraConfig cam_cfg;
@@ -88,12 +90,12 @@ int runRenderProbeCommand(int argc, char** argv) {
   renderer.render(sim.data(), T_W_B * camera.T_B_C(), &frame, &t);
   throwIfInterrupted();  // rendered, nothing written yet
   writeFileAtomic(args.get("out"), encodePng(frame));
-  std::printf("render-probe: %dx%d frame in %.1f ms (scene %.1f, render %.1f, read-back %.1f, "
-              "remap %.1f) -> %s\n",
-              frame.width, frame.height, t.totalMs(), t.scene_ms, t.render_ms, t.readback_ms,
-              t.remap_ms, args.get("out").c_str());
+  std::printf(
+      "render-probe: %dx%d frame in %.1f ms (scene %.1f, render %.1f, read-back %.1f, "
+      "remap %.1f) -> %s\n",
+      frame.width, frame.height, t.totalMs(), t.scene_ms, t.render_ms, t.readback_ms, t.remap_ms,
+      args.get("out").c_str());
   return kExitOk;
 }
-
 
 }  // namespace msb

@@ -95,14 +95,17 @@ int runReportCommand(int argc, char** argv) {
   throwIfInterrupted();  // safe points: after reading, after writing the tables, after the figures
 
   // The report may sit inside the sweep (DIR/report, the default) but never over its inputs.
-  checkNoOverlap({{"DIR (sweep.json)", dir / "sweep.json"}, {"DIR (runs)", dir / "runs"}, {"DIR (runs.csv)", dir / "runs.csv"},
+  checkNoOverlap({{"DIR (sweep.json)", dir / "sweep.json"},
+                  {"DIR (runs)", dir / "runs"},
+                  {"DIR (runs.csv)", dir / "runs.csv"},
                   {"DIR (logs)", dir / "logs"}},
                  {{"--out", out}});
   StagedOutputDir staged(out, /*overwrite=*/true, OutputKind::kReport);
   // A sweep of methods across levels of a condition: each ablation's ratio against the level;
   // the paper's findings are checked on the first level's rows only (the paper had one).
   const std::optional<LevelSweep> levels = levelSweep(results, rows);
-  const std::vector<FindingResult> findings = evaluateFindings(results, levels ? rowsAtLevel(results, rows, *levels, 0) : rows);
+  const std::vector<FindingResult> findings =
+      evaluateFindings(results, levels ? rowsAtLevel(results, rows, *levels, 0) : rows);
   writeFileAtomic(staged.staging() / "report.md", reportMarkdown(results, rows) +
                                                       (levels ? levelSweepMarkdown(*levels) : std::string()) +
                                                       findingsMarkdown(findings));
@@ -117,23 +120,25 @@ int runReportCommand(int argc, char** argv) {
   if (!args.has("no-figures")) {
     const std::string python = pythonWithMatplotlib();
     if (python.empty()) {
-      figures = "figures: skipped, python3 with matplotlib not found; install it (apt-get install "
-                "python3-matplotlib) and run: /usr/bin/python3 " + (out / "make_figures.py").string() + " " + out.string();
+      figures =
+          "figures: skipped, python3 with matplotlib not found; install it (apt-get install "
+          "python3-matplotlib) and run: /usr/bin/python3 " +
+          (out / "make_figures.py").string() + " " + out.string();
     } else {
       const std::string cmd = python + " " + shellQuote((staged.staging() / "make_figures.py").string()) + " " +
                               shellQuote(staged.staging().string()) + " >/dev/null";
-      if (runInterruptible(cmd) != 0)
-        throw std::runtime_error("the figure script failed: " + cmd);
-      figures = std::string("figures: coverage_<world>.png, gallery.png") + (levels ? ", ablation_levels_<world>.png" : "");
+      if (runInterruptible(cmd) != 0) throw std::runtime_error("the figure script failed: " + cmd);
+      figures =
+          std::string("figures: coverage_<world>.png, gallery.png") + (levels ? ", ablation_levels_<world>.png" : "");
     }
   }
   throwIfInterrupted();
   staged.commit();
   const FindingCounts c = countFindings(findings);
-  std::printf("report: %zu rows from %zu runs -> %s (report.md, table.csv, findings.csv); findings %d hold, %d fail, "
-              "%d undecided, %d not evaluated; %s\n",
-              rows.size(), results.runs.size(), out.c_str(), c.holds, c.fails, c.undecided, c.not_evaluated,
-              figures.c_str());
+  std::printf(
+      "report: %zu rows from %zu runs -> %s (report.md, table.csv, findings.csv); findings %d hold, %d fail, "
+      "%d undecided, %d not evaluated; %s\n",
+      rows.size(), results.runs.size(), out.c_str(), c.holds, c.fails, c.undecided, c.not_evaluated, figures.c_str());
   return kExitOk;
 }
 

@@ -10,19 +10,19 @@
 
 #include "core/common/wall_time.h"
 #include "core/geometry/world_truth.h"
+#include "tools/config/method_table.h"
+#include "tools/config/scenario_yaml.h"
+#include "tools/config/world_registry.h"
 #include "tools/loop/mission.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/results/provenance.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
-#include "tools/config/method_table.h"
-#include "tools/config/scenario_yaml.h"
-#include "tools/config/world_registry.h"
+#include "tools/results/provenance.h"
 
 namespace msb {
 
@@ -93,7 +93,8 @@ int runRunCommand(int argc, char** argv) {
   std::optional<WorldTruth>& truth = world.truth;
   // Outputs never overlap the inputs or each other; a replaced log must be a perception log.
   checkNoOverlap({{"SCENARIO", file}}, {{"--out", args.get("out")}, {"--record", args.get("record")}});
-  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
+  if (!args.get("record").empty())
+    checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
   // Build the mission (world model, renderer, method) before any output exists: a world that
   // does not compile is bad input (exit 2) and leaves nothing behind.
   Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });
@@ -104,10 +105,11 @@ int runRunCommand(int argc, char** argv) {
   std::unique_ptr<PerceptionLogWriter> recorder;
   if (!args.get("record").empty())
     recorder = std::make_unique<PerceptionLogWriter>(
-        args.get("record"), nlohmann::json{{"world", spec.flight.world_name.empty() ? spec.flight.world_path
-                                                                                    : spec.flight.world_name},
-                                           {"seed", spec.flight.seed}, {"camera_scale", spec.flight.camera.scale},
-                                           {"scenario", file}});
+        args.get("record"),
+        nlohmann::json{{"world", spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name},
+                       {"seed", spec.flight.seed},
+                       {"camera_scale", spec.flight.camera.scale},
+                       {"scenario", file}});
   MissionResult r;
   try {
     // Step the mission to its end; record perception and print progress between ticks; stop at
@@ -120,8 +122,8 @@ int runRunCommand(int argc, char** argv) {
       setCrashContext(t.tick, t.t_s);
       if (recorder && t.points) recorder->write(*t.points, t.frame->T_W_C);
       if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
-        printProgress(spec.name, spec.method.type, spec.flight.duration_s, t.t_s, secondsSince(wall_start), mission.areaM2(),
-                      mission.explorer().counters());
+        printProgress(spec.name, spec.method.type, spec.flight.duration_s, t.t_s, secondsSince(wall_start),
+                      mission.areaM2(), mission.explorer().counters());
     }
     r = mission.finish();
   } catch (const Interrupted&) {
@@ -139,12 +141,15 @@ int runRunCommand(int argc, char** argv) {
   out.commit();
 
   const auto& cov = metrics["coverage"];
-  std::printf("run %s: %s after %.0f s simulated (%.0f s wall, RTF %.2f); A = %.0f m² (box %.0f m²%s), "
-              "%.0f m flown; hash %s -> %s\n",
-              spec.name.c_str(), runStatusName(r.flight.status), r.flight.sim_time_s, r.flight.wall_time_s,
-              r.flight.realTimeFactor(), cov["area_m2"].get<double>(), cov["area_box_m2"].get<double>(),
-              cov["box_share"].is_null() ? "" : (", " + std::to_string(int(100 * cov["box_share"].get<double>())) + " % of explorable").c_str(),
-              r.flight.distance_flown_m, hexHash(r.run_hash).c_str(), out.finalDir().c_str());
+  std::printf(
+      "run %s: %s after %.0f s simulated (%.0f s wall, RTF %.2f); A = %.0f m² (box %.0f m²%s), "
+      "%.0f m flown; hash %s -> %s\n",
+      spec.name.c_str(), runStatusName(r.flight.status), r.flight.sim_time_s, r.flight.wall_time_s,
+      r.flight.realTimeFactor(), cov["area_m2"].get<double>(), cov["area_box_m2"].get<double>(),
+      cov["box_share"].is_null()
+          ? ""
+          : (", " + std::to_string(int(100 * cov["box_share"].get<double>())) + " % of explorable").c_str(),
+      r.flight.distance_flown_m, hexHash(r.run_hash).c_str(), out.finalDir().c_str());
   if (r.flight.collision)
     std::printf("run %s: collision at t = %.1f s, vehicle at (%.1f, %.1f, %.1f), %s hit %s\n", spec.name.c_str(),
                 r.flight.collision->t_s, r.flight.collision->vehicle_position_m.x(),

@@ -50,7 +50,8 @@ int runSweepCommand(int argc, char** argv) {
     int64_t k = -1;
     std::string why;
     if (!parseInteger(task_text, &k, &why) || k < 0 || size_t(k) >= plan.runs.size())
-      throw UsageError("--task-index must be in [0, " + std::to_string(plan.runs.size() - 1) + "], got '" + task_text + "'");
+      throw UsageError("--task-index must be in [0, " + std::to_string(plan.runs.size() - 1) + "], got '" + task_text +
+                       "'");
     options.task = size_t(k);
   }
   options.jobs = args.getIntIn("jobs", 1, 256);
@@ -73,8 +74,8 @@ int runSweepCommand(int argc, char** argv) {
                 outcome.task_status.c_str());
     return outcome.task_status == "complete" ? kExitOk : kExitRuntime;
   }
-  std::printf("sweep: %zu of %zu runs complete, %zu failed -> %s\n", outcome.complete, plan.runs.size(),
-              outcome.failed, (dir / "runs.csv").c_str());
+  std::printf("sweep: %zu of %zu runs complete, %zu failed -> %s\n", outcome.complete, plan.runs.size(), outcome.failed,
+              (dir / "runs.csv").c_str());
   return outcome.failed ? kExitRuntime : kExitOk;
 }
 

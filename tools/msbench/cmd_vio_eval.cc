@@ -10,19 +10,19 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "tools/msbench/cli_args.h"
 #include "core/common/png.h"
+#include "core/eval/slam_point_truth.h"
+#include "tools/config/flight_yaml.h"
+#include "tools/config/world_registry.h"
+#include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/results/provenance.h"
-#include "tools/results/flight_records.h"
 #include "tools/msbench/progress.h"
+#include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
-#include "core/eval/slam_point_truth.h"
 #include "tools/results/perception_log.h"
-#include "tools/config/world_registry.h"
-#include "tools/config/flight_yaml.h"
+#include "tools/results/provenance.h"
 
 namespace msb {
 
@@ -33,7 +33,6 @@ namespace {
 // Distance bins for the point-error statistics (metres, by ground-truth depth).
 constexpr double kBinEdges[] = {0, 5, 10, 20, 40, 1e9};
 constexpr int kBins = 5;
-
 
 // What perception produced for one camera frame.
 struct PerceptionSample {
@@ -47,13 +46,14 @@ struct PerceptionSample {
 struct VioStats {
   std::vector<double> errors[kBins], depth_std[kBins];
   long point_samples = 0, textureless = 0, textureless_interior = 0, thin = 0, no_surface = 0, silhouette = 0;
-  long ransac_tested = 0, ransac_rejected = 0;   // tracked pairs tested / dropped as epipolar outliers
-  long near_points = 0, spurious_near = 0;       // points < 1 m from the camera / of those, on no surface
+  long ransac_tested = 0, ransac_rejected = 0;  // tracked pairs tested / dropped as epipolar outliers
+  long near_points = 0, spurious_near = 0;      // points < 1 m from the camera / of those, on no surface
   double tracks_sum = 0, points_sum = 0, tracker_ms = 0, tri_ms = 0, render_ms = 0;
   double points_by_distance[kBins] = {};            // SLAM points summed over frames, by distance from the camera
   std::map<std::string, double> points_by_surface;  // ... by the class of the surface hit (ground truth)
   int frames = 0, min_tracks = 1 << 30;
-  std::string csv = "t,tracks,new_tracks,lost_tracks,slam_points,median_error_m,tracker_ms,triangulation_ms,render_ms\n";
+  std::string csv =
+      "t,tracks,new_tracks,lost_tracks,slam_points,median_error_m,tracker_ms,triangulation_ms,render_ms\n";
 };
 
 // Annotated frame: tracks in grey, SLAM points coloured by depth (red near, blue far at 40 m).
@@ -85,8 +85,8 @@ cv::Mat annotate(const PerceptionSample& s) {
 
 // Adds one perception frame to the statistics: the points by distance, and against the ground
 // truth (when the world has it) their surfaces and errors; the frame's line of frames.csv.
-void addSample(VioStats& st, const PerceptionSample& s, const std::optional<WorldTruth>& truth, const FisheyeCamera& camera,
-               std::map<int64_t, Pose>& gt_camera) {
+void addSample(VioStats& st, const PerceptionSample& s, const std::optional<WorldTruth>& truth,
+               const FisheyeCamera& camera, std::map<int64_t, Pose>& gt_camera) {
   gt_camera[s.frame.tick] = s.frame.T_W_C;
   std::vector<double> frame_errors;
   // The premise of OVDE (seed paper §III-B): how far the points the mapper gets lie.
@@ -136,10 +136,9 @@ void addSample(VioStats& st, const PerceptionSample& s, const std::optional<Worl
   st.tri_ms += s.triangulation_ms;
   st.render_ms += s.render_ms;
   char line[256];
-  std::snprintf(line, sizeof(line), "%.3f,%zu,%d,%d,%zu,%.4f,%.3f,%.3f,%.3f\n", s.frame.t_s,
-                s.tracks.tracks.size(), s.tracks.new_tracks, s.tracks.lost_tracks,
-                s.points.points.size(), percentile(frame_errors, 0.5), s.tracker_ms,
-                s.triangulation_ms, s.render_ms);
+  std::snprintf(line, sizeof(line), "%.3f,%zu,%d,%d,%zu,%.4f,%.3f,%.3f,%.3f\n", s.frame.t_s, s.tracks.tracks.size(),
+                s.tracks.new_tracks, s.tracks.lost_tracks, s.points.points.size(), percentile(frame_errors, 0.5),
+                s.tracker_ms, s.triangulation_ms, s.render_ms);
   st.csv += line;
 }
 
@@ -173,7 +172,8 @@ nlohmann::json summaryJson(const VioStats& st, const FlightResult& r, const Flig
       {"slam_points_per_frame_by_surface", truth ? by_surface : nlohmann::json(nullptr)},
       {"ground_truth", bool(truth)},
       {"textureless_point_share", truth ? nlohmann::json(st.textureless_interior / ps) : nlohmann::json(nullptr)},
-      {"textureless_incl_silhouette_point_share", truth ? nlohmann::json(st.textureless / ps) : nlohmann::json(nullptr)},
+      {"textureless_incl_silhouette_point_share",
+       truth ? nlohmann::json(st.textureless / ps) : nlohmann::json(nullptr)},
       {"thin_point_share", truth ? nlohmann::json(st.thin / ps) : nlohmann::json(nullptr)},
       {"no_surface_point_share", truth ? nlohmann::json(st.no_surface / ps) : nlohmann::json(nullptr)},
       {"silhouette_point_share", truth ? nlohmann::json(st.silhouette / ps) : nlohmann::json(nullptr)},
@@ -190,10 +190,12 @@ nlohmann::json summaryJson(const VioStats& st, const FlightResult& r, const Flig
       {"trajectory_hash", hexHash(r.trajectory_hash)},
       {"versions", versionInfo()}};
   if (r.collision)
-    j["collision"] = {{"t_s", r.collision->t_s}, {"vehicle_geom", r.collision->vehicle_geom},
+    j["collision"] = {{"t_s", r.collision->t_s},
+                      {"vehicle_geom", r.collision->vehicle_geom},
                       {"world_geom", r.collision->world_geom},
-                      {"vehicle_position_m", {r.collision->vehicle_position_m.x(), r.collision->vehicle_position_m.y(),
-                                              r.collision->vehicle_position_m.z()}}};
+                      {"vehicle_position_m",
+                       {r.collision->vehicle_position_m.x(), r.collision->vehicle_position_m.y(),
+                        r.collision->vehicle_position_m.z()}}};
   return j;
 }
 
@@ -206,19 +208,21 @@ void printSummary(const nlohmann::json& j, const VioStats& st, const FlightResul
   std::printf("vio-eval %s: %s after %.1f s, %d frames%s\n", j["world"].get<std::string>().c_str(),
               runStatusName(r.status), r.sim_time_s, st.frames,
               r.collision ? (" (hit " + r.collision->world_geom + ")").c_str() : "");
-  std::printf("  tracks/frame %.0f (min %d), SLAM points/frame %.0f, drift %.2f %% of %.0f m\n",
-              st.tracks_sum / n, st.frames ? st.min_tracks : 0, st.points_sum / n,
-              j["drift_percent_of_distance"].get<double>(), r.distance_flown_m);
+  std::printf("  tracks/frame %.0f (min %d), SLAM points/frame %.0f, drift %.2f %% of %.0f m\n", st.tracks_sum / n,
+              st.frames ? st.min_tracks : 0, st.points_sum / n, j["drift_percent_of_distance"].get<double>(),
+              r.distance_flown_m);
   std::printf("  SLAM points per frame by distance from the camera:");
-  for (int b = 0; b < kBins; ++b) std::printf(" %s %.1f", bins[b]["bin"].get<std::string>().c_str(), st.points_by_distance[b] / n);
+  for (int b = 0; b < kBins; ++b)
+    std::printf(" %s %.1f", bins[b]["bin"].get<std::string>().c_str(), st.points_by_distance[b] / n);
   std::printf("\n");
   if (truth) {
     std::printf("  SLAM points per frame by surface:");
     for (const auto& [surface, v] : by_surface.items()) std::printf(" %s %.1f", surface.c_str(), v.get<double>());
     std::printf("\n");
-    std::printf("  points on textureless surfaces %.2f %% (%.2f %% incl. their silhouettes), thin %.2f %%, "
-                "no surface %.2f %%\n", 100 * st.textureless_interior / ps, 100 * st.textureless / ps,
-                100 * st.thin / ps, 100 * st.no_surface / ps);
+    std::printf(
+        "  points on textureless surfaces %.2f %% (%.2f %% incl. their silhouettes), thin %.2f %%, "
+        "no surface %.2f %%\n",
+        100 * st.textureless_interior / ps, 100 * st.textureless / ps, 100 * st.thin / ps, 100 * st.no_surface / ps);
     std::printf("  RANSAC rejected %.2f %% of tracked pairs; points < 1 m from the camera %.3f %%, spurious %.3f %%\n",
                 100.0 * st.ransac_rejected / std::max<long>(1, st.ransac_tested), 100 * st.near_points / ps,
                 100 * st.spurious_near / ps);
@@ -226,12 +230,12 @@ void printSummary(const nlohmann::json& j, const VioStats& st, const FlightResul
                 100 * st.silhouette / ps);
     std::printf("  %-9s %8s %10s %10s %14s\n", "depth", "samples", "median m", "p90 m", "pred. std m");
     for (const auto& b : bins)
-      std::printf("  %-9s %8zu %10.3f %10.3f %14.3f\n", b["bin"].get<std::string>().c_str(),
-                  b["samples"].get<size_t>(), b["median_error_m"].get<double>(),
-                  b["p90_error_m"].get<double>(), b["median_predicted_depth_std_m"].get<double>());
+      std::printf("  %-9s %8zu %10.3f %10.3f %14.3f\n", b["bin"].get<std::string>().c_str(), b["samples"].get<size_t>(),
+                  b["median_error_m"].get<double>(), b["p90_error_m"].get<double>(),
+                  b["median_predicted_depth_std_m"].get<double>());
   }
-  std::printf("  ms/frame: tracker %.2f, triangulation %.2f, render %.2f -> %s\n", st.tracker_ms / n,
-              st.tri_ms / n, st.render_ms / n, dir.c_str());
+  std::printf("  ms/frame: tracker %.2f, triangulation %.2f, render %.2f -> %s\n", st.tracker_ms / n, st.tri_ms / n,
+              st.render_ms / n, dir.c_str());
 }
 
 }  // namespace
@@ -253,7 +257,8 @@ int runVioEvalCommand(int argc, char** argv) {
   const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
   const long annotate_every = args.getIntIn("annotate-every", 0, 1000000);
   checkNoOverlap({{"FILE.yaml", file}}, {{"--out", args.get("out")}, {"--record", args.get("record")}});
-  if (!args.get("record").empty()) checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
+  if (!args.get("record").empty())
+    checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
   std::optional<WorldTruth> truth;
   if (built) truth.emplace(built->generated.shapes);
   // The loop (world model, renderer) before any output exists: a bad world writes nothing.
@@ -269,7 +274,8 @@ int runVioEvalCommand(int argc, char** argv) {
   if (!args.get("record").empty())
     recorder = std::make_unique<PerceptionLogWriter>(
         args.get("record"), nlohmann::json{{"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
-                                           {"seed", spec.seed}, {"camera_scale", spec.camera.scale},
+                                           {"seed", spec.seed},
+                                           {"camera_scale", spec.camera.scale},
                                            {"flight", file}});
 
   // Each processed frame: recorded, evaluated, and every N-th one drawn.

@@ -7,16 +7,16 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/common/wall_time.h"
 #include "core/common/png.h"
+#include "core/common/wall_time.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/render/fisheye_renderer.h"
+#include "tools/config/strict_number.h"
+#include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/results/output_files.h"
-#include "tools/config/strict_number.h"
-#include "tools/config/world_registry.h"
 
 namespace msb {
 
@@ -40,10 +40,14 @@ const BuiltWorld& requireGenerated(const ResolvedWorld& w, const std::string& na
 // BGR colour of an obstacle kind in the top-down map.
 cv::Vec3b kindColour(ObstacleKind k) {
   switch (k) {
-    case ObstacleKind::kTextured: return {90, 150, 60};      // green-ish: textured
-    case ObstacleKind::kTextureless: return {40, 40, 220};   // red: textureless
-    case ObstacleKind::kThin: return {220, 40, 220};         // magenta: thin
-    case ObstacleKind::kGround: return {120, 120, 120};      // grey: cave rock/ceiling
+    case ObstacleKind::kTextured:
+      return {90, 150, 60};  // green-ish: textured
+    case ObstacleKind::kTextureless:
+      return {40, 40, 220};  // red: textureless
+    case ObstacleKind::kThin:
+      return {220, 40, 220};  // magenta: thin
+    case ObstacleKind::kGround:
+      return {120, 120, 120};  // grey: cave rock/ceiling
   }
   return {0, 0, 0};
 }
@@ -102,16 +106,15 @@ cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
   cv::arrowedLine(img, px(s), px(f), cv::Scalar(0, 140, 255), 2);
   // Legend.
   const char* labels[] = {"textured", "textureless", "thin", "rock/ceiling"};
-  const ObstacleKind kinds[] = {ObstacleKind::kTextured, ObstacleKind::kTextureless,
-                                ObstacleKind::kThin, ObstacleKind::kGround};
+  const ObstacleKind kinds[] = {ObstacleKind::kTextured, ObstacleKind::kTextureless, ObstacleKind::kThin,
+                                ObstacleKind::kGround};
   for (int i = 0; i < 4; ++i) {
     const cv::Vec3b c = kindColour(kinds[i]);
     cv::rectangle(img, cv::Rect(8, 8 + 18 * i, 14, 14), cv::Scalar(c[0], c[1], c[2]), -1);
-    cv::putText(img, labels[i], cv::Point(28, 20 + 18 * i), cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                cv::Scalar(30, 30, 30), 1);
+    cv::putText(img, labels[i], cv::Point(28, 20 + 18 * i), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(30, 30, 30), 1);
   }
-  cv::putText(img, g.name + "  (orange: start, blue: exploration box, grid 2.5 m)",
-              cv::Point(8, H - 10), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(30, 30, 30), 1);
+  cv::putText(img, g.name + "  (orange: start, blue: exploration box, grid 2.5 m)", cv::Point(8, H - 10),
+              cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(30, 30, 30), 1);
   return img;
 }
 
@@ -120,18 +123,18 @@ cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
 int runWorldCommand(int argc, char** argv) {
   const std::string sub = argc > 0 ? argv[0] : "";
   if (sub.empty() || sub == "--help" || sub == "-h") {
-    std::printf("usage: msbench world list | build NAME [--seed S] | show NAME --out DIR [--seed S]\n\n"
-                "  list   worlds under %s\n  build  generate into the cache (%s)\n"
-                "  show   top-down map and fisheye views from the start pose\n",
-                worldsDir().c_str(), worldCacheDir().c_str());
+    std::printf(
+        "usage: msbench world list | build NAME [--seed S] | show NAME --out DIR [--seed S]\n\n"
+        "  list   worlds under %s\n  build  generate into the cache (%s)\n"
+        "  show   top-down map and fisheye views from the start pose\n",
+        worldsDir().c_str(), worldCacheDir().c_str());
     return sub.empty() ? kExitUsage : kExitOk;
   }
   if (sub == "list") {
     ArgParser args("msbench world list", "List the worlds.");
     if (!args.parse(argc - 1, argv + 1)) return kExitOk;
     for (const auto& w : listWorlds())
-      std::printf("%-10s %-9s %s\n", w.name.c_str(), w.generated ? "generated" : "mjcf",
-                  w.description.c_str());
+      std::printf("%-10s %-9s %s\n", w.name.c_str(), w.generated ? "generated" : "mjcf", w.description.c_str());
     return kExitOk;
   }
   if (sub == "build") {
@@ -191,8 +194,8 @@ int runWorldCommand(int argc, char** argv) {
     const WorldTruth truth(w.generated.shapes);
     const auto columns = truth.explorableColumns(w.generated.exploration_box);
     const Aabb& b = w.generated.exploration_box;
-    const int total = int(std::floor((b.max.x() - b.min.x()) / 2.5 + 1e-9)) *
-                      int(std::floor((b.max.y() - b.min.y()) / 2.5 + 1e-9));
+    const int total =
+        int(std::floor((b.max.x() - b.min.x()) / 2.5 + 1e-9)) * int(std::floor((b.max.y() - b.min.y()) / 2.5 + 1e-9));
     nlohmann::json j = {{"world", w.generated.name},
                         {"directory", w.directory},
                         {"collision_geoms", w.generated.collision_geoms},
@@ -204,8 +207,7 @@ int runWorldCommand(int argc, char** argv) {
     writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
     out.commit();
     std::printf("world %s: %zu of %d columns of the exploration box explorable (%.0f m2) -> %s\n",
-                w.generated.name.c_str(), columns.size(), total, 6.25 * columns.size(),
-                out.finalDir().c_str());
+                w.generated.name.c_str(), columns.size(), total, 6.25 * columns.size(), out.finalDir().c_str());
     return kExitOk;
   }
   throw UsageError("unknown world sub-command '" + sub + "' (list, build, show)");

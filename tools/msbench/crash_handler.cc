@@ -31,7 +31,8 @@ struct Line {
     int k = 0;
     const bool negative = v < 0;
     uint64_t u = negative ? uint64_t(0) - uint64_t(v) : uint64_t(v);
-    do digits[k++] = char('0' + u % 10); while ((u /= 10) && k < 23);
+    do digits[k++] = char('0' + u % 10);
+    while ((u /= 10) && k < 23);
     if (negative) add("-");
     while (k > 0 && n + 1 < sizeof(text)) text[n++] = digits[--k];
   }
@@ -47,12 +48,18 @@ void writeAll(int fd, const char* p, size_t n) {
 
 const char* signalName(int sig) {
   switch (sig) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGBUS: return "SIGBUS";
-    case SIGFPE: return "SIGFPE";
-    case SIGILL: return "SIGILL";
-    case SIGABRT: return "SIGABRT";
-    default: return "signal";
+    case SIGSEGV:
+      return "SIGSEGV";
+    case SIGBUS:
+      return "SIGBUS";
+    case SIGFPE:
+      return "SIGFPE";
+    case SIGILL:
+      return "SIGILL";
+    case SIGABRT:
+      return "SIGABRT";
+    default:
+      return "signal";
   }
 }
 

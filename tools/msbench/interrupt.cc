@@ -14,10 +14,14 @@ extern "C" void onSignal(int sig) { g_signal = sig; }
 namespace {
 const char* describe(int signal) {
   switch (signal) {
-    case SIGTERM: return "terminated (SIGTERM)";
-    case SIGHUP: return "hung up (SIGHUP)";
-    case SIGQUIT: return "quit (SIGQUIT)";
-    default: return "interrupted (SIGINT)";
+    case SIGTERM:
+      return "terminated (SIGTERM)";
+    case SIGHUP:
+      return "hung up (SIGHUP)";
+    case SIGQUIT:
+      return "quit (SIGQUIT)";
+    default:
+      return "interrupted (SIGINT)";
   }
 }
 }  // namespace
@@ -50,7 +54,11 @@ Injection injectionFromEnvironment() {
   if (colon == std::string::npos) return {};
   const std::string name = text.substr(0, colon);
   const long at = std::strtol(text.c_str() + colon + 1, nullptr, 10);
-  const int sig = name == "INT" ? SIGINT : name == "TERM" ? SIGTERM : name == "HUP" ? SIGHUP : name == "QUIT" ? SIGQUIT : 0;
+  const int sig = name == "INT"    ? SIGINT
+                  : name == "TERM" ? SIGTERM
+                  : name == "HUP"  ? SIGHUP
+                  : name == "QUIT" ? SIGQUIT
+                                   : 0;
   return sig && at > 0 ? Injection{sig, at} : Injection{};
 }
 }  // namespace

@@ -2,19 +2,19 @@
 // (1 runtime failure, 2 usage or configuration error).
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <exception>
+#include <filesystem>
 #include <new>
 #include <string>
 
 #include <opencv2/core.hpp>
 
 #include "core/common/config_check.h"
+#include "tools/config/flight_yaml.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
-#include "tools/config/flight_yaml.h"
 
 namespace {
 
@@ -41,9 +41,10 @@ constexpr Command kCommands[] = {
 };
 
 void printUsage() {
-  std::printf("usage: msbench COMMAND [options]   (msbench COMMAND --help for details)\n\n"
-              "msbench - deterministic headless closed-loop benchmark for monocular UAV "
-              "exploration\n\ncommands:\n");
+  std::printf(
+      "usage: msbench COMMAND [options]   (msbench COMMAND --help for details)\n\n"
+      "msbench - deterministic headless closed-loop benchmark for monocular UAV "
+      "exploration\n\ncommands:\n");
   for (const auto& c : kCommands) std::printf("  %-14s %s\n", c.name, c.summary);
   std::printf("\nexit codes: 0 ok, 1 runtime failure, 2 usage or configuration error, 130/143 interrupted\n");
 }

@@ -10,7 +10,6 @@
 
 namespace msb {
 
-
 // Runs the mapper over the log at the given rate (frames at or after each period); with ground
 // truth, checks the map's safety (its Monte Carlo stream seeded here, once per replay).
 Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const WorldTruth* truth) {
@@ -47,7 +46,6 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
   return r;
 }
 
-
 // A log to replay: read and checked, with at least one frame.
 PerceptionLog readReplayableLog(const std::string& path) {
   PerceptionLog log = PerceptionLog::read(path);
@@ -69,6 +67,5 @@ FisheyeCamera cameraFromHeader(const std::string& path, const nlohmann::json& h)
     throw UsageError(path + ": log header: " + e.what());
   }
 }
-
 
 }  // namespace msb

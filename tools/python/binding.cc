@@ -257,7 +257,8 @@ class PyExplorer final : public Explorer {
       PathCommand c;
       c.tick = v.tick;
       for (const auto& w : path) c.waypoints.push_back(waypointFrom(w));
-      if (c.waypoints.empty()) throw std::runtime_error("plan() returned an empty path (return None to keep the current one)");
+      if (c.waypoints.empty())
+        throw std::runtime_error("plan() returned an empty path (return None to keep the current one)");
       out = std::move(c);
     });
     return out;
@@ -268,7 +269,8 @@ class PyExplorer final : public Explorer {
     call([&] {
       for (const auto& e : method_.attr("free_space")()) {
         const py::sequence q = py::reinterpret_borrow<py::sequence>(e);
-        if (q.size() != 5 && q.size() != 6) throw std::runtime_error("a free-space element is (id, x, y, z, radius[, kind])");
+        if (q.size() != 5 && q.size() != 6)
+          throw std::runtime_error("a free-space element is (id, x, y, z, radius[, kind])");
         FreeSpaceElement el;
         el.id = q[0].cast<uint64_t>();
         el.centre = Vec3(q[1].cast<double>(), q[2].cast<double>(), q[3].cast<double>());
@@ -328,7 +330,8 @@ class PyMission {
                    .attr("factory_of")(c.entry, c.path, yamlToPython(YAML::Load(c.params_yaml)), scenario_.file);
     }
     if (method.is_none()) {
-      mission_ = buildNamingFile(scenario_.file, [&] { return std::make_unique<Mission>(scenario_.spec, world_->box, truth); });
+      mission_ = buildNamingFile(scenario_.file,
+                                 [&] { return std::make_unique<Mission>(scenario_.spec, world_->box, truth); });
       return;
     }
     python_method_ = true;
@@ -497,7 +500,8 @@ PYBIND11_MODULE(_msbench, m) {
       .def_static("load", &PyScenario::load, py::arg("path"), py::arg("set") = std::vector<std::string>{},
                   "Loads a scenario with KEY=VALUE overrides (as --set); raises msbench.ConfigError.")
       .def("effective", &PyScenario::effective, "The full effective configuration as a dict.")
-      .def("effective_yaml", [](const PyScenario& s) { return s.effective_yaml; }, "config.yaml's text.")
+      .def(
+          "effective_yaml", [](const PyScenario& s) { return s.effective_yaml; }, "config.yaml's text.")
       .def_property_readonly("file", [](const PyScenario& s) { return s.file; })
       .def_property_readonly("name", [](const PyScenario& s) { return s.spec.name; })
       .def_property_readonly("seed", [](const PyScenario& s) { return s.spec.flight.seed; })
@@ -542,8 +546,9 @@ PYBIND11_MODULE(_msbench, m) {
       .def_readonly("start_yaw_rad", &MethodContext::start_yaw_rad)
       .def_readonly("start_pose", &MethodContext::start_pose)
       .def_readonly("seed", &MethodContext::seed)
-      .def("rng", [](const MethodContext& c, const std::string& name) { return RngStream(c.seed, name); }, py::arg("name"),
-           "The method's RNG stream `name`, seeded from the scenario seed.");
+      .def(
+          "rng", [](const MethodContext& c, const std::string& name) { return RngStream(c.seed, name); },
+          py::arg("name"), "The method's RNG stream `name`, seeded from the scenario seed.");
 
   py::class_<SlamFrameView>(m, "SlamFrame", "A frame of SLAM points as a method observes it (estimate frame).")
       .def_readonly("tick", &SlamFrameView::tick)

@@ -18,12 +18,10 @@ std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {
   for (const auto& r : rows) {
     std::snprintf(line, sizeof(line),
                   "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
-                  r.t_s, r.position_m.x(), r.position_m.y(), r.position_m.z(),
-                  r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z(),
-                  r.velocity_mps.x(), r.velocity_mps.y(), r.velocity_mps.z(),
-                  r.est_position_m.x(), r.est_position_m.y(), r.est_position_m.z(), r.est_yaw_rad,
-                  r.ref_position_m.x(), r.ref_position_m.y(), r.ref_position_m.z(),
-                  r.ref_yaw_rad);
+                  r.t_s, r.position_m.x(), r.position_m.y(), r.position_m.z(), r.orientation.w(), r.orientation.x(),
+                  r.orientation.y(), r.orientation.z(), r.velocity_mps.x(), r.velocity_mps.y(), r.velocity_mps.z(),
+                  r.est_position_m.x(), r.est_position_m.y(), r.est_position_m.z(), r.est_yaw_rad, r.ref_position_m.x(),
+                  r.ref_position_m.y(), r.ref_position_m.z(), r.ref_yaw_rad);
     s += line;
   }
   return s;
@@ -33,9 +31,8 @@ std::string imuCsv(const std::vector<ImuSample>& samples) {
   std::string s = "t,ax,ay,az,gx,gy,gz\n";
   char line[256];
   for (const auto& m : samples) {
-    std::snprintf(line, sizeof(line), "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", m.t_s,
-                  m.accel_mps2.x(), m.accel_mps2.y(), m.accel_mps2.z(), m.gyro_radps.x(),
-                  m.gyro_radps.y(), m.gyro_radps.z());
+    std::snprintf(line, sizeof(line), "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", m.t_s, m.accel_mps2.x(), m.accel_mps2.y(),
+                  m.accel_mps2.z(), m.gyro_radps.x(), m.gyro_radps.y(), m.gyro_radps.z());
     s += line;
   }
   return s;

@@ -8,9 +8,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/common/png.h"
-#include "tools/results/provenance.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
+#include "tools/results/provenance.h"
 
 namespace msb {
 
@@ -18,9 +18,9 @@ namespace {
 nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 nlohmann::json stagesJson(const StageTimes& s, double per) {
-  return {{"render", s.render_ms / per},       {"tracker", s.tracker_ms / per},
-          {"triangulation", s.triangulation_ms / per}, {"map_update", s.map_ms / per},
-          {"planning", s.planning_ms / per},   {"metric", s.metric_ms / per}};
+  return {
+      {"render", s.render_ms / per},  {"tracker", s.tracker_ms / per},   {"triangulation", s.triangulation_ms / per},
+      {"map_update", s.map_ms / per}, {"planning", s.planning_ms / per}, {"metric", s.metric_ms / per}};
 }
 }  // namespace
 
@@ -42,11 +42,13 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
       {"area_box_m2", double(in_box) * cell2},
       {"box_explorable_columns", r.box_explorable_columns},
       {"box_explored_explorable_columns", r.box_explored_explorable_columns},
-      {"box_share", r.box_explorable_columns ? nlohmann::json(double(r.box_explored_explorable_columns) / r.box_explorable_columns)
-                                             : nlohmann::json(nullptr)},
-      {"box_share_true_frame", r.box_explorable_columns
-                                   ? nlohmann::json(double(r.box_true_frame_explored_explorable_columns) / r.box_explorable_columns)
-                                   : nlohmann::json(nullptr)},
+      {"box_share", r.box_explorable_columns
+                        ? nlohmann::json(double(r.box_explored_explorable_columns) / r.box_explorable_columns)
+                        : nlohmann::json(nullptr)},
+      {"box_share_true_frame",
+       r.box_explorable_columns
+           ? nlohmann::json(double(r.box_true_frame_explored_explorable_columns) / r.box_explorable_columns)
+           : nlohmann::json(nullptr)},
       {"longest_no_gain_s", r.longest_no_gain.lengthS()},
       {"longest_no_gain_from_s", r.longest_no_gain.start_s},
       {"area_true_frame_m2", r.columns_gt.areaM2()},
@@ -54,12 +56,15 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
       {"exploration_box", nlohmann::json{{"min", vec(r.exploration_box.min)}, {"max", vec(r.exploration_box.max)}}}};
   if (f.collision) {
     const auto& c = *f.collision;
-    j["collision"] = {{"t_s", c.t_s}, {"vehicle_position_m", vec(c.vehicle_position_m)},
-                      {"contact_position_m", vec(c.contact_position_m)}, {"vehicle_geom", c.vehicle_geom},
+    j["collision"] = {{"t_s", c.t_s},
+                      {"vehicle_position_m", vec(c.vehicle_position_m)},
+                      {"contact_position_m", vec(c.contact_position_m)},
+                      {"vehicle_geom", c.vehicle_geom},
                       {"world_geom", c.world_geom}};
     // The object hit and what it looks like to the front end (report: collisions by kind).
     const Shape* hit = truth ? truth->shapeNamed(c.world_geom) : nullptr;
-    j["collision"]["object"] = hit ? nlohmann::json(hit->object.empty() ? hit->name : hit->object) : nlohmann::json(nullptr);
+    j["collision"]["object"] =
+        hit ? nlohmann::json(hit->object.empty() ? hit->name : hit->object) : nlohmann::json(nullptr);
     j["collision"]["kind"] = hit ? nlohmann::json(obstacleKindName(hit->kind)) : nlohmann::json(nullptr);
     if (r.collision_audit) {
       const CollisionAudit& a = *r.collision_audit;
@@ -68,14 +73,19 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
           {"slam_points_on_object", a.slam_points_on_object},
           {"slam_points_on_part", a.slam_points_on_part},
           {"map_points_on_object", a.map_points_on_object},
-          {"nearest_map_point_m", a.nearest_map_point_m < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.nearest_map_point_m)},
+          {"nearest_map_point_m",
+           a.nearest_map_point_m < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.nearest_map_point_m)},
           {"inside_free_space", a.inside_free_space},
-          {"free_space_since_s", a.free_space_since_s ? nlohmann::json(*a.free_space_since_s) : nlohmann::json(nullptr)},
-          {"carved_clearance_m", a.carved_clearance_m ? nlohmann::json(*a.carved_clearance_m) : nlohmann::json(nullptr)},
-          {"drift_since_carved_m", a.drift_since_carved_m ? nlohmann::json(*a.drift_since_carved_m) : nlohmann::json(nullptr)},
+          {"free_space_since_s",
+           a.free_space_since_s ? nlohmann::json(*a.free_space_since_s) : nlohmann::json(nullptr)},
+          {"carved_clearance_m",
+           a.carved_clearance_m ? nlohmann::json(*a.carved_clearance_m) : nlohmann::json(nullptr)},
+          {"drift_since_carved_m",
+           a.drift_since_carved_m ? nlohmann::json(*a.drift_since_carved_m) : nlohmann::json(nullptr)},
           {"vio_drift_m", a.vio_drift_m},
           {"commanded_speed_mps", a.commanded_speed_mps},
-          {"since_last_path_s", a.since_last_path_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.since_last_path_s)}};
+          {"since_last_path_s",
+           a.since_last_path_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.since_last_path_s)}};
     }
   } else {
     j["collision"] = nullptr;
@@ -84,10 +94,16 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   if (r.frontend) {
     nlohmann::json bands = nlohmann::json::array();
     for (const DepthBandErrors& b : r.frontend->bands)
-      bands.push_back({{"depth_from_m", b.lo_m}, {"depth_to_m", b.hi_m > 1e8 ? nlohmann::json() : nlohmann::json(b.hi_m)},
-                       {"points", b.points}, {"median_error_m", b.median_m}, {"p90_error_m", b.p90_m},
-                       {"share_over_0_5_m", b.share_over_half_m}, {"share_over_2_m", b.share_over_2_m}});
-    j["frontend_profile"] = {{"points", r.frontend->points}, {"depth_bands", bands}, {"tracks", r.frontend->tracks},
+      bands.push_back({{"depth_from_m", b.lo_m},
+                       {"depth_to_m", b.hi_m > 1e8 ? nlohmann::json() : nlohmann::json(b.hi_m)},
+                       {"points", b.points},
+                       {"median_error_m", b.median_m},
+                       {"p90_error_m", b.p90_m},
+                       {"share_over_0_5_m", b.share_over_half_m},
+                       {"share_over_2_m", b.share_over_2_m}});
+    j["frontend_profile"] = {{"points", r.frontend->points},
+                             {"depth_bands", bands},
+                             {"tracks", r.frontend->tracks},
                              {"moved_over_0_3_m_share", r.frontend->moved_share},
                              {"median_track_motion_m", r.frontend->median_motion_m}};
   }
@@ -189,12 +205,13 @@ void drawTruthFootprints(cv::Mat& img, const WorldTruth& truth, ToPixel px) {
   for (const Shape& sh : truth.shapes()) {
     if (sh.kind == ObstacleKind::kGround || sh.type == ShapeType::kHalfSpace) continue;
     const cv::Scalar colour = sh.kind == ObstacleKind::kTextureless ? cv::Scalar(60, 150, 245)
-                              : sh.kind == ObstacleKind::kThin     ? cv::Scalar(200, 0, 200)
-                                                                   : cv::Scalar(120, 120, 120);
+                              : sh.kind == ObstacleKind::kThin      ? cv::Scalar(200, 0, 200)
+                                                                    : cv::Scalar(120, 120, 120);
     std::vector<cv::Point> outline;
     if (sh.type == ShapeType::kBox) {
       for (int k = 0; k < 8; ++k) {
-        const Vec3 corner((k & 1 ? 1 : -1) * sh.size.x(), (k & 2 ? 1 : -1) * sh.size.y(), (k & 4 ? 1 : -1) * sh.size.z());
+        const Vec3 corner((k & 1 ? 1 : -1) * sh.size.x(), (k & 2 ? 1 : -1) * sh.size.y(),
+                          (k & 4 ? 1 : -1) * sh.size.z());
         outline.push_back(px(sh.pose * corner));
       }
     } else {
@@ -295,29 +312,34 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
     cv::line(img, px(tr[i - 1].position_m), px(tr[i].position_m), cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
   // The last path sent (blue) and the active goal (red circle).
   const auto& path = r.final_map.path;
-  for (size_t i = 1; i < path.size(); ++i) cv::line(img, px(path[i - 1]), px(path[i]), cv::Scalar(200, 60, 0), 2, cv::LINE_AA);
+  for (size_t i = 1; i < path.size(); ++i)
+    cv::line(img, px(path[i - 1]), px(path[i]), cv::Scalar(200, 60, 0), 2, cv::LINE_AA);
   if (r.final_map.goal) cv::circle(img, px(r.final_map.goal->position), 6, cv::Scalar(0, 0, 230), 2, cv::LINE_AA);
   if (r.flight.collision) {
     const cv::Point c = px(r.flight.collision->vehicle_position_m);
     cv::drawMarker(img, c, cv::Scalar(0, 0, 255), cv::MARKER_TILTED_CROSS, 24, 3);
   }
   char text[200];
-  std::snprintf(text, sizeof(text), "A = %.0f m2 (%zu columns), t = %.0f s, %s", r.columns.areaM2(),
-                r.columns.count(), r.flight.sim_time_s, runStatusName(r.flight.status));
+  std::snprintf(text, sizeof(text), "A = %.0f m2 (%zu columns), t = %.0f s, %s", r.columns.areaM2(), r.columns.count(),
+                r.flight.sim_time_s, runStatusName(r.flight.status));
   cv::rectangle(img, cv::Point(0, 0), cv::Point(w, header - 1), cv::Scalar(255, 255, 255), -1);
   cv::putText(img, text, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   // The legend names what the map holds: spheres (disk footprints) or free cells (squares).
-  const bool spheres = std::any_of(r.final_map.free_space.begin(), r.final_map.free_space.end(), [](const auto& e) {
-    return e.footprint == FreeSpaceElement::Footprint::kDisk;
-  });
-  cv::putText(img, spheres ? "green: explored columns, blue: spheres, black/grey: obstacle points (above/below 0.5 m), magenta: frontiers,"
-                           : "green: explored columns, blue: free cells, black/grey: occupied cells (above/below 0.5 m), red circle: goal,",
+  const bool spheres = std::any_of(r.final_map.free_space.begin(), r.final_map.free_space.end(),
+                                   [](const auto& e) { return e.footprint == FreeSpaceElement::Footprint::kDisk; });
+  cv::putText(img,
+              spheres ? "green: explored columns, blue: spheres, black/grey: obstacle points (above/below 0.5 m), "
+                        "magenta: frontiers,"
+                      : "green: explored columns, blue: free cells, black/grey: occupied cells (above/below 0.5 m), "
+                        "red circle: goal,",
               cv::Point(8, 42), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
-  cv::putText(img, spheres ? "orange arrows: viewpoints, grey: visited, red: true path, orange: estimate, blue: last path"
-                           : "red: true path, orange: estimate, blue: last path",
+  cv::putText(img,
+              spheres ? "orange arrows: viewpoints, grey: visited, red: true path, orange: estimate, blue: last path"
+                      : "red: true path, orange: estimate, blue: last path",
               cv::Point(8, 60), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
   if (truth)
-    cv::putText(img, "faint: true obstacles (grey textured, orange textureless, magenta thin); grid and labels in metres",
+    cv::putText(img,
+                "faint: true obstacles (grey textured, orange textureless, magenta thin); grid and labels in metres",
                 cv::Point(8, 78), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
   // Scale bar (bottom right) and the grid's unit.
   const int bar = int(step / mpp), bx = w - bar - 20, by = h - 16;
@@ -346,7 +368,10 @@ nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const Scena
 }
 
 nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what) {
-  return {{"name", spec.name}, {"status", runStatusName(RunStatus::kError)}, {"error", what}, {"seed", spec.flight.seed},
+  return {{"name", spec.name},
+          {"status", runStatusName(RunStatus::kError)},
+          {"error", what},
+          {"seed", spec.flight.seed},
           {"versions", versionInfo()}};
 }
 

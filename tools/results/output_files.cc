@@ -72,24 +72,36 @@ namespace {
 // markers named their kind.
 const char* kindName(OutputKind k) {
   switch (k) {
-    case OutputKind::kRun: return "run";
-    case OutputKind::kReport: return "report";
-    case OutputKind::kFly: return "fly";
-    case OutputKind::kVioEval: return "vio-eval";
-    case OutputKind::kMapReplay: return "map-replay";
-    case OutputKind::kWorldShow: return "world-show";
+    case OutputKind::kRun:
+      return "run";
+    case OutputKind::kReport:
+      return "report";
+    case OutputKind::kFly:
+      return "fly";
+    case OutputKind::kVioEval:
+      return "vio-eval";
+    case OutputKind::kMapReplay:
+      return "map-replay";
+    case OutputKind::kWorldShow:
+      return "world-show";
   }
   return "?";
 }
 
 const char* characteristicFile(OutputKind k) {
   switch (k) {
-    case OutputKind::kRun: return "coverage.csv";
-    case OutputKind::kReport: return "report.md";
-    case OutputKind::kFly: return "imu.csv";
-    case OutputKind::kVioEval: return "frames.csv";
-    case OutputKind::kMapReplay: return "map_stats.csv";
-    case OutputKind::kWorldShow: return "views.png";
+    case OutputKind::kRun:
+      return "coverage.csv";
+    case OutputKind::kReport:
+      return "report.md";
+    case OutputKind::kFly:
+      return "imu.csv";
+    case OutputKind::kVioEval:
+      return "frames.csv";
+    case OutputKind::kMapReplay:
+      return "map_stats.csv";
+    case OutputKind::kWorldShow:
+      return "views.png";
   }
   return "";
 }
@@ -127,7 +139,6 @@ void checkNoOverlap(const std::vector<NamedPath>& inputs, const std::vector<Name
   }
 }
 
-
 bool isMsbenchOutput(const fs::path& dir, OutputKind kind) {
   if (!fs::is_directory(dir)) return false;
   const fs::path marker = dir / kMarker;
@@ -137,7 +148,8 @@ bool isMsbenchOutput(const fs::path& dir, OutputKind kind) {
     // A marker from before kinds: the kind's characteristic file decides (a run that ended in an
     // error left only its metrics.json).
     if (text.find("(") == std::string::npos)
-      return fs::exists(dir / characteristicFile(kind)) || (kind == OutputKind::kRun && fs::exists(dir / "metrics.json"));
+      return fs::exists(dir / characteristicFile(kind)) ||
+             (kind == OutputKind::kRun && fs::exists(dir / "metrics.json"));
     return false;
   }
   return kind == OutputKind::kRun && isMsbenchOutput(dir);
@@ -170,7 +182,8 @@ StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind 
       throw UsageError(name + ": exists and is not a directory; refusing to replace it");
     if (!fs::is_empty(p)) {
       if (!overwrite_)
-        throw UsageError(name + ": output directory exists and is not empty (use --overwrite to replace an msbench result)");
+        throw UsageError(name +
+                         ": output directory exists and is not empty (use --overwrite to replace an msbench result)");
       if (!isMsbenchOutput(p))
         throw UsageError(name + ": was not written by msbench (no " + kMarker + " inside); refusing to replace it");
       if (!isMsbenchOutput(p, kind_))

@@ -4,8 +4,8 @@
 
 #include <cmath>
 #include <cstring>
-#include <memory>
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
@@ -70,7 +70,8 @@ class Reader {
     const Quat q(v[3], v[4], v[5], v[6]);
     if (q.norm() < 1e-6) fail("degenerate orientation");
     // The writer stores unit quaternions (to 1e-15): anything else was not written by msbench.
-    if (std::abs(q.norm() - 1.0) > 1e-6) fail("orientation quaternion not normalised (|q| = " + std::to_string(q.norm()) + ")");
+    if (std::abs(q.norm() - 1.0) > 1e-6)
+      fail("orientation quaternion not normalised (|q| = " + std::to_string(q.norm()) + ")");
     Pose T = Pose::Identity();
     T.translation() = Vec3(v[0], v[1], v[2]);
     T.linear() = q.normalized().toRotationMatrix();
@@ -125,15 +126,15 @@ void checkFrame(const Reader& r, const LoggedFrame& fr, const LoggedFrame* previ
   const SlamPointsFrame& f = fr.points;
   if (f.tick < 0) r.fail("negative tick " + std::to_string(f.tick));
   if (previous && (f.tick <= previous->points.tick || f.t_s < previous->points.t_s))
-    r.fail("time goes backwards (tick " + std::to_string(f.tick) + ", t = " + std::to_string(f.t_s) +
-           " s after tick " + std::to_string(previous->points.tick) + ", t = " + std::to_string(previous->points.t_s) +
-           " s)");
+    r.fail("time goes backwards (tick " + std::to_string(f.tick) + ", t = " + std::to_string(f.t_s) + " s after tick " +
+           std::to_string(previous->points.tick) + ", t = " + std::to_string(previous->points.t_s) + " s)");
   std::set<uint64_t> ids;
   for (size_t i = 0; i < f.points.size(); ++i) {
     const SlamPoint& p = f.points[i];
     const std::string which = "point " + std::to_string(i) + " (track " + std::to_string(p.track_id) + ")";
     if (!(p.depth_m > 0)) r.fail(which + ": depth " + std::to_string(p.depth_m) + " m is not positive");
-    if (!(p.depth_std_m >= 0)) r.fail(which + ": depth uncertainty " + std::to_string(p.depth_std_m) + " m is negative");
+    if (!(p.depth_std_m >= 0))
+      r.fail(which + ": depth uncertainty " + std::to_string(p.depth_std_m) + " m is negative");
     if (p.anchor_tick < 0 || p.anchor_tick > f.tick)
       r.fail(which + ": anchor tick " + std::to_string(p.anchor_tick) + " is not in [0, the frame's tick " +
              std::to_string(f.tick) + "]");
@@ -143,8 +144,7 @@ void checkFrame(const Reader& r, const LoggedFrame& fr, const LoggedFrame* previ
 
 }  // namespace
 
-PerceptionLogWriter::PerceptionLogWriter(const std::string& path, const nlohmann::json& header)
-    : path_(path) {
+PerceptionLogWriter::PerceptionLogWriter(const std::string& path, const nlohmann::json& header) : path_(path) {
   f_ = std::fopen((path + ".tmp").c_str(), "wb");
   if (!f_) throw std::runtime_error(path + ": cannot write the perception log");
   std::fputs(kMagic, f_);
@@ -167,9 +167,10 @@ void PerceptionLogWriter::write(const SlamPointsFrame& frame, const Pose& T_W_C_
   putPose(b, T_W_C_truth);
   put(b, uint32_t(frame.points.size()));
   for (const auto& p : frame.points) {
-    const double v[14] = {p.p_W.x(), p.p_W.y(), p.p_W.z(), p.cov_W(0, 0), p.cov_W(0, 1),
-                          p.cov_W(0, 2), p.cov_W(1, 1), p.cov_W(1, 2), p.cov_W(2, 2), p.depth_m,
-                          p.depth_std_m, double(p.anchor_tick), p.anchor_pixel.x(), p.anchor_pixel.y()};
+    const double v[14] = {p.p_W.x(),          p.p_W.y(),         p.p_W.z(),     p.cov_W(0, 0),
+                          p.cov_W(0, 1),      p.cov_W(0, 2),     p.cov_W(1, 1), p.cov_W(1, 2),
+                          p.cov_W(2, 2),      p.depth_m,         p.depth_std_m, double(p.anchor_tick),
+                          p.anchor_pixel.x(), p.anchor_pixel.y()};
     put(b, p.track_id);
     b.append(reinterpret_cast<const char*>(v), 11 * sizeof(double));
     put(b, p.anchor_tick);
@@ -209,10 +210,14 @@ PerceptionLog PerceptionLog::read(const std::string& path) {
   try {
     // A key twice in one object is refused (the parser would keep the last one silently).
     std::vector<std::set<std::string>> keys;
-    const nlohmann::json::parser_callback_t unique = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-      if (event == nlohmann::json::parse_event_t::object_start) keys.emplace_back();
-      else if (event == nlohmann::json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-      else if (event == nlohmann::json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second)
+    const nlohmann::json::parser_callback_t unique = [&](int, nlohmann::json::parse_event_t event,
+                                                         nlohmann::json& parsed) {
+      if (event == nlohmann::json::parse_event_t::object_start)
+        keys.emplace_back();
+      else if (event == nlohmann::json::parse_event_t::object_end && !keys.empty())
+        keys.pop_back();
+      else if (event == nlohmann::json::parse_event_t::key && !keys.empty() &&
+               !keys.back().insert(parsed.get<std::string>()).second)
         throw FileConfigError(path + ": bad log header: key '" + parsed.get<std::string>() + "' appears twice");
       return true;
     };

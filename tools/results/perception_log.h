@@ -24,7 +24,7 @@ inline constexpr char kPerceptionLogMagic[] = "MSBLOG";
 
 /// One recorded frame.
 struct LoggedFrame {
-  SlamPointsFrame points;            ///< estimate pose + SLAM points
+  SlamPointsFrame points;  ///< estimate pose + SLAM points
   Pose T_W_C_truth = Pose::Identity();
 };
 

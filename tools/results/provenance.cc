@@ -17,8 +17,7 @@ nlohmann::json versionInfo() {
           {"git_revision", msbGitRevision()},
           {"mujoco", mj_versionString()},
           {"opencv", CV_VERSION},
-          {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." +
-                        std::to_string(EIGEN_MAJOR_VERSION) + "." +
+          {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                         std::to_string(EIGEN_MINOR_VERSION)}};
 }
 

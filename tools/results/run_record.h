@@ -17,13 +17,13 @@ namespace msb {
 /// What readers of a finished run rely on.
 struct MissionRecord {
   RunStatus status = RunStatus::kCompleted;
-  double area_m2 = 0.0;                 ///< coverage.area_m2
-  std::optional<double> box_share;      ///< coverage.box_share (null: no exploration box)
+  double area_m2 = 0.0;             ///< coverage.area_m2
+  std::optional<double> box_share;  ///< coverage.box_share (null: no exploration box)
   double sim_time_s = 0.0;
-  std::string determinism_hash;         ///< 16 hex digits
-  std::string machine_id;               ///< machine.id ("" in records written before it existed)
+  std::string determinism_hash;  ///< 16 hex digits
+  std::string machine_id;        ///< machine.id ("" in records written before it existed)
   std::string world, method;
-  nlohmann::json metrics;               ///< the whole file, for everything else
+  nlohmann::json metrics;  ///< the whole file, for everything else
 };
 
 /// The record of `metrics` read from `file` (for messages), or the first problem found:

@@ -10,25 +10,78 @@ namespace msb {
 const std::vector<Finding>& findingsTable() {
   using C = FindingCheck;
   static const std::vector<Finding> table = {
-      {"ms_vs_grid_urban", "MonoSpheres covers at least twice the grid baseline's mean A in urban", C::kRatioAtLeast,
-       "urban", {"monospheres", "grid_random"}, {}, 2.0, ""},
-      {"ms_vs_grid_cave", "MonoSpheres covers at least twice the grid baseline's mean A in the cave", C::kRatioAtLeast,
-       "cave", {"monospheres", "grid_random"}, {}, 2.0, ""},
-      {"ms_vs_grid_rooftops", "MonoSpheres covers at least twice the grid baseline's mean A on the rooftops",
-       C::kRatioAtLeast, "rooftops", {"monospheres", "grid_random"}, {}, 2.0, ""},
-      {"ms_vs_grid_sparse", "MonoSpheres covers at least twice the grid baseline's mean A in the sparse world",
-       C::kRatioAtLeast, "sparse", {"monospheres", "grid_random"}, {}, 2.0, ""},
-      {"no_ovde_urban", "without OVDE MonoSpheres covers at most 0.3x its full mean A in urban", C::kRatioAtMost,
-       "urban", {"monospheres -ovde", "monospheres"}, {}, 0.3, ""},
-      {"ablation_order_urban", "urban ablation order: full > no VPB > no FFF ≈ no DBOF > no OVDE (≈: within 25 %)",
-       C::kOrder, "urban", {"monospheres", "monospheres -vpb", "monospheres -fff", "monospheres -dbof", "monospheres -ovde"},
-       {">", ">", "≈", ">"}, 0.25, ""},
-      {"cave_no_collision", "no collision in the cave for either method", C::kNoCollisions, "cave",
-       {"monospheres", "grid_random"}, {}, 0.0, ""},
-      {"urban_collision_kinds", "urban collisions only on textureless or thin objects", C::kCollisionKinds, "urban", {},
-       {}, 0.0, "grid: a smooth metal rod; MonoSpheres: a car, a burned wall"},
-      {"urban_collisions_late", "MonoSpheres' urban collisions come after the majority of the box", C::kCollisionsLate,
-       "urban", {"monospheres"}, {}, 0.5, "\"after exploring the majority of the environment\""},
+      {"ms_vs_grid_urban",
+       "MonoSpheres covers at least twice the grid baseline's mean A in urban",
+       C::kRatioAtLeast,
+       "urban",
+       {"monospheres", "grid_random"},
+       {},
+       2.0,
+       ""},
+      {"ms_vs_grid_cave",
+       "MonoSpheres covers at least twice the grid baseline's mean A in the cave",
+       C::kRatioAtLeast,
+       "cave",
+       {"monospheres", "grid_random"},
+       {},
+       2.0,
+       ""},
+      {"ms_vs_grid_rooftops",
+       "MonoSpheres covers at least twice the grid baseline's mean A on the rooftops",
+       C::kRatioAtLeast,
+       "rooftops",
+       {"monospheres", "grid_random"},
+       {},
+       2.0,
+       ""},
+      {"ms_vs_grid_sparse",
+       "MonoSpheres covers at least twice the grid baseline's mean A in the sparse world",
+       C::kRatioAtLeast,
+       "sparse",
+       {"monospheres", "grid_random"},
+       {},
+       2.0,
+       ""},
+      {"no_ovde_urban",
+       "without OVDE MonoSpheres covers at most 0.3x its full mean A in urban",
+       C::kRatioAtMost,
+       "urban",
+       {"monospheres -ovde", "monospheres"},
+       {},
+       0.3,
+       ""},
+      {"ablation_order_urban",
+       "urban ablation order: full > no VPB > no FFF ≈ no DBOF > no OVDE (≈: within 25 %)",
+       C::kOrder,
+       "urban",
+       {"monospheres", "monospheres -vpb", "monospheres -fff", "monospheres -dbof", "monospheres -ovde"},
+       {">", ">", "≈", ">"},
+       0.25,
+       ""},
+      {"cave_no_collision",
+       "no collision in the cave for either method",
+       C::kNoCollisions,
+       "cave",
+       {"monospheres", "grid_random"},
+       {},
+       0.0,
+       ""},
+      {"urban_collision_kinds",
+       "urban collisions only on textureless or thin objects",
+       C::kCollisionKinds,
+       "urban",
+       {},
+       {},
+       0.0,
+       "grid: a smooth metal rod; MonoSpheres: a car, a burned wall"},
+      {"urban_collisions_late",
+       "MonoSpheres' urban collisions come after the majority of the box",
+       C::kCollisionsLate,
+       "urban",
+       {"monospheres"},
+       {},
+       0.5,
+       "\"after exploring the majority of the environment\""},
   };
   return table;
 }
@@ -45,9 +98,7 @@ std::string number(double v, int digits) {
 }
 
 // "1 collision", "2 collisions".
-std::string counted(int n, const std::string& noun) {
-  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
-}
+std::string counted(int n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
 
 // "1.85 [1.58, 2.37]".
 std::string withInterval(const Estimate& e, int digits = 2) {
@@ -72,8 +123,9 @@ std::string ratioNote(const ReportRow& a, const ReportRow& b) {
   const PairedAreas p = pairedAreas(a, b);
   if (p.a.size() >= 2 && stats::mean(p.b) > 0) {
     const auto rho = stats::correlation(p.a, p.b);
-    note = "paired on " + std::to_string(p.a.size()) + " common seeds: " +
-           withInterval(stats::bootstrapPairedRatio(p.a, p.b)) + (rho ? ", r = " + number(*rho, 2) : "");
+    note = "paired on " + std::to_string(p.a.size()) +
+           " common seeds: " + withInterval(stats::bootstrapPairedRatio(p.a, p.b)) +
+           (rho ? ", r = " + number(*rho, 2) : "");
   }
   bool saturated = false;
   for (const ReportRow* r : {&a, &b})
@@ -254,11 +306,21 @@ FindingResult evaluate(const Finding& f, const SweepResults& results, const std:
   out.finding = &f;
   switch (f.check) {
     case FindingCheck::kRatioAtLeast:
-    case FindingCheck::kRatioAtMost: evaluateRatio(f, rows, out); break;
-    case FindingCheck::kOrder: evaluateOrder(f, rows, out); break;
-    case FindingCheck::kNoCollisions: evaluateNoCollisions(f, rows, out); break;
-    case FindingCheck::kCollisionKinds: evaluateCollisionKinds(f, rows, out); break;
-    case FindingCheck::kCollisionsLate: evaluateCollisionsLate(f, results, rows, out); break;
+    case FindingCheck::kRatioAtMost:
+      evaluateRatio(f, rows, out);
+      break;
+    case FindingCheck::kOrder:
+      evaluateOrder(f, rows, out);
+      break;
+    case FindingCheck::kNoCollisions:
+      evaluateNoCollisions(f, rows, out);
+      break;
+    case FindingCheck::kCollisionKinds:
+      evaluateCollisionKinds(f, rows, out);
+      break;
+    case FindingCheck::kCollisionsLate:
+      evaluateCollisionsLate(f, results, rows, out);
+      break;
   }
   if (out.paper.empty()) out.paper = paperFigures(f);
   if (*f.paper_note) out.paper += std::string(out.paper.empty() ? "" : ": ") + f.paper_note;
@@ -292,7 +354,10 @@ std::vector<FindingResult> evaluateFindings(const SweepResults& results, const s
 FindingCounts countFindings(const std::vector<FindingResult>& findings) {
   FindingCounts c;
   for (const auto& r : findings)
-    (r.status == "holds" ? c.holds : r.status == "fails" ? c.fails : r.status == "undecided" ? c.undecided : c.not_evaluated)++;
+    (r.status == "holds"       ? c.holds
+     : r.status == "fails"     ? c.fails
+     : r.status == "undecided" ? c.undecided
+                               : c.not_evaluated)++;
   return c;
 }
 
@@ -306,7 +371,8 @@ std::string findingsMarkdown(const std::vector<FindingResult>& findings) {
        "decide it at the observed spread); a claim that an event never happens holds when none happened, fails when "
        "Fisher's exact test separates the count from the paper's (p < 0.05), and is undecided otherwise "
        "(docs/sweeps.md, \"Intervals and verdicts\").\n\n"
-    << "| | finding | measured [95 % CI] | paper | seeds per row to decide | note |\n| --- | --- | --- | --- | --- | --- |\n";
+    << "| | finding | measured [95 % CI] | paper | seeds per row to decide | note |\n| --- | --- | --- | --- | --- | "
+       "--- |\n";
   for (const auto& r : findings)
     o << "| " << mark(r.status) << " " << r.status << " | " << r.finding->claim << " | " << r.measured << " | "
       << (r.paper.empty() ? "—" : r.paper) << " | "

@@ -19,9 +19,10 @@ namespace msb {
 /// How a finding compares rows (a row is a world and a method name as the report names it:
 /// "monospheres", "monospheres -ovde", "grid_random").
 enum class FindingCheck {
-  kRatioAtLeast,    ///< mean A of `methods[0]` / mean A of `methods[1]` >= threshold, in `world`
-  kRatioAtMost,     ///< the same ratio <= threshold
-  kOrder,           ///< mean A decreasing along `methods`; `relations[i]` between i and i+1: ">" (greater) or "≈" (within `threshold` of each other, relative)
+  kRatioAtLeast,  ///< mean A of `methods[0]` / mean A of `methods[1]` >= threshold, in `world`
+  kRatioAtMost,   ///< the same ratio <= threshold
+  kOrder,  ///< mean A decreasing along `methods`; `relations[i]` between i and i+1: ">" (greater) or "≈" (within
+           ///< `threshold` of each other, relative)
   kNoCollisions,    ///< no run of `methods` in `world` collided
   kCollisionKinds,  ///< every collision in `world` (all methods) was on a textureless or thin object
   kCollisionsLate,  ///< every collision of `methods` in `world` came at a box share >= threshold
@@ -29,14 +30,14 @@ enum class FindingCheck {
 
 /// One claim of the paper.
 struct Finding {
-  const char* id;                    ///< short key (findings.csv)
-  const char* claim;                 ///< the claim in words
+  const char* id;     ///< short key (findings.csv)
+  const char* claim;  ///< the claim in words
   FindingCheck check;
   const char* world;
   std::vector<std::string> methods;
   std::vector<std::string> relations;  ///< kOrder only
   double threshold;
-  const char* paper_note;            ///< the paper's words where its figures are not numbers of Table I ("" none)
+  const char* paper_note;  ///< the paper's words where its figures are not numbers of Table I ("" none)
 };
 
 /// The findings of the MonoSpheres paper (seed 001, §V-B and Table I).
@@ -45,9 +46,9 @@ const std::vector<Finding>& findingsTable();
 /// A finding evaluated on a sweep.
 struct FindingResult {
   const Finding* finding = nullptr;
-  std::string status;    ///< "holds", "fails", "undecided" or "n/a" (rows missing)
-  std::string measured;  ///< the numbers behind the verdict, intervals included
-  std::string paper;     ///< the paper's figures for it (from the method table) and its words
+  std::string status;                       ///< "holds", "fails", "undecided" or "n/a" (rows missing)
+  std::string measured;                     ///< the numbers behind the verdict, intervals included
+  std::string paper;                        ///< the paper's figures for it (from the method table) and its words
   std::optional<stats::Estimate> estimate;  ///< the ratio, or the rate of events, with its interval
   std::optional<double> p_value;            ///< Fisher's exact test against the paper's count
   std::optional<int> seeds_to_decide;       ///< undecided ratios: seeds per row that would decide

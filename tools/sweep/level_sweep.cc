@@ -103,10 +103,12 @@ std::vector<ReportRow> rowsAtLevel(const SweepResults& results, const std::vecto
 
 std::string levelSweepMarkdown(const LevelSweep& s) {
   std::ostringstream o;
-  o << "\n## Ablations across levels of `" << s.axis << "`\n\nEach method's mean A over the mean A of " << s.reference_method
+  o << "\n## Ablations across levels of `" << s.axis << "`\n\nEach method's mean A over the mean A of "
+    << s.reference_method
     << " at the same level, paired on common seeds (95 % percentile bootstrap; independent when fewer than two "
        "seeds are common). Below 1: the ablated part pays; the figure is ablation_levels_<world>.png. The paper's "
-       "findings (below) are checked on the first level, `" << s.levels.front() << "`, only.\n";
+       "findings (below) are checked on the first level, `"
+    << s.levels.front() << "`, only.\n";
   // Worlds and methods in cell order.
   std::vector<std::pair<std::string, std::string>> keys;
   for (const LevelCell& c : s.cells)

@@ -24,10 +24,10 @@ struct LevelCell {
 
 /// The comparisons of a level sweep.
 struct LevelSweep {
-  std::string axis;                  ///< the level axis' name
-  std::vector<std::string> levels;   ///< its labels in sweep order
-  std::string reference_method;      ///< the full method (first method label)
-  std::vector<LevelCell> cells;      ///< world by world, method by method, level by level
+  std::string axis;                 ///< the level axis' name
+  std::vector<std::string> levels;  ///< its labels in sweep order
+  std::string reference_method;     ///< the full method (first method label)
+  std::vector<LevelCell> cells;     ///< world by world, method by method, level by level
 };
 
 /// The level sweep of a report, if the sweep has a `method` axis and exactly one axis besides it

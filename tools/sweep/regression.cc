@@ -57,16 +57,19 @@ nlohmann::json readGolden(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) throw FileConfigError(file.string() + ": no such golden file");
   const nlohmann::json g = nlohmann::json::parse(readFileText(file), nullptr, false);
   if (g.is_discarded() || !g.is_object()) throw FileConfigError(file.string() + ": not a JSON object (truncated?)");
-  if (!g.contains("runs") || !g["runs"].is_array()) throw FileConfigError(file.string() + ": key 'runs': expected a list");
+  if (!g.contains("runs") || !g["runs"].is_array())
+    throw FileConfigError(file.string() + ": key 'runs': expected a list");
   for (size_t i = 0; i < g["runs"].size(); ++i) {
     const auto& r = g["runs"][i];
     const std::string key = "runs[" + std::to_string(i) + "]";
     if (!r.is_object()) throw FileConfigError(file.string() + ": key '" + key + "': expected an object");
     for (const char* k : {"id", "status", "determinism_hash", "machine_id"})
       if (!r.contains(k) || !r[k].is_string())
-        throw FileConfigError(file.string() + ": key '" + key + "." + k + "': " + (r.contains(k) ? "expected a string" : "missing"));
+        throw FileConfigError(file.string() + ": key '" + key + "." + k +
+                              "': " + (r.contains(k) ? "expected a string" : "missing"));
     if (!r.contains("area_m2") || !r["area_m2"].is_number())
-      throw FileConfigError(file.string() + ": key '" + key + ".area_m2': " + (r.contains("area_m2") ? "expected a number" : "missing"));
+      throw FileConfigError(file.string() + ": key '" + key +
+                            ".area_m2': " + (r.contains("area_m2") ? "expected a number" : "missing"));
   }
   if (g.contains("tolerance") && !g["tolerance"].is_object())
     throw FileConfigError(file.string() + ": key 'tolerance': expected an object");
@@ -92,13 +95,16 @@ RegressionOutcome compareWithGolden(const SweepResults& results, const nlohmann:
   }
   for (const auto& g : golden["runs"]) {
     const std::string id = g.value("id", std::string());
-    const auto it = std::find_if(results.runs.begin(), results.runs.end(), [&](const ReportRun& r) { return r.id == id; });
+    const auto it =
+        std::find_if(results.runs.begin(), results.runs.end(), [&](const ReportRun& r) { return r.id == id; });
     if (it == results.runs.end()) {
       out.regressions.push_back(id + ": missing from the sweep");
       continue;
     }
     if (!it->record) {
-      const std::string why = it->failure.is_object() && it->failure.contains("problem") ? ": " + it->failure["problem"].get<std::string>() : "";
+      const std::string why = it->failure.is_object() && it->failure.contains("problem")
+                                  ? ": " + it->failure["problem"].get<std::string>()
+                                  : "";
       out.regressions.push_back(id + ": did not complete (" + it->status + why + ")");
       continue;
     }
@@ -106,11 +112,13 @@ RegressionOutcome compareWithGolden(const SweepResults& results, const nlohmann:
     const MissionRecord& m = *it->record;
     const std::string status = runStatusName(m.status), g_status = g.value("status", std::string());
     const double area = m.area_m2, g_area = g.value("area_m2", 0.0);
-    const std::string g_hash = g.value("determinism_hash", std::string()), g_machine = g.value("machine_id", std::string());
+    const std::string g_hash = g.value("determinism_hash", std::string()),
+                      g_machine = g.value("machine_id", std::string());
     if (status != g_status) out.regressions.push_back(id + ": status " + status + ", golden " + g_status);
     if (!tolerance.band_only && (g_hash.empty() || g_machine.empty() || m.machine_id.empty())) {
       // Without a hash and a machine id the exact mode cannot be chosen: never fall back silently.
-      out.regressions.push_back(id + ": " + std::string(g_hash.empty() || g_machine.empty() ? "the golden entry" : "the run") +
+      out.regressions.push_back(id + ": " +
+                                std::string(g_hash.empty() || g_machine.empty() ? "the golden entry" : "the run") +
                                 " has no determinism hash or machine id (use --band to compare areas only)");
       continue;
     }
@@ -118,8 +126,11 @@ RegressionOutcome compareWithGolden(const SweepResults& results, const nlohmann:
     if (!tolerance.band_only && (same_machine || same_run)) {
       // Same machine (same build inputs), or the very same run elsewhere: bit for bit.
       ++out.exact;
-      if (area != g_area) out.regressions.push_back(id + ": A " + f0(area) + " m², golden " + f0(g_area) + " m² (exact mode)");
-      if (!same_run) out.regressions.push_back(id + ": determinism hash " + m.determinism_hash + ", golden " + g_hash + " (exact mode)");
+      if (area != g_area)
+        out.regressions.push_back(id + ": A " + f0(area) + " m², golden " + f0(g_area) + " m² (exact mode)");
+      if (!same_run)
+        out.regressions.push_back(id + ": determinism hash " + m.determinism_hash + ", golden " + g_hash +
+                                  " (exact mode)");
     } else {
       ++out.banded;
       const double band = std::max(tolerance.relative * g_area, tolerance.absolute_m2);

@@ -151,9 +151,12 @@ double fisherExact(int k1, int n1, int k2, int n2) {
 
 const char* verdictName(Verdict v) {
   switch (v) {
-    case Verdict::kHolds: return "holds";
-    case Verdict::kFails: return "fails";
-    case Verdict::kUndecided: return "undecided";
+    case Verdict::kHolds:
+      return "holds";
+    case Verdict::kFails:
+      return "fails";
+    case Verdict::kUndecided:
+      return "undecided";
   }
   return "?";
 }

@@ -35,12 +35,18 @@ std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
       if (k >= names.size()) break;
       const double x = std::strtod(v.c_str(), nullptr);
       const std::string& n = names[k];
-      if (n == "t_s") c.t_s = x;
-      else if (n == "area_m2") c.area_m2 = x;
-      else if (n == "area_box_m2") c.area_box_m2 = x;
-      else if (n == "area_true_frame_m2") c.area_gt_m2 = x;
-      else if (n == "distance_m") c.distance_m = x;
-      else if (n == "box_share") c.box_share = x;
+      if (n == "t_s")
+        c.t_s = x;
+      else if (n == "area_m2")
+        c.area_m2 = x;
+      else if (n == "area_box_m2")
+        c.area_box_m2 = x;
+      else if (n == "area_true_frame_m2")
+        c.area_gt_m2 = x;
+      else if (n == "distance_m")
+        c.distance_m = x;
+      else if (n == "box_share")
+        c.box_share = x;
     }
     out.push_back(c);
   }
@@ -103,8 +109,8 @@ std::string collisionCell(const ReportRow& r) {
 
 std::string paperCollisionCell(const ReportRow& r) {
   if (r.paper_collisions < 0 || r.paper_runs <= 0) return "—";
-  return std::to_string(r.paper_collisions) + "/" + std::to_string(r.paper_runs) + " (p = " +
-         fixed(stats::fisherExact(r.crashes, r.complete, r.paper_collisions, r.paper_runs), 2) + ")";
+  return std::to_string(r.paper_collisions) + "/" + std::to_string(r.paper_runs) +
+         " (p = " + fixed(stats::fisherExact(r.crashes, r.complete, r.paper_collisions, r.paper_runs), 2) + ")";
 }
 
 }  // namespace
@@ -192,9 +198,11 @@ SweepResults loadSweepResults(const fs::path& dir) {
       throw bad(key + ".id", "expected a run id (a non-empty name without '/')");
     ReportRun run;
     run.id = jr["id"].get<std::string>();
-    if (jr.contains("seed") && !jr["seed"].is_number_unsigned()) throw bad(key + ".seed", "expected a non-negative integer");
+    if (jr.contains("seed") && !jr["seed"].is_number_unsigned())
+      throw bad(key + ".seed", "expected a non-negative integer");
     run.seed = jr.value("seed", uint64_t(0));
-    if (jr.contains("status") && !jr["status"].is_string()) throw bad(key + ".status", "expected complete, failed or pending");
+    if (jr.contains("status") && !jr["status"].is_string())
+      throw bad(key + ".status", "expected complete, failed or pending");
     run.status = jr.value("status", std::string("pending"));
     if (run.status != "complete" && run.status != "failed" && run.status != "pending")
       throw bad(key + ".status", "expected complete, failed or pending, got '" + run.status + "'");
@@ -250,7 +258,8 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     if (row.world.empty()) {
       row.world = m.value("world", std::string("?"));
       row.method = reportMethodName(m);
-      if (const PaperRow* p = paperRow(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json()))) {
+      if (const PaperRow* p =
+              paperRow(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json()))) {
         row.paper_mean_m2 = p->mean_area_m2, row.paper_max_m2 = p->max_area_m2;
         row.paper_runs = p->runs, row.paper_collisions = p->collisions;
       }
@@ -275,8 +284,9 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     if (run.record->status == RunStatus::kCollided) {
       ++row.crashes;
       const nlohmann::json& c = m["collision"];
-      const std::string kind = c.is_object() && c.contains("kind") && c["kind"].is_string() ? c["kind"].get<std::string>()
-                                                                                            : std::string("unknown");
+      const std::string kind = c.is_object() && c.contains("kind") && c["kind"].is_string()
+                                   ? c["kind"].get<std::string>()
+                                   : std::string("unknown");
       ++row.collisions_by_kind[kind];
     }
   }
@@ -304,7 +314,8 @@ std::string tableHead(const SweepResults& results, const std::vector<std::string
 std::string tableOneSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
   std::ostringstream o;
   o << "## Table I layout\n\nMean A with its 95 % bootstrap interval over the row's seeds (percentile, "
-    << stats::kDraws << " resamples, fixed seed; docs/sweeps.md, \"Intervals and verdicts\"). Crashes: runs ended by "
+    << stats::kDraws
+    << " resamples, fixed seed; docs/sweeps.md, \"Intervals and verdicts\"). Crashes: runs ended by "
        "a collision, k/n with the Wilson 95 % interval of the rate; the paper's count where §V-C gives it, with "
        "Fisher's exact p of the two counts.\n\n"
     << tableHead(results, {"method type", "runs", "mean A (m²) [95 % CI]", "max A (m²)", "paper mean A", "paper max A",
@@ -334,10 +345,11 @@ std::string beyondPaperSection(const SweepResults& results, const std::vector<Re
   for (const ReportRow& r : rows) {
     auto kind = [&](const std::string& k) { return r.collisions_by_kind.count(k) ? r.collisions_by_kind.at(k) : 0; };
     const int other = r.crashes - kind("textureless") - kind("thin") - kind("textured");
-    o << labelCells(r) << " " << intervalCell(r.box_share, r.complete, 2) << " | " << intervalCell(r.t50_s, r.complete, 0)
-      << " | " << intervalCell(r.t90_s, r.complete, 0) << " | " << intervalCell(r.area_per_100m, r.complete, 0) << " | "
-      << meanCell(r.longest_no_gain_s, r.complete, 0) << " | " << kind("textureless") << " | " << kind("thin") << " | "
-      << kind("textured") << " | " << other << " | " << r.vio_lost << " | " << meanCell(r.rtf, r.complete, 2) << " |\n";
+    o << labelCells(r) << " " << intervalCell(r.box_share, r.complete, 2) << " | "
+      << intervalCell(r.t50_s, r.complete, 0) << " | " << intervalCell(r.t90_s, r.complete, 0) << " | "
+      << intervalCell(r.area_per_100m, r.complete, 0) << " | " << meanCell(r.longest_no_gain_s, r.complete, 0) << " | "
+      << kind("textureless") << " | " << kind("thin") << " | " << kind("textured") << " | " << other << " | "
+      << r.vio_lost << " | " << meanCell(r.rtf, r.complete, 2) << " |\n";
   }
   return o.str();
 }
@@ -348,16 +360,19 @@ std::string frontEndSection(const std::vector<ReportRow>& rows) {
   for (const ReportRow& r : rows) {
     if (r.fe_wrong_share.count == 0) continue;
     body << "| " << r.world << " | " << r.method << " | " << intervalCell(r.fe_median_m[0], r.complete, 2) << " | "
-         << intervalCell(r.fe_median_m[1], r.complete, 2) << " | " << intervalCell(r.fe_median_m[2], r.complete, 2) << " | "
-         << intervalCell(r.fe_wrong_share, r.complete, 3) << " | " << intervalCell(r.fe_moved_share, r.complete, 2) << " |\n";
+         << intervalCell(r.fe_median_m[1], r.complete, 2) << " | " << intervalCell(r.fe_median_m[2], r.complete, 2)
+         << " | " << intervalCell(r.fe_wrong_share, r.complete, 3) << " | "
+         << intervalCell(r.fe_moved_share, r.complete, 2) << " |\n";
   }
   if (body.str().empty()) return "";
-  return "\n## Front-end error profile\n\nThe SLAM points the method received, against the ground truth (never shown to "
+  return "\n## Front-end error profile\n\nThe SLAM points the method received, against the ground truth (never shown "
+         "to "
          "the method; docs/perception.md): median distance to the nearest true surface by depth, the share of points "
          "more than 2 m off any surface (wrong points), the share of tracks whose published estimate moved more than "
          "0.3 m over its life; means over the row's runs with 95 % intervals.\n\n"
          "| world | method | median error 0-5 m | 5-10 m | 10-20 m | wrong points (> 2 m) | tracks moved > 0.3 m |\n"
-         "| --- | --- | --- | --- | --- | --- | --- |\n" + body.str();
+         "| --- | --- | --- | --- | --- | --- | --- |\n" +
+         body.str();
 }
 
 // The worlds where a row fills the box: there the area cannot tell speeds apart; t50 / t90 can.
@@ -377,8 +392,8 @@ std::string saturationSection(const std::vector<ReportRow>& rows) {
     for (const ReportRow& r : rows)
       if (r.world == w)
         o << "| " << w << " | " << r.method << (isSaturated(r) ? " (saturated)" : "") << " | " << r.saturated << "/"
-          << r.complete << " | " << intervalCell(r.t50_s, r.complete, 0) << " | " << intervalCell(r.t90_s, r.complete, 0)
-          << " |\n";
+          << r.complete << " | " << intervalCell(r.t50_s, r.complete, 0) << " | "
+          << intervalCell(r.t90_s, r.complete, 0) << " |\n";
   return o.str();
 }
 
@@ -393,7 +408,10 @@ std::string pairedSection(const std::vector<ReportRow>& rows) {
   for (const ReportRow& r : rows) {
     const ReportRow* ref = nullptr;
     for (const ReportRow& c : rows)
-      if (c.world == r.world && c.area_m2.count > 0) { ref = &c; break; }
+      if (c.world == r.world && c.area_m2.count > 0) {
+        ref = &c;
+        break;
+      }
     if (!ref || ref == &r || r.area_m2.count == 0 || !(ref->area_m2.mean > 0)) continue;
     const PairedAreas p = pairedAreas(r, *ref);
     body << "| " << r.world << " | " << r.method << " / " << ref->method << " | "
@@ -414,7 +432,8 @@ std::string pairedSection(const std::vector<ReportRow>& rows) {
          "tightest between a method and its own ablation, which fly the same until the switch first acts "
          "(docs/sweeps.md, \"Intervals and verdicts\").\n\n"
          "| world | rows | ratio, independent [95 % CI] (runs) | ratio, paired [95 % CI] (seeds) | r |\n"
-         "| --- | --- | --- | --- | --- |\n" + body.str();
+         "| --- | --- | --- | --- | --- |\n" +
+         body.str();
 }
 
 }  // namespace
@@ -436,8 +455,7 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
   std::ostringstream o;
   o << "# Sweep report: " << results.dir.string() << "\n\n";
   int complete = 0, failed = 0, pending = 0;
-  for (const auto& r : results.runs)
-    (r.status == "complete" ? complete : r.status == "failed" ? failed : pending)++;
+  for (const auto& r : results.runs) (r.status == "complete" ? complete : r.status == "failed" ? failed : pending)++;
   o << results.runs.size() << " runs: " << complete << " complete, " << failed << " failed, " << pending
     << " not run. A = explored 2.5 m columns (m², unbounded, VIO frame, as the paper's Table I).\n\n";
   // Failed runs first: a table with a hole in it must say so before anything else.
@@ -448,18 +466,21 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     for (const ReportRun& r : results.runs) {
       if (r.status != "failed") continue;
       const nlohmann::json& f = r.failure;
-      auto text = [&](const char* k) { return f.is_object() && f.contains(k) && f[k].is_string() ? f[k].get<std::string>() : std::string("—"); };
+      auto text = [&](const char* k) {
+        return f.is_object() && f.contains(k) && f[k].is_string() ? f[k].get<std::string>() : std::string("—");
+      };
       const int sig = f.is_object() ? f.value("signal", 0) : 0;
-      const std::string ended = sig ? "signal " + std::to_string(sig) + (f.contains("signal_name") ? " (" + text("signal_name") + ")" : "")
-                                    : "exit code " + std::to_string(f.is_object() ? f.value("exit_code", 0) : 0);
+      const std::string ended =
+          sig ? "signal " + std::to_string(sig) + (f.contains("signal_name") ? " (" + text("signal_name") + ")" : "")
+              : "exit code " + std::to_string(f.is_object() ? f.value("exit_code", 0) : 0);
       const std::string why = f.is_object() && f.contains("problem") ? text("problem") : text("fatal");
       o << "| " << r.id << " | " << (f.is_object() && f.contains("problem") ? std::string("unreadable results") : ended)
         << " | " << text("last_progress") << " | " << why << " | logs/" << r.id << ".log |\n";
     }
     o << "\n";
   }
-  o << tableOneSection(results, rows) << beyondPaperSection(results, rows) << frontEndSection(rows) << saturationSection(rows)
-    << pairedSection(rows);
+  o << tableOneSection(results, rows) << beyondPaperSection(results, rows) << frontEndSection(rows)
+    << saturationSection(rows) << pairedSection(rows);
   // Every run, with its collision.
   o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | tracked (mean) | drift (m) | collision |\n"
        "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
@@ -472,7 +493,8 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     std::string hit = "—";
     if (m.contains("collision") && m["collision"].is_object()) {
       const auto& c = m["collision"];
-      hit = (c.contains("object") && c["object"].is_string() ? c["object"].get<std::string>() : c.value("world_geom", "?")) +
+      hit = (c.contains("object") && c["object"].is_string() ? c["object"].get<std::string>()
+                                                             : c.value("world_geom", "?")) +
             (c.contains("kind") && c["kind"].is_string() ? " (" + c["kind"].get<std::string>() + ")" : "");
       // The audit's cause and what the map knew (docs/planner.md, "Collision audit").
       if (c.contains("audit") && c["audit"].is_object()) {
@@ -485,7 +507,10 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     }
     const auto& cov = m["coverage"];
     o << "| " << r.id << " | " << m.value("status", std::string("?")) << " | " << fixed(number(cov, "area_m2"), 0)
-      << " | " << (cov.is_object() && cov.contains("box_share") && cov["box_share"].is_number() ? fixed(cov["box_share"].get<double>(), 2) : "—")
+      << " | "
+      << (cov.is_object() && cov.contains("box_share") && cov["box_share"].is_number()
+              ? fixed(cov["box_share"].get<double>(), 2)
+              : "—")
       << " | " << fixed(number(m, "sim_time_s"), 0) << " | "
       << (m.contains("perception") ? fixed(number(m["perception"], "tracked_mean"), 0) : "—") << " | "
       << fixed(number(m, "final_drift_m"), 2) << " | " << hit << " |\n";

@@ -25,11 +25,11 @@ struct ReportRun {
   std::string id;
   std::map<std::string, std::string> labels;  ///< axis name -> label
   uint64_t seed = 0;
-  std::string status;                         ///< the sweep's: complete | failed | pending
-  std::optional<MissionRecord> record;        ///< metrics.json read strictly (complete runs)
-  nlohmann::json metrics;                     ///< metrics.json (complete runs; the record's)
-  nlohmann::json failure;                     ///< sweep.json's failure record (failed runs)
-  std::vector<CoverageSample> coverage;       ///< coverage.csv (complete runs)
+  std::string status;                    ///< the sweep's: complete | failed | pending
+  std::optional<MissionRecord> record;   ///< metrics.json read strictly (complete runs)
+  nlohmann::json metrics;                ///< metrics.json (complete runs; the record's)
+  nlohmann::json failure;                ///< sweep.json's failure record (failed runs)
+  std::vector<CoverageSample> coverage;  ///< coverage.csv (complete runs)
 };
 
 /// A sweep directory read back: its axes and runs in run order.
@@ -52,20 +52,20 @@ inline constexpr double kSaturatedBoxShare = 0.95;
 
 /// One row of the table: the runs sharing all axis labels.
 struct ReportRow {
-  std::vector<std::string> labels;  ///< one per axis, in axis order
-  std::string world, method;        ///< from the runs' metrics (method incl. switched-off switches)
+  std::vector<std::string> labels;                      ///< one per axis, in axis order
+  std::string world, method;                            ///< from the runs' metrics (method incl. switched-off switches)
   int runs = 0, complete = 0, failed = 0, crashes = 0;  ///< crashes: runs that collided
-  int vio_lost = 0;    ///< runs ended because the VIO lost track
-  int saturated = 0;   ///< runs whose box share reached kSaturatedBoxShare
+  int vio_lost = 0;                                     ///< runs ended because the VIO lost track
+  int saturated = 0;                                    ///< runs whose box share reached kSaturatedBoxShare
   MeanOf area_m2, box_share, t50_s, t90_s, area_per_100m, longest_no_gain_s, rtf;
-  MeanOf fe_median_m[3];        ///< front-end profile: median SLAM-point error at 0-5, 5-10, 10-20 m
+  MeanOf fe_median_m[3];                  ///< front-end profile: median SLAM-point error at 0-5, 5-10, 10-20 m
   MeanOf fe_wrong_share, fe_moved_share;  ///< points over 2 m off a surface; tracks that moved > 0.3 m
-  std::vector<uint64_t> area_seeds;  ///< the seed of each value of area_m2 (pairing across rows)
+  std::vector<uint64_t> area_seeds;       ///< the seed of each value of area_m2 (pairing across rows)
   double max_area_m2 = 0.0;
   std::map<std::string, int> collisions_by_kind;  ///< textured / textureless / thin / ground / unknown
   std::optional<double> paper_mean_m2, paper_max_m2;
-  int paper_runs = 0;          ///< 0: no paper row
-  int paper_collisions = -1;   ///< -1: the paper does not say
+  int paper_runs = 0;         ///< 0: no paper row
+  int paper_collisions = -1;  ///< -1: the paper does not say
 };
 
 /// Whether most of a row's complete runs filled the exploration box (its area then no longer

@@ -31,9 +31,9 @@ struct RunState {
   std::string status = "pending";  // pending | complete | failed
   int exit_code = 0, signal = 0;
   std::string log_tail;
-  std::string last_progress;       // the run's last progress line, if it printed one
-  std::string fatal;               // the crash handler's line (signal, tick, simulated time)
-  nlohmann::json metrics;          // the run's metrics.json (complete runs)
+  std::string last_progress;  // the run's last progress line, if it printed one
+  std::string fatal;          // the crash handler's line (signal, tick, simulated time)
+  nlohmann::json metrics;     // the run's metrics.json (complete runs)
 };
 
 std::string tail(const std::string& text, int lines) {
@@ -103,8 +103,8 @@ std::string csvRow(const SweepRun& r, const RunState& s, const std::vector<std::
   auto num = [&](const nlohmann::json& j) { return j.is_number() ? std::to_string(j.get<double>()) : std::string(); };
   o << "," << r.seed << "," << s.status << "," << (m.is_object() ? m.value("status", "") : "") << ","
     << (m.is_object() ? num(m["coverage"]["area_m2"]) : "") << ","
-    << (m.is_object() ? num(m["coverage"]["box_share"]) : "") << ","
-    << (m.is_object() ? num(m["sim_time_s"]) : "") << "," << (m.is_object() ? num(m["wall_time_s"]) : "") << ","
+    << (m.is_object() ? num(m["coverage"]["box_share"]) : "") << "," << (m.is_object() ? num(m["sim_time_s"]) : "")
+    << "," << (m.is_object() ? num(m["wall_time_s"]) : "") << ","
     << (m.is_object() ? m.value("determinism_hash", "") : "") << "," << s.exit_code << "," << s.signal << "\n";
   return o.str();
 }
@@ -118,14 +118,15 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const SweepRun& r = plan.runs[i];
     const RunState& s = states[i];
-    nlohmann::json j = {{"id", r.id}, {"seed", r.seed}, {"scenario", r.scenario}, {"labels", r.labels},
-                        {"status", s.status}};
+    nlohmann::json j = {
+        {"id", r.id}, {"seed", r.seed}, {"scenario", r.scenario}, {"labels", r.labels}, {"status", s.status}};
     nlohmann::json sets = nlohmann::json::array();
     for (const auto& [k, v] : r.sets) sets.push_back(k + "=" + v);
     j["sets"] = sets;
     if (s.status == "failed") {
       j["failure"] = {{"exit_code", s.exit_code}, {"signal", s.signal}, {"log_tail", s.log_tail}};
-      if (s.signal) j["failure"]["signal_name"] = sigabbrev_np(s.signal) ? std::string("SIG") + sigabbrev_np(s.signal) : "?";
+      if (s.signal)
+        j["failure"]["signal_name"] = sigabbrev_np(s.signal) ? std::string("SIG") + sigabbrev_np(s.signal) : "?";
       if (!s.last_progress.empty()) j["failure"]["last_progress"] = s.last_progress;
       if (!s.fatal.empty()) j["failure"]["fatal"] = s.fatal;
     }
@@ -133,8 +134,13 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
     runs.push_back(j);
     csv += csvRow(r, s, plan.axes);
   }
-  const nlohmann::json index = {{"sweep_file", plan.file}, {"sweep_file_hash", plan.file_hash}, {"build", sweepBuildId()},
-                                {"versions", versionInfo()}, {"jobs", jobs}, {"axes", plan.axes}, {"runs", runs}};
+  const nlohmann::json index = {{"sweep_file", plan.file},
+                                {"sweep_file_hash", plan.file_hash},
+                                {"build", sweepBuildId()},
+                                {"versions", versionInfo()},
+                                {"jobs", jobs},
+                                {"axes", plan.axes},
+                                {"runs", runs}};
   writeFileAtomic(dir / "sweep.json", index.dump(2) + "\n");
   writeFileAtomic(dir / "runs.csv", csv);
 }
@@ -156,7 +162,8 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
       if (old.contains(key) && !old[key].is_string())
         throw UsageError((dir / "sweep.json").string() + ": key '" + key + "': expected a string");
     std::vector<std::string> changes;
-    if (old.value("sweep_file_hash", "") != plan.file_hash) changes.push_back("the sweep file changed (" + plan.file + ")");
+    if (old.value("sweep_file_hash", "") != plan.file_hash)
+      changes.push_back("the sweep file changed (" + plan.file + ")");
     if (old.value("build", "") != sweepBuildId())
       changes.push_back("the msbench build changed (" + old.value("build", "?") + " -> " + sweepBuildId() + ")");
     if (!changes.empty() && !options.accept_changes) {
@@ -196,8 +203,8 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
   auto progress = [&]() {
     const double elapsed = secondsSince(t0);
     const double eta = done > 0 ? elapsed / double(done) * double(todo.size() - done) : 0.0;
-    std::fprintf(stderr, "sweep: %zu done, %zu running, %zu failed of %zu (%zu skipped); %.0f s elapsed%s\n",
-                 done, running.size(), failed, todo.size(), skipped, elapsed,
+    std::fprintf(stderr, "sweep: %zu done, %zu running, %zu failed of %zu (%zu skipped); %.0f s elapsed%s\n", done,
+                 running.size(), failed, todo.size(), skipped, elapsed,
                  done > 0 ? (", ETA " + std::to_string(int(eta)) + " s").c_str() : "");
   };
   bool interrupted = false;

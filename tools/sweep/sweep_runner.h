@@ -21,16 +21,16 @@ namespace msb {
 
 /// How to run a sweep.
 struct SweepRunOptions {
-  long jobs = 1;                      ///< runs at a time (processes)
-  std::optional<size_t> task;         ///< run only this run of the plan (a Slurm array task); no index written
-  bool accept_changes = false;        ///< resume although the sweep file or the build changed
+  long jobs = 1;                ///< runs at a time (processes)
+  std::optional<size_t> task;   ///< run only this run of the plan (a Slurm array task); no index written
+  bool accept_changes = false;  ///< resume although the sweep file or the build changed
 };
 
 /// What a sweep call did.
 struct SweepOutcome {
-  size_t complete = 0, failed = 0;    ///< runs complete and failed at the end (all runs of the plan)
-  bool interrupted = false;           ///< stop_requested() ended it; unfinished runs stay pending
-  std::string task_status;            ///< with a task: its run's status (complete | failed | pending)
+  size_t complete = 0, failed = 0;  ///< runs complete and failed at the end (all runs of the plan)
+  bool interrupted = false;         ///< stop_requested() ended it; unfinished runs stay pending
+  std::string task_status;          ///< with a task: its run's status (complete | failed | pending)
 };
 
 /// Runs `plan` into `dir` (new, or a sweep directory of the same plan and build). Polls

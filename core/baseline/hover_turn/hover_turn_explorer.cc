@@ -33,15 +33,18 @@ std::optional<PathCommand> HoverTurnExplorer::plan(const VehicleState& s) {
   if (sent_ && !s.path_finished) return std::nullopt;
   if (sent_) {
     sent_ = false;
-    if (phase_ == Phase::kClimb) phase_ = Phase::kTurn;
-    else if (phase_ == Phase::kTurn && ++turn_steps_done_ * config_.turn_step_deg >= 360.0) phase_ = Phase::kDescend;
-    else if (phase_ == Phase::kDescend) phase_ = Phase::kHold;
+    if (phase_ == Phase::kClimb)
+      phase_ = Phase::kTurn;
+    else if (phase_ == Phase::kTurn && ++turn_steps_done_ * config_.turn_step_deg >= 360.0)
+      phase_ = Phase::kDescend;
+    else if (phase_ == Phase::kDescend)
+      phase_ = Phase::kHold;
   }
   if (phase_ == Phase::kHold) return std::nullopt;
   Waypoint w{hover_m_, start_yaw_rad_};
   if (phase_ == Phase::kTurn)
-    w.heading_rad = std::remainder(start_yaw_rad_ + (turn_steps_done_ + 1) * config_.turn_step_deg * M_PI / 180.0,
-                                   2.0 * M_PI);
+    w.heading_rad =
+        std::remainder(start_yaw_rad_ + (turn_steps_done_ + 1) * config_.turn_step_deg * M_PI / 180.0, 2.0 * M_PI);
   if (phase_ == Phase::kDescend) w.position_m.z() += config_.land_altitude_m - config_.takeoff_altitude_m;
   sent_ = true;
   return PathCommand{s.tick, {w}};

@@ -44,12 +44,12 @@ class HoverTurnExplorer : public Explorer {
   enum class Phase { kClimb, kTurn, kDescend, kHold };
 
   HoverTurnConfig config_;
-  Vec3 hover_m_;                 ///< the turn's position (start + takeoff altitude)
+  Vec3 hover_m_;  ///< the turn's position (start + takeoff altitude)
   double start_yaw_rad_;
   Phase phase_ = Phase::kClimb;
-  bool sent_ = false;            ///< the current phase's path was sent
+  bool sent_ = false;  ///< the current phase's path was sent
   int turn_steps_done_ = 0;
-  double nearest_point_m_;       ///< distance of the nearest SLAM point seen during the turn
+  double nearest_point_m_;  ///< distance of the nearest SLAM point seen during the turn
   int points_seen_ = 0;
 };
 

@@ -143,7 +143,8 @@ TEST(GridMap, ConfidenceWeightsScaleTheLogOddsUpdates) {
   // the free cells weight x the miss log-odds; standard insertion the full values.
   // (OctoMap's own sensor model here, whose clamping leaves the scaled updates visible.)
   GridMapConfig octomap_model;
-  octomap_model.prob_hit = 0.7, octomap_model.prob_miss = 0.4, octomap_model.clamp_min = 0.1192, octomap_model.clamp_max = 0.971;
+  octomap_model.prob_hit = 0.7, octomap_model.prob_miss = 0.4, octomap_model.clamp_min = 0.1192,
+  octomap_model.clamp_max = 0.971;
   GridMapConfig cfg = octomap_model;
   cfg.insertion = "confidence_weighted";
   GridMap weighted(cfg), standard(octomap_model);
@@ -177,7 +178,8 @@ TEST(GridMap, CoverageFromFreeLeavesIsExactAlsoAfterPruning) {
   // x, y ∈ [0, 4]: its footprint holds the nodes (0|2.5, 0|2.5).
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j)
-      for (int k = 0; k < 8; ++k) tree.updateNode(octomap::point3d(0.25f + 0.5f * i, 0.25f + 0.5f * j, 0.25f + 0.5f * k), false);
+      for (int k = 0; k < 8; ++k)
+        tree.updateNode(octomap::point3d(0.25f + 0.5f * i, 0.25f + 0.5f * j, 0.25f + 0.5f * k), false);
   // One free cell [10, 10.5]² touching the node (10, 10) at its corner; an occupied cell elsewhere.
   tree.updateNode(octomap::point3d(10.25f, 10.25f, 0.25f), false);
   tree.updateNode(octomap::point3d(20.25f, 20.25f, 0.25f), true);

@@ -22,7 +22,8 @@ GridPlannerConfig traversableUnknown() {
 GridMap wallMap() {
   GridMap map(GridMapConfig{});
   for (double y = -3.75; y < 4.0; y += 0.5)
-    for (double z = 0.25; z < 4.0; z += 0.5) map.mutableTree().updateNode(octomap::point3d(5.25f, float(y), float(z)), true);
+    for (double z = 0.25; z < 4.0; z += 0.5)
+      map.mutableTree().updateNode(octomap::point3d(5.25f, float(y), float(z)), true);
   map.mutableTree().updateInnerOccupancy();
   return map;
 }

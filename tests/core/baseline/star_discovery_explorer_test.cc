@@ -16,7 +16,8 @@ void fill(GridMap& map, const Vec3& lo, const Vec3& hi, const std::vector<Aabb>&
       for (double z = lo.z() + 0.25; z < hi.z(); z += 0.5) {
         bool occ = false;
         for (const Aabb& b : occupied)
-          occ = occ || ((Vec3(x, y, z).array() >= b.min.array()).all() && (Vec3(x, y, z).array() <= b.max.array()).all());
+          occ =
+              occ || ((Vec3(x, y, z).array() >= b.min.array()).all() && (Vec3(x, y, z).array() <= b.max.array()).all());
         tree.updateNode(octomap::point3d(float(x), float(y), float(z)), occ);
         if (occ) tree.updateNode(octomap::point3d(float(x), float(y), float(z)), true);  // firmly occupied
       }

@@ -52,8 +52,8 @@ TEST(FisheyeCamera, AgreesWithOpenCvFisheyeProjectPoints) {
     // Random directions in front of the camera (OpenCV's model needs z > 0), random depth.
     const double theta = rng.uniform(0.0, 1.5), phi = rng.uniform(-M_PI, M_PI);
     const double depth = rng.uniform(0.3, 40.0);
-    pts.emplace_back(depth * std::sin(theta) * std::cos(phi),
-                     depth * std::sin(theta) * std::sin(phi), depth * std::cos(theta));
+    pts.emplace_back(depth * std::sin(theta) * std::cos(phi), depth * std::sin(theta) * std::sin(phi),
+                     depth * std::cos(theta));
   }
   const cv::Matx33d K(cam.fx(), 0, cam.cx(), 0, cam.fy(), cam.cy(), 0, 0, 1);
   const cv::Vec4d D(cam.k()[0], cam.k()[1], cam.k()[2], cam.k()[3]);

@@ -47,11 +47,11 @@ TEST(Utf8, ValidAndInvalidSequences) {
   EXPECT_TRUE(isValidUtf8("plain ascii"));
   EXPECT_TRUE(isValidUtf8("m\xc2\xb2 \xe2\x89\x88 \xf0\x9f\x9a\x81"));  // m², ≈, a helicopter
   EXPECT_FALSE(isValidUtf8("\xff"));
-  EXPECT_FALSE(isValidUtf8("a\xc3\x28"));          // bad continuation
-  EXPECT_FALSE(isValidUtf8("\xc0\xaf"));           // overlong '/'
-  EXPECT_FALSE(isValidUtf8("\xed\xa0\x80"));       // a surrogate
-  EXPECT_FALSE(isValidUtf8("\xf4\x90\x80\x80"));   // above U+10FFFF
-  EXPECT_FALSE(isValidUtf8("\xe2\x89"));           // truncated
+  EXPECT_FALSE(isValidUtf8("a\xc3\x28"));         // bad continuation
+  EXPECT_FALSE(isValidUtf8("\xc0\xaf"));          // overlong '/'
+  EXPECT_FALSE(isValidUtf8("\xed\xa0\x80"));      // a surrogate
+  EXPECT_FALSE(isValidUtf8("\xf4\x90\x80\x80"));  // above U+10FFFF
+  EXPECT_FALSE(isValidUtf8("\xe2\x89"));          // truncated
 }
 
 }  // namespace

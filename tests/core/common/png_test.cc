@@ -31,7 +31,8 @@ TEST(Png, BgrPixelsRoundTripThroughLibpngsReader) {
   std::vector<uint8_t> data(16 * h, 0xEE);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      data[16 * y + 3 * x + 0] = uint8_t(x), data[16 * y + 3 * x + 1] = uint8_t(y), data[16 * y + 3 * x + 2] = uint8_t(200 + x);
+      data[16 * y + 3 * x + 0] = uint8_t(x), data[16 * y + 3 * x + 1] = uint8_t(y),
+                            data[16 * y + 3 * x + 2] = uint8_t(200 + x);
     }
   const ImageView view{data.data(), w, h, 3, 16};
   const std::string png = encodePng(view);

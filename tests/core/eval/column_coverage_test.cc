@@ -10,16 +10,16 @@ namespace {
 
 TEST(ColumnCoverage, DiskCountsNodesInsideExactly) {
   ColumnCoverage c;
-  EXPECT_EQ(c.markDisk({0, 0}, 2.49), 1);           // only the node at the centre
-  EXPECT_EQ(c.markDisk({0, 0}, 2.5), 4);            // + the 4 axis neighbours (boundary counts)
+  EXPECT_EQ(c.markDisk({0, 0}, 2.49), 1);  // only the node at the centre
+  EXPECT_EQ(c.markDisk({0, 0}, 2.5), 4);   // + the 4 axis neighbours (boundary counts)
   EXPECT_EQ(c.count(), 5u);
-  EXPECT_EQ(c.markDisk({0, 0}, 3.54), 4);           // + the 4 diagonal nodes at 3.5355 m
+  EXPECT_EQ(c.markDisk({0, 0}, 3.54), 4);  // + the 4 diagonal nodes at 3.5355 m
   EXPECT_EQ(c.count(), 9u);
   EXPECT_DOUBLE_EQ(c.areaM2(), 9 * 6.25);
   ColumnCoverage d;
-  EXPECT_EQ(d.markDisk({1.25, 1.25}, 1.76), 0);     // node distance is 1.7678 m
+  EXPECT_EQ(d.markDisk({1.25, 1.25}, 1.76), 0);  // node distance is 1.7678 m
   EXPECT_EQ(d.markDisk({1.25, 1.25}, 1.77), 4);
-  EXPECT_EQ(d.markDisk({-10.0, 7.5}, 5.0), 13);     // radius 2 cells: i² + j² ≤ 4 → 13 nodes
+  EXPECT_EQ(d.markDisk({-10.0, 7.5}, 5.0), 13);  // radius 2 cells: i² + j² ≤ 4 → 13 nodes
 }
 
 TEST(ColumnCoverage, IsCumulativeAndBoxCounting) {

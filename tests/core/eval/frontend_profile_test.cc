@@ -39,11 +39,13 @@ TEST(FrontEndProfile, ErrorsByDepthBandWrongPointsAndMovedTracks) {
   camera_true.translation() = Vec3(0, 0, 1.5);
   // The estimate is 1 m off along x: a point published at x + 1 is where the truth has x.
   const Vec3 off(1, 0, 0);
-  profiler.addFrame(frame(camera_true.translation() + off,
-                          {point(1, Vec3(2, 0, 0) + off), point(2, Vec3(3, 0, 3) + off), point(3, Vec3(8, 0, 0) + off)}),
-                    camera_true);
-  profiler.addFrame(frame(camera_true.translation() + off, {point(1, Vec3(2, 0.5, 0) + off), point(3, Vec3(8, 0, 0) + off)}),
-                    camera_true);
+  profiler.addFrame(
+      frame(camera_true.translation() + off,
+            {point(1, Vec3(2, 0, 0) + off), point(2, Vec3(3, 0, 3) + off), point(3, Vec3(8, 0, 0) + off)}),
+      camera_true);
+  profiler.addFrame(
+      frame(camera_true.translation() + off, {point(1, Vec3(2, 0.5, 0) + off), point(3, Vec3(8, 0, 0) + off)}),
+      camera_true);
   const FrontEndProfile p = profiler.result();
   ASSERT_EQ(p.bands.size(), 4u);
   EXPECT_EQ(p.points, 5);
@@ -79,7 +81,7 @@ namespace {
 TEST(MapAccuracy, ObstaclesNearASurfaceAndFreeElementsOutsideObstacles) {
   const WorldTruth truth = groundOnly();
   ExplorerSnapshot map;
-  EXPECT_FALSE(mapAccuracy(map, truth).has_value());  // an empty map
+  EXPECT_FALSE(mapAccuracy(map, truth).has_value());   // an empty map
   map.obstacles = {Vec3(1, 0, 0.2), Vec3(2, 0, 3.0)};  // on the ground; 3 m above it (a phantom)
   map.free_space = {{1, Vec3(0, 0, 2), 1.0, FreeSpaceElement::Footprint::kDisk},
                     {2, Vec3(0, 0, -1), 0.5, FreeSpaceElement::Footprint::kDisk}};  // the second underground

@@ -49,8 +49,8 @@ double marchHit(const Shape& s, const Vec3& o, const Vec3& d, double max_t) {
 
 TEST(Shapes, RaycastAgreesWithMarchingOnRandomRays) {
   RngStream rng(3, "shapes");
-  const std::vector<Shape> shapes = {box({0, 0, 0}, {1, 2, 0.5}, 0.4, 0.3),
-                                     cylinder({0, 0, 0}, 0.7, 1.5, 0.5), sphere({0, 0, 0}, 1.2)};
+  const std::vector<Shape> shapes = {box({0, 0, 0}, {1, 2, 0.5}, 0.4, 0.3), cylinder({0, 0, 0}, 0.7, 1.5, 0.5),
+                                     sphere({0, 0, 0}, 1.2)};
   for (const auto& s : shapes) {
     int hits = 0;
     for (int i = 0; i < 300; ++i) {
@@ -95,7 +95,8 @@ TEST(WorldTruth, IndexedNearestMatchesBruteForce) {
   ground.type = ShapeType::kHalfSpace;
   shapes.push_back(ground);
   for (int i = 0; i < 60; ++i)
-    shapes.push_back(box({rng.uniform(-40, 40), rng.uniform(-40, 40), 2}, {rng.uniform(0.5, 3), rng.uniform(0.5, 3), 2}, rng.uniform(0, 3)));
+    shapes.push_back(box({rng.uniform(-40, 40), rng.uniform(-40, 40), 2}, {rng.uniform(0.5, 3), rng.uniform(0.5, 3), 2},
+                         rng.uniform(0, 3)));
   for (int i = 0; i < 30; ++i)
     shapes.push_back(cylinder({rng.uniform(-40, 40), rng.uniform(-40, 40), 3}, 0.3, 3, rng.uniform(0, 0.4)));
   const WorldTruth truth(shapes);

@@ -60,7 +60,7 @@ TEST(SphereMapRules, DbofDeletesPointsSeenAgainFromCloserAndProtectsTheOthers) {
   cfg.new_sphere_samples = 200;
   SphereMap map(cfg, cam, 1);
   // Both points lie 8 m from the camera, inside P_f (wall at 10 m).
-  const uint64_t seen_from_far = map.addObstacle({0, 0, 8}, 8.0);  // 8 < 1.1 · 8: deleted
+  const uint64_t seen_from_far = map.addObstacle({0, 0, 8}, 8.0);       // 8 < 1.1 · 8: deleted
   const uint64_t seen_from_close = map.addObstacle({2, 0, 7.75}, 5.0);  // 8 > 1.1 · 5: protected
   const MapUpdateStats st = map.update(wallFrame(15, 10));
   EXPECT_EQ(st.deleted_obstacles, 1);

@@ -51,8 +51,7 @@ TEST(KltFeatureTracker, DetectsUpToTheLimitOnAGridAndFollowsAShift) {
   // Minimum spacing and FoV.
   for (size_t i = 0; i < a.tracks.size(); ++i) {
     EXPECT_TRUE(cam.pixelInFov(a.tracks[i].pixel));
-    for (size_t j = i + 1; j < a.tracks.size(); ++j)
-      EXPECT_GE((a.tracks[i].pixel - a.tracks[j].pixel).norm(), 19.0);
+    for (size_t j = i + 1; j < a.tracks.size(); ++j) EXPECT_GE((a.tracks[i].pixel - a.tracks[j].pixel).norm(), 19.0);
   }
   // Shift the image by (3, -2) px: surviving tracks move by that shift, ids and ages kept.
   const TrackFrame b = tracker.process(texturedFrame(cam.width(), cam.height(), 3.0, -2.0, 1));
@@ -231,12 +230,11 @@ TEST(KltFeatureTracker, RansacDropsTracksThatBreakTheEpipolarGeometry) {
   }
 }
 
-
 TEST(KltWindowRange, DropsExactlyThePointsWhoseWindowLeavesTheRange) {
   // 15 px window (half 7), 100 × 60 image: the corner floor(p − 7) must lie in [−15, 100) × [−15, 60).
-  const std::vector<cv::Point2f> pts = {{-8.0f, 10.0f},   {-8.01f, 10.0f}, {106.99f, 10.0f}, {107.0f, 10.0f},
-                                        {50.0f, -8.0f},   {50.0f, -8.01f}, {50.0f, 66.99f},  {50.0f, 67.0f},
-                                        {std::nanf(""), 5.0f}, {50.0f, 30.0f}, {-100.0f, 30.0f}};
+  const std::vector<cv::Point2f> pts = {{-8.0f, 10.0f},        {-8.01f, 10.0f}, {106.99f, 10.0f}, {107.0f, 10.0f},
+                                        {50.0f, -8.0f},        {50.0f, -8.01f}, {50.0f, 66.99f},  {50.0f, 67.0f},
+                                        {std::nanf(""), 5.0f}, {50.0f, 30.0f},  {-100.0f, 30.0f}};
   std::vector<uchar> status(pts.size(), 1);
   status.back() = 0;  // already lost: stays lost
   dropOutsideWindowRange(pts, cv::Size(15, 15), cv::Size(100, 60), status);

@@ -116,7 +116,8 @@ TEST(MonoSpheresExplorer, ChoosesAViewpointFliesThereAndReachesIt) {
     EXPECT_EQ(f.explorer.viewpoints().markers().size(), vpb ? 1u : 0u);
     if (!vpb) continue;
     for (const auto& [id, v] : f.explorer.viewpoints().viewpoints())
-      EXPECT_FALSE((v.position - goal.position).norm() < 7.0 && std::abs(wrapAngle(v.yaw_rad - goal.yaw_rad)) < M_PI / 3)
+      EXPECT_FALSE((v.position - goal.position).norm() < 7.0 &&
+                   std::abs(wrapAngle(v.yaw_rad - goal.yaw_rad)) < M_PI / 3)
           << "a viewpoint next to the visited marker survived";
   }
 }

@@ -91,11 +91,11 @@ TEST(SphereGraphSearch, UnreachableAndContainingSphere) {
   const uint64_t far = map.addSphere({50, 0, 0}, 2.0);
   const SafetyCostConfig cfg;
   EXPECT_FALSE(findSpherePath(map, a, far, cfg));
-  EXPECT_EQ(*containingSphere(map, {0.5, 0, 0}, 1.5, 1.6), a);   // depth 2.5 vs 0.5
-  EXPECT_EQ(*containingSphere(map, {3.5, 0, 0}, 1.5, 1.6), b);   // depth 0.5 vs −0.5
-  EXPECT_EQ(*containingSphere(map, {5.4, 0, 0}, 1.5, 1.6), b);   // 1.4 m outside b
+  EXPECT_EQ(*containingSphere(map, {0.5, 0, 0}, 1.5, 1.6), a);  // depth 2.5 vs 0.5
+  EXPECT_EQ(*containingSphere(map, {3.5, 0, 0}, 1.5, 1.6), b);  // depth 0.5 vs −0.5
+  EXPECT_EQ(*containingSphere(map, {5.4, 0, 0}, 1.5, 1.6), b);  // 1.4 m outside b
   EXPECT_FALSE(containingSphere(map, {5.4, 0, 0}, 1.0, 1.6));
-  EXPECT_FALSE(containingSphere(map, {0.5, 0, 0}, 1.5, 3.5));    // spheres below the minimum radius are skipped
+  EXPECT_FALSE(containingSphere(map, {0.5, 0, 0}, 1.5, 3.5));  // spheres below the minimum radius are skipped
 }
 
 }  // namespace

@@ -29,10 +29,10 @@ TEST(ViewpointSet, ValueCountsVisibleFacingFrontiers) {
   const int ahead = vs.value(s.map, c, 0.0);
   EXPECT_GE(ahead, 7);
   EXPECT_LE(ahead, s.frontiers);
-  EXPECT_EQ(vs.value(s.map, c, M_PI), 0);                   // looking away
-  EXPECT_EQ(vs.value(s.map, c, M_PI / 2), 0);               // 90° off: outside ±60°
-  EXPECT_EQ(vs.value(s.map, {9.0, 0, 2}, M_PI), 0);         // from the unknown side: not facing
-  EXPECT_EQ(vs.value(s.map, {-20, 0, 2}, 0.0), 0);          // beyond 10 m
+  EXPECT_EQ(vs.value(s.map, c, M_PI), 0);            // looking away
+  EXPECT_EQ(vs.value(s.map, c, M_PI / 2), 0);        // 90° off: outside ±60°
+  EXPECT_EQ(vs.value(s.map, {9.0, 0, 2}, M_PI), 0);  // from the unknown side: not facing
+  EXPECT_EQ(vs.value(s.map, {-20, 0, 2}, 0.0), 0);   // beyond 10 m
 }
 
 TEST(ViewpointSet, PassingAViewpointBlocksItsNeighbourhood) {

@@ -98,9 +98,8 @@ TEST(Flight, GroundContactBeforeTakeOffIsNotACollision) {
 }
 
 TEST(Flight, SquareAt4mpsIsTrackedWithRmsBelow30cm) {
-  std::vector<Waypoint> path = {{Vec3(0, 0, 2), {}},   {Vec3(20, 0, 2), {}},
-                                {Vec3(20, 20, 2), {}}, {Vec3(0, 20, 2), {}},
-                                {Vec3(0, 0, 2), {}}};
+  std::vector<Waypoint> path = {
+      {Vec3(0, 0, 2), {}}, {Vec3(20, 0, 2), {}}, {Vec3(20, 20, 2), {}}, {Vec3(0, 20, 2), {}}, {Vec3(0, 0, 2), {}}};
   const FlightLog log = fly(kWorlds + "open_field.xml", path, 60.0, TrajectoryLimits::preset("medium"), 1.0);
   ASSERT_FALSE(log.collision);
   ASSERT_TRUE(log.finished);
@@ -145,13 +144,11 @@ TEST(Flight, FlyingIntoAWallEndsWithCollidedAtTheRightTimeAndPlace) {
   // 0.163 + 0.13 = 0.293 m ahead of the body origin.
   TrajectoryLimits slow = TrajectoryLimits::preset("medium");
   slow.max_speed_mps = 2.0;
-  const FlightLog log =
-      fly(kWorlds + "wall_ahead.xml", {{Vec3(0, 0, 2), {}}, {Vec3(20, 0, 2), {}}}, 30.0, slow);
+  const FlightLog log = fly(kWorlds + "wall_ahead.xml", {{Vec3(0, 0, 2), {}}, {Vec3(20, 0, 2), {}}}, 30.0, slow);
   ASSERT_TRUE(log.collision);
   const auto& c = *log.collision;
   EXPECT_EQ(c.world_geom, "wall");
-  EXPECT_TRUE(c.vehicle_geom == "vehicle_rotor_fl" || c.vehicle_geom == "vehicle_rotor_fr")
-      << c.vehicle_geom;
+  EXPECT_TRUE(c.vehicle_geom == "vehicle_rotor_fl" || c.vehicle_geom == "vehicle_rotor_fr") << c.vehicle_geom;
   EXPECT_NEAR(c.vehicle_position_m.x(), 10.0 - 0.293, 0.03);
   EXPECT_NEAR(c.vehicle_position_m.z(), 2.0, 0.1);
   EXPECT_NEAR(c.contact_position_m.x(), 10.0, 0.01);

@@ -21,13 +21,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // Writes an MJCF world with the given worldbody content into a fresh temp file.
-std::string writeWorld(const std::string& name, const std::string& assets,
-                       const std::string& body) {
+std::string writeWorld(const std::string& name, const std::string& assets, const std::string& body) {
   const fs::path dir = fs::path(::testing::TempDir()) / "msb_render_test";
   fs::create_directories(dir);
   const fs::path file = dir / (name + ".xml");
-  std::ofstream(file) << "<mujoco model=\"" << name << "\"><asset>" << assets
-                      << "</asset><worldbody>" << body << "</worldbody></mujoco>";
+  std::ofstream(file) << "<mujoco model=\"" << name << "\"><asset>" << assets << "</asset><worldbody>" << body
+                      << "</worldbody></mujoco>";
   return file.string();
 }
 
@@ -37,8 +36,7 @@ struct Scene {
   std::unique_ptr<FisheyeRenderer> renderer;
   Pose T_W_B;
 
-  Scene(const std::string& world, const Pose& T, double scale = 1.0,
-        FisheyeRendererConfig rcfg = {})
+  Scene(const std::string& world, const Pose& T, double scale = 1.0, FisheyeRendererConfig rcfg = {})
       : camera([&] {
           FisheyeCameraConfig c;
           c.scale = scale;
@@ -77,9 +75,9 @@ PixelDifference difference(const CameraFrame& a, const CameraFrame& b) {
 
 TEST(FisheyeRenderer, BrightMarkersAppearWhereTheCameraModelPredicts) {
   // Directions in the camera frame: centre, off-axis, on face seams, near the FoV edge.
-  const std::vector<Vec3> dirs = {
-      {0, 0, 1},     {0.5, 0, 1},  {1, 0.3, 1},    {-1, -0.2, 1}, {0.2, 1, 1},   {-0.3, -1, 1},
-      {1, 0.8, 0.9}, {3, 0.2, 0.5}, {-3, 0.3, 0.4}, {1, 1, 0.5},   {-0.6, 0.4, 1}, {2, -0.5, 1}};
+  const std::vector<Vec3> dirs = {{0, 0, 1},      {0.5, 0, 1},   {1, 0.3, 1},    {-1, -0.2, 1},
+                                  {0.2, 1, 1},    {-0.3, -1, 1}, {1, 0.8, 0.9},  {3, 0.2, 0.5},
+                                  {-3, 0.3, 0.4}, {1, 1, 0.5},   {-0.6, 0.4, 1}, {2, -0.5, 1}};
   const Pose T_W_B = poseFromXyzYaw(Vec3(1, 2, 10), 0.3);
   const FisheyeCamera cam;
   const Pose T_W_C = T_W_B * cam.T_B_C();
@@ -87,8 +85,8 @@ TEST(FisheyeRenderer, BrightMarkersAppearWhereTheCameraModelPredicts) {
   const double range = 8.0, radius = 0.06;
   for (size_t i = 0; i < dirs.size(); ++i) {
     const Vec3 p = T_W_C * (range * dirs[i].normalized());
-    body << "<geom name=\"marker" << i << "\" type=\"sphere\" size=\"" << radius << "\" pos=\""
-         << p.x() << ' ' << p.y() << ' ' << p.z() << "\" material=\"bright\"/>";
+    body << "<geom name=\"marker" << i << "\" type=\"sphere\" size=\"" << radius << "\" pos=\"" << p.x() << ' ' << p.y()
+         << ' ' << p.z() << "\" material=\"bright\"/>";
   }
   const std::string world =
       writeWorld("markers", "<material name=\"bright\" emission=\"1\" rgba=\"1 1 1 1\"/>", body.str());
@@ -116,13 +114,14 @@ TEST(FisheyeRenderer, BrightMarkersAppearWhereTheCameraModelPredicts) {
 
 // A grey wall 10 m ahead; with `sky`, a white self-lit sky plane 100 m ahead (the sky group).
 std::string clipWorld(bool sky) {
-  return writeWorld(sky ? "clip_sky" : "clip_cave",
-                    "<material name=\"grey\" rgba=\"0.4 0.4 0.4 1\"/>"
-                    "<material name=\"sky\" rgba=\"0.85 0.85 0.85 1\" emission=\"1\"/>",
-                    "<geom name=\"wall\" type=\"box\" pos=\"10 0 0\" size=\"0.2 3 3\" material=\"grey\"/>" +
-                        std::string(sky ? "<geom name=\"sky_east\" type=\"plane\" pos=\"100 0 0\" size=\"200 200 1\" "
-                                          "euler=\"0 -90 0\" material=\"sky\" contype=\"0\" conaffinity=\"0\" group=\"5\"/>"
-                                        : ""));
+  return writeWorld(
+      sky ? "clip_sky" : "clip_cave",
+      "<material name=\"grey\" rgba=\"0.4 0.4 0.4 1\"/>"
+      "<material name=\"sky\" rgba=\"0.85 0.85 0.85 1\" emission=\"1\"/>",
+      "<geom name=\"wall\" type=\"box\" pos=\"10 0 0\" size=\"0.2 3 3\" material=\"grey\"/>" +
+          std::string(sky ? "<geom name=\"sky_east\" type=\"plane\" pos=\"100 0 0\" size=\"200 200 1\" "
+                            "euler=\"0 -90 0\" material=\"sky\" contype=\"0\" conaffinity=\"0\" group=\"5\"/>"
+                          : ""));
 }
 
 TEST(FisheyeRenderer, NothingBeyondTheCameraClipIsDrawnTheSkyColourShowsInstead) {
@@ -152,9 +151,9 @@ TEST(FisheyeRenderer, NothingBeyondTheCameraClipIsDrawnTheSkyColourShowsInstead)
 
 TEST(FisheyeRenderer, UniformWallHasNoSeamsBetweenCubeFaces) {
   // A flat uniform wall 3 m ahead filling the view up to ~87° off-axis.
-  const std::string world = writeWorld(
-      "uniform_wall", "<material name=\"flat\" rgba=\"0.6 0.6 0.6 1\"/>",
-      "<geom name=\"wall\" type=\"box\" pos=\"3.3 0 0\" size=\"0.2 80 80\" material=\"flat\"/>");
+  const std::string world =
+      writeWorld("uniform_wall", "<material name=\"flat\" rgba=\"0.6 0.6 0.6 1\"/>",
+                 "<geom name=\"wall\" type=\"box\" pos=\"3.3 0 0\" size=\"0.2 80 80\" material=\"flat\"/>");
   Scene scene(world, poseFromXyzYaw(Vec3(0, 0, -0.13), 0.0));
   const CameraFrame f = scene.render();
   const auto& cam = scene.camera;
@@ -209,8 +208,8 @@ TEST(FisheyeRenderer, HalfResolutionRendersTheSameScene) {
   int n = 0;
   for (int v = 10; v < b.height - 10; ++v)
     for (int u = 10; u < b.width - 10; ++u) {
-      const double m = (at(a, 2 * u, 2 * v) + at(a, 2 * u + 1, 2 * v) + at(a, 2 * u, 2 * v + 1) +
-                        at(a, 2 * u + 1, 2 * v + 1)) / 4.0;
+      const double m =
+          (at(a, 2 * u, 2 * v) + at(a, 2 * u + 1, 2 * v) + at(a, 2 * u, 2 * v + 1) + at(a, 2 * u + 1, 2 * v + 1)) / 4.0;
       err += std::abs(m - at(b, u, v)), ++n;
     }
   EXPECT_LT(err / n, 12.0);
@@ -276,7 +275,8 @@ TEST(FisheyeRendererTextures, NearestMipFilteringChangesTexturedPixelsSlightlyAn
   const auto gradient = [](const CameraFrame& f) {
     double g = 0;
     for (int v = 1; v + 1 < f.height; ++v)
-      for (int u = 1; u + 1 < f.width; ++u) g += std::abs(at(f, u + 1, v) - at(f, u - 1, v)) + std::abs(at(f, u, v + 1) - at(f, u, v - 1));
+      for (int u = 1; u + 1 < f.width; ++u)
+        g += std::abs(at(f, u + 1, v) - at(f, u - 1, v)) + std::abs(at(f, u, v + 1) - at(f, u, v - 1));
     return g;
   };
   const PixelDifference d = difference(fa, fb);
@@ -347,8 +347,9 @@ TEST(FisheyeRendererFramebuffer, AColouredWorldOrColouredFogKeepsRgbaFaceBuffers
       "<texture name='c' type='2d' builtin='checker' rgb1='1 0 0' rgb2='0 0 1' width='64' height='64'/>"
       "<material name='m' texture='c' texrepeat='4 4'/>",
       "<geom type='plane' size='10 10 1' material='m'/><geom type='box' size='1 1 1' pos='3 0 1' material='m'/>");
-  const std::string red_box = writeWorld("red_box", "", "<geom type='plane' size='10 10 1'/>"
-                                                        "<geom type='box' size='1 1 1' pos='3 0 1' rgba='1 0 0 1'/>");
+  const std::string red_box = writeWorld("red_box", "",
+                                         "<geom type='plane' size='10 10 1'/>"
+                                         "<geom type='box' size='1 1 1' pos='3 0 1' rgba='1 0 0 1'/>");
   const Pose T = poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
   for (const std::string& world : {coloured, red_box}) {
     Scene a(world, T), b(world, T, 1.0, rgba);
@@ -409,13 +410,14 @@ TEST(FisheyeRenderer, LlvmpipeRasterisesInTheRenderingThreadWhateverLpNumThreads
 TEST(FisheyeRenderer, ThePhysicsModelIsReadNeverWritten) {
   // Every render-only setting (off-screen size, headlight, tessellation, plane grid, lights, sky
   // colour, fog) goes into the renderer's copy: the physics model stays byte for byte as loaded.
-  const std::string world = writeWorld(
-      "physics_untouched", "<material name='sky' rgba='0.8 0.8 0.8 1' emission='0.5'/>",
-      "<light directional='true' dir='0.3 0.2 -1' diffuse='0.6 0.6 0.6'/>"
-      "<geom name='ground' type='plane' size='30 30 0.5' rgba='0.5 0.5 0.5 1'/>"
-      "<geom name='box' type='box' pos='6 0 1' size='1 1 1' rgba='0.3 0.3 0.3 1'/>"
-      "<geom name='sky_top' type='plane' size='80 80 80' pos='0 0 80' euler='180 0 0' material='sky' "
-      "contype='0' conaffinity='0' group='" + std::to_string(kSkyGeomGroup) + "'/>");
+  const std::string world =
+      writeWorld("physics_untouched", "<material name='sky' rgba='0.8 0.8 0.8 1' emission='0.5'/>",
+                 "<light directional='true' dir='0.3 0.2 -1' diffuse='0.6 0.6 0.6'/>"
+                 "<geom name='ground' type='plane' size='30 30 0.5' rgba='0.5 0.5 0.5 1'/>"
+                 "<geom name='box' type='box' pos='6 0 1' size='1 1 1' rgba='0.3 0.3 0.3 1'/>"
+                 "<geom name='sky_top' type='plane' size='80 80 80' pos='0 0 80' euler='180 0 0' material='sky' "
+                 "contype='0' conaffinity='0' group='" +
+                     std::to_string(kSkyGeomGroup) + "'/>");
   QuadrotorSim sim(PhysicsConfig{}, world, poseFromXyzYaw(Vec3(0, 0, 0.05), 0.0));
   const mjModel* m = sim.model();
   const std::string buffer_before(static_cast<const char*>(m->buffer), size_t(m->nbuffer));
@@ -429,7 +431,8 @@ TEST(FisheyeRenderer, ThePhysicsModelIsReadNeverWritten) {
   ASSERT_GT(frame.pixels.size(), 0u);
   EXPECT_TRUE(std::string(static_cast<const char*>(m->buffer), size_t(m->nbuffer)) == buffer_before)
       << "the renderer changed the physics model's arrays";
-  EXPECT_EQ(std::memcmp(&m->vis, &vis_before, sizeof(mjVisual)), 0) << "the renderer changed the physics model's visual settings";
+  EXPECT_EQ(std::memcmp(&m->vis, &vis_before, sizeof(mjVisual)), 0)
+      << "the renderer changed the physics model's visual settings";
 }
 
 }  // namespace

@@ -27,8 +27,9 @@ TEST(FixedPointRemap, GivesExactlyWhatCvRemapGivesInsideAtTheBorderAndOutside) {
   for (int v = 0; v < map_x.rows; ++v)
     for (int u = 0; u < map_x.cols; ++u) map_x.at<float>(v, u) = x_of(rng), map_y.at<float>(v, u) = y_of(rng);
   map_x.at<float>(0, 0) = -100.0f, map_y.at<float>(0, 0) = -100.0f;  // far outside, like the lens' rim
-  for (int k = 0; k < 32 * 32; ++k)  // every sub-pixel position, inside
-    map_x.at<float>(10 + k / 150, k % 150) = 20.0f + (k % 32) / 32.0f, map_y.at<float>(10 + k / 150, k % 150) = 30.0f + (k / 32) / 32.0f;
+  for (int k = 0; k < 32 * 32; ++k)                                  // every sub-pixel position, inside
+    map_x.at<float>(10 + k / 150, k % 150) = 20.0f + (k % 32) / 32.0f,
+                                      map_y.at<float>(10 + k / 150, k % 150) = 30.0f + (k / 32) / 32.0f;
   cv::Mat map_xy, map_interp;
   cv::convertMaps(map_x, map_y, map_xy, map_interp, CV_16SC2);
 

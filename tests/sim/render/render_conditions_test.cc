@@ -67,14 +67,17 @@ TEST(RenderConditions, FogLowersTheContrastOfFarObjectsOnly) {
   body << "<geom type=\"box\" size=\"1 1 1\" pos=\"" << near_W.transpose() << "\" material=\"chk\"/>"
        << "<geom type=\"box\" size=\"4 4 4\" pos=\"" << far_W.transpose() << "\" material=\"chk\"/>";
   const std::string world = writeWorld(
-      "fog", "<texture name=\"chk\" type=\"cube\" builtin=\"checker\" rgb1=\"1 1 1\" rgb2=\"0.1 0.1 0.1\" width=\"64\" "
-             "height=\"64\"/><material name=\"chk\" texture=\"chk\" texrepeat=\"1 1\"/>",
+      "fog",
+      "<texture name=\"chk\" type=\"cube\" builtin=\"checker\" rgb1=\"1 1 1\" rgb2=\"0.1 0.1 0.1\" width=\"64\" "
+      "height=\"64\"/><material name=\"chk\" texture=\"chk\" texrepeat=\"1 1\"/>",
       body.str());
   RenderConditions fog;
   fog.fog_start_m = 4, fog.fog_end_m = 45, fog.fog_colour = {0.7, 0.7, 0.7};
   const CameraFrame clear = renderWith(world, T_W_B, {}), foggy = renderWith(world, T_W_B, fog);
-  const auto far_clear = patchStats(clear, far_C - Vec3(0, 0, 4), 10), far_fog = patchStats(foggy, far_C - Vec3(0, 0, 4), 10);
-  const auto near_clear = patchStats(clear, near_C - Vec3(0, 0, 1), 14), near_fog = patchStats(foggy, near_C - Vec3(0, 0, 1), 14);
+  const auto far_clear = patchStats(clear, far_C - Vec3(0, 0, 4), 10),
+             far_fog = patchStats(foggy, far_C - Vec3(0, 0, 4), 10);
+  const auto near_clear = patchStats(clear, near_C - Vec3(0, 0, 1), 14),
+             near_fog = patchStats(foggy, near_C - Vec3(0, 0, 1), 14);
   std::printf("checker contrast (std): far %.1f -> %.1f, near %.1f -> %.1f\n", far_clear.second, far_fog.second,
               near_clear.second, near_fog.second);
   ASSERT_GT(far_clear.second, 20.0) << "the far checker is not visible";

@@ -23,8 +23,10 @@ TEST(ImuModel, WhiteNoiseMatchesTheDensity) {
     sg += s.gyro_radps.squaredNorm();
   }
   // Per-axis standard deviation σ/√Δt.
-  EXPECT_NEAR(std::sqrt(sa / (3 * n)), cfg.accel_noise_density / std::sqrt(dt), 0.02 * cfg.accel_noise_density / std::sqrt(dt));
-  EXPECT_NEAR(std::sqrt(sg / (3 * n)), cfg.gyro_noise_density / std::sqrt(dt), 0.02 * cfg.gyro_noise_density / std::sqrt(dt));
+  EXPECT_NEAR(std::sqrt(sa / (3 * n)), cfg.accel_noise_density / std::sqrt(dt),
+              0.02 * cfg.accel_noise_density / std::sqrt(dt));
+  EXPECT_NEAR(std::sqrt(sg / (3 * n)), cfg.gyro_noise_density / std::sqrt(dt),
+              0.02 * cfg.gyro_noise_density / std::sqrt(dt));
 }
 
 TEST(ImuModel, BiasRandomWalkGrowsWithTheSquareRootOfTime) {
@@ -53,8 +55,7 @@ TEST(ImuModel, SameSeedSameSamples) {
 }
 
 TEST(ImuTruth, RestingVehicleMeasuresGravityReactionAndNoRotation) {
-  QuadrotorSim sim(PhysicsConfig{},
-                   std::string(MSB_SOURCE_DIR) + "/tests/data/worlds/open_field.xml",
+  QuadrotorSim sim(PhysicsConfig{}, std::string(MSB_SOURCE_DIR) + "/tests/data/worlds/open_field.xml",
                    poseFromXyzYaw(Vec3(0, 0, 0.05), 0.7));
   for (int i = 0; i < 500; ++i) {
     sim.beginTick();
@@ -65,8 +66,7 @@ TEST(ImuTruth, RestingVehicleMeasuresGravityReactionAndNoRotation) {
 }
 
 TEST(ImuTruth, FreeFallMeasuresZeroSpecificForce) {
-  QuadrotorSim sim(PhysicsConfig{},
-                   std::string(MSB_SOURCE_DIR) + "/tests/data/worlds/open_field.xml",
+  QuadrotorSim sim(PhysicsConfig{}, std::string(MSB_SOURCE_DIR) + "/tests/data/worlds/open_field.xml",
                    poseFromXyzYaw(Vec3(0, 0, 20), 0.0));
   for (int i = 0; i < 100; ++i) {
     sim.beginTick();

@@ -48,8 +48,8 @@ TEST(VioDrift, FewTrackedFeaturesMakeItDriftFaster) {
     half += fly(s, 50, 1000, 0.1).first;
     none += fly(s, 0, 1000, 0.1).first;
   }
-  EXPECT_NEAR(half / nominal, 2.0, 0.2);   // 1 + 4 · 0.5²
-  EXPECT_NEAR(none / nominal, 5.0, 0.5);   // 1 + 4
+  EXPECT_NEAR(half / nominal, 2.0, 0.2);  // 1 + 4 · 0.5²
+  EXPECT_NEAR(none / nominal, 5.0, 0.5);  // 1 + 4
   // Above nominal nothing changes.
   EXPECT_EQ(fly(3, 100, 500, 0.1), fly(3, 400, 500, 0.1));
 }

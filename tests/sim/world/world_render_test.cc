@@ -23,8 +23,7 @@ struct OneObject {
   CameraFrame frame;
   Pose T_W_C;
 
-  explicit OneObject(const ObjectGroupSpec& object, const std::string& tag,
-                     const FisheyeRendererConfig& render = {}) {
+  explicit OneObject(const ObjectGroupSpec& object, const std::string& tag, const FisheyeRendererConfig& render = {}) {
     WorldSpec s;
     s.name = "probe_" + tag;
     s.ground_size_m = Vec2(100, 100);
@@ -55,8 +54,8 @@ struct OneObject {
         if (!camera.pixelInFov(Vec2(u, v))) continue;
         const Vec3 d = T_W_C.linear() * camera.unproject(Vec2(u, v));
         const auto hit = truth.raycast(T_W_C.translation(), d, 200.0);
-        if (hit && (world.generated.shapes[hit->shape].object == object ||
-                    world.generated.shapes[hit->shape].name == object))
+        if (hit &&
+            (world.generated.shapes[hit->shape].object == object || world.generated.shapes[hit->shape].name == object))
           m.at<uint8_t>(v, u) = 255;
       }
     cv::erode(m, m, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * margin + 1, 2 * margin + 1)));
@@ -73,12 +72,11 @@ struct OneObject {
   }
 };
 
-ObjectGroupSpec wallAhead(const std::string& kind, const std::string& variant = "",
-                          const std::string& texture = "") {
+ObjectGroupSpec wallAhead(const std::string& kind, const std::string& variant = "", const std::string& texture = "") {
   ObjectGroupSpec o;
   o.kind = kind;
   o.at = Vec2(5.0 + 2.0, 0.0);  // near face at x = 5 m
-  o.yaw_deg = 90;  // length (20 m) across the view, depth 4 m
+  o.yaw_deg = 90;               // length (20 m) across the view, depth 4 m
   o.size_min = o.size_max = Vec3(20.0, 4.0, 10.0);
   o.variant = variant;
   o.burned_fraction = 0.95;
@@ -118,9 +116,11 @@ TEST(WorldTextures, TexturelessSurfacesGiveNoCornersInside) {
 
 TEST(WorldTextures, EveryVehicleKindHasStructure) {
   // Each vehicle kind 7 m ahead, side on: parts (≥ 12 geoms) and corners on it.
-  const std::vector<std::pair<std::string, Vec3>> kinds = {
-      {"car", Vec3(4.5, 1.9, 1.5)}, {"suv", Vec3(4.8, 2.0, 1.8)}, {"bus", Vec3(11, 2.5, 3.2)},
-      {"fire_truck", Vec3(9, 2.5, 3.2)}, {"ambulance", Vec3(6, 2.2, 2.7)}};
+  const std::vector<std::pair<std::string, Vec3>> kinds = {{"car", Vec3(4.5, 1.9, 1.5)},
+                                                           {"suv", Vec3(4.8, 2.0, 1.8)},
+                                                           {"bus", Vec3(11, 2.5, 3.2)},
+                                                           {"fire_truck", Vec3(9, 2.5, 3.2)},
+                                                           {"ambulance", Vec3(6, 2.2, 2.7)}};
   for (const auto& [kind, size] : kinds) {
     ObjectGroupSpec v;
     v.kind = kind;

@@ -43,7 +43,8 @@ TEST(Worlds, EveryWorldCompilesInMuJoCoWithoutWarningsAndStartsCollisionFree) {
   for (const auto& name : kWorlds) {
     const BuiltWorld w = buildWorld(spec(name), cache.string());
     // QuadrotorSim throws on any MuJoCo error or warning.
-    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, poseFromXyzYaw(w.generated.start.translation() + Vec3(0, 0, 0.05), 0));
+    QuadrotorSim sim(PhysicsConfig{}, w.world_xml,
+                     poseFromXyzYaw(w.generated.start.translation() + Vec3(0, 0, 0.05), 0));
     EXPECT_EQ(sim.geomCount(), w.generated.collision_geoms + w.generated.visual_geoms + 5) << name;
     for (int i = 0; i < 20; ++i) {
       EXPECT_FALSE(sim.beginTick()) << name;
@@ -67,26 +68,26 @@ TEST(Worlds, GenerationIsByteIdenticalForTheSameSpecAndSeed) {
 
 TEST(Worlds, ADifferentSeedMovesObjectsButKeepsCountsAndSizes) {
   for (const auto& name : kWorlds)
-   for (uint64_t seed = 2; seed <= 6; ++seed) {
-    WorldSpec s1 = spec(name), s2 = spec(name);
-    s2.seed = seed;
-    GeneratedWorld a, b;
-    try {
-      a = generateWorld(s1);
-      b = generateWorld(s2);
-    } catch (const std::exception& e) {
-      FAIL() << name << ": " << e.what();
+    for (uint64_t seed = 2; seed <= 6; ++seed) {
+      WorldSpec s1 = spec(name), s2 = spec(name);
+      s2.seed = seed;
+      GeneratedWorld a, b;
+      try {
+        a = generateWorld(s1);
+        b = generateWorld(s2);
+      } catch (const std::exception& e) {
+        FAIL() << name << ": " << e.what();
+      }
+      ASSERT_EQ(a.shapes.size(), b.shapes.size()) << name;
+      EXPECT_EQ(a.object_counts, b.object_counts);
+      int moved = 0;
+      for (size_t i = 0; i < a.shapes.size(); ++i) {
+        ASSERT_EQ(a.shapes[i].name, b.shapes[i].name);
+        EXPECT_TRUE(a.shapes[i].size.isApprox(b.shapes[i].size, 1e-12)) << a.shapes[i].name;
+        moved += (a.shapes[i].pose.translation() - b.shapes[i].pose.translation()).norm() > 0.1;
+      }
+      EXPECT_GE(moved, 8) << name;  // urban places only its 8 rods at random (at its ruins)
     }
-    ASSERT_EQ(a.shapes.size(), b.shapes.size()) << name;
-    EXPECT_EQ(a.object_counts, b.object_counts);
-    int moved = 0;
-    for (size_t i = 0; i < a.shapes.size(); ++i) {
-      ASSERT_EQ(a.shapes[i].name, b.shapes[i].name);
-      EXPECT_TRUE(a.shapes[i].size.isApprox(b.shapes[i].size, 1e-12)) << a.shapes[i].name;
-      moved += (a.shapes[i].pose.translation() - b.shapes[i].pose.translation()).norm() > 0.1;
-    }
-    EXPECT_GE(moved, 8) << name;  // urban places only its 8 rods at random (at its ruins)
-  }
 }
 
 TEST(Worlds, GroundTruthRayCastsAgreeWithMuJoCoWithin1cm) {
@@ -95,7 +96,8 @@ TEST(Worlds, GroundTruthRayCastsAgreeWithMuJoCoWithin1cm) {
     const BuiltWorld w = buildWorld(spec(name), cache.string());
     const WorldTruth truth(w.generated.shapes);
     // The vehicle stands at the start; rays skip its body.
-    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, poseFromXyzYaw(w.generated.start.translation() + Vec3(0, 0, 0.05), 0));
+    QuadrotorSim sim(PhysicsConfig{}, w.world_xml,
+                     poseFromXyzYaw(w.generated.start.translation() + Vec3(0, 0, 0.05), 0));
     const int vehicle = mj_name2id(sim.model(), mjOBJ_BODY, mjcf_names::kVehicleBody);
     const mjtByte collision_groups[mjNGROUP] = {1, 0, 0, 0, 1, 0};
     RngStream rng(11, "rays_" + name);
@@ -122,11 +124,10 @@ TEST(Worlds, GroundTruthRayCastsAgreeWithMuJoCoWithin1cm) {
         EXPECT_TRUE(t < 0 || t > 149.0) << name << " mj_ray hit " << t << " where the truth has none";
         continue;
       }
-      ASSERT_GE(t, 0.0) << name << ": truth hit " << w.generated.shapes[hit->shape].name << " at "
-                        << hit->distance_m << ", MuJoCo nothing";
-      EXPECT_NEAR(t, hit->distance_m, 0.01)
-          << name << ": truth " << w.generated.shapes[hit->shape].name << ", MuJoCo "
-          << mj_id2name(sim.model(), mjOBJ_GEOM, geom);
+      ASSERT_GE(t, 0.0) << name << ": truth hit " << w.generated.shapes[hit->shape].name << " at " << hit->distance_m
+                        << ", MuJoCo nothing";
+      EXPECT_NEAR(t, hit->distance_m, 0.01) << name << ": truth " << w.generated.shapes[hit->shape].name << ", MuJoCo "
+                                            << mj_id2name(sim.model(), mjOBJ_GEOM, geom);
       ++compared;
     }
     EXPECT_GT(compared, 300) << name;  // of ~1000 rays; the rest leave the world

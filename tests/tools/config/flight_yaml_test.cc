@@ -1,6 +1,6 @@
 // The YAML layer: every error class names the file and the key, and valid files load fully.
-#include "tools/config/world_registry.h"
 #include "tools/config/flight_yaml.h"
+#include "tools/config/world_registry.h"
 
 #include <gtest/gtest.h>
 
@@ -15,8 +15,7 @@ namespace fs = std::filesystem;
 // A directory per test: ctest runs tests as parallel processes.
 fs::path tempDir() {
   const fs::path d = fs::path(::testing::TempDir()) /
-                     ("msb_yaml_" +
-                      std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+                     ("msb_yaml_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::create_directories(d);
   return d;
 }
@@ -86,10 +85,8 @@ TEST(YamlConfig, WrongTypeIsAnError) {
               {"duration_s", "expected a number", "long"});
   expectError("world: world.xml\ntrajectory: {waypoints: [[0,0]]}\n",
               {"trajectory.waypoints[0]", "3 numbers, got a list of 2"});
-  expectError("world: world.xml\ncamera: [1, 2]\ntrajectory: {waypoints: [[0,0,1]]}\n",
-              {"camera", "expected a map"});
-  expectError("world: world.xml\nseed: -3\ntrajectory: {waypoints: [[0,0,1]]}\n",
-              {"seed", "non-negative integer"});
+  expectError("world: world.xml\ncamera: [1, 2]\ntrajectory: {waypoints: [[0,0,1]]}\n", {"camera", "expected a map"});
+  expectError("world: world.xml\nseed: -3\ntrajectory: {waypoints: [[0,0,1]]}\n", {"seed", "non-negative integer"});
 }
 
 TEST(YamlConfig, MissingFilesAreErrors) {

@@ -1,9 +1,9 @@
 // Scenario files: base chains, --set overrides, switches, and one error per class naming the
 // file and the key.
+#include "tools/config/scenario_yaml.h"
 #include "core/baseline/grid_explorer.h"
 #include "core/common/config_check.h"
 #include "tools/config/method_table.h"
-#include "tools/config/scenario_yaml.h"
 #include "tools/config/yaml_reader.h"
 
 #include <gtest/gtest.h>
@@ -45,24 +45,26 @@ MonoSpheresConfig mono(const ScenarioSpec& s) {
 TEST(ScenarioYaml, BaseChainOverridesAndSwitches) {
   const fs::path d = tempDir();
   write(d / "base.yaml", kBase);
-  write(d / "sub" / "mission.yaml", "base: ../base.yaml\nduration_s: 30\n"
-                                    "method: {switches: {fff: false}, planner: {viewpoints: {candidates: 50}}}\n");
+  write(d / "sub" / "mission.yaml",
+        "base: ../base.yaml\nduration_s: 30\n"
+        "method: {switches: {fff: false}, planner: {viewpoints: {candidates: 50}}}\n");
   const ScenarioSpec s = loadScenario((d / "sub" / "mission.yaml").string());
   EXPECT_EQ(s.name, "mission");
   EXPECT_EQ(s.flight.seed, 3u);
   EXPECT_DOUBLE_EQ(s.flight.duration_s, 30.0);
   EXPECT_EQ(s.flight.world_path, (d / "world.xml").lexically_normal().string());  // relative to base.yaml
   EXPECT_TRUE(s.flight.perception.enabled);
-  EXPECT_DOUBLE_EQ(mono(s).planner.local_radius_m, 12.0);        // from the base
-  EXPECT_EQ(mono(s).planner.viewpoints.min_value, 5);            // merged map by map
+  EXPECT_DOUBLE_EQ(mono(s).planner.local_radius_m, 12.0);  // from the base
+  EXPECT_EQ(mono(s).planner.viewpoints.min_value, 5);      // merged map by map
   EXPECT_EQ(mono(s).planner.viewpoints.candidates, 50);
   EXPECT_FALSE(mono(s).planner.fff);
   EXPECT_TRUE(mono(s).planner.viewpoints.vpb);
   EXPECT_FALSE(s.method.switches.at("fff"));
   EXPECT_TRUE(s.start_from_world);
   // Command-line overrides win over both files.
-  const ScenarioSpec o = loadScenario((d / "sub" / "mission.yaml").string(),
-                                      {"method.switches.vpb=false", "seed=9", "method.map.r_max_m=8", "duration_s=12.5"});
+  const ScenarioSpec o =
+      loadScenario((d / "sub" / "mission.yaml").string(),
+                   {"method.switches.vpb=false", "seed=9", "method.map.r_max_m=8", "duration_s=12.5"});
   EXPECT_FALSE(mono(o).planner.viewpoints.vpb);
   EXPECT_EQ(o.flight.seed, 9u);
   EXPECT_DOUBLE_EQ(mono(o).map.r_max_m, 8.0);
@@ -76,8 +78,9 @@ TEST(ScenarioYaml, BaseChainOverridesAndSwitches) {
 
 TEST(ScenarioYaml, TheMethodTableHoldsTheChosenMethodsKeysOnly) {
   const fs::path d = tempDir();
-  write(d / "grid.yaml", "world: world.xml\nmethod: {type: grid_random, replan_period_s: 0.2, "
-                         "planner: {unknown_is_occupied: true}}\n");
+  write(d / "grid.yaml",
+        "world: world.xml\nmethod: {type: grid_random, replan_period_s: 0.2, "
+        "planner: {unknown_is_occupied: true}}\n");
   const ScenarioSpec g = loadScenario((d / "grid.yaml").string());
   EXPECT_EQ(g.method.type, "grid_random");
   const auto c = std::any_cast<GridExplorerConfig>(g.method.config);
@@ -114,11 +117,13 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
   // Keys of one method are unknown keys for another.
   expectError("world: world.xml\nmethod: {type: grid_random, switches: {vpb: false}}\n",
               {"method.switches", "unknown key"});
-  expectError("world: world.xml\nmethod: {type: grid_random, map: {r_max_m: 8}}\n", {"method.map.r_max_m", "unknown key"});
+  expectError("world: world.xml\nmethod: {type: grid_random, map: {r_max_m: 8}}\n",
+              {"method.map.r_max_m", "unknown key"});
   expectError("world: world.xml\nmethod: {type: monospheres, goal_square_m: 30}\n",
               {"method.goal_square_m", "unknown key"});
   expectError("world: world.xml\nmethod: {type: grid_random, map: {resolution_m: -1}}\n", {"method.map.resolution_m"});
-  expectError("base: base.yaml\nmethod: {type: magic}\n", {"method.type", "unknown method 'magic'", "monospheres", "grid_random"});
+  expectError("base: base.yaml\nmethod: {type: magic}\n",
+              {"method.type", "unknown method 'magic'", "monospheres", "grid_random"});
   expectError("base: base.yaml\nmethod: {planner: {viewpoints: {min_value: 0}}}\n",
               {"method.planner.viewpoints.min_value"});
   expectError("base: base.yaml\nmission: {map_rate_hz: -1}\n", {"mission.map_rate_hz"});
@@ -151,16 +156,18 @@ TEST(ScenarioYaml, TheEffectiveConfigurationReadsBackToItself) {
   const fs::path d = tempDir();
   for (const MethodEntry& method : methodTable()) {
     SCOPED_TRACE(method.type);
-    write(d / "named.yaml", "world: urban\nconditions: {preset: dusk}\nfrontend: {preset: real_flight, drift_scale: 3}\n"
-                            "method: {type: " + std::string(method.type) +
-                                (std::string(method.type) == "python" ? ", entry: \"m:f\", params: {a: 1, b: [x, 2]}" : "") + "}\n");
+    write(d / "named.yaml",
+          "world: urban\nconditions: {preset: dusk}\nfrontend: {preset: real_flight, drift_scale: 3}\n"
+          "method: {type: " +
+              std::string(method.type) +
+              (std::string(method.type) == "python" ? ", entry: \"m:f\", params: {a: 1, b: [x, 2]}" : "") + "}\n");
     const ScenarioSpec s = loadScenario((d / "named.yaml").string(), {"camera.mount_pitch_down_deg=7.5", "seed=4"});
     const std::string text = effectiveScenarioYaml(s);
     EXPECT_EQ(text.find("start:"), std::string::npos) << "the world's start applies";
     EXPECT_NE(text.find("world: urban"), std::string::npos);
     EXPECT_NE(text.find("mount_pitch_down_deg: 7.5"), std::string::npos);
     EXPECT_NE(text.find("image_noise_sigma: 4"), std::string::npos);  // the preset's, written out
-    EXPECT_NE(text.find("drift_scale: 3"), std::string::npos);         // the override wins
+    EXPECT_NE(text.find("drift_scale: 3"), std::string::npos);        // the override wins
     write(d / "effective.yaml", text);
     const ScenarioSpec again = loadScenario((d / "effective.yaml").string());
     EXPECT_TRUE(again.start_from_world);

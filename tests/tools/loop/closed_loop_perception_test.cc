@@ -7,8 +7,8 @@
 
 #include "core/common/rng.h"
 #include "core/eval/slam_point_truth.h"
-#include "tools/loop/closed_loop.h"
 #include "tools/config/world_registry.h"
+#include "tools/loop/closed_loop.h"
 
 namespace msb {
 namespace {
@@ -38,7 +38,7 @@ FlightSpec urbanCircle(BuiltWorld* world) {
 struct Evaluation {
   FlightResult result;
   double mean_tracks = 0, mean_points = 0;
-  std::vector<double> errors[3];  // by true depth: < 8 m, 8–20 m, > 20 m
+  std::vector<double> errors[3];      // by true depth: < 8 m, 8–20 m, > 20 m
   long samples = 0, textureless = 0;  // textureless: interior points (see PointTruth)
   uint64_t points_hash = 0;
 };
@@ -88,8 +88,8 @@ TEST(PerceptionFlight, UrbanTracksPointAccuracyTexturelessShareAndDeterminism) {
   // Error grows with distance, as inverse-depth uncertainty predicts (roughly with depth²).
   for (const auto& e : a.errors) ASSERT_GT(e.size(), 100u);
   const double near = median(a.errors[0]), mid = median(a.errors[1]), far = median(a.errors[2]);
-  std::printf("median point error: <8 m %.3f, 8-20 m %.3f, >20 m %.3f; textureless %.2f %% of %ld\n",
-              near, mid, far, 100.0 * a.textureless / a.samples, a.samples);
+  std::printf("median point error: <8 m %.3f, 8-20 m %.3f, >20 m %.3f; textureless %.2f %% of %ld\n", near, mid, far,
+              100.0 * a.textureless / a.samples, a.samples);
   EXPECT_LT(near, 0.15);
   EXPECT_GT(mid, near);
   EXPECT_GT(far, 1.5 * mid);

@@ -6,17 +6,18 @@
 #include <cmath>
 
 #include "core/geometry/world_truth.h"
+#include "tools/config/world_registry.h"
 #include "tools/loop/closed_loop.h"
 #include "tools/loop/mission.h"
-#include "tools/config/world_registry.h"
 
 namespace msb {
 namespace {
 
 // The urban town (the dense procedural town, the former `urban`), built once into a test cache.
 const BuiltWorld& urban() {
-  static const BuiltWorld world = buildWorld(loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban_town/spec.yaml"),
-                                             std::string(::testing::TempDir()) + "/msb_loop_cache");
+  static const BuiltWorld world =
+      buildWorld(loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban_town/spec.yaml"),
+                 std::string(::testing::TempDir()) + "/msb_loop_cache");
   return world;
 }
 
@@ -53,8 +54,7 @@ TEST(ClosedLoop, NullRendererWithOracleFeaturesTracksAndTriangulates) {
     points += double(t.points->points.size());
     // Track ids are sorted and pixels lie in the image.
     for (size_t k = 1; k < t.tracks->tracks.size(); ++k) EXPECT_LT(t.tracks->tracks[k - 1].id, t.tracks->tracks[k].id);
-    for (const auto& tr : t.tracks->tracks)
-      EXPECT_TRUE(loop.camera().inImage(tr.pixel)) << tr.pixel.transpose();
+    for (const auto& tr : t.tracks->tracks) EXPECT_TRUE(loop.camera().inImage(tr.pixel)) << tr.pixel.transpose();
   }
   const FlightResult& r = loop.finish();
   EXPECT_EQ(r.status, RunStatus::kCompleted);
@@ -106,7 +106,8 @@ TEST(ClosedLoop, ShortOracleMissionExploresDeterministically) {
   const Aabb box = urban().generated.exploration_box;
   const MissionResult a = runMission(spec, box, &truth);
   ASSERT_EQ(a.flight.status, RunStatus::kCompleted)
-      << (a.flight.collision ? a.flight.collision->world_geom + " at t = " + std::to_string(a.flight.collision->t_s) : "");
+      << (a.flight.collision ? a.flight.collision->world_geom + " at t = " + std::to_string(a.flight.collision->t_s)
+                             : "");
   EXPECT_GT(a.counters.at("spheres"), 5.0);
   EXPECT_GT(a.columns.areaM2(), 200.0);
   EXPECT_GT(a.box_explorable_columns, 100);

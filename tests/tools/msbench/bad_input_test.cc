@@ -31,8 +31,9 @@ const std::string kSrc = MSB_SOURCE_DIR;
 struct Dir {
   explicit Dir(const std::string& name) : d(msb_test::tempDir("msb_bad_", name)) {
     fs::copy_file(kSrc + "/worlds/test/world.xml", d / "w.xml");
-    write("f.yaml", "world: w.xml\nduration_s: 2\ncamera_stream: {save_every_n: 0}\n"
-                    "trajectory: {waypoints: [[0, 0, 1]]}\n");
+    write("f.yaml",
+          "world: w.xml\nduration_s: 2\ncamera_stream: {save_every_n: 0}\n"
+          "trajectory: {waypoints: [[0, 0, 1]]}\n");
     write("sentinel", "keep me");
   }
   void write(const std::string& name, const std::string& text) const { std::ofstream(d / name) << text; }
@@ -43,7 +44,8 @@ struct Dir {
     std::set<fs::path> before;
     for (const auto& e : fs::recursive_directory_iterator(d)) before.insert(e.path());
     EXPECT_EQ(run(args, d / "log"), code) << args << "\n" << log();
-    for (const auto& f : fragments) EXPECT_NE(log().find(f), std::string::npos) << args << "\nmissing: " << f << "\n" << log();
+    for (const auto& f : fragments)
+      EXPECT_NE(log().find(f), std::string::npos) << args << "\nmissing: " << f << "\n" << log();
     for (const auto& e : fs::recursive_directory_iterator(d)) {
       if (e.path() == d / "log") continue;
       EXPECT_TRUE(before.count(e.path())) << args << ": wrote " << e.path();
@@ -62,18 +64,21 @@ TEST(BadInput, YamlNumbersListsAndDuplicateKeys) {
   t.write("k.yaml", "world: w.xml\ncamera: {k: [0.1, 0.2, inf, 0.0]}\n");
   t.expectRefused("fly " + t.p("k.yaml") + " --out " + t.p("o"), {"k.yaml", "camera.k[2]"});
   t.write("short.yaml", "world: w.xml\nstart: {position: [0, 0]}\n");
-  t.expectRefused("fly " + t.p("short.yaml") + " --out " + t.p("o"), {"start.position", "a list of 3 numbers, got a list of 2"});
+  t.expectRefused("fly " + t.p("short.yaml") + " --out " + t.p("o"),
+                  {"start.position", "a list of 3 numbers, got a list of 2"});
   t.write("seed.yaml", "world: w.xml\nseed: 99999999999999999999999\n");
   t.expectRefused("fly " + t.p("seed.yaml") + " --out " + t.p("o"), {"seed.yaml", "seed", "out of range"});
   t.write("dup.yaml", "world: w.xml\nduration_s: 3\nduration_s: 4\n");
-  t.expectRefused("fly " + t.p("dup.yaml") + " --out " + t.p("o"), {"dup.yaml", "duration_s", "given twice", "lines 2 and 3"});
+  t.expectRefused("fly " + t.p("dup.yaml") + " --out " + t.p("o"),
+                  {"dup.yaml", "duration_s", "given twice", "lines 2 and 3"});
   // The same rules in scenarios, and --set values are named as such.
   t.write("s.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: w.xml\nseed: 1\nseed: 2\n");
   t.expectRefused("run " + t.p("s.yaml") + " --out " + t.p("o"), {"s.yaml", "seed", "given twice"});
   t.write("s2.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: w.xml\n");
   t.expectRefused("run " + t.p("s2.yaml") + " --set duration_s=nan --out " + t.p("o"), {"--set", "duration_s"});
-  t.expectRefused("run " + t.p("s2.yaml") + " --set 'start={position: [0, 0, 1], position: [1, 1, 1]}' --out " + t.p("o"),
-                  {"--set start", "given twice"});
+  t.expectRefused(
+      "run " + t.p("s2.yaml") + " --set 'start={position: [0, 0, 1], position: [1, 1, 1]}' --out " + t.p("o"),
+      {"--set start", "given twice"});
   // One quantity, one key: the planner's minimum radius is the map's.
   t.expectRefused("run " + t.p("s2.yaml") + " --set method.planner.safety.r_min_m=2 --out " + t.p("o"),
                   {"method.planner.safety.r_min_m", "method.map.r_min_m"});
@@ -84,7 +89,8 @@ TEST(BadInput, CommandLineFlags) {
   t.write("s.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: w.xml\n");
   t.expectRefused("run " + t.p("s.yaml") + " --seed '' --out " + t.p("o"), {"--seed", "empty"});
   t.expectRefused("run " + t.p("s.yaml") + " --duration '' --out " + t.p("o"), {"--duration", "empty"});
-  t.expectRefused("run " + t.p("s.yaml") + " --seed 99999999999999999999999 --out " + t.p("o"), {"seed", "out of range"});
+  t.expectRefused("run " + t.p("s.yaml") + " --seed 99999999999999999999999 --out " + t.p("o"),
+                  {"seed", "out of range"});
   t.expectRefused("run " + t.p("s.yaml") + " --seed 1 --seed 2 --out " + t.p("o"), {"--seed given twice"});
   t.expectRefused("render-probe --out " + t.p("x.png") + " --pose 1,2,3,4,5", {"--pose", "got 5 values"});
   t.expectRefused("render-probe --out " + t.p("x.png") + " --pose 1,2,nan,4", {"--pose", "value 3"});
@@ -120,8 +126,10 @@ TEST(BadInput, OutputDirectoriesAreNeverLost) {
   EXPECT_FALSE(fs::exists(t.d / "stale.partial"));
   // Output files: --record is checked before the run, render-probe --out too.
   t.write("s.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: w.xml\nduration_s: 1\n");
-  t.expectRefused("run " + t.p("s.yaml") + " --record /nonexistent/dir/log --out " + t.p("r"), {"--record", "does not exist"});
-  t.expectRefused("run " + t.p("s.yaml") + " --record " + t.p("sentinel") + " --out " + t.p("r"), {"--record", "exists"});
+  t.expectRefused("run " + t.p("s.yaml") + " --record /nonexistent/dir/log --out " + t.p("r"),
+                  {"--record", "does not exist"});
+  t.expectRefused("run " + t.p("s.yaml") + " --record " + t.p("sentinel") + " --out " + t.p("r"),
+                  {"--record", "exists"});
   t.expectRefused("render-probe --out " + t.p("sentinel"), {"--out", "exists"});
 }
 
@@ -161,7 +169,8 @@ TEST(BadInput, EmptyWorldFilesNeverReachMuJoCosBlockingHandler) {
   t.write("empty.xml", "");
   t.write("e.yaml", "world: empty.xml\nduration_s: 2\ntrajectory: {waypoints: [[0, 0, 1]]}\n");
   t.write("es.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: empty.xml\n");
-  for (const std::string args : {"fly e.yaml --out o", "run es.yaml --out o", "render-probe --world empty.xml --out x.png"}) {
+  for (const std::string args :
+       {"fly e.yaml --out o", "run es.yaml --out o", "render-probe --world empty.xml --out x.png"}) {
     const std::string cmd = "cd '" + t.d.string() + "' && sleep 3 | '" + kExe + "' " + args + " > log 2>&1";
     const int status = std::system(cmd.c_str());
     EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << args << "\n" << t.log();
@@ -176,11 +185,14 @@ TEST(BadInput, MeaninglessValuesThatLoadAreRefused) {
   t.write("s.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: w.xml\nduration_s: 2\n");
   const std::string run_s = "run " + t.p("s.yaml") + " --out " + t.p("o") + " ";
   // Start poses: inside a wall, below the ground, outside the world.
-  t.expectRefused(run_s + "--set 'start={position: [0, 20, 1]}'", {"s.yaml", "start.position", "inside geom 'wall_north_4'"});
-  t.expectRefused(run_s + "--set 'start={position: [0, 0, -3]}'", {"s.yaml", "start.position", "below the ground plane 'ground'"});
+  t.expectRefused(run_s + "--set 'start={position: [0, 20, 1]}'",
+                  {"s.yaml", "start.position", "inside geom 'wall_north_4'"});
+  t.expectRefused(run_s + "--set 'start={position: [0, 0, -3]}'",
+                  {"s.yaml", "start.position", "below the ground plane 'ground'"});
   t.expectRefused(run_s + "--set 'start={position: [100, 0, 1]}'", {"s.yaml", "start.position", "outside the world"});
   // Counts and sizes with bounds.
-  t.expectRefused(run_s + "--set method.planner.viewpoints.candidates=2000000000", {"viewpoints.candidates", "must be in [1, 100000]"});
+  t.expectRefused(run_s + "--set method.planner.viewpoints.candidates=2000000000",
+                  {"viewpoints.candidates", "must be in [1, 100000]"});
   t.expectRefused(run_s + "--set 'exploration_box={min: [0, 0, 0], max: [0.01, 0.01, 0.01]}'",
                   {"exploration_box", "at least 2.5 m x 2.5 m"});
   t.expectRefused(run_s + "--set camera.width_px=100000", {"camera.width_px", "must be in [16, 4096]"});
@@ -193,11 +205,14 @@ TEST(BadInput, MeaninglessValuesThatLoadAreRefused) {
   t.expectRefused("run " + t.p("s.yaml") + " --out " + t.p("o") + " --set", {"--set needs a value"});
   // A scripted waypoint far outside the world.
   t.write("far.yaml", "world: w.xml\nduration_s: 2\ntrajectory: {waypoints: [[0, 0, 1], [1000000, 0, 1]]}\n");
-  t.expectRefused("fly " + t.p("far.yaml") + " --out " + t.p("o"), {"far.yaml", "trajectory.waypoints[1]", "outside the world"});
+  t.expectRefused("fly " + t.p("far.yaml") + " --out " + t.p("o"),
+                  {"far.yaml", "trajectory.waypoints[1]", "outside the world"});
   // Flags out of range.
-  t.expectRefused("vio-eval " + t.p("f.yaml") + " --annotate-every -1 --out " + t.p("o"), {"--annotate-every", "must be in"});
+  t.expectRefused("vio-eval " + t.p("f.yaml") + " --annotate-every -1 --out " + t.p("o"),
+                  {"--annotate-every", "must be in"});
   for (const char* m : {"0", "-1", "1e9"})
-    t.expectRefused("world show sparse --m-per-px " + std::string(m) + " --out " + t.p("o"), {"--m-per-px", "must be in"});
+    t.expectRefused("world show sparse --m-per-px " + std::string(m) + " --out " + t.p("o"),
+                    {"--m-per-px", "must be in"});
   t.expectRefused("world show sparse --m-per-px 0.001 --out " + t.p("o"), {"--m-per-px", "pixels long"});
   // Scenario paths that are not files.
   t.expectRefused("run " + t.d.string() + " --out " + t.p("o"), {"is a directory, not a YAML file"});
@@ -210,20 +225,26 @@ TEST(BadInput, WorldSpecsWithNonFiniteOrMisplacedObjects) {
   const Dir t("world_spec");
   const fs::path worlds = t.d / "worlds";
   fs::create_directories(worlds / "tiny");
-  const std::string head = "name: tiny\nground: {size_m: [60, 60]}\nexploration_box: {min: [-20, -20, 0], max: [20, 20, 5]}\n"
-                           "start_clearance_m: 6\n";
-  const std::string env = "MSBENCH_WORLDS_DIR='" + worlds.string() + "' MSBENCH_CACHE_DIR='" + (t.d / "cache").string() + "' ";
+  const std::string head =
+      "name: tiny\nground: {size_m: [60, 60]}\nexploration_box: {min: [-20, -20, 0], max: [20, 20, 5]}\n"
+      "start_clearance_m: 6\n";
+  const std::string env =
+      "MSBENCH_WORLDS_DIR='" + worlds.string() + "' MSBENCH_CACHE_DIR='" + (t.d / "cache").string() + "' ";
   auto refused = [&](const std::string& objects, std::initializer_list<std::string> fragments) {
     std::ofstream(worlds / "tiny" / "spec.yaml") << head << objects;
     const std::string cmd = env + "'" + kExe + "' world build tiny > '" + (t.d / "log").string() + "' 2>&1";
     const int status = std::system(cmd.c_str());
     EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << objects << "\n" << t.log();
-    for (const auto& f : fragments) EXPECT_NE(t.log().find(f), std::string::npos) << objects << "\nmissing: " << f << "\n" << t.log();
+    for (const auto& f : fragments)
+      EXPECT_NE(t.log().find(f), std::string::npos) << objects << "\nmissing: " << f << "\n" << t.log();
     EXPECT_FALSE(fs::exists(t.d / "cache") && !fs::is_empty(t.d / "cache")) << objects;
   };
-  refused("objects: [{kind: rock, at: [3, .nan], size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n", {"spec.yaml", "objects[0].at[1]"});
-  refused("objects: [{kind: rock, count: 2, region: {min: [-10, -10], max: [.inf, 10]}, size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n",
-          {"spec.yaml", "objects[0].region.max[0]"});
+  refused("objects: [{kind: rock, at: [3, .nan], size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n",
+          {"spec.yaml", "objects[0].at[1]"});
+  refused(
+      "objects: [{kind: rock, count: 2, region: {min: [-10, -10], max: [.inf, 10]}, size_min: [1, 1, 1], size_max: [1, "
+      "1, 1]}]\n",
+      {"spec.yaml", "objects[0].region.max[0]"});
   refused("cave: {min: [-20, -20], max: [20, 20], chambers: [{min: [-5, .nan], max: [5, 5]}]}\n",
           {"spec.yaml", "cave.chambers[0].min[1]"});
   refused("objects: [{kind: rock, at: [3, 0], size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n",
@@ -231,8 +252,10 @@ TEST(BadInput, WorldSpecsWithNonFiniteOrMisplacedObjects) {
   // Objects a million metres away or as large as a continent: refused, not "out of memory".
   refused("objects: [{kind: rock, at: [1e6, -1e6], size_min: [1, 1, 1], size_max: [1, 1, 1]}]\n",
           {"spec.yaml", "objects[0].at", "on the ground plane"});
-  refused("objects: [{kind: rock, count: 3, region: {min: [-1e6, -10], max: [1e6, 10]}, size_min: [1, 1, 1], size_max: [1e6, 1e6, 1e6]}]\n",
-          {"spec.yaml", "objects[0].region", "objects[0].size"});
+  refused(
+      "objects: [{kind: rock, count: 3, region: {min: [-1e6, -10], max: [1e6, 10]}, size_min: [1, 1, 1], size_max: "
+      "[1e6, 1e6, 1e6]}]\n",
+      {"spec.yaml", "objects[0].region", "objects[0].size"});
 }
 
 // A version-1 perception log (frames back to back) with one frame of the given points.
@@ -271,12 +294,15 @@ TEST(BadInput, PerceptionLogContentsAreCheckedOnRead) {
   refused("future.log", header + logFrame(100, 0.2, {{1, 5.0, 150}}), {"future.log", "frame 0", "anchor tick 150"});
   refused("zero.log", header + logFrame(100, 0.2, {{1, 0.0, 50}}), {"zero.log", "track 1", "depth", "not positive"});
   refused("negative.log", header + logFrame(100, 0.2, {{1, -2.0, 50}}), {"negative.log", "not positive"});
-  refused("dup.log", header + logFrame(100, 0.2, {{7, 5.0, 50}, {7, 6.0, 60}}), {"dup.log", "track 7", "appears twice"});
-  refused("back.log", header + good + logFrame(90, 0.18, {{1, 5.0, 50}}), {"back.log", "frame 1", "time goes backwards"});
+  refused("dup.log", header + logFrame(100, 0.2, {{7, 5.0, 50}, {7, 6.0, 60}}),
+          {"dup.log", "track 7", "appears twice"});
+  refused("back.log", header + good + logFrame(90, 0.18, {{1, 5.0, 50}}),
+          {"back.log", "frame 1", "time goes backwards"});
   refused("world.log", "MSBLOG1\n{\"camera_scale\": 1, \"world\": 7}\n" + good, {"world.log", "'world'", "a string"});
   refused("empty.log", header, {"empty.log", "no frames"});
   // Header: a key twice, an empty world name; frames: an orientation that is not a unit quaternion.
-  refused("twice.log", "MSBLOG1\n{\"camera_scale\": 1, \"camera_scale\": 2}\n" + good, {"twice.log", "'camera_scale' appears twice"});
+  refused("twice.log", "MSBLOG1\n{\"camera_scale\": 1, \"camera_scale\": 2}\n" + good,
+          {"twice.log", "'camera_scale' appears twice"});
   refused("noworld.log", "MSBLOG1\n{\"world\": \"\"}\n" + good, {"noworld.log", "'world'", "a world name"});
   std::string skewed = good;
   const double two = 2.0;
@@ -296,19 +322,26 @@ TEST(BadInput, OutputsNeverOverlapInputsOrEachOther) {
   const Dir t("overlap");
   t.write("m.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
   const std::string m = t.p("m.yaml");
-  t.expectRefused("run " + m + " --record " + t.p("x") + " --out " + t.p("x"), {"--out", "overlaps the output --record"});
-  t.expectRefused("run " + m + " --record " + t.p("x/rec.log") + " --out " + t.p("x"), {"overlaps the output --record"});
-  t.expectRefused("run " + m + " --record " + m + " --overwrite --out " + t.p("o"), {"--record", "overlaps the input SCENARIO"});
+  t.expectRefused("run " + m + " --record " + t.p("x") + " --out " + t.p("x"),
+                  {"--out", "overlaps the output --record"});
+  t.expectRefused("run " + m + " --record " + t.p("x/rec.log") + " --out " + t.p("x"),
+                  {"overlaps the output --record"});
+  t.expectRefused("run " + m + " --record " + m + " --overwrite --out " + t.p("o"),
+                  {"--record", "overlaps the input SCENARIO"});
   EXPECT_NE(readText(t.d / "m.yaml").find("base:"), std::string::npos);  // the scenario is intact
-  t.expectRefused("vio-eval " + t.p("f.yaml") + " --record " + t.p("v") + " --out " + t.p("v"), {"overlaps the output"});
-  t.expectRefused("grid-audit " + t.p("f.yaml") + " " + t.p(".") + " --out " + t.p("sentinel"), {"--out", "overlaps the input RUN"});
+  t.expectRefused("vio-eval " + t.p("f.yaml") + " --record " + t.p("v") + " --out " + t.p("v"),
+                  {"overlaps the output"});
+  t.expectRefused("grid-audit " + t.p("f.yaml") + " " + t.p(".") + " --out " + t.p("sentinel"),
+                  {"--out", "overlaps the input RUN"});
   t.expectRefused("fly " + t.p("f.yaml") + " --out " + t.p("."), {"--out"});
   // map-replay's output directory may not hold its own input log.
   fs::create_directories(t.d / "rd");
-  t.write("rd/.msbench-output", "This directory was written by msbench (map-replay); --overwrite may replace it with "
-                                "the same kind of output.\n");
+  t.write("rd/.msbench-output",
+          "This directory was written by msbench (map-replay); --overwrite may replace it with "
+          "the same kind of output.\n");
   t.write("rd/in.log", "MSBLOG2\n");
-  t.expectRefused("map-replay " + t.p("rd/in.log") + " --out " + t.p("rd") + " --overwrite", {"overlaps the input LOG"});
+  t.expectRefused("map-replay " + t.p("rd/in.log") + " --out " + t.p("rd") + " --overwrite",
+                  {"overlaps the input LOG"});
   // --record --overwrite replaces only a perception log.
   t.expectRefused("run " + m + " --record " + t.p("sentinel") + " --overwrite --out " + t.p("o"),
                   {"--record", "not a file msbench wrote as this output"});
@@ -318,22 +351,26 @@ TEST(BadInput, ReportAndRegressNeverWriteOverResults) {
   const Dir t("reports");
   // A hand-made sweep directory with one complete run.
   fs::create_directories(t.d / "sw" / "runs" / "a-s1");
-  t.write("sw/sweep.json", R"({"axes": ["a"], "runs": [{"id": "a-s1", "seed": 1, "status": "complete", "labels": {"a": "a"}}]})");
+  t.write("sw/sweep.json",
+          R"({"axes": ["a"], "runs": [{"id": "a-s1", "seed": 1, "status": "complete", "labels": {"a": "a"}}]})");
   t.write("sw/runs/a-s1/metrics.json",
           R"({"status": "completed", "world": "test", "method": "monospheres", "sim_time_s": 10, "determinism_hash": )"
           R"("0123456789abcdef", "machine": {"id": "m"}, "coverage": {"area_m2": 100, "box_share": 0.5}})");
   t.write("sw/runs/a-s1/.msbench-output", "This directory was written by msbench; --overwrite may replace it.\n");
   t.write("sw/runs/a-s1/coverage.csv", "t_s,area_m2\n0,0\n");
-  t.expectRefused("report " + t.p("sw") + " --out " + t.p("sw/runs/a-s1") + " --no-figures", {"overlaps the input DIR (runs)"});
+  t.expectRefused("report " + t.p("sw") + " --out " + t.p("sw/runs/a-s1") + " --no-figures",
+                  {"overlaps the input DIR (runs)"});
   t.expectRefused("report " + t.p("sw") + " --out " + t.p("sw") + " --no-figures", {"overlaps the input"});
   // regress --update writes only a golden msbench wrote, and never into the sweep it reads.
-  t.expectRefused("regress " + t.p("sw") + " --update --against " + t.p("sw/runs/a-s1/metrics.json"), {"inside the sweep directory"});
+  t.expectRefused("regress " + t.p("sw") + " --update --against " + t.p("sw/runs/a-s1/metrics.json"),
+                  {"inside the sweep directory"});
   t.write("other.json", "{\"not\": \"a golden\"}");
   t.expectRefused("regress " + t.p("sw") + " --update --against " + t.p("other.json"), {"not a golden msbench wrote"});
   EXPECT_EQ(readText(t.d / "other.json"), "{\"not\": \"a golden\"}");
   // A malformed golden names the file and the key.
   t.write("g.json", R"({"runs": [{"id": "a-s1", "status": "completed", "area_m2": "100"}]})");
-  t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g.json"), {"g.json", "runs[0].determinism_hash", "missing"});
+  t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g.json"),
+                  {"g.json", "runs[0].determinism_hash", "missing"});
   t.write("g2.json", R"({"runs": [)");
   t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g2.json"), {"g2.json", "not a JSON object"});
   // A malformed sweep index names the file and the key.
@@ -369,8 +406,9 @@ TEST(BadInput, NamesAndPathsMustBeUtf8BeforeAnythingRuns) {
 TEST(BadInput, AWorldNeedsCollisionGeometry) {
   const Dir t("nogeom");
   t.write("empty.xml", "<mujoco><worldbody/></mujoco>\n");
-  t.write("visual.xml", "<mujoco><worldbody><geom type=\"plane\" size=\"20 20 0.1\" contype=\"0\" conaffinity=\"0\"/>"
-                        "</worldbody></mujoco>\n");
+  t.write("visual.xml",
+          "<mujoco><worldbody><geom type=\"plane\" size=\"20 20 0.1\" contype=\"0\" conaffinity=\"0\"/>"
+          "</worldbody></mujoco>\n");
   for (const char* world : {"empty.xml", "visual.xml"}) {
     t.write("g.yaml", std::string("world: ") + world + "\nduration_s: 2\ntrajectory: {waypoints: [[0, 0, 1]]}\n");
     t.expectRefused("fly " + t.p("g.yaml") + " --out " + t.p("o"), {world, "no collision geometry"});
@@ -385,15 +423,17 @@ TEST(BadInput, FlagsAndPathsAreNamedInWords) {
   // Symlink loops and files where a directory is needed: the path and the reason in words.
   fs::create_symlink(t.d / "loop", t.d / "loop");
   const std::string m = kSrc + "/scenarios/missions/test_world_short.yaml";
-  t.expectRefused("run " + m + " --record " + t.p("loop/r.log") + " --out " + t.p("o"), {"loop", "Too many levels of symbolic links"});
+  t.expectRefused("run " + m + " --record " + t.p("loop/r.log") + " --out " + t.p("o"),
+                  {"loop", "Too many levels of symbolic links"});
   t.expectRefused("run " + t.p("loop") + " --out " + t.p("o"), {"loop", "Too many levels of symbolic links"});
   t.expectRefused("run " + m + " --out " + t.p("sentinel/x"), {"sentinel/x", "Not a directory"});
 }
 
 TEST(BadInput, ACameraIsMountedOnTheVehicle) {
   const Dir t("mount");
-  t.write("far.yaml", "world: w.xml\nduration_s: 2\ncamera: {mount_position_B_m: [100, 0, 0]}\n"
-                      "trajectory: {waypoints: [[0, 0, 1]]}\n");
+  t.write("far.yaml",
+          "world: w.xml\nduration_s: 2\ncamera: {mount_position_B_m: [100, 0, 0]}\n"
+          "trajectory: {waypoints: [[0, 0, 1]]}\n");
   t.expectRefused("fly " + t.p("far.yaml") + " --out " + t.p("o"), {"far.yaml", "mount_position_B_m", "within 1 m"});
 }
 
@@ -407,12 +447,15 @@ TEST(BadInput, BaseChainsAreBoundedAndOnlyRegularFiles) {
     t.write(name, body);
   }
   t.write("c100.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
-  t.expectRefused("run " + t.p("c0.yaml") + " --out " + t.p("o"), {"c0.yaml", "key 'base'", "more than 64 files", "c0.yaml -> c1.yaml"});
+  t.expectRefused("run " + t.p("c0.yaml") + " --out " + t.p("o"),
+                  {"c0.yaml", "key 'base'", "more than 64 files", "c0.yaml -> c1.yaml"});
   t.write("z.yaml", "base: /dev/zero\n");
-  t.expectRefused("run " + t.p("z.yaml") + " --out " + t.p("o"), {"z.yaml", "key 'base'", "not a regular file: /dev/zero"});
+  t.expectRefused("run " + t.p("z.yaml") + " --out " + t.p("o"),
+                  {"z.yaml", "key 'base'", "not a regular file: /dev/zero"});
   t.write("l1.yaml", "base: l2.yaml\n");
   t.write("l2.yaml", "base: l1.yaml\n");
-  t.expectRefused("run " + t.p("l1.yaml") + " --out " + t.p("o"), {"circular base files (l1.yaml -> l2.yaml -> l1.yaml)"});
+  t.expectRefused("run " + t.p("l1.yaml") + " --out " + t.p("o"),
+                  {"circular base files (l1.yaml -> l2.yaml -> l1.yaml)"});
 }
 
 int runAndSignal(const std::string& args, int sig, const fs::path& log) {
@@ -436,9 +479,11 @@ TEST(BadInput, EveryCommandStopsAtItsSafePoints) {
   const Dir t("stops");
   const std::string m = kSrc + "/scenarios/missions/test_world_short.yaml";
   // A perception log and a sweep directory to work on.
-  ASSERT_EQ(run("vio-eval " + t.p("f.yaml") + " --record " + t.p("in.log") + " --out " + t.p("v"), t.d / "log"), 0) << t.log();
+  ASSERT_EQ(run("vio-eval " + t.p("f.yaml") + " --record " + t.p("in.log") + " --out " + t.p("v"), t.d / "log"), 0)
+      << t.log();
   fs::create_directories(t.d / "sw" / "runs" / "a-s1");
-  t.write("sw/sweep.json", R"({"axes": ["a"], "runs": [{"id": "a-s1", "seed": 1, "status": "complete", "labels": {"a": "a"}}]})");
+  t.write("sw/sweep.json",
+          R"({"axes": ["a"], "runs": [{"id": "a-s1", "seed": 1, "status": "complete", "labels": {"a": "a"}}]})");
   t.write("sw/runs/a-s1/metrics.json",
           R"({"status": "completed", "world": "test", "method": "monospheres", "sim_time_s": 10, "determinism_hash": )"
           R"("0123456789abcdef", "machine": {"id": "m"}, "coverage": {"area_m2": 100, "box_share": 0.5}})");
@@ -453,7 +498,8 @@ TEST(BadInput, EveryCommandStopsAtItsSafePoints) {
       {"run " + m + " --out " + t.p("r") + " --quiet", "INT:5", "r", 130},
   };
   for (const auto& s : kStops) {
-    const std::string cmd = "MSBENCH_TEST_SIGNAL=" + s.signal + " '" + kExe + "' " + s.args + " > '" + (t.d / "log").string() + "' 2>&1";
+    const std::string cmd =
+        "MSBENCH_TEST_SIGNAL=" + s.signal + " '" + kExe + "' " + s.args + " > '" + (t.d / "log").string() + "' 2>&1";
     const int status = std::system(cmd.c_str());
     EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.code) << s.args << "\n" << t.log();
     EXPECT_NE(t.log().find("stopped, no partial results left"), std::string::npos) << s.args << "\n" << t.log();
@@ -469,10 +515,14 @@ TEST(BadInput, InterruptsLeaveNothingBehind) {
   // simulated, about 2 s of wall time without the tracker).
   std::string square_40 = "[0, 0, 1]";
   for (int i = 0; i < 40; ++i) square_40 += ", [10, 0, 1], [10, 10, 1], [0, 0, 1]";
-  t.write("long.yaml", "world: w.xml\nduration_s: 600\ncamera_stream: {save_every_n: 0}\n"
-                       "trajectory: {waypoints: [" + square_40 + "]}\n");
-  t.write("m.yaml", "base: " + kSrc + "/scenarios/missions/monospheres.yaml\nworld: w.xml\n"
-                    "start: {position: [0, 0, 0.05], yaw_deg: 0}\nexploration_box: {min: [-19, -19, 0], max: [19, 19, 4]}\n");
+  t.write("long.yaml",
+          "world: w.xml\nduration_s: 600\ncamera_stream: {save_every_n: 0}\n"
+          "trajectory: {waypoints: [" +
+              square_40 + "]}\n");
+  t.write("m.yaml",
+          "base: " + kSrc +
+              "/scenarios/missions/monospheres.yaml\nworld: w.xml\n"
+              "start: {position: [0, 0, 0.05], yaw_deg: 0}\nexploration_box: {min: [-19, -19, 0], max: [19, 19, 4]}\n");
   EXPECT_EQ(runAndSignal("fly " + t.p("long.yaml") + " --out " + t.p("f"), SIGINT, t.d / "log"), 130) << t.log();
   EXPECT_NE(t.log().find("interrupted"), std::string::npos) << t.log();
   EXPECT_EQ(runAndSignal("run " + t.p("m.yaml") + " --quiet --record " + t.p("rec.log") + " --out " + t.p("r"), SIGTERM,
@@ -480,8 +530,8 @@ TEST(BadInput, InterruptsLeaveNothingBehind) {
             143)
       << t.log();
   // SIGHUP and SIGQUIT stop a command the same way (129, 131).
-  EXPECT_EQ(runAndSignal("run " + t.p("m.yaml") + " --quiet --record " + t.p("rec2.log") + " --out " + t.p("r2"), SIGHUP,
-                         t.d / "log"),
+  EXPECT_EQ(runAndSignal("run " + t.p("m.yaml") + " --quiet --record " + t.p("rec2.log") + " --out " + t.p("r2"),
+                         SIGHUP, t.d / "log"),
             129)
       << t.log();
   EXPECT_NE(t.log().find("hung up (SIGHUP)"), std::string::npos) << t.log();

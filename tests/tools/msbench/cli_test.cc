@@ -50,8 +50,10 @@ TEST(Cli, WorldListBuildAndShow) {
   ASSERT_EQ(std::system((env + "'" + kExe + "' world build sparse > '" + (d / "b2").string() + "'").c_str()), 0);
   EXPECT_NE(readText(d / "b2").find("(cached)"), std::string::npos);
   // show: top-down map, views and a summary with the explorable columns.
-  ASSERT_EQ(std::system((env + "'" + kExe + "' world show sparse --out '" + (d / "show").string() +
-                         "' > '" + (d / "b3").string() + "'").c_str()), 0);
+  ASSERT_EQ(std::system((env + "'" + kExe + "' world show sparse --out '" + (d / "show").string() + "' > '" +
+                         (d / "b3").string() + "'")
+                            .c_str()),
+            0);
   for (const char* f : {"topdown.png", "views.png", "summary.json"})
     EXPECT_TRUE(fs::is_regular_file(d / "show" / f)) << f;
   const auto j = nlohmann::json::parse(readText(d / "show" / "summary.json"));
@@ -63,9 +65,7 @@ TEST(Cli, WorldListBuildAndShow) {
 TEST(Cli, BadFlightFileExitsWith2AndWritesNothing) {
   const fs::path d = tempDir("bad");
   std::ofstream(d / "bad.yaml") << "world: ../../nowhere.xml\nwaypointz: []\n";
-  EXPECT_EQ(run("fly '" + (d / "bad.yaml").string() + "' --out '" + (d / "out").string() + "'",
-                d / "log"),
-            2);
+  EXPECT_EQ(run("fly '" + (d / "bad.yaml").string() + "' --out '" + (d / "out").string() + "'", d / "log"), 2);
   const std::string log = readText(d / "log");
   EXPECT_NE(log.find("bad.yaml"), std::string::npos) << log;
   EXPECT_NE(log.find("waypointz"), std::string::npos) << log;
@@ -80,8 +80,7 @@ TEST(Cli, ExistingResultsAreNotOverwritten) {
   std::ofstream(d / "f.yaml") << "world: " << MSB_SOURCE_DIR
                               << "/worlds/test/world.xml\nduration_s: 0.1\n"
                                  "trajectory: {waypoints: [[0,0,1]]}\n";
-  EXPECT_EQ(run("fly '" + (d / "f.yaml").string() + "' --out '" + (d / "out").string() + "'",
-                d / "log"),
+  EXPECT_EQ(run("fly '" + (d / "f.yaml").string() + "' --out '" + (d / "out").string() + "'", d / "log"),
             2);  // a usage error: the output directory is taken
   EXPECT_EQ(readText(d / "out" / "metrics.json"), "{}");
 }
@@ -96,9 +95,7 @@ TEST(Cli, FlyTwiceGivesIdenticalTrajectoriesAndAllOutputs) {
   std::string hashes[2];
   for (int i = 0; i < 2; ++i) {
     const fs::path out = d / ("run" + std::to_string(i));
-    ASSERT_EQ(run("fly '" + (d / "f.yaml").string() + "' --out '" + out.string() + "'",
-                  d / "log"),
-              0)
+    ASSERT_EQ(run("fly '" + (d / "f.yaml").string() + "' --out '" + out.string() + "'", d / "log"), 0)
         << readText(d / "log");
     for (const char* f : {"metrics.json", "trajectory.csv", "imu.csv", "config.yaml"})
       EXPECT_TRUE(fs::is_regular_file(out / f)) << f;

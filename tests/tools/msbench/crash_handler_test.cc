@@ -39,5 +39,6 @@ TEST(CrashHandlerDeathTest, AnAbortBeforeTheFirstTickIsReportedToo) {
         msb::installCrashHandler("fly");
         std::abort();
       },
-      testing::KilledBySignal(SIGABRT), "msbench fly: fatal signal 6 \\(SIGABRT\\) before the first tick\nbacktrace:\n");
+      testing::KilledBySignal(SIGABRT),
+      "msbench fly: fatal signal 6 \\(SIGABRT\\) before the first tick\nbacktrace:\n");
 }

@@ -29,7 +29,9 @@ fs::path writeScenario(const fs::path& dir, const std::string& type, double dura
                    << "exploration_box: {min: [-19, -19, 0], max: [19, 19, 4]}\n"
                    << "duration_s: " << duration_s << "\nmethod: {type: " << type;
   // A Python method: the example method's twin (run by the Python module).
-  if (type == "python") std::ofstream(p, std::ios::app) << ", entry: \"hover_turn:factory\", path: " << MSB_SOURCE_DIR << "/examples/python";
+  if (type == "python")
+    std::ofstream(p, std::ios::app) << ", entry: \"hover_turn:factory\", path: " << MSB_SOURCE_DIR
+                                    << "/examples/python";
   std::ofstream(p, std::ios::app) << "}\n";
   return p;
 }
@@ -52,9 +54,9 @@ TEST(EffectiveConfig, RunningAConfigYamlReproducesTheRunForEveryMethod) {
     EXPECT_NE(config.find("physics_hz:"), std::string::npos);
     EXPECT_NE(config.find("metric_rate_hz:"), std::string::npos);
     EXPECT_NE(config.find("type: " + std::string(method.type)), std::string::npos);
-    ASSERT_EQ(run("run '" + (d / "a" / "config.yaml").string() + "' --quiet --out '" + (d / "b").string() + "'",
-                  d / "log_b"),
-              0)
+    ASSERT_EQ(
+        run("run '" + (d / "a" / "config.yaml").string() + "' --quiet --out '" + (d / "b").string() + "'", d / "log_b"),
+        0)
         << readText(d / "log_b");
     const auto a = metrics(d / "a"), b = metrics(d / "b");
     EXPECT_EQ(a["status"], "completed");

@@ -85,16 +85,22 @@ TEST(PerceptionLog, RoundTripAndMapReplayIsDeterministic) {
   // map-replay twice: identical maps; DBOF off changes nothing here but must be accepted.
   const std::string exe = std::string(MSB_BINARY_DIR) + "/bin/msbench";
   for (const char* run : {"r1", "r2"})
-    ASSERT_EQ(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" +
-                           (d / run).string() + "' > /dev/null").c_str()), 0);
+    ASSERT_EQ(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" + (d / run).string() +
+                           "' > /dev/null")
+                              .c_str()),
+              0);
   const std::string ply = readBytes(d / "r1" / "map.ply");
   EXPECT_GT(ply.size(), 1000u);
   EXPECT_EQ(ply, readBytes(d / "r2" / "map.ply"));
   EXPECT_NE(ply.find("element vertex"), std::string::npos);
-  EXPECT_EQ(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" +
-                         (d / "r3").string() + "' --set map.dbof=false > /dev/null").c_str()), 0);
-  EXPECT_NE(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" +
-                         (d / "r4").string() + "' --set map.colour=blue > /dev/null 2>&1").c_str()), 0);
+  EXPECT_EQ(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" + (d / "r3").string() +
+                         "' --set map.dbof=false > /dev/null")
+                            .c_str()),
+            0);
+  EXPECT_NE(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" + (d / "r4").string() +
+                         "' --set map.colour=blue > /dev/null 2>&1")
+                            .c_str()),
+            0);
 }
 
 }  // namespace

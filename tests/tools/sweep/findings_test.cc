@@ -53,11 +53,13 @@ std::vector<ReportRun> joined(std::initializer_list<std::vector<ReportRun>> part
 }
 
 TEST(Findings, RatioAtLeastHoldsAtTwiceTheGridFailsBelowAndIsUndecidedAcross) {
-  auto r = check("ms_vs_grid_cave", joined({twoRuns("cave", "monospheres", "", 5000), twoRuns("cave", "grid_random", "", 2000)}));
+  auto r = check("ms_vs_grid_cave",
+                 joined({twoRuns("cave", "monospheres", "", 5000), twoRuns("cave", "grid_random", "", 2000)}));
   EXPECT_EQ(r.status, "holds");
   EXPECT_EQ(r.measured.rfind("5050 / 2020 = 2.50 [", 0), 0u) << r.measured;
   EXPECT_EQ(r.paper, "7627 / 3171 = 2.41 (3 and 3 runs)");  // from the method table
-  r = check("ms_vs_grid_cave", joined({twoRuns("cave", "monospheres", "", 3000), twoRuns("cave", "grid_random", "", 2000)}));
+  r = check("ms_vs_grid_cave",
+            joined({twoRuns("cave", "monospheres", "", 3000), twoRuns("cave", "grid_random", "", 2000)}));
   EXPECT_EQ(r.status, "fails");
   // 3000 and 5000 against 2000 and 2100: 1.95 with an interval across 2.
   r = check("ms_vs_grid_cave", {madeRun("cave", "monospheres", "", 3000), madeRun("cave", "monospheres", "", 5000),
@@ -74,10 +76,12 @@ TEST(Findings, RatioAtLeastHoldsAtTwiceTheGridFailsBelowAndIsUndecidedAcross) {
 }
 
 TEST(Findings, RatioAtMostHoldsTheNoOvdeAblationBelowAThird) {
-  EXPECT_EQ(check("no_ovde_urban", joined({twoRuns("urban", "monospheres", "", 4000), twoRuns("urban", "monospheres", "ovde", 800)}))
+  EXPECT_EQ(check("no_ovde_urban",
+                  joined({twoRuns("urban", "monospheres", "", 4000), twoRuns("urban", "monospheres", "ovde", 800)}))
                 .status,
             "holds");
-  EXPECT_EQ(check("no_ovde_urban", joined({twoRuns("urban", "monospheres", "", 4000), twoRuns("urban", "monospheres", "ovde", 3000)}))
+  EXPECT_EQ(check("no_ovde_urban",
+                  joined({twoRuns("urban", "monospheres", "", 4000), twoRuns("urban", "monospheres", "ovde", 3000)}))
                 .status,
             "fails");
 }
@@ -98,11 +102,13 @@ TEST(Findings, TheAblationOrderNeedsEachStepAndTheNearTie) {
 }
 
 TEST(Findings, NoCollisionInTheCave) {
-  EXPECT_EQ(check("cave_no_collision", {madeRun("cave", "monospheres", "", 5000), madeRun("cave", "grid_random", "", 2000)}).status,
-            "holds");
+  EXPECT_EQ(
+      check("cave_no_collision", {madeRun("cave", "monospheres", "", 5000), madeRun("cave", "grid_random", "", 2000)})
+          .status,
+      "holds");
   // One collision in two runs cannot be told from the paper's 0 of 6 (Fisher's p = 0.25).
-  const auto r = check("cave_no_collision",
-                       {madeRun("cave", "monospheres", "", 5000), madeRun("cave", "grid_random", "", 2000, "textured")});
+  const auto r = check("cave_no_collision", {madeRun("cave", "monospheres", "", 5000),
+                                             madeRun("cave", "grid_random", "", 2000, "textured")});
   EXPECT_EQ(r.status, "undecided");
   EXPECT_EQ(r.measured, "1 collision in 2 runs (rate 0.50 [0.09, 0.91]), exact test against the paper's p = 0.250");
   EXPECT_EQ(r.paper, "0 collisions in 6 runs");
@@ -152,12 +158,14 @@ TEST(Findings, TheMarkdownAndCsvCarryEveryFinding) {
   const auto findings = evaluateFindings(s, reportRows(s));
   ASSERT_EQ(findings.size(), findingsTable().size());
   const std::string md = findingsMarkdown(findings), csv = findingsCsv(findings);
-  EXPECT_NE(md.find("| ✓ holds | MonoSpheres covers at least twice the grid baseline's mean A in the cave | 5050 / 2020 = "
-                    "2.50 ["),
-            std::string::npos)
+  EXPECT_NE(
+      md.find("| ✓ holds | MonoSpheres covers at least twice the grid baseline's mean A in the cave | 5050 / 2020 = "
+              "2.50 ["),
+      std::string::npos)
       << md;
-  EXPECT_NE(csv.find("ms_vs_grid_cave,\"MonoSpheres covers at least twice the grid baseline's mean A in the cave\",holds,"),
-            std::string::npos)
+  EXPECT_NE(
+      csv.find("ms_vs_grid_cave,\"MonoSpheres covers at least twice the grid baseline's mean A in the cave\",holds,"),
+      std::string::npos)
       << csv;
   EXPECT_NE(csv.find("ms_vs_grid_urban,"), std::string::npos);
   EXPECT_NE(csv.find(",n/a,"), std::string::npos);

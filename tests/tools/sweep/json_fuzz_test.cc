@@ -48,9 +48,10 @@ TEST(JsonFuzz, SweepIndexes) {
   const fs::path d = dir("sweep");
   fs::create_directories(d / "runs" / "a-s1");
   std::ofstream(d / "runs" / "a-s1" / "metrics.json") << kMetrics;
-  const std::string index = R"({"axes": ["a"], "sweep_file_hash": "x", "build": "b", "runs": [{"id": "a-s1", "seed": 1,)"
-                            R"( "status": "complete", "labels": {"a": "a"}}, {"id": "a-s2", "seed": 2, "status": "failed",)"
-                            R"( "labels": {"a": "a"}, "failure": {"exit_code": 1}}]})";
+  const std::string index =
+      R"({"axes": ["a"], "sweep_file_hash": "x", "build": "b", "runs": [{"id": "a-s1", "seed": 1,)"
+      R"( "status": "complete", "labels": {"a": "a"}}, {"id": "a-s2", "seed": 2, "status": "failed",)"
+      R"( "labels": {"a": "a"}, "failure": {"exit_code": 1}}]})";
   fuzz(index, d / "sweep.json", 1000, "fuzz_sweep_index", [&d](const std::string& p) {
     try {
       const SweepResults r = loadSweepResults(d);

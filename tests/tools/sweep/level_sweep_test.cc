@@ -38,7 +38,9 @@ SweepResults levelResults() {
     for (const std::string method : {"monospheres", "no_dbof", "no_fff"})
       for (uint64_t seed = 1; seed <= 4; ++seed) {
         const double f = full[seed - 1] * (level == "severe" ? 0.8 : 1.0);
-        const double a = method == "no_dbof" && level == "severe" ? 0.5 * f : method == "monospheres" ? f : f * (1.0 + 0.01 * double(seed % 2));
+        const double a = method == "no_dbof" && level == "severe" ? 0.5 * f
+                         : method == "monospheres"                ? f
+                                                                  : f * (1.0 + 0.01 * double(seed % 2));
         s.runs.push_back(levelRun(level, method, seed, a));
       }
   return s;

@@ -134,8 +134,7 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   const bool have_matplotlib = std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0;
   if (have_matplotlib) {
     EXPECT_TRUE(fs::exists(out / "report" / "gallery.png")) << readText(d / "log_report");
-    EXPECT_GT(fs::file_size(out / "report" / "coverage_world.xml.png"), 1000u)
-        << readText(d / "log_report");
+    EXPECT_GT(fs::file_size(out / "report" / "coverage_world.xml.png"), 1000u) << readText(d / "log_report");
     EXPECT_GT(fs::file_size(out / "report" / "table1.png"), 1000u) << readText(d / "log_report");
   } else {
     EXPECT_NE(readText(d / "log_report").find("apt-get install python3-matplotlib"), std::string::npos);
@@ -152,9 +151,11 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   // A changed A on the same machine is a regression, named.
   const fs::path run_dir = out / "runs" / "no_fff-s2";
   const std::string original = readText(run_dir / "metrics.json");
-  editMetrics(run_dir, [](nlohmann::json& j) { j["coverage"]["area_m2"] = j["coverage"]["area_m2"].get<double>() + 6.25; });
+  editMetrics(run_dir,
+              [](nlohmann::json& j) { j["coverage"]["area_m2"] = j["coverage"]["area_m2"].get<double>() + 6.25; });
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_changed"), 1);
-  EXPECT_NE(readText(d / "log_changed").find("REGRESSION no_fff-s2: A"), std::string::npos) << readText(d / "log_changed");
+  EXPECT_NE(readText(d / "log_changed").find("REGRESSION no_fff-s2: A"), std::string::npos)
+      << readText(d / "log_changed");
   // The same hash from another machine is the same run: still exact, so the changed A fails.
   editMetrics(run_dir, [](nlohmann::json& j) { j["machine"]["id"] = "0000000000000000"; });
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_samehash"), 1);
@@ -165,7 +166,8 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_band"), 0)
       << readText(d / "log_band");
   EXPECT_NE(readText(d / "log_band").find("1 in band mode"), std::string::npos) << readText(d / "log_band");
-  editMetrics(run_dir, [](nlohmann::json& j) { j["coverage"]["area_m2"] = 5.0 * j["coverage"]["area_m2"].get<double>() + 500; });
+  editMetrics(run_dir,
+              [](nlohmann::json& j) { j["coverage"]["area_m2"] = 5.0 * j["coverage"]["area_m2"].get<double>() + 500; });
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_band2"), 1);
   EXPECT_NE(readText(d / "log_band2").find("band mode"), std::string::npos) << readText(d / "log_band2");
   // Without a machine id and a hash the mode is not chosen silently: an error unless --band.
@@ -216,8 +218,11 @@ TEST(SweepReport, ACollisionsAuditIsOneLineOfTheRunsTable) {
                  {"object", "building_1"},
                  {"kind", "textureless"},
                  {"audit",
-                  {{"cause", "seen-but-freed"}, {"slam_points_on_part", 41}, {"map_points_on_object", 144},
-                   {"vio_drift_m", 1.56}, {"inside_free_space", true}}}}}};
+                  {{"cause", "seen-but-freed"},
+                   {"slam_points_on_part", 41},
+                   {"map_points_on_object", 144},
+                   {"vio_drift_m", 1.56},
+                   {"inside_free_space", true}}}}}};
   r.record = missionRecordOf(r.metrics, "m.json").record;
   ASSERT_TRUE(r.record.has_value());
   s.runs = {r};

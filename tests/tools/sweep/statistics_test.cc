@@ -19,7 +19,7 @@ TEST(Quantile, InterpolatesBetweenOrderStatistics) {
   const std::vector<double> s = {1, 2, 3, 4};
   EXPECT_DOUBLE_EQ(quantileSorted(s, 0.0), 1.0);
   EXPECT_DOUBLE_EQ(quantileSorted(s, 1.0), 4.0);
-  EXPECT_DOUBLE_EQ(quantileSorted(s, 0.5), 2.5);   // numpy.quantile([1,2,3,4], 0.5)
+  EXPECT_DOUBLE_EQ(quantileSorted(s, 0.5), 2.5);    // numpy.quantile([1,2,3,4], 0.5)
   EXPECT_DOUBLE_EQ(quantileSorted(s, 0.25), 1.75);  // numpy.quantile([1,2,3,4], 0.25)
 }
 
@@ -118,11 +118,11 @@ TEST(Wilson, AgainstTabulatedIntervals) {
 }
 
 TEST(FisherExact, AgainstTabulatedPValues) {
-  EXPECT_NEAR(fisherExact(3, 4, 1, 4), 0.4857, 1e-4);     // Fisher's tea tasting
+  EXPECT_NEAR(fisherExact(3, 4, 1, 4), 0.4857, 1e-4);      // Fisher's tea tasting
   EXPECT_NEAR(fisherExact(6, 6, 1, 6), 14.0 / 924, 1e-9);  // the urban grid's 6 of 6 vs the paper's 1 of 6
   EXPECT_NEAR(fisherExact(3, 6, 2, 6), 1.0, 1e-9);         // MonoSpheres' 3 of 6 vs 2 of 6
   EXPECT_NEAR(fisherExact(0, 6, 0, 3), 1.0, 1e-9);
-  EXPECT_NEAR(fisherExact(5, 10, 0, 10), 0.0325, 1e-4);    // R: fisher.test(matrix(c(5,5,0,10),2))
+  EXPECT_NEAR(fisherExact(5, 10, 0, 10), 0.0325, 1e-4);  // R: fisher.test(matrix(c(5,5,0,10),2))
   EXPECT_THROW(fisherExact(4, 3, 0, 1), std::invalid_argument);
 }
 

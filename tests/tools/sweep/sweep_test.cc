@@ -87,7 +87,8 @@ TEST(SweepPlan, BadSweepFilesNameTheFileAndKey) {
   expectError("axes: [{name: w, key: world, values: [a]}]\nexclude: [{v: x}]\n", "exclude[0].v");
   expectError("axes: [{name: w, key: world, values: [a]}]\ninclude: [{w: z}]\n", "include[0]': matches no combination");
   // An exclude entry that matches nothing (a misspelt value) is refused, not ignored.
-  expectError("axes: [{name: w, key: world, values: [a, b]}]\nexclude: [{w: a}, {w: c}]\n", "exclude[1]': matches no combination");
+  expectError("axes: [{name: w, key: world, values: [a, b]}]\nexclude: [{w: a}, {w: c}]\n",
+              "exclude[1]': matches no combination");
 }
 
 // A sweep directory's runs.csv as id → row fields.
@@ -121,7 +122,8 @@ seeds: 2
 exclude: [{variant: broken, seed: 2}]
 )");
   const fs::path out = d / "out";
-  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --jobs 2", d / "log1"), 1) << readText(d / "log1");
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --jobs 2", d / "log1"), 1)
+      << readText(d / "log1");
   auto r = rows(out);
   ASSERT_EQ(r.size(), 5u);
   for (const auto& id : {"a-s1", "a-s2", "b-s1", "b-s2"}) EXPECT_EQ(r[id][3], "complete") << id;
@@ -254,13 +256,16 @@ TEST(Sweep, TaskIndexRunsOneRunAndAPlainCallWritesTheIndex) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "task");
   const fs::path f = writeSweep(d, "set: {duration_s: 2}\nseeds: 2\n");
   const fs::path out = d / "out";
-  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --task-index 1", d / "log1"), 0) << readText(d / "log1");
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --task-index 1", d / "log1"), 0)
+      << readText(d / "log1");
   EXPECT_TRUE(fs::exists(out / "runs" / "s2" / "metrics.json"));
   EXPECT_FALSE(fs::exists(out / "runs" / "s1"));
   EXPECT_FALSE(fs::exists(out / "sweep.json"));
   EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --task-index 2", d / "log2"), 2);
-  EXPECT_EQ(std::system(("SLURM_ARRAY_TASK_ID=0 '" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() +
-                         "' > '" + (d / "log3").string() + "' 2>&1").c_str()), 0);
+  EXPECT_EQ(std::system(("SLURM_ARRAY_TASK_ID=0 '" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" +
+                         out.string() + "' > '" + (d / "log3").string() + "' 2>&1")
+                            .c_str()),
+            0);
   EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log4"), 0);
   EXPECT_NE(readText(d / "log4").find("2 complete, 0 to run"), std::string::npos) << readText(d / "log4");
   const auto r = rows(out);
