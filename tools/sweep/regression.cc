@@ -102,9 +102,7 @@ RegressionOutcome compareWithGolden(const SweepResults& results, const nlohmann:
       continue;
     }
     if (!it->record) {
-      const std::string why = it->failure.is_object() && it->failure.contains("problem")
-                                  ? ": " + it->failure["problem"].get<std::string>()
-                                  : "";
+      const std::string why = it->failure && !it->failure->problem.empty() ? ": " + it->failure->problem : "";
       out.regressions.push_back(id + ": did not complete (" + it->status + why + ")");
       continue;
     }

@@ -190,30 +190,13 @@ SweepResults loadSweepResults(const fs::path& dir) {
     }
   }
   for (size_t k = 0; k < j["runs"].size(); ++k) {
-    const nlohmann::json& jr = j["runs"][k];
-    const std::string key = "runs[" + std::to_string(k) + "]";
-    if (!jr.is_object()) throw bad(key, "expected an object");
-    if (!jr.contains("id") || !jr["id"].is_string() || jr["id"].get<std::string>().empty() ||
-        jr["id"].get<std::string>().find('/') != std::string::npos)
-      throw bad(key + ".id", "expected a run id (a non-empty name without '/')");
+    const SweepRunRecord rec = readSweepRun(j["runs"][k], "runs[" + std::to_string(k) + "]", bad);
     ReportRun run;
-    run.id = jr["id"].get<std::string>();
-    if (jr.contains("seed") && !jr["seed"].is_number_unsigned())
-      throw bad(key + ".seed", "expected a non-negative integer");
-    run.seed = jr.value("seed", uint64_t(0));
-    if (jr.contains("status") && !jr["status"].is_string())
-      throw bad(key + ".status", "expected complete, failed or pending");
-    run.status = jr.value("status", std::string("pending"));
-    if (run.status != "complete" && run.status != "failed" && run.status != "pending")
-      throw bad(key + ".status", "expected complete, failed or pending, got '" + run.status + "'");
-    if (jr.contains("labels")) {
-      if (!jr["labels"].is_object()) throw bad(key + ".labels", "expected a map of axis names to labels");
-      for (const auto& [axis, label] : jr["labels"].items()) {
-        if (!label.is_string()) throw bad(key + ".labels." + axis, "expected a label");
-        run.labels[axis] = label.get<std::string>();
-      }
-    }
-    if (jr.contains("failure")) run.failure = jr["failure"];
+    run.id = rec.id;
+    run.seed = rec.seed;
+    run.status = sweepRunStatusName(rec.status);
+    run.labels = rec.labels;
+    run.failure = rec.failure;
     const fs::path rd = dir / "runs" / run.id;
     if (run.status == "complete") {
       // A complete run whose metrics.json is missing, truncated or incomplete is a failed run.
@@ -224,7 +207,8 @@ SweepResults loadSweepResults(const fs::path& dir) {
         run.coverage = readCoverageCsv(rd / "coverage.csv");
       } else {
         run.status = "failed";
-        run.failure = {{"problem", read.problem}};
+        run.failure.emplace();
+        run.failure->problem = read.problem;
       }
     }
     r.runs.push_back(std::move(run));
@@ -465,17 +449,14 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
          "| --- | --- | --- | --- | --- |\n";
     for (const ReportRun& r : results.runs) {
       if (r.status != "failed") continue;
-      const nlohmann::json& f = r.failure;
-      auto text = [&](const char* k) {
-        return f.is_object() && f.contains(k) && f[k].is_string() ? f[k].get<std::string>() : std::string("—");
-      };
-      const int sig = f.is_object() ? f.value("signal", 0) : 0;
+      const SweepRunFailure f = r.failure.value_or(SweepRunFailure{});
+      auto text = [](const std::string& v) { return v.empty() ? std::string("—") : v; };
       const std::string ended =
-          sig ? "signal " + std::to_string(sig) + (f.contains("signal_name") ? " (" + text("signal_name") + ")" : "")
-              : "exit code " + std::to_string(f.is_object() ? f.value("exit_code", 0) : 0);
-      const std::string why = f.is_object() && f.contains("problem") ? text("problem") : text("fatal");
-      o << "| " << r.id << " | " << (f.is_object() && f.contains("problem") ? std::string("unreadable results") : ended)
-        << " | " << text("last_progress") << " | " << why << " | logs/" << r.id << ".log |\n";
+          f.signal ? "signal " + std::to_string(f.signal) + (f.signal_name.empty() ? "" : " (" + f.signal_name + ")")
+                   : "exit code " + std::to_string(f.exit_code);
+      const std::string why = !f.problem.empty() ? f.problem : text(f.fatal);
+      o << "| " << r.id << " | " << (!f.problem.empty() ? std::string("unreadable results") : ended)
+        << " | " << text(f.last_progress) << " | " << why << " | logs/" << r.id << ".log |\n";
     }
     o << "\n";
   }

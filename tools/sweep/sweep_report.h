@@ -17,6 +17,7 @@
 #include "tools/config/method_table.h"
 #include "tools/results/run_record.h"
 #include "tools/sweep/statistics.h"
+#include "tools/sweep/sweep_index.h"
 
 namespace msb {
 
@@ -28,7 +29,7 @@ struct ReportRun {
   std::string status;                    ///< the sweep's: complete | failed | pending
   std::optional<MissionRecord> record;   ///< metrics.json read strictly (complete runs)
   nlohmann::json metrics;                ///< metrics.json (complete runs; the record's)
-  nlohmann::json failure;                ///< sweep.json's failure record (failed runs)
+  std::optional<SweepRunFailure> failure;  ///< why it has no result (failed runs)
   std::vector<CoverageSample> coverage;  ///< coverage.csv (complete runs)
 };
 

@@ -1,4 +1,5 @@
 #include "tools/sweep/sweep_runner.h"
+#include "tools/sweep/sweep_index.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -118,19 +119,27 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const SweepRun& r = plan.runs[i];
     const RunState& s = states[i];
-    nlohmann::json j = {
-        {"id", r.id}, {"seed", r.seed}, {"scenario", r.scenario}, {"labels", r.labels}, {"status", s.status}};
-    nlohmann::json sets = nlohmann::json::array();
-    for (const auto& [k, v] : r.sets) sets.push_back(k + "=" + v);
-    j["sets"] = sets;
-    if (s.status == "failed") {
-      j["failure"] = {{"exit_code", s.exit_code}, {"signal", s.signal}, {"log_tail", s.log_tail}};
-      if (s.signal)
-        j["failure"]["signal_name"] = sigabbrev_np(s.signal) ? std::string("SIG") + sigabbrev_np(s.signal) : "?";
-      if (!s.last_progress.empty()) j["failure"]["last_progress"] = s.last_progress;
-      if (!s.fatal.empty()) j["failure"]["fatal"] = s.fatal;
+    SweepRunRecord rec;
+    rec.id = r.id;
+    rec.seed = r.seed;
+    rec.scenario = r.scenario;
+    rec.labels = r.labels;
+    for (const auto& [k, v] : r.sets) rec.sets.push_back(k + "=" + v);
+    rec.status = s.status == "complete" ? SweepRunStatus::kComplete
+                 : s.status == "failed" ? SweepRunStatus::kFailed
+                                        : SweepRunStatus::kPending;
+    if (rec.status == SweepRunStatus::kFailed) {
+      SweepRunFailure f;
+      f.exit_code = s.exit_code, f.signal = s.signal, f.log_tail = s.log_tail;
+      if (s.signal) f.signal_name = sigabbrev_np(s.signal) ? std::string("SIG") + sigabbrev_np(s.signal) : "?";
+      f.last_progress = s.last_progress, f.fatal = s.fatal;
+      rec.failure = f;
     }
-    if (s.metrics.is_object()) j["area_m2"] = s.metrics["coverage"]["area_m2"], j["run_status"] = s.metrics["status"];
+    if (s.metrics.is_object() && s.metrics["coverage"]["area_m2"].is_number()) {
+      rec.area_m2 = s.metrics["coverage"]["area_m2"].get<double>();
+      rec.run_status = s.metrics.value("status", "");
+    }
+    const nlohmann::json j = sweepRunJson(rec);
     runs.push_back(j);
     csv += csvRow(r, s, plan.axes);
   }
