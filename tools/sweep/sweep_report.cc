@@ -339,11 +339,11 @@ std::string beyondPaperSection(const SweepResults& results, const std::vector<Re
 }
 
 // The front-end error profile per row (runs with ground truth that recorded it).
-std::string frontEndSection(const std::vector<ReportRow>& rows) {
+std::string frontEndSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
   std::ostringstream body;
   for (const ReportRow& r : rows) {
     if (r.fe_wrong_share.count == 0) continue;
-    body << "| " << r.world << " | " << r.method << " | " << intervalCell(r.fe_median_m[0], r.complete, 2) << " | "
+    body << labelCells(r) << " " << intervalCell(r.fe_median_m[0], r.complete, 2) << " | "
          << intervalCell(r.fe_median_m[1], r.complete, 2) << " | " << intervalCell(r.fe_median_m[2], r.complete, 2)
          << " | " << intervalCell(r.fe_wrong_share, r.complete, 3) << " | "
          << intervalCell(r.fe_moved_share, r.complete, 2) << " |\n";
@@ -353,9 +353,8 @@ std::string frontEndSection(const std::vector<ReportRow>& rows) {
          "to "
          "the method; docs/perception.md): median distance to the nearest true surface by depth, the share of points "
          "more than 2 m off any surface (wrong points), the share of tracks whose published estimate moved more than "
-         "0.3 m over its life; means over the row's runs with 95 % intervals.\n\n"
-         "| world | method | median error 0-5 m | 5-10 m | 10-20 m | wrong points (> 2 m) | tracks moved > 0.3 m |\n"
-         "| --- | --- | --- | --- | --- | --- | --- |\n" +
+         "0.3 m over its life; means over the row's runs with 95 % intervals.\n\n" +
+         tableHead(results, {"median error 0-5 m", "5-10 m", "10-20 m", "wrong points (> 2 m)", "tracks moved > 0.3 m"}) +
          body.str();
 }
 
@@ -460,7 +459,7 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     }
     o << "\n";
   }
-  o << tableOneSection(results, rows) << beyondPaperSection(results, rows) << frontEndSection(rows)
+  o << tableOneSection(results, rows) << beyondPaperSection(results, rows) << frontEndSection(results, rows)
     << saturationSection(rows) << pairedSection(rows);
   // Every run, with its collision.
   o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | tracked (mean) | drift (m) | collision |\n"
