@@ -5,7 +5,7 @@
 #                                                their committed runs (no run re-done; the gallery,
 #                                                which needs the runs' pictures, is kept)
 # DEST receives the report (report.md with the findings, table.csv, findings.csv, the Table I and
-# coverage figures and the gallery), the sweep's index (sweep.json, runs.csv) and each run's
+# coverage figures, the ablation-across-levels table and figures of a level sweep, and the gallery), the sweep's index (sweep.json, runs.csv) and each run's
 # metrics.json, coverage.csv and config.yaml — no maps, trajectories or logs, so that it stays small;
 # paths of the machine it ran on are rewritten (the sweep directory to DEST, scenario files
 # repository-relative). DEST is replaced as a whole (written next to it, then renamed). Needs msbench
@@ -19,8 +19,8 @@ if [ $# -eq 2 ] && [ "$1" = "--report-only" ]; then
   [ -f "$dest/sweep.json" ] && [ -d "$dest/runs" ] || { echo "$0: $dest is not published results (no sweep.json, runs/)" >&2; exit 2; }
   tmp=$(mktemp -d "${TMPDIR:-/tmp}/msb_report.XXXXXX")
   "$msbench" report "$dest" --out "$tmp/report"
-  for f in report.md table.csv findings.csv table1.png; do [ -f "$tmp/report/$f" ] && cp "$tmp/report/$f" "$dest/"; done
-  for f in "$tmp"/report/coverage_*.png; do [ -f "$f" ] && cp "$f" "$dest/"; done
+  for f in report.md table.csv findings.csv table1.png ablation_levels.csv; do [ -f "$tmp/report/$f" ] && cp "$tmp/report/$f" "$dest/"; done
+  for f in "$tmp"/report/coverage_*.png "$tmp"/report/ablation_levels_*.png; do [ -f "$f" ] && cp "$f" "$dest/"; done
   rm -rf "$tmp"
   echo "report of $dest written anew from its $(ls "$dest/runs" | wc -l) committed runs"
   exit 0
@@ -32,8 +32,8 @@ tmp="$dest.publishing"
 rm -rf "$tmp"
 mkdir -p "$tmp/runs"
 "$msbench" report "$src" --out "$tmp/report"
-for f in report.md table.csv findings.csv table1.png gallery.png; do [ -f "$tmp/report/$f" ] && mv "$tmp/report/$f" "$tmp/"; done
-for f in "$tmp"/report/coverage_*.png; do [ -f "$f" ] && mv "$f" "$tmp/"; done
+for f in report.md table.csv findings.csv table1.png gallery.png ablation_levels.csv; do [ -f "$tmp/report/$f" ] && mv "$tmp/report/$f" "$tmp/"; done
+for f in "$tmp"/report/coverage_*.png "$tmp"/report/ablation_levels_*.png; do [ -f "$f" ] && mv "$f" "$tmp/"; done
 # The gallery (every run's top-down picture) as a 256-colour PNG: a third of the size, same look
 # (Pillow comes with python3-matplotlib; without it the gallery stays as written).
 if [ -f "$tmp/gallery.png" ] && /usr/bin/python3 -c 'import PIL' 2>/dev/null; then
