@@ -19,7 +19,9 @@
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/progress.h"
+#include "core/eval/frontend_profile.h"
 #include "tools/results/flight_records.h"
+#include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
 #include "tools/results/provenance.h"
@@ -278,10 +280,13 @@ int runVioEvalCommand(int argc, char** argv) {
                                            {"camera_scale", spec.camera.scale},
                                            {"flight", file}});
 
-  // Each processed frame: recorded, evaluated, and every N-th one drawn.
+  // Each processed frame: recorded, evaluated (and profiled against the truth), every N-th drawn.
+  std::optional<FrontEndProfiler> profiler;
+  if (truth) profiler.emplace(*truth);
   auto evaluate = [&](const PerceptionSample& s) {
     if (recorder) recorder->write(s.points, s.frame.T_W_C);
     addSample(st, s, truth, camera, gt_camera);
+    if (profiler) profiler->addFrame(s.points, s.frame.T_W_C);
     if (annotate_every > 0 && (st.frames - 1) % annotate_every == 0) {
       char name[64];
       std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", st.frames - 1, s.frame.t_s);
@@ -301,7 +306,8 @@ int runVioEvalCommand(int argc, char** argv) {
   const FlightResult& r = loop.finish();
   if (recorder) recorder->close();
 
-  const nlohmann::json j = summaryJson(st, r, spec, bool(truth));
+  nlohmann::json j = summaryJson(st, r, spec, bool(truth));
+  if (profiler) j["frontend_profile"] = frontEndProfileJson(profiler->result());  // as a mission's metrics.json
   writeFileAtomic(out.staging() / "frames.csv", st.csv);
   writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
   writeFileAtomic(out.staging() / "trajectory.csv", trajectoryCsv(r.trajectory));

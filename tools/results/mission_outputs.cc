@@ -91,22 +91,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
     j["collision"] = nullptr;
   }
   // The front-end error profile and the final map's accuracy (truth side; core/eval).
-  if (r.frontend) {
-    nlohmann::json bands = nlohmann::json::array();
-    for (const DepthBandErrors& b : r.frontend->bands)
-      bands.push_back({{"depth_from_m", b.lo_m},
-                       {"depth_to_m", b.hi_m > 1e8 ? nlohmann::json() : nlohmann::json(b.hi_m)},
-                       {"points", b.points},
-                       {"median_error_m", b.median_m},
-                       {"p90_error_m", b.p90_m},
-                       {"share_over_0_5_m", b.share_over_half_m},
-                       {"share_over_2_m", b.share_over_2_m}});
-    j["frontend_profile"] = {{"points", r.frontend->points},
-                             {"depth_bands", bands},
-                             {"tracks", r.frontend->tracks},
-                             {"moved_over_0_3_m_share", r.frontend->moved_share},
-                             {"median_track_motion_m", r.frontend->median_motion_m}};
-  }
+  if (r.frontend) j["frontend_profile"] = frontEndProfileJson(*r.frontend);
   if (r.map_accuracy) {
     const MapAccuracy& a = *r.map_accuracy;
     auto share = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
@@ -373,6 +358,23 @@ nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what) {
           {"error", what},
           {"seed", spec.flight.seed},
           {"versions", versionInfo()}};
+}
+
+nlohmann::json frontEndProfileJson(const FrontEndProfile& p) {
+  nlohmann::json bands = nlohmann::json::array();
+  for (const DepthBandErrors& b : p.bands)
+    bands.push_back({{"depth_from_m", b.lo_m},
+                     {"depth_to_m", b.hi_m > 1e8 ? nlohmann::json() : nlohmann::json(b.hi_m)},
+                     {"points", b.points},
+                     {"median_error_m", b.median_m},
+                     {"p90_error_m", b.p90_m},
+                     {"share_over_0_5_m", b.share_over_half_m},
+                     {"share_over_2_m", b.share_over_2_m}});
+  return {{"points", p.points},
+          {"depth_bands", bands},
+          {"tracks", p.tracks},
+          {"moved_over_0_3_m_share", p.moved_share},
+          {"median_track_motion_m", p.median_motion_m}};
 }
 
 }  // namespace msb

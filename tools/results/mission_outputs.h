@@ -15,6 +15,8 @@ namespace msb {
 /// metrics.json content. `truth` (generated worlds, may be null) names the collided object and
 /// its kind (textured, textureless, thin, ground).
 nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, const WorldTruth* truth);
+/// metrics.json's `frontend_profile` (also vio-eval's summary.json).
+nlohmann::json frontEndProfileJson(const FrontEndProfile& p);
 /// coverage.csv text (t, A unbounded, A in box, A true frame, distance).
 std::string coverageCsv(const std::vector<CoverageSample>& samples);
 /// timing.csv text: cumulative wall time per stage every 10 simulated seconds.
