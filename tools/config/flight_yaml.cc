@@ -159,6 +159,7 @@ void renderKeys(Keys r, FisheyeRendererConfig& c) {
   r.field("plane_grid_m", c.plane_grid_m);
   r.field("near_clip_m", c.near_clip_m);
   r.field("read_red_channel_only", c.read_red_channel_only);
+  r.field("max_visible_geom_group", c.max_visible_geom_group);
   r.field("sky", c.sky);
   r.field("sun", c.sun);
   r.field("sun_ambient", c.sun_ambient);
