@@ -1,6 +1,7 @@
 // msbench vio-eval: a scripted flight with the full perception running, evaluated against the
-// world's ground truth: tracks and SLAM points per frame, point error by distance, points on
-// textureless or thin surfaces, drift, and the cost of tracking and triangulation.
+// world's ground truth by tools/results/vio_evaluation (tracks and SLAM points per frame, point
+// error by distance, points on textureless or thin surfaces, drift, the cost of tracking and
+// triangulation); this command flies, draws the annotated frames and prints the summary.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include "tools/msbench/progress.h"
 #include "core/eval/frontend_profile.h"
 #include "tools/results/flight_records.h"
+#include "tools/results/vio_evaluation.h"
 #include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
@@ -31,32 +33,6 @@ namespace msb {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Distance bins for the point-error statistics (metres, by ground-truth depth).
-constexpr double kBinEdges[] = {0, 5, 10, 20, 40, 1e9};
-constexpr int kBins = 5;
-
-// What perception produced for one camera frame.
-struct PerceptionSample {
-  const CameraFrame& frame;
-  const TrackFrame& tracks;
-  const SlamPointsFrame& points;
-  double tracker_ms, triangulation_ms, render_ms;
-};
-
-// Running statistics of the evaluation.
-struct VioStats {
-  std::vector<double> errors[kBins], depth_std[kBins];
-  long point_samples = 0, textureless = 0, textureless_interior = 0, thin = 0, no_surface = 0, silhouette = 0;
-  long ransac_tested = 0, ransac_rejected = 0;  // tracked pairs tested / dropped as epipolar outliers
-  long near_points = 0, spurious_near = 0;      // points < 1 m from the camera / of those, on no surface
-  double tracks_sum = 0, points_sum = 0, tracker_ms = 0, tri_ms = 0, render_ms = 0;
-  double points_by_distance[kBins] = {};            // SLAM points summed over frames, by distance from the camera
-  std::map<std::string, double> points_by_surface;  // ... by the class of the surface hit (ground truth)
-  int frames = 0, min_tracks = 1 << 30;
-  std::string csv =
-      "t,tracks,new_tracks,lost_tracks,slam_points,median_error_m,tracker_ms,triangulation_ms,render_ms\n";
-};
 
 // Annotated frame: tracks in grey, SLAM points coloured by depth (red near, blue far at 40 m).
 cv::Mat annotate(const PerceptionSample& s) {
@@ -83,122 +59,6 @@ cv::Mat annotate(const PerceptionSample& s) {
                 s.tracks.tracks.size(), s.points.points.size());
   cv::putText(img, text, cv::Point(8, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 255, 255), 1);
   return img;
-}
-
-// Adds one perception frame to the statistics: the points by distance, and against the ground
-// truth (when the world has it) their surfaces and errors; the frame's line of frames.csv.
-void addSample(VioStats& st, const PerceptionSample& s, const std::optional<WorldTruth>& truth,
-               const FisheyeCamera& camera, std::map<int64_t, Pose>& gt_camera) {
-  gt_camera[s.frame.tick] = s.frame.T_W_C;
-  std::vector<double> frame_errors;
-  // The premise of OVDE (seed paper §III-B): how far the points the mapper gets lie.
-  for (const auto& p : s.points.points) {
-    const double d = (p.p_W - s.points.T_W_C.translation()).norm();
-    int band = 0;
-    while (band + 1 < kBins && d >= kBinEdges[band + 1]) ++band;
-    ++st.points_by_distance[band];
-  }
-  if (truth) {
-    for (const auto& p : s.points.points) {
-      const PointTruth t = evaluatePoint(p, gt_camera.at(p.anchor_tick), *truth, camera);
-      ++st.point_samples;
-      // Spurious near points: closer than 1 m to the camera and not on a surface (no surface
-      // along the ray, or more than 0.3 m off it).
-      if ((p.p_W - s.points.T_W_C.translation()).norm() < 1.0) {
-        ++st.near_points;
-        st.spurious_near += !t.has_surface || (t.interior && t.error_m > 0.3);
-      }
-      if (!t.has_surface) {
-        ++st.no_surface;
-        ++st.points_by_surface["none"];
-        continue;
-      }
-      ++st.points_by_surface[surfaceClass(truth->shapes()[t.shape])];
-      st.textureless += t.kind == ObstacleKind::kTextureless;
-      st.textureless_interior += t.textureless_interior;
-      st.thin += t.kind == ObstacleKind::kThin;
-      if (!t.interior) {  // silhouette: no single true surface to compare with
-        ++st.silhouette;
-        continue;
-      }
-      int bin = 0;
-      while (bin + 1 < kBins && t.true_depth_m >= kBinEdges[bin + 1]) ++bin;
-      st.errors[bin].push_back(t.error_m);
-      st.depth_std[bin].push_back(p.depth_std_m);
-      frame_errors.push_back(t.error_m);
-    }
-  }
-  ++st.frames;
-  st.ransac_tested += s.tracks.ransac_tested;
-  st.ransac_rejected += s.tracks.ransac_rejected;
-  st.tracks_sum += s.tracks.tracks.size();
-  st.points_sum += s.points.points.size();
-  st.min_tracks = std::min(st.min_tracks, int(s.tracks.tracks.size()));
-  st.tracker_ms += s.tracker_ms;
-  st.tri_ms += s.triangulation_ms;
-  st.render_ms += s.render_ms;
-  char line[256];
-  std::snprintf(line, sizeof(line), "%.3f,%zu,%d,%d,%zu,%.4f,%.3f,%.3f,%.3f\n", s.frame.t_s, s.tracks.tracks.size(),
-                s.tracks.new_tracks, s.tracks.lost_tracks, s.points.points.size(), percentile(frame_errors, 0.5),
-                s.tracker_ms, s.triangulation_ms, s.render_ms);
-  st.csv += line;
-}
-
-// summary.json: the statistics of the flight.
-nlohmann::json summaryJson(const VioStats& st, const FlightResult& r, const FlightSpec& spec, bool truth) {
-  const double n = std::max(1, st.frames);
-  nlohmann::json bins = nlohmann::json::array();
-  for (int b = 0; b < kBins; ++b) {
-    char label[32];
-    std::snprintf(label, sizeof(label), b + 1 < kBins ? "%g-%g m" : ">%g m", kBinEdges[b], kBinEdges[b + 1]);
-    bins.push_back({{"bin", label},
-                    {"samples", st.errors[b].size()},
-                    {"median_error_m", percentile(st.errors[b], 0.5)},
-                    {"p90_error_m", percentile(st.errors[b], 0.9)},
-                    {"median_predicted_depth_std_m", percentile(st.depth_std[b], 0.5)}});
-  }
-  const double ps = std::max<long>(1, st.point_samples);
-  nlohmann::json by_distance = nlohmann::json::object(), by_surface = nlohmann::json::object();
-  for (int b = 0; b < kBins; ++b) by_distance[bins[b]["bin"].get<std::string>()] = st.points_by_distance[b] / n;
-  for (const auto& [surface, count] : st.points_by_surface) by_surface[surface] = count / n;
-  nlohmann::json j = {
-      {"status", runStatusName(r.status)},
-      {"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
-      {"sim_time_s", r.sim_time_s},
-      {"frames", st.frames},
-      {"mean_tracks_per_frame", st.tracks_sum / n},
-      {"min_tracks_per_frame", st.frames ? st.min_tracks : 0},
-      {"mean_slam_points_per_frame", st.points_sum / n},
-      {"point_error_by_distance", bins},
-      {"slam_points_per_frame_by_distance", by_distance},
-      {"slam_points_per_frame_by_surface", truth ? by_surface : nlohmann::json(nullptr)},
-      {"ground_truth", bool(truth)},
-      {"textureless_point_share", truth ? nlohmann::json(st.textureless_interior / ps) : nlohmann::json(nullptr)},
-      {"textureless_incl_silhouette_point_share",
-       truth ? nlohmann::json(st.textureless / ps) : nlohmann::json(nullptr)},
-      {"thin_point_share", truth ? nlohmann::json(st.thin / ps) : nlohmann::json(nullptr)},
-      {"no_surface_point_share", truth ? nlohmann::json(st.no_surface / ps) : nlohmann::json(nullptr)},
-      {"silhouette_point_share", truth ? nlohmann::json(st.silhouette / ps) : nlohmann::json(nullptr)},
-      {"ransac_rejected_share", double(st.ransac_rejected) / double(std::max<long>(1, st.ransac_tested))},
-      {"near_point_share", truth ? nlohmann::json(st.near_points / ps) : nlohmann::json(nullptr)},
-      {"spurious_near_point_share", truth ? nlohmann::json(st.spurious_near / ps) : nlohmann::json(nullptr)},
-      {"distance_flown_m", r.distance_flown_m},
-      {"final_drift_m", r.final_drift_m},
-      {"drift_percent_of_distance", r.distance_flown_m > 0 ? 100 * r.final_drift_m / r.distance_flown_m : 0.0},
-      {"tracker_ms_per_frame", st.tracker_ms / n},
-      {"triangulation_ms_per_frame", st.tri_ms / n},
-      {"render_ms_per_frame", st.render_ms / n},
-      {"wall_time_s", r.wall_time_s},
-      {"trajectory_hash", hexHash(r.trajectory_hash)},
-      {"versions", versionInfo()}};
-  if (r.collision)
-    j["collision"] = {{"t_s", r.collision->t_s},
-                      {"vehicle_geom", r.collision->vehicle_geom},
-                      {"world_geom", r.collision->world_geom},
-                      {"vehicle_position_m",
-                       {r.collision->vehicle_position_m.x(), r.collision->vehicle_position_m.y(),
-                        r.collision->vehicle_position_m.z()}}};
-  return j;
 }
 
 // The summary on stdout.
