@@ -171,19 +171,25 @@ void renderKeys(Keys r, FisheyeRendererConfig& c) {
   r.finish();
 }
 
+// `preset: NAME` of a section (read only: the writer writes every field instead): the named
+// preset's values, which the section's other keys then override; an unknown name lists the known.
+template <class Keys, class Config, class Lookup>
+void presetKey(Keys& r, Config& c, Lookup lookup, const std::vector<std::string>& known) {
+  std::string preset;
+  if (!Keys::kReading || !r.field("preset", preset)) return;
+  const std::optional<Config> p = lookup(preset);
+  if (!p) {
+    std::string names;
+    for (const auto& n : known) names += (names.empty() ? "" : ", ") + n;
+    throw ConfigError(r.keyName("preset"), "unknown preset '" + preset + "' (known: " + names + ")");
+  }
+  c = *p;
+}
+
 // conditions: {preset: NAME, <field>: value, ...}: a named preset, then overrides.
 template <class Keys>
 void conditionsKeys(Keys r, RenderConditions& c) {
-  std::string preset;
-  if (Keys::kReading && r.field("preset", preset)) {  // the writer writes every field instead
-    const auto p = conditionsPreset(preset);
-    if (!p) {
-      std::string names;
-      for (const auto& n : conditionsPresetNames()) names += (names.empty() ? "" : ", ") + n;
-      throw ConfigError(r.keyName("preset"), "unknown preset '" + preset + "' (known: " + names + ")");
-    }
-    c = *p;
-  }
+  presetKey(r, c, conditionsPreset, conditionsPresetNames());
   r.field("sun_elevation_deg", c.sun_elevation_deg);
   r.field("sun_azimuth_deg", c.sun_azimuth_deg);
   r.field("sun_intensity", c.sun_intensity);
@@ -289,16 +295,7 @@ void slamPointsKeys(Keys r, SlamPointsConfig& c) {
 // frontend: {preset: NAME, <axis>: value, ...}: a named preset, then overrides.
 template <class Keys>
 void frontendKeys(Keys r, FrontendDegradationConfig& c) {
-  std::string preset;
-  if (Keys::kReading && r.field("preset", preset)) {  // the writer writes every field instead
-    const auto p = frontendPreset(preset);
-    if (!p) {
-      std::string names;
-      for (const auto& n : frontendPresetNames()) names += (names.empty() ? "" : ", ") + n;
-      throw ConfigError(r.keyName("preset"), "unknown preset '" + preset + "' (known: " + names + ")");
-    }
-    c = *p;
-  }
+  presetKey(r, c, frontendPreset, frontendPresetNames());
   r.field("image_noise_sigma", c.image_noise_sigma);
   r.field("mistrack_share", c.mistrack_share);
   r.field("mistrack_px", c.mistrack_px);
