@@ -334,7 +334,6 @@ class PyMission {
                                  [&] { return std::make_unique<Mission>(scenario_.spec, world_->box, truth); });
       return;
     }
-    python_method_ = true;
     const ExplorerContext ctx = explorerContext(scenario_.spec, world_->box);
     MethodContext pc;
     pc.box_min = {ctx.exploration_box.min.x(), ctx.exploration_box.min.y(), ctx.exploration_box.min.z()};
@@ -471,7 +470,6 @@ class PyMission {
   std::unique_ptr<Mission> mission_;
   std::optional<MissionResult> result_;
   std::optional<std::string> error_;  // the run ended with an error (a Python method raised)
-  bool python_method_ = false;
   int64_t last_tick_ = 0;
   double last_t_s_ = 0.0;
 };
