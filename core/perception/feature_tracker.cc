@@ -102,6 +102,67 @@ KltFeatureTracker::KltFeatureTracker(const FeatureTrackerConfig& config, const F
   }
 }
 
+std::vector<Track> KltFeatureTracker::trackForward(const std::vector<cv::Mat>& pyramid, cv::Size image,
+                                                   TrackFrame& out) {
+  const cv::Size win(config_.klt_window_px, config_.klt_window_px);
+  std::vector<Track> tracks;
+  std::vector<cv::Point2f> p0, p1, p0_back;
+  for (const auto& t : prev_tracks_) p0.emplace_back(float(t.pixel.x()), float(t.pixel.y()));
+  std::vector<uchar> st_f, st_b;
+  const cv::TermCriteria crit(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations, 0.01);
+  // No error output: the tracker never reads it, and OpenCV would spend one more window pass
+  // per point on it. Its one side effect on the status is reproduced below.
+  cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, cv::noArray(), win, config_.klt_pyramid_levels,
+                           crit);
+  dropOutsideWindowRange(p1, win, image, st_f);
+  // Backward pass only for the points the forward pass tracked: LK solves every point on its
+  // own, so this gives the same results for them and skips the lost ones.
+  std::vector<size_t> forward_ok;
+  std::vector<cv::Point2f> p1_ok;
+  for (size_t i = 0; i < p0.size(); ++i)
+    if (st_f[i]) forward_ok.push_back(i), p1_ok.push_back(p1[i]);
+  std::vector<uchar> st_b_ok;
+  std::vector<cv::Point2f> p0_back_ok;
+  if (!config_.forward_backward_check) {
+    // Forward only: every forward-tracked point counts as consistent with itself.
+    p0_back_ok.reserve(forward_ok.size());
+    for (size_t k : forward_ok) p0_back_ok.push_back(p0[k]);
+    st_b_ok.assign(forward_ok.size(), 1);
+  } else if (!p1_ok.empty()) {
+    cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1_ok, p0_back_ok, st_b_ok, cv::noArray(), win,
+                             config_.klt_pyramid_levels, crit);
+    dropOutsideWindowRange(p0_back_ok, win, image, st_b_ok);
+  }
+  st_b.assign(p0.size(), 0);
+  p0_back.assign(p0.size(), cv::Point2f());
+  for (size_t k = 0; k < forward_ok.size(); ++k)
+    st_b[forward_ok[k]] = st_b_ok[k], p0_back[forward_ok[k]] = p0_back_ok[k];
+  std::vector<Vec2> from, to;
+  for (size_t i = 0; i < p0.size(); ++i) {
+    if (!st_f[i] || !st_b[i]) continue;
+    const double fb = std::hypot(p0[i].x - p0_back[i].x, p0[i].y - p0_back[i].y);
+    // A mis-track (degradation, off by default) lands the track a few pixels off.
+    const Vec2 pixel = Vec2(p1[i].x, p1[i].y) + (mistracks_ ? mistracks_->displacement() : Vec2::Zero());
+    const int u = int(std::lround(pixel.x())), v = int(std::lround(pixel.y()));
+    if (fb > config_.fb_max_error_px || u < 0 || v < 0 || u >= image.width || v >= image.height ||
+        !valid_mask_.at<uint8_t>(v, u))
+      continue;
+    Track t = prev_tracks_[i];
+    from.push_back(t.pixel);
+    t.pixel = pixel;
+    to.push_back(t.pixel);
+    ++t.age;
+    tracks.push_back(t);
+  }
+  // Epipolar outliers (RANSAC) leave.
+  const std::vector<bool> inlier = epipolarInliers(from, to, out);
+  std::vector<Track> consistent;
+  for (size_t i = 0; i < tracks.size(); ++i)
+    if (inlier[i]) consistent.push_back(tracks[i]);
+  tracks = std::move(consistent);
+  return tracks;
+}
+
 TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
   TrackFrame out;
   out.tick = frame.tick;
@@ -119,64 +180,9 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
   cv::buildOpticalFlowPyramid(img, pyramid, win, config_.klt_pyramid_levels);
 
   // Track the previous features forward (as OpenVINS' TrackKLT), with the optional backward
-  // check; keep the ones inside the valid mask.
+  // check; keep the ones inside the valid mask; drop epipolar outliers.
   std::vector<Track> tracks;
-  if (!prev_tracks_.empty() && !prev_pyramid_.empty()) {
-    std::vector<cv::Point2f> p0, p1, p0_back;
-    for (const auto& t : prev_tracks_) p0.emplace_back(float(t.pixel.x()), float(t.pixel.y()));
-    std::vector<uchar> st_f, st_b;
-    const cv::TermCriteria crit(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations, 0.01);
-    // No error output: the tracker never reads it, and OpenCV would spend one more window pass
-    // per point on it. Its one side effect on the status is reproduced below.
-    cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, cv::noArray(), win, config_.klt_pyramid_levels,
-                             crit);
-    dropOutsideWindowRange(p1, win, img.size(), st_f);
-    // Backward pass only for the points the forward pass tracked: LK solves every point on its
-    // own, so this gives the same results for them and skips the lost ones.
-    std::vector<size_t> forward_ok;
-    std::vector<cv::Point2f> p1_ok;
-    for (size_t i = 0; i < p0.size(); ++i)
-      if (st_f[i]) forward_ok.push_back(i), p1_ok.push_back(p1[i]);
-    std::vector<uchar> st_b_ok;
-    std::vector<cv::Point2f> p0_back_ok;
-    if (!config_.forward_backward_check) {
-      // Forward only: every forward-tracked point counts as consistent with itself.
-      p0_back_ok.reserve(forward_ok.size());
-      for (size_t k : forward_ok) p0_back_ok.push_back(p0[k]);
-      st_b_ok.assign(forward_ok.size(), 1);
-    } else if (!p1_ok.empty()) {
-      cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid_, p1_ok, p0_back_ok, st_b_ok, cv::noArray(), win,
-                               config_.klt_pyramid_levels, crit);
-      dropOutsideWindowRange(p0_back_ok, win, img.size(), st_b_ok);
-    }
-    st_b.assign(p0.size(), 0);
-    p0_back.assign(p0.size(), cv::Point2f());
-    for (size_t k = 0; k < forward_ok.size(); ++k)
-      st_b[forward_ok[k]] = st_b_ok[k], p0_back[forward_ok[k]] = p0_back_ok[k];
-    std::vector<Vec2> from, to;
-    for (size_t i = 0; i < p0.size(); ++i) {
-      if (!st_f[i] || !st_b[i]) continue;
-      const double fb = std::hypot(p0[i].x - p0_back[i].x, p0[i].y - p0_back[i].y);
-      // A mis-track (degradation, off by default) lands the track a few pixels off.
-      const Vec2 pixel = Vec2(p1[i].x, p1[i].y) + (mistracks_ ? mistracks_->displacement() : Vec2::Zero());
-      const int u = int(std::lround(pixel.x())), v = int(std::lround(pixel.y()));
-      if (fb > config_.fb_max_error_px || u < 0 || v < 0 || u >= img.cols || v >= img.rows ||
-          !valid_mask_.at<uint8_t>(v, u))
-        continue;
-      Track t = prev_tracks_[i];
-      from.push_back(t.pixel);
-      t.pixel = pixel;
-      to.push_back(t.pixel);
-      ++t.age;
-      tracks.push_back(t);
-    }
-    // Epipolar outliers (RANSAC) leave.
-    const std::vector<bool> inlier = epipolarInliers(from, to, out);
-    std::vector<Track> consistent;
-    for (size_t i = 0; i < tracks.size(); ++i)
-      if (inlier[i]) consistent.push_back(tracks[i]);
-    tracks = std::move(consistent);
-  }
+  if (!prev_tracks_.empty() && !prev_pyramid_.empty()) tracks = trackForward(pyramid, img.size(), out);
   // Tracks that converged onto each other: keep the older (lower id) one.
   std::vector<Track> kept;
   for (const auto& t : tracks) {

@@ -95,6 +95,9 @@ class KltFeatureTracker final : public FeatureSource {
 
  private:
   void detect(const cv::Mat& img, std::vector<Track>& tracks, int* added);
+  // The previous frame's tracks followed into `pyramid` (KLT, the optional backward check, the
+  // valid mask, mis-tracks when on, then the epipolar RANSAC); counts go into `out`.
+  std::vector<Track> trackForward(const std::vector<cv::Mat>& pyramid, cv::Size image, TrackFrame& out);
   // Drops the epipolar outliers among tracked pairs (prev pixel, new pixel); returns the keep mask.
   std::vector<bool> epipolarInliers(const std::vector<Vec2>& prev_px, const std::vector<Vec2>& new_px,
                                     TrackFrame& out) const;

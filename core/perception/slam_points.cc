@@ -156,7 +156,15 @@ SlamPointsFrame SlamPointEstimator::update(const TrackFrame& tracks, const Pose&
   out.T_W_C = T_W_C;
   out.tracks = int(tracks.tracks.size());
   if (!started_) started_ = true, start_t_s_ = tracks.t_s;
+  addObservations(tracks, T_W_C);
+  std::map<uint64_t, SlamPoint> points;
+  const int in_state = refineInState(points);
+  initialiseMaxTracks(tracks.t_s, in_state, points);
+  for (auto& [id, p] : points) out.points.push_back(p);
+  return out;
+}
 
+void SlamPointEstimator::addObservations(const TrackFrame& tracks, const Pose& T_W_C) {
   // Lost tracks end (a SLAM feature with them: marginalised); tracked ones get this frame's
   // observation.
   std::map<uint64_t, TrackState> next;
@@ -177,11 +185,12 @@ SlamPointsFrame SlamPointEstimator::update(const TrackFrame& tracks, const Pose&
     next.emplace(t.id, std::move(s));
   }
   tracks_ = std::move(next);
+}
 
+int SlamPointEstimator::refineInState(std::map<uint64_t, SlamPoint>& points) {
   // SLAM features in the state: refined with the new observation; two failures in a row
   // marginalise the feature (its track starts a new window).
   int in_state = 0;
-  std::map<uint64_t, SlamPoint> points;
   for (auto& [id, s] : tracks_) {
     if (!s.slam) continue;
     SlamPoint p;
@@ -202,7 +211,10 @@ SlamPointsFrame SlamPointEstimator::update(const TrackFrame& tracks, const Pose&
     points[id] = p;
     ++in_state;
   }
+  return in_state;
+}
 
+void SlamPointEstimator::initialiseMaxTracks(double t_s, int in_state, std::map<uint64_t, SlamPoint>& points) {
   // Max tracks: observed in every clone of the window. After the start-up delay the longest-
   // lived become SLAM features (at most max_slam_in_update, room in the state permitting); every
   // other max track, and every refused one, starts a new window.
@@ -212,7 +224,7 @@ SlamPointsFrame SlamPointEstimator::update(const TrackFrame& tracks, const Pose&
   std::stable_sort(max_tracks.begin(), max_tracks.end(),
                    [&](uint64_t a, uint64_t b) { return tracks_.at(a).first_tick < tracks_.at(b).first_tick; });
   int room = 0;
-  if (tracks.t_s - start_t_s_ >= config_.dt_slam_delay_s - 1e-9)
+  if (t_s - start_t_s_ >= config_.dt_slam_delay_s - 1e-9)
     room = std::min(config_.max_slam_in_update, config_.max_slam - in_state);
   for (const uint64_t id : max_tracks) {
     TrackState& s = tracks_.at(id);
@@ -238,8 +250,6 @@ SlamPointsFrame SlamPointEstimator::update(const TrackFrame& tracks, const Pose&
     }
     s.window.clear();
   }
-  for (auto& [id, p] : points) out.points.push_back(p);
-  return out;
 }
 
 }  // namespace msb

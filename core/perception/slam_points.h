@@ -95,6 +95,11 @@ class SlamPointEstimator {
   };
 
   bool refineFeature(TrackState& s, SlamPoint* out) const;
+  // The steps of update(): this frame's observations; the features in the state refined (returns
+  // how many stay); the max tracks initialised as new features.
+  void addObservations(const TrackFrame& tracks, const Pose& T_W_C);
+  int refineInState(std::map<uint64_t, SlamPoint>& points);
+  void initialiseMaxTracks(double t_s, int in_state, std::map<uint64_t, SlamPoint>& points);
 
   SlamPointsConfig config_;
   FisheyeCamera camera_;
