@@ -50,23 +50,30 @@ long GridPathPlanner::blockedCells() const {
 
 void GridPathPlanner::rebuild(const GridMap& map) {
   std::fill(blocked_.begin(), blocked_.end(), 0);
+  blockAroundOccupied(map);
+  // Optionally (the paper's rule), unknown space is not traversable either.
+  if (config_.unknown_is_occupied) blockUnknown(map);
+}
+
+std::vector<std::array<int, 4>> GridPathPlanner::offsetsWithin(double clearance_m) const {
   // Offsets of the cells whose centres lie within a distance of a cell centre, with the flags
   // they get: kBlocked within the clearance, kBlocked | kHard within the escape clearance.
-  auto offsetsWithin = [&](double clearance_m) {
-    const double hard_m = std::min(config_.escape_clearance_m, clearance_m);
-    const int r = int(std::floor(clearance_m / res_ + 1e-9));
-    std::vector<std::array<int, 4>> offsets;
-    for (int dz = -r; dz <= r; ++dz)
-      for (int dy = -r; dy <= r; ++dy)
-        for (int dx = -r; dx <= r; ++dx) {
-          const double d = res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
-          const int flags = (d <= clearance_m + 1e-9 ? kBlocked : 0) | (d <= hard_m + 1e-9 ? kBlocked | kHard : 0);
-          if (flags) offsets.push_back({dx, dy, dz, flags});
-        }
-    return offsets;
-  };
-  const std::vector<std::array<int, 4>> offsets = offsetsWithin(config_.clearance_m);
+  const double hard_m = std::min(config_.escape_clearance_m, clearance_m);
+  const int r = int(std::floor(clearance_m / res_ + 1e-9));
+  std::vector<std::array<int, 4>> offsets;
+  for (int dz = -r; dz <= r; ++dz)
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx) {
+        const double d = res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
+        const int flags = (d <= clearance_m + 1e-9 ? kBlocked : 0) | (d <= hard_m + 1e-9 ? kBlocked | kHard : 0);
+        if (flags) offsets.push_back({dx, dy, dz, flags});
+      }
+  return offsets;
+}
+
+void GridPathPlanner::blockAroundOccupied(const GridMap& map) {
   // Every occupied cell (a pruned leaf covers several) blocks its neighbourhood.
+  const std::vector<std::array<int, 4>> offsets = offsetsWithin(config_.clearance_m);
   const Vec3 margin = Vec3::Constant(config_.clearance_m + res_);
   for (const GridLeaf& leaf : map.leaves(true)) {
     const double h = 0.5 * leaf.size_m;
@@ -87,59 +94,58 @@ void GridPathPlanner::rebuild(const GridMap& map) {
           }
         }
   }
-  // Optionally (the paper's rule), unknown space is not traversable either and the clearance
-  // is kept from it too: unknown cells are blocked, and those bordering known cells block
-  // their neighbourhood (the nearest unknown cell to a known one always borders known space).
-  if (config_.unknown_is_occupied) {
-    std::vector<uint8_t> known(blocked_.size(), 0);
-    for (auto it = map.tree().begin_leafs_bbx(
-                  octomap::point3d(float(origin_.x()), float(origin_.y()), float(origin_.z())),
-                  octomap::point3d(float(origin_.x() + nx_ * res_), float(origin_.y() + ny_ * res_),
-                                   float(origin_.z() + nz_ * res_))),
-              end = map.tree().end_leafs_bbx();
-         it != end; ++it) {
-      const Vec3 c(it.getX(), it.getY(), it.getZ());
-      const double h = 0.5 * it.getSize();
-      const int n = std::max(1, int(std::lround(it.getSize() / res_)));
-      for (int a = 0; a < n; ++a)
-        for (int b = 0; b < n; ++b)
-          for (int d = 0; d < n; ++d) {
-            int i, j, k;
-            if (cellOf(c - Vec3::Constant(h) + res_ * Vec3(a + 0.5, b + 0.5, d + 0.5), &i, &j, &k))
-              known[size_t(index(i, j, k))] = 1;
-          }
-    }
-    const std::vector<std::array<int, 4>> unknown_offsets =
-        offsetsWithin(config_.unknown_clearance_m < 0 ? config_.clearance_m : config_.unknown_clearance_m);
-    std::vector<uint8_t> dilated = blocked_;
-    for (int k = 0; k < nz_; ++k)
-      for (int j = 0; j < ny_; ++j)
-        for (int i = 0; i < nx_; ++i) {
-          if (known[size_t(index(i, j, k))]) continue;
-          dilated[size_t(index(i, j, k))] |= kBlocked | kHard;  // unknown itself
-          bool border = false;
-          for (int f = 0; f < 6 && !border; ++f) {
-            const int di = f == 0   ? 1
-                           : f == 1 ? -1
-                                    : 0,
-                      dj = f == 2   ? 1
-                           : f == 3 ? -1
-                                    : 0,
-                      dk = f == 4   ? 1
-                           : f == 5 ? -1
-                                    : 0;
-            const int a = i + di, b = j + dj, c = k + dk;
-            border = a >= 0 && b >= 0 && c >= 0 && a < nx_ && b < ny_ && c < nz_ && known[size_t(index(a, b, c))];
-          }
-          if (!border) continue;
-          for (const auto& o : unknown_offsets) {
-            const int a = i + o[0], b = j + o[1], c = k + o[2];
-            if (a < 0 || b < 0 || c < 0 || a >= nx_ || b >= ny_ || c >= nz_) continue;
-            dilated[size_t(index(a, b, c))] |= uint8_t(o[3]);
-          }
+}
+
+std::vector<uint8_t> GridPathPlanner::knownCells(const GridMap& map) const {
+  // The cells any leaf of the map (free or occupied) covers.
+  std::vector<uint8_t> known(blocked_.size(), 0);
+  for (auto it = map.tree().begin_leafs_bbx(
+                octomap::point3d(float(origin_.x()), float(origin_.y()), float(origin_.z())),
+                octomap::point3d(float(origin_.x() + nx_ * res_), float(origin_.y() + ny_ * res_),
+                                 float(origin_.z() + nz_ * res_))),
+            end = map.tree().end_leafs_bbx();
+       it != end; ++it) {
+    const Vec3 c(it.getX(), it.getY(), it.getZ());
+    const double h = 0.5 * it.getSize();
+    const int n = std::max(1, int(std::lround(it.getSize() / res_)));
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        for (int d = 0; d < n; ++d) {
+          int i, j, k;
+          if (cellOf(c - Vec3::Constant(h) + res_ * Vec3(a + 0.5, b + 0.5, d + 0.5), &i, &j, &k))
+            known[size_t(index(i, j, k))] = 1;
         }
-    blocked_ = std::move(dilated);
   }
+  return known;
+}
+
+void GridPathPlanner::blockUnknown(const GridMap& map) {
+  // Unknown cells are blocked, and those bordering known cells block their neighbourhood (the
+  // clearance is kept from unknown space too; the nearest unknown cell to a known one always
+  // borders known space).
+  const std::vector<uint8_t> known = knownCells(map);
+  const std::vector<std::array<int, 4>> unknown_offsets =
+      offsetsWithin(config_.unknown_clearance_m < 0 ? config_.clearance_m : config_.unknown_clearance_m);
+  static constexpr int kFaces[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  auto inside = [&](int a, int b, int c) { return a >= 0 && b >= 0 && c >= 0 && a < nx_ && b < ny_ && c < nz_; };
+  std::vector<uint8_t> dilated = blocked_;
+  for (int k = 0; k < nz_; ++k)
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i) {
+        if (known[size_t(index(i, j, k))]) continue;
+        dilated[size_t(index(i, j, k))] |= kBlocked | kHard;  // unknown itself
+        bool border = false;
+        for (int f = 0; f < 6 && !border; ++f) {
+          const int a = i + kFaces[f][0], b = j + kFaces[f][1], c = k + kFaces[f][2];
+          border = inside(a, b, c) && known[size_t(index(a, b, c))];
+        }
+        if (!border) continue;
+        for (const auto& o : unknown_offsets) {
+          const int a = i + o[0], b = j + o[1], c = k + o[2];
+          if (inside(a, b, c)) dilated[size_t(index(a, b, c))] |= uint8_t(o[3]);
+        }
+      }
+  blocked_ = std::move(dilated);
 }
 
 bool GridPathPlanner::passable(int i, int j, int k, const Passability& p) const {

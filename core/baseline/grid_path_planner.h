@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -75,6 +76,12 @@ class GridPathPlanner {
     double escape2 = 0.0;
   };
   bool passable(int i, int j, int k, const Passability& p) const;
+  // The steps of rebuild(): neighbourhood offsets within a clearance (with their flags), the
+  // occupied cells' neighbourhoods, the cells the map knows, unknown space blocked.
+  std::vector<std::array<int, 4>> offsetsWithin(double clearance_m) const;
+  void blockAroundOccupied(const GridMap& map);
+  std::vector<uint8_t> knownCells(const GridMap& map) const;
+  void blockUnknown(const GridMap& map);
   // A* over cells from `start` towards `goal`: the reached cell closest to the goal (the goal
   // itself when reached), the parent of every reached cell, the expansions.
   struct Search {
