@@ -94,24 +94,33 @@ double TrajectoryTracker::speedLimit(double s, double end_dist) const {
 }
 
 const TrajectoryReference& TrajectoryTracker::update(double dt) {
-  const auto& lim = config_.limits;
-  Vec3& p = ref_.position_m;
-  Vec3& v = ref_.velocity_mps;
-  Vec3& a = ref_.accel_mps2;
-  if (points_.empty()) points_ = {p}, headings_ = {std::nullopt}, cumulative_ = {0.0};
+  if (points_.empty()) points_ = {ref_.position_m}, headings_ = {std::nullopt}, cumulative_ = {0.0};
+  advanceProjection();
+  const Carrot carrot = desiredVelocity();
+  integrateTowards(carrot.v_des, dt);
+  const double yaw_err = steerHeading(dt);
+  const bool at_end = carrot.s >= cumulative_.back() && carrot.dist < 0.5;
+  finished_ = at_end && carrot.dist < config_.arrive_tolerance_m && ref_.velocity_mps.norm() < 0.05 &&
+              std::abs(yaw_err) < 0.02;
+  return ref_;
+}
 
+bool TrajectoryTracker::sharpAfter(size_t seg) const {
+  const size_t nseg = points_.size() - 1;
+  if (seg + 1 >= nseg) return false;
+  const Vec3 in = (points_[seg + 1] - points_[seg]).normalized();
+  const Vec3 out = (points_[seg + 2] - points_[seg + 1]).normalized();
+  return (in + out).norm() < 1.0;
+}
+
+void TrajectoryTracker::advanceProjection() {
   // Advance the projection of the reference onto the path (monotonic along the path). A rounded
   // corner never reaches the end of its segment, so the next segment takes over once the
   // reference crosses the corner's bisector plane. Sharp turns (> 120°, e.g. reversals) are not
   // rounded: the look-ahead stops at the vertex and the next segment starts once the reference
   // is there.
+  const Vec3& p = ref_.position_m;
   const size_t nseg = points_.size() - 1;
-  auto sharpAfter = [&](size_t seg) {
-    if (seg + 1 >= nseg) return false;
-    const Vec3 in = (points_[seg + 1] - points_[seg]).normalized();
-    const Vec3 out = (points_[seg + 2] - points_[seg + 1]).normalized();
-    return (in + out).norm() < 1.0;
-  };
   while (nseg > 0) {
     const Vec3& A = points_[segment_];
     const Vec3& B = points_[segment_ + 1];
@@ -131,23 +140,36 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
     }
     break;
   }
+}
 
+TrajectoryTracker::Carrot TrajectoryTracker::desiredVelocity() const {
   // Desired velocity: towards the look-ahead point, at the speed that can still brake for
   // every corner and the end; a proportional approach once the look-ahead reaches the end.
+  const auto& lim = config_.limits;
+  const Vec3& p = ref_.position_m;
+  const Vec3& v = ref_.velocity_mps;
   const double total = cumulative_.back();
   const double lookahead = config_.lookahead_base_m + config_.lookahead_per_speed_s * v.norm();
   const double s_limit = sharpAfter(segment_) ? cumulative_[segment_ + 1] : total;
-  const double s_carrot = std::min(s_proj_ + lookahead, s_limit);
-  const Vec3 to_carrot = pointAt(s_carrot) - p;
-  const double dist = to_carrot.norm();
+  Carrot c;
+  c.s = std::min(s_proj_ + lookahead, s_limit);
+  const Vec3 to_carrot = pointAt(c.s) - p;
+  c.dist = to_carrot.norm();
   // The limit is taken where the reference will be once its velocity has caught up
   // (first-order velocity lag plus acceleration build-up under the jerk limit).
   const double lag_s = 1.0 / config_.velocity_gain_per_s + lim.max_accel_mps2 / lim.max_jerk_mps3;
   double speed = speedLimit(s_proj_ + v.norm() * lag_s, (points_.back() - p).norm());
-  if (s_carrot >= s_limit) speed = std::min(speed, 1.2 * dist + 0.3 * (s_limit < total));
-  const Vec3 v_des = dist > 1e-9 ? Vec3(to_carrot / dist * speed) : Vec3::Zero();
+  if (c.s >= s_limit) speed = std::min(speed, 1.2 * c.dist + 0.3 * (s_limit < total));
+  c.v_des = c.dist > 1e-9 ? Vec3(to_carrot / c.dist * speed) : Vec3::Zero();
+  return c;
+}
 
+void TrajectoryTracker::integrateTowards(const Vec3& v_des, double dt) {
   // Jerk- and acceleration-limited double integrator towards v_des.
+  const auto& lim = config_.limits;
+  Vec3& p = ref_.position_m;
+  Vec3& v = ref_.velocity_mps;
+  Vec3& a = ref_.accel_mps2;
   Vec3 a_des = config_.velocity_gain_per_s * (v_des - v);
   if (a_des.norm() > lim.max_accel_mps2) a_des *= lim.max_accel_mps2 / a_des.norm();
   Vec3 da = a_des - a;
@@ -157,11 +179,14 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   v += a * dt;
   if (v.norm() > lim.max_speed_mps) v *= lim.max_speed_mps / v.norm();
   p += v * dt;
+}
 
+double TrajectoryTracker::steerHeading(double dt) {
   // Heading: the next waypoint's goal heading, else the direction of travel, else hold.
+  const auto& lim = config_.limits;
+  const Vec3& v = ref_.velocity_mps;
   const size_t next = std::min(segment_ + 1, points_.size() - 1);
   double target = ref_.yaw_rad;
-  const bool at_end = s_carrot >= total && dist < 0.5;
   if (headings_[next]) {
     target = *headings_[next];
   } else if (Vec2(v.x(), v.y()).norm() > config_.heading_min_speed_mps) {
@@ -174,9 +199,7 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   rate = std::clamp(rate, ref_.yaw_rate_radps - max_dr, ref_.yaw_rate_radps + max_dr);
   ref_.yaw_rate_radps = rate;
   ref_.yaw_rad = wrapAngle(ref_.yaw_rad + rate * dt);
-
-  finished_ = at_end && dist < config_.arrive_tolerance_m && v.norm() < 0.05 && std::abs(yaw_err) < 0.02;
-  return ref_;
+  return yaw_err;
 }
 
 }  // namespace msb

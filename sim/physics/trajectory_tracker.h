@@ -65,6 +65,17 @@ class TrajectoryTracker {
   // straight-line distance to the last point, used once the reference has overshot it).
   double speedLimit(double s_along, double end_dist) const;
   Vec3 pointAt(double s) const;
+  // The steps of update(): the projection advanced along the path; the look-ahead point and the
+  // velocity towards it; the jerk-limited integration; the heading (returns its error).
+  struct Carrot {
+    double s = 0.0, dist = 0.0;  // look-ahead arc length, distance to it
+    Vec3 v_des = Vec3::Zero();
+  };
+  bool sharpAfter(size_t seg) const;  // the turn after segment `seg` is sharper than 120°
+  void advanceProjection();
+  Carrot desiredVelocity() const;
+  void integrateTowards(const Vec3& v_des, double dt);
+  double steerHeading(double dt);
 
   TrajectoryTrackerConfig config_;
   TrajectoryReference ref_;
