@@ -27,12 +27,6 @@ OracleFeatureSource::OracleFeatureSource(const OracleFeatureConfig& config, cons
 }
 
 void OracleFeatureSource::sampleLandmarks(RngStream& rng) {
-  const double density = 1.0 / (config_.landmark_spacing_m * config_.landmark_spacing_m);
-  // Points on a surface of `area` m²: the expected count, rounded at random.
-  auto count = [&](double area) {
-    const double n = area * density;
-    return int(std::floor(n)) + (rng.uniform() < n - std::floor(n) ? 1 : 0);
-  };
   // Extent of the bounded shapes: ground planes carry landmarks over it plus a margin.
   Vec3 lo = Vec3::Constant(1e9), hi = Vec3::Constant(-1e9);
   for (const Shape& s : truth_.shapes()) {
@@ -43,72 +37,86 @@ void OracleFeatureSource::sampleLandmarks(RngStream& rng) {
   }
   lo.array() -= config_.ground_margin_m;
   hi.array() += config_.ground_margin_m;
-
+  // Every shape's surfaces, in shape order (the stream's draws follow it).
   for (const Shape& s : truth_.shapes()) {
     if (s.kind == ObstacleKind::kTextureless && !config_.textureless_landmarks) continue;
     if (s.kind == ObstacleKind::kThin && !config_.thin_landmarks) continue;
-    const Mat3 R = s.pose.linear();
-    auto add = [&](const Vec3& p_S, const Vec3& n_S) { landmarks_.push_back({s.pose * p_S, R * n_S}); };
     switch (s.type) {
-      case ShapeType::kBox: {
-        // Six faces: axis k at ±size_k, uniform over the other two axes.
-        const Vec3& a = s.size;
-        for (int k = 0; k < 3; ++k) {
-          const int u = (k + 1) % 3, v = (k + 2) % 3;
-          for (double sign : {-1.0, 1.0}) {
-            const int n = count(4.0 * a[u] * a[v]);
-            for (int i = 0; i < n; ++i) {
-              Vec3 p;
-              p[k] = sign * a[k];
-              p[u] = rng.uniform(-a[u], a[u]);
-              p[v] = rng.uniform(-a[v], a[v]);
-              add(p, sign * Vec3::Unit(k));
-            }
-          }
-        }
-        break;
-      }
-      case ShapeType::kCylinder: {
-        const double r = s.size.x(), h = s.size.z();
-        const int n_side = count(2.0 * M_PI * r * 2.0 * h);
-        for (int i = 0; i < n_side; ++i) {
-          const double phi = rng.uniform(0, 2 * M_PI);
-          const Vec3 n(std::cos(phi), std::sin(phi), 0);
-          add(Vec3(r * n.x(), r * n.y(), rng.uniform(-h, h)), n);
-        }
-        for (double sign : {-1.0, 1.0}) {
-          const int n_cap = count(M_PI * r * r);
-          for (int i = 0; i < n_cap; ++i) {
-            const double rho = r * std::sqrt(rng.uniform()), phi = rng.uniform(0, 2 * M_PI);
-            add(Vec3(rho * std::cos(phi), rho * std::sin(phi), sign * h), Vec3(0, 0, sign));
-          }
-        }
-        break;
-      }
-      case ShapeType::kSphere: {
-        const double r = s.size.x();
-        const int n = count(4.0 * M_PI * r * r);
-        for (int i = 0; i < n; ++i) {
-          Vec3 d = rng.normal3();
-          if (d.norm() < 1e-9) d = Vec3::UnitZ();
-          d.normalize();
-          add(r * d, d);
-        }
-        break;
-      }
-      case ShapeType::kHalfSpace: {
-        // A ground (or ceiling) plane: landmarks over the objects' xy extent, on the plane.
-        const Vec3 n_W = R.col(2), p0 = s.pose.translation();
-        if (std::abs(n_W.z()) < 0.5 || (hi.x() < lo.x())) break;
-        const int n = count((hi.x() - lo.x()) * (hi.y() - lo.y()));
-        for (int i = 0; i < n; ++i) {
-          const double x = rng.uniform(lo.x(), hi.x()), y = rng.uniform(lo.y(), hi.y());
-          const double z = p0.z() - (n_W.x() * (x - p0.x()) + n_W.y() * (y - p0.y())) / n_W.z();
-          landmarks_.push_back({Vec3(x, y, z), n_W});
-        }
-        break;
+      case ShapeType::kBox: sampleBox(s, rng); break;
+      case ShapeType::kCylinder: sampleCylinder(s, rng); break;
+      case ShapeType::kSphere: sampleSphere(s, rng); break;
+      case ShapeType::kHalfSpace: samplePlane(s, lo, hi, rng); break;
+    }
+  }
+}
+
+int OracleFeatureSource::landmarkCount(double area, RngStream& rng) const {
+  // Points on a surface of `area` m²: the expected count, rounded at random.
+  const double density = 1.0 / (config_.landmark_spacing_m * config_.landmark_spacing_m);
+  const double n = area * density;
+  return int(std::floor(n)) + (rng.uniform() < n - std::floor(n) ? 1 : 0);
+}
+
+void OracleFeatureSource::addLandmark(const Shape& s, const Vec3& p_S, const Vec3& n_S) {
+  landmarks_.push_back({s.pose * p_S, s.pose.linear() * n_S});
+}
+
+void OracleFeatureSource::sampleBox(const Shape& s, RngStream& rng) {
+  // Six faces: axis k at ±size_k, uniform over the other two axes.
+  const Vec3& a = s.size;
+  for (int k = 0; k < 3; ++k) {
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    for (double sign : {-1.0, 1.0}) {
+      const int n = landmarkCount(4.0 * a[u] * a[v], rng);
+      for (int i = 0; i < n; ++i) {
+        Vec3 p;
+        p[k] = sign * a[k];
+        p[u] = rng.uniform(-a[u], a[u]);
+        p[v] = rng.uniform(-a[v], a[v]);
+        addLandmark(s, p, sign * Vec3::Unit(k));
       }
     }
+  }
+}
+
+void OracleFeatureSource::sampleCylinder(const Shape& s, RngStream& rng) {
+  // The side, then the two caps.
+  const double r = s.size.x(), h = s.size.z();
+  const int n_side = landmarkCount(2.0 * M_PI * r * 2.0 * h, rng);
+  for (int i = 0; i < n_side; ++i) {
+    const double phi = rng.uniform(0, 2 * M_PI);
+    const Vec3 n(std::cos(phi), std::sin(phi), 0);
+    addLandmark(s, Vec3(r * n.x(), r * n.y(), rng.uniform(-h, h)), n);
+  }
+  for (double sign : {-1.0, 1.0}) {
+    const int n_cap = landmarkCount(M_PI * r * r, rng);
+    for (int i = 0; i < n_cap; ++i) {
+      const double rho = r * std::sqrt(rng.uniform()), phi = rng.uniform(0, 2 * M_PI);
+      addLandmark(s, Vec3(rho * std::cos(phi), rho * std::sin(phi), sign * h), Vec3(0, 0, sign));
+    }
+  }
+}
+
+void OracleFeatureSource::sampleSphere(const Shape& s, RngStream& rng) {
+  const double r = s.size.x();
+  const int n = landmarkCount(4.0 * M_PI * r * r, rng);
+  for (int i = 0; i < n; ++i) {
+    Vec3 d = rng.normal3();
+    if (d.norm() < 1e-9) d = Vec3::UnitZ();
+    d.normalize();
+    addLandmark(s, r * d, d);
+  }
+}
+
+void OracleFeatureSource::samplePlane(const Shape& s, const Vec3& lo, const Vec3& hi, RngStream& rng) {
+  // A ground (or ceiling) plane: landmarks over the objects' xy extent, on the plane.
+  const Vec3 n_W = s.pose.linear().col(2), p0 = s.pose.translation();
+  if (std::abs(n_W.z()) < 0.5 || (hi.x() < lo.x())) return;
+  const int n = landmarkCount((hi.x() - lo.x()) * (hi.y() - lo.y()), rng);
+  for (int i = 0; i < n; ++i) {
+    const double x = rng.uniform(lo.x(), hi.x()), y = rng.uniform(lo.y(), hi.y());
+    const double z = p0.z() - (n_W.x() * (x - p0.x()) + n_W.y() * (y - p0.y())) / n_W.z();
+    landmarks_.push_back({Vec3(x, y, z), n_W});
   }
 }
 

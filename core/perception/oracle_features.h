@@ -58,6 +58,13 @@ class OracleFeatureSource final : public FeatureSource {
     Vec3 normal_W;  // outward surface normal
   };
   void sampleLandmarks(RngStream& rng);
+  // The steps of sampleLandmarks(): a surface's landmark count, one landmark, each shape type.
+  int landmarkCount(double area, RngStream& rng) const;
+  void addLandmark(const Shape& s, const Vec3& p_S, const Vec3& n_S);
+  void sampleBox(const Shape& s, RngStream& rng);
+  void sampleCylinder(const Shape& s, RngStream& rng);
+  void sampleSphere(const Shape& s, RngStream& rng);
+  void samplePlane(const Shape& s, const Vec3& lo, const Vec3& hi, RngStream& rng);
   bool visible(const Landmark& l, const Pose& T_W_C, Vec2* pixel) const;
 
   OracleFeatureConfig config_;
