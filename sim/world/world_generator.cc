@@ -149,11 +149,23 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
 
 // Carves the cave: solid rock everywhere in the footprint except chambers and tunnels, and a
 // ceiling over each carved cell at its height. Rectangles of equal cells are merged into boxes.
-void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
-  constexpr double kSkin = 0.02;  // thickness of the visual skins
-  const int nx = int(std::ceil((cave.max.x() - cave.min.x()) / cave.cell_m));
-  const int ny = int(std::ceil((cave.max.y() - cave.min.y()) / cave.cell_m));
-  std::vector<double> height(size_t(nx) * ny, 0.0);  // 0 = solid, else ceiling height
+constexpr double kCaveSkin = 0.02;  // thickness of the cave's visual skins
+
+// The cave's plan: cells of cell_m, each solid (0) or carved to a ceiling height.
+struct CaveGrid {
+  int nx = 0, ny = 0;
+  std::vector<double> height;  // 0 = solid, else ceiling height
+  double at(int i, int j) const { return (i < 0 || j < 0 || i >= nx || j >= ny) ? 0.0 : height[size_t(j) * nx + i]; }
+};
+
+// Carves the chambers and tunnels: a cell takes the highest ceiling of those covering its centre.
+CaveGrid carveCave(const CaveSpec& cave) {
+  CaveGrid g;
+  g.nx = int(std::ceil((cave.max.x() - cave.min.x()) / cave.cell_m));
+  g.ny = int(std::ceil((cave.max.y() - cave.min.y()) / cave.cell_m));
+  g.height.assign(size_t(g.nx) * g.ny, 0.0);
+  const int nx = g.nx, ny = g.ny;
+  std::vector<double>& height = g.height;
   auto centre = [&](int i, int j) {
     return Vec2(cave.min.x() + (i + 0.5) * cave.cell_m, cave.min.y() + (j + 0.5) * cave.cell_m);
   };
@@ -169,6 +181,15 @@ void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
         if ((t.from + u * ab - c).norm() <= 0.5 * t.width_m) h = std::max(h, t.ceiling_m);
       }
     }
+  return g;
+}
+
+// Rock boxes over the solid cells and above the carved ones, merged into rectangles of equal
+// height; a visible skin under every ceiling.
+void buildRockAndCeilings(const CaveSpec& cave, const CaveGrid& g, MjcfWorldBuilder& b) {
+  constexpr double kSkin = kCaveSkin;
+  const int nx = g.nx, ny = g.ny;
+  const std::vector<double>& height = g.height;
   // Greedy rectangle merging of cells with equal height (rows first, then extend downwards).
   std::vector<bool> used(height.size(), false);
   int rock = 0, ceiling = 0;
@@ -209,18 +230,16 @@ void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
                         cave.texture);
       }
     }
+}
 
+void buildWallSkins(const CaveSpec& cave, const CaveGrid& g, MjcfWorldBuilder& b) {
+  constexpr double kSkin = kCaveSkin;
+  const int nx = g.nx, ny = g.ny;
   // Wall skins: wherever a carved cell borders rock (or a lower ceiling), a thin textured slab
   // just inside the rock. Drawing only these faces, not the rock boxes, avoids rendering hidden
   // faces and overdraw. Faces along one boundary line with equal heights are merged.
-  struct Face {
-    int axis, sign, line;
-    double zlo, zhi;
-  };
   std::map<std::tuple<int, int, int, double, double>, std::vector<int>> runs;
-  auto heightAt = [&](int i, int j) {
-    return (i < 0 || j < 0 || i >= nx || j >= ny) ? 0.0 : height[size_t(j) * nx + i];
-  };
+  auto heightAt = [&](int i, int j) { return g.at(i, j); };
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const double h = heightAt(i, j);
@@ -257,6 +276,12 @@ void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
       a = e + 1;
     }
   }
+}
+
+void buildCave(const CaveSpec& cave, MjcfWorldBuilder& b) {
+  const CaveGrid g = carveCave(cave);
+  buildRockAndCeilings(cave, g, b);
+  buildWallSkins(cave, g, b);
 }
 
 // Places the objects of a world spec one by one (in spec order, drawing from one placement
