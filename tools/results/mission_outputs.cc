@@ -24,20 +24,13 @@ nlohmann::json stagesJson(const StageTimes& s, double per) {
 }
 }  // namespace
 
-nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, const WorldTruth* truth) {
-  const FlightResult& f = r.flight;
-  nlohmann::json j;
-  j["name"] = spec.name;
-  j["status"] = runStatusName(f.status);
-  j["seed"] = spec.flight.seed;
-  j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
-  j["method"] = spec.method.type;
-  j["switches"] = spec.method.switches;
-  j["duration_s"] = spec.flight.duration_s;
-  j["sim_time_s"] = f.sim_time_s;
+namespace {
+
+// metrics.json → coverage: the areas, the box's explorable columns, the longest stretch without gain.
+nlohmann::json coverageJson(const MissionResult& r) {
   const double cell2 = r.columns.cellM() * r.columns.cellM();
   const size_t in_box = r.columns.countInside(r.exploration_box.min.head<2>(), r.exploration_box.max.head<2>());
-  j["coverage"] = {
+  return {
       {"area_m2", r.columns.areaM2()},
       {"area_box_m2", double(in_box) * cell2},
       {"box_explorable_columns", r.box_explorable_columns},
@@ -54,52 +47,80 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
       {"area_true_frame_m2", r.columns_gt.areaM2()},
       {"column_size_m", r.columns.cellM()},
       {"exploration_box", nlohmann::json{{"min", vec(r.exploration_box.min)}, {"max", vec(r.exploration_box.max)}}}};
-  if (f.collision) {
-    const auto& c = *f.collision;
-    j["collision"] = {{"t_s", c.t_s},
+}
+
+// metrics.json → collision: where, what it hit and how it looks to the front end, the audit.
+nlohmann::json collisionJson(const FlightResult& f, const MissionResult& r, const WorldTruth* truth) {
+  if (!f.collision) return nullptr;
+  const auto& c = *f.collision;
+  nlohmann::json j = {{"t_s", c.t_s},
                       {"vehicle_position_m", vec(c.vehicle_position_m)},
                       {"contact_position_m", vec(c.contact_position_m)},
                       {"vehicle_geom", c.vehicle_geom},
                       {"world_geom", c.world_geom}};
-    // The object hit and what it looks like to the front end (report: collisions by kind).
-    const Shape* hit = truth ? truth->shapeNamed(c.world_geom) : nullptr;
-    j["collision"]["object"] =
-        hit ? nlohmann::json(hit->object.empty() ? hit->name : hit->object) : nlohmann::json(nullptr);
-    j["collision"]["kind"] = hit ? nlohmann::json(obstacleKindName(hit->kind)) : nlohmann::json(nullptr);
-    if (r.collision_audit) {
-      const CollisionAudit& a = *r.collision_audit;
-      j["collision"]["audit"] = {
-          {"cause", a.cause},
-          {"slam_points_on_object", a.slam_points_on_object},
-          {"slam_points_on_part", a.slam_points_on_part},
-          {"map_points_on_object", a.map_points_on_object},
-          {"nearest_map_point_m",
-           a.nearest_map_point_m < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.nearest_map_point_m)},
-          {"inside_free_space", a.inside_free_space},
-          {"free_space_since_s",
-           a.free_space_since_s ? nlohmann::json(*a.free_space_since_s) : nlohmann::json(nullptr)},
-          {"carved_clearance_m",
-           a.carved_clearance_m ? nlohmann::json(*a.carved_clearance_m) : nlohmann::json(nullptr)},
-          {"drift_since_carved_m",
-           a.drift_since_carved_m ? nlohmann::json(*a.drift_since_carved_m) : nlohmann::json(nullptr)},
-          {"vio_drift_m", a.vio_drift_m},
-          {"commanded_speed_mps", a.commanded_speed_mps},
-          {"since_last_path_s",
-           a.since_last_path_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.since_last_path_s)}};
-    }
-  } else {
-    j["collision"] = nullptr;
+  // The object hit and what it looks like to the front end (report: collisions by kind).
+  const Shape* hit = truth ? truth->shapeNamed(c.world_geom) : nullptr;
+  j["object"] = hit ? nlohmann::json(hit->object.empty() ? hit->name : hit->object) : nlohmann::json(nullptr);
+  j["kind"] = hit ? nlohmann::json(obstacleKindName(hit->kind)) : nlohmann::json(nullptr);
+  if (r.collision_audit) {
+    const CollisionAudit& a = *r.collision_audit;
+    j["audit"] = {
+        {"cause", a.cause},
+        {"slam_points_on_object", a.slam_points_on_object},
+        {"slam_points_on_part", a.slam_points_on_part},
+        {"map_points_on_object", a.map_points_on_object},
+        {"nearest_map_point_m",
+         a.nearest_map_point_m < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.nearest_map_point_m)},
+        {"inside_free_space", a.inside_free_space},
+        {"free_space_since_s", a.free_space_since_s ? nlohmann::json(*a.free_space_since_s) : nlohmann::json(nullptr)},
+        {"carved_clearance_m", a.carved_clearance_m ? nlohmann::json(*a.carved_clearance_m) : nlohmann::json(nullptr)},
+        {"drift_since_carved_m",
+         a.drift_since_carved_m ? nlohmann::json(*a.drift_since_carved_m) : nlohmann::json(nullptr)},
+        {"vio_drift_m", a.vio_drift_m},
+        {"commanded_speed_mps", a.commanded_speed_mps},
+        {"since_last_path_s", a.since_last_path_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(a.since_last_path_s)}};
   }
+  return j;
+}
+
+// metrics.json → map_accuracy (null: no accuracy measured).
+nlohmann::json mapAccuracyJson(const MapAccuracy& a) {
+  auto share = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {{"obstacles", a.obstacles},
+          {"obstacles_near_surface_share", share(a.nearSurfaceShare())},
+          {"free_elements", a.free_elements},
+          {"free_really_free_share", share(a.reallyFreeShare())}};
+}
+
+// metrics.json → wall_ms_per_sim_second: wall time per simulated second, by stage; "other" =
+// physics, controller, IMU, VIO, records.
+nlohmann::json wallPerSimSecondJson(const FlightResult& f, const StageTimes& s) {
+  const double sim = std::max(f.sim_time_s, 1e-9);
+  nlohmann::json st = stagesJson(s, sim);
+  const double known = s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
+  st["other"] = (f.wall_time_s * 1000.0 - known) / sim;
+  st["total"] = f.wall_time_s * 1000.0 / sim;
+  return st;
+}
+
+}  // namespace
+
+nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, const WorldTruth* truth) {
+  const FlightResult& f = r.flight;
+  nlohmann::json j;
+  j["name"] = spec.name;
+  j["status"] = runStatusName(f.status);
+  j["seed"] = spec.flight.seed;
+  j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
+  j["method"] = spec.method.type;
+  j["switches"] = spec.method.switches;
+  j["duration_s"] = spec.flight.duration_s;
+  j["sim_time_s"] = f.sim_time_s;
+  j["coverage"] = coverageJson(r);
+  j["collision"] = collisionJson(f, r, truth);
   // The front-end error profile and the final map's accuracy (truth side; core/eval).
   if (r.frontend) j["frontend_profile"] = frontEndProfileJson(*r.frontend);
-  if (r.map_accuracy) {
-    const MapAccuracy& a = *r.map_accuracy;
-    auto share = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
-    j["map_accuracy"] = {{"obstacles", a.obstacles},
-                         {"obstacles_near_surface_share", share(a.nearSurfaceShare())},
-                         {"free_elements", a.free_elements},
-                         {"free_really_free_share", share(a.reallyFreeShare())}};
-  }
+  if (r.map_accuracy) j["map_accuracy"] = mapAccuracyJson(*r.map_accuracy);
   j["vio_lost_at_s"] = f.vio_lost_at_s >= 0 ? nlohmann::json(f.vio_lost_at_s) : nlohmann::json(nullptr);
   j["distance_flown_m"] = f.distance_flown_m;
   j["perception"] = {{"frames", f.perception_frames},
@@ -111,14 +132,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   j["mujoco_warnings"] = f.mujoco_warnings;
   j["wall_time_s"] = f.wall_time_s;
   j["real_time_factor"] = f.realTimeFactor();
-  // Wall time per simulated second, by stage; "other" = physics, controller, IMU, VIO, records.
-  const double sim = std::max(f.sim_time_s, 1e-9);
-  nlohmann::json st = stagesJson(r.stages, sim);
-  const auto& s = r.stages;
-  const double known = s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
-  st["other"] = (f.wall_time_s * 1000.0 - known) / sim;
-  st["total"] = f.wall_time_s * 1000.0 / sim;
-  j["wall_ms_per_sim_second"] = st;
+  j["wall_ms_per_sim_second"] = wallPerSimSecondJson(f, r.stages);
   j["map_update_ms"] = {{"updates", r.map_update_ms.size()},
                         {"median", percentile(r.map_update_ms, 0.5)},
                         {"p99", percentile(r.map_update_ms, 0.99)},
