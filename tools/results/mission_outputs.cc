@@ -242,9 +242,28 @@ double niceStepM(double extent_m) {
 
 }  // namespace
 
-void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth) {
-  // Extent: the box, the trajectory and the map.
-  Vec2 lo = r.exploration_box.min.head<2>(), hi = r.exploration_box.max.head<2>();
+namespace {
+
+// The top-down picture's frame: the metres it spans, its scale, the image and the mapping.
+struct TopdownCanvas {
+  Vec2 lo, hi;
+  double mpp = 0.05;  // metres per pixel
+  int header = 88;    // legend band above the map
+  int w = 0, h = 0;
+  double step = 10.0;  // grid spacing (m)
+  cv::Mat img;
+  cv::Point px(const Vec3& p) const {
+    return cv::Point(int((p.x() - lo.x()) / mpp), header + int((hi.y() - p.y()) / mpp));
+  }
+  cv::Point px2(const Vec2& p) const { return px(Vec3(p.x(), p.y(), 0)); }
+};
+
+// Extent: the box, the trajectory and the map; a white image with room for the legend.
+TopdownCanvas topdownCanvas(const MissionResult& r) {
+  TopdownCanvas c;
+  Vec2& lo = c.lo;
+  Vec2& hi = c.hi;
+  lo = r.exploration_box.min.head<2>(), hi = r.exploration_box.max.head<2>();
   if (!(hi.array() > lo.array()).all() || (hi - lo).norm() > 1e5) lo = hi = Vec2::Zero();
   auto grow = [&](const Vec2& p, double m) {
     lo = lo.cwiseMin(Vec2(p.array() - m));
@@ -252,15 +271,20 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
   };
   for (const auto& t : r.flight.trajectory) grow(t.position_m.head<2>(), 5), grow(t.est_position_m.head<2>(), 5);
   for (const auto& d : r.final_map.free_space) grow(d.centre.head<2>(), d.radius);
-  const double mpp = std::max({0.05, (hi.x() - lo.x()) / 1600.0, (hi.y() - lo.y()) / 1600.0});
-  const int header = 88;  // legend band above the map
-  const int w = std::max(640, int((hi.x() - lo.x()) / mpp) + 1), h = int((hi.y() - lo.y()) / mpp) + 1 + header;
-  cv::Mat img(h, w, CV_8UC3, cv::Scalar(255, 255, 255));
-  auto px = [&](const Vec3& p) { return cv::Point(int((p.x() - lo.x()) / mpp), header + int((hi.y() - p.y()) / mpp)); };
-  auto px2 = [&](const Vec2& p) { return px(Vec3(p.x(), p.y(), 0)); };
-  if (truth) drawTruthFootprints(img, *truth, px);
+  c.mpp = std::max({0.05, (hi.x() - lo.x()) / 1600.0, (hi.y() - lo.y()) / 1600.0});
+  c.w = std::max(640, int((hi.x() - lo.x()) / c.mpp) + 1);
+  c.h = int((hi.y() - lo.y()) / c.mpp) + 1 + c.header;
+  c.img = cv::Mat(c.h, c.w, CV_8UC3, cv::Scalar(255, 255, 255));
+  c.step = niceStepM(std::max(hi.x() - lo.x(), hi.y() - lo.y()));
+  return c;
+}
+
+void drawGrid(TopdownCanvas& canvas) {
+  cv::Mat& img = canvas.img;
+  const Vec2 lo = canvas.lo, hi = canvas.hi;
+  const double step = canvas.step;
+  auto px2 = [&](const Vec2& p) { return canvas.px2(p); };
   // Metre grid (faint) with labels along the left and top edges of the map.
-  const double step = niceStepM(std::max(hi.x() - lo.x(), hi.y() - lo.y()));
   for (double x = std::ceil(lo.x() / step) * step; x <= hi.x(); x += step) {
     cv::line(img, px2(Vec2(x, lo.y())), px2(Vec2(x, hi.y())), cv::Scalar(225, 225, 225), 1);
     cv::putText(img, std::to_string(int(std::lround(x))), px2(Vec2(x, hi.y())) + cv::Point(2, 12),
@@ -271,7 +295,13 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
     cv::putText(img, std::to_string(int(std::lround(y))), px2(Vec2(lo.x(), y)) + cv::Point(2, -3),
                 cv::FONT_HERSHEY_SIMPLEX, 0.35, cv::Scalar(110, 110, 110), 1, cv::LINE_AA);
   }
+}
 
+void drawFreeSpace(TopdownCanvas& canvas, const MissionResult& r) {
+  cv::Mat& img = canvas.img;
+  const double mpp = canvas.mpp;
+  auto px = [&](const Vec3& p) { return canvas.px(p); };
+  auto px2 = [&](const Vec2& p) { return canvas.px2(p); };
   // Explored columns (light green squares around their nodes), spheres (blue, translucent).
   const double half = 0.5 * r.columns.cellM();
   for (const auto& c : r.columns.columns()) {
@@ -291,6 +321,11 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
   }
   cv::addWeighted(discs, 0.35, img, 0.65, 0, img);
   cv::rectangle(img, px(r.exploration_box.min), px(r.exploration_box.max), cv::Scalar(0, 0, 0), 1);
+}
+
+void drawMapMarks(TopdownCanvas& canvas, const MissionResult& r) {
+  cv::Mat& img = canvas.img;
+  auto px = [&](const Vec3& p) { return canvas.px(p); };
   // Obstacle points: near the ground (z < 0.5 m) light grey, above it black.
   for (const auto& p : r.final_map.obstacles)
     if (p.z() < 0.5) cv::circle(img, px(p), 1, cv::Scalar(185, 185, 185), -1);
@@ -303,6 +338,11 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
   };
   for (const auto& v : r.final_map.visited) arrow(v, cv::Scalar(140, 140, 140));
   for (const auto& v : r.final_map.viewpoints) arrow(v, cv::Scalar(0, 160, 255));
+}
+
+void drawTrajectories(TopdownCanvas& canvas, const MissionResult& r) {
+  cv::Mat& img = canvas.img;
+  auto px = [&](const Vec3& p) { return canvas.px(p); };
   // Trajectories: estimate (orange) under truth (red).
   const auto& tr = r.flight.trajectory;
   for (size_t i = 1; i < tr.size(); ++i)
@@ -318,6 +358,11 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
     const cv::Point c = px(r.flight.collision->vehicle_position_m);
     cv::drawMarker(img, c, cv::Scalar(0, 0, 255), cv::MARKER_TILTED_CROSS, 24, 3);
   }
+}
+
+void drawLegend(TopdownCanvas& canvas, const MissionResult& r, bool truth) {
+  cv::Mat& img = canvas.img;
+  const int w = canvas.w, header = canvas.header;
   char text[200];
   std::snprintf(text, sizeof(text), "A = %.0f m2 (%zu columns), t = %.0f s, %s", r.columns.areaM2(), r.columns.count(),
                 r.flight.sim_time_s, runStatusName(r.flight.status));
@@ -340,13 +385,32 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
     cv::putText(img,
                 "faint: true obstacles (grey textured, orange textureless, magenta thin); grid and labels in metres",
                 cv::Point(8, 78), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+}
+
+void drawScaleBar(TopdownCanvas& canvas) {
+  cv::Mat& img = canvas.img;
+  const int w = canvas.w, h = canvas.h;
+  const double step = canvas.step, mpp = canvas.mpp;
   // Scale bar (bottom right) and the grid's unit.
   const int bar = int(step / mpp), bx = w - bar - 20, by = h - 16;
   cv::rectangle(img, cv::Point(bx - 6, by - 22), cv::Point(w - 8, h - 4), cv::Scalar(255, 255, 255), -1);
   cv::line(img, cv::Point(bx, by), cv::Point(bx + bar, by), cv::Scalar(0, 0, 0), 3);
   cv::putText(img, std::to_string(int(step)) + " m", cv::Point(bx, by - 7), cv::FONT_HERSHEY_SIMPLEX, 0.45,
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  writeFileAtomic(file, encodePng(viewOf(img)));
+}
+
+}  // namespace
+
+void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth) {
+  TopdownCanvas c = topdownCanvas(r);
+  if (truth) drawTruthFootprints(c.img, *truth, [&](const Vec3& p) { return c.px(p); });
+  drawGrid(c);
+  drawFreeSpace(c, r);
+  drawMapMarks(c, r);
+  drawTrajectories(c, r);
+  drawLegend(c, r, truth != nullptr);
+  drawScaleBar(c);
+  writeFileAtomic(file, encodePng(viewOf(c.img)));
 }
 
 std::string configYamlText(const std::string& scenario_file, bool with_overrides, const std::string& effective_yaml) {
