@@ -54,97 +54,149 @@ double footprintRadius(const ObjectGroupSpec& g, const Vec3& s) {
 }
 
 // Emits the solids of one object. `detail` draws spec-only randomness (rubble, tilt).
+// One object to build: its group, id, base pose, size, heading, detail stream and the builder.
+struct ObjectBuild {
+  const ObjectGroupSpec& g;
+  const std::string& id;
+  const Pose& base;
+  const Vec3& s;
+  double yaw;
+  RngStream& detail;
+  MjcfWorldBuilder& b;
+};
+
+// A building or tower: whole, with a burned part, or collapsed (block, slab, rubble).
+void buildBuilding(const ObjectBuild& o) {
+  [[maybe_unused]] auto& [g, id, base, s, yaw, detail, b] = o;
+  [[maybe_unused]] const std::string& k = g.kind;
+  [[maybe_unused]] const auto T = ObstacleKind::kTextured;
+  const Look look = Look::textured(pick(g.texture, k == "tower" ? "concrete" : "facade"), "gravel");
+  if (g.variant == "burned") {
+    // A textured part and a burned, textureless part along the building's length.
+    const double lb = g.burned_fraction * s.x(), lt = s.x() - lb;
+    b.addBox(id + "_intact", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lt, 0, 0.5 * s.z())),
+             Vec3(0.5 * lt, 0.5 * s.y(), 0.5 * s.z()), T, look);
+    b.addBox(id + "_burned", id, local(base, Vec3(0.5 * s.x() - 0.5 * lb, 0, 0.45 * s.z())),
+             Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
+  } else if (isCollapsed(g)) {
+    // A lower remaining block, a slab leaning against it, and rubble. `collapsed_burned`: the
+    // far end of the block (burned_fraction of its length, away from the slab) is burned,
+    // flat and textureless.
+    const double block_l = 0.7 * s.x();
+    const double lb = g.variant == "collapsed_burned" ? g.burned_fraction * block_l : 0.0;
+    b.addBox(id + "_block", id, local(base, Vec3(-0.15 * s.x() + 0.5 * lb, 0, 0.3 * s.z())),
+             Vec3(0.5 * (block_l - lb), 0.5 * s.y(), 0.3 * s.z()), T, look);
+    if (lb > 0.0)
+      b.addBox(id + "_burned", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lb, 0, 0.3 * s.z())),
+               Vec3(0.5 * lb, 0.5 * s.y(), 0.3 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
+    const double pitch = detail.uniform(25, 40) * kDeg;
+    const Mat3 R = Eigen::AngleAxisd(-pitch, Vec3::UnitY()).toRotationMatrix();
+    b.addBox(
+        id + "_slab", id,
+        local(base, Vec3(0.2 * s.x() + 0.25 * s.z() * std::cos(pitch), 0, 0.25 * s.z() * std::sin(pitch) + 0.2), R),
+        Vec3(0.25 * s.z(), 0.45 * s.y(), 0.2), T, Look::textured("concrete"));
+    for (int r = 0; r < 4; ++r) {
+      const Vec3 half(detail.uniform(0.4, 1.2), detail.uniform(0.4, 1.0), detail.uniform(0.3, 0.7));
+      const Vec3 off(detail.uniform(0.25, 0.5) * s.x(), detail.uniform(-0.4, 0.4) * s.y(), 0.5 * half.z());
+      const Mat3 Rr = Eigen::AngleAxisd(detail.uniform(0, M_PI), Vec3::UnitZ()).toRotationMatrix();
+      b.addBox(id + "_rubble" + std::to_string(r), id, local(base, off, Rr), half, T, Look::textured("concrete"));
+    }
+  } else {
+    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T, look);
+  }
+}
+
+// A house: brick walls and a gable roof of two slabs (30° pitch) meeting at the ridge.
+void buildHouse(const ObjectBuild& o) {
+  [[maybe_unused]] auto& [g, id, base, s, yaw, detail, b] = o;
+  [[maybe_unused]] const std::string& k = g.kind;
+  [[maybe_unused]] const auto T = ObstacleKind::kTextured;
+  // Brick walls and a gable roof of two slabs (30° pitch) meeting at the ridge.
+  b.addBox(id + "_walls", id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T,
+           Look::textured(pick(g.texture, "bricks")));
+  const double pitch = 30 * kDeg, half_w = 0.5 * s.y() + 0.4;
+  const double slab = half_w / std::cos(pitch);
+  for (int side : {1, -1}) {
+    const Mat3 R = Eigen::AngleAxisd(side * pitch, Vec3::UnitX()).toRotationMatrix();
+    const Vec3 c(0, -side * 0.5 * half_w, s.z() + 0.5 * half_w * std::tan(pitch));
+    b.addBox(id + (side > 0 ? "_roof_a" : "_roof_b"), id, local(base, c, R),
+             Vec3(0.5 * s.x() + 0.3, 0.5 * slab, 0.12), T, Look::textured("wood"));
+  }
+}
+
+// A tree: a bark trunk up into a foliage canopy.
+void buildTree(const ObjectBuild& o) {
+  [[maybe_unused]] auto& [g, id, base, s, yaw, detail, b] = o;
+  [[maybe_unused]] const std::string& k = g.kind;
+  [[maybe_unused]] const auto T = ObstacleKind::kTextured;
+  // Bark trunk up into a foliage canopy (sphere of diameter size.x, top at size.z).
+  const double r = 0.5 * s.x(), trunk_r = std::max(0.12, 0.05 * s.x());
+  const double trunk_h = s.z() - r;
+  b.addCylinder(id + "_trunk", id, local(base, Vec3(0, 0, 0.5 * trunk_h)), trunk_r, 0.5 * trunk_h, T,
+                Look::textured("bark"));
+  b.addSphere(id + "_canopy", id, base * Vec3(0, 0, s.z() - r), r, T, Look::textured(pick(g.texture, "foliage")));
+}
+
+// A rod, pole or pillar, tilted.
+void buildRod(const ObjectBuild& o) {
+  [[maybe_unused]] auto& [g, id, base, s, yaw, detail, b] = o;
+  [[maybe_unused]] const std::string& k = g.kind;
+  [[maybe_unused]] const auto T = ObstacleKind::kTextured;
+  // Rods at ruins lean outwards (`yaw` is the ruin's outward normal there), others anywhere.
+  const double tilt = detail.uniform(0, g.tilt_max_deg) * kDeg;
+  const double dir =
+      g.near == "ruins" ? yaw + detail.uniform(-0.25 * M_PI, 0.25 * M_PI) : detail.uniform(-M_PI, M_PI);
+  const Mat3 R = (Eigen::AngleAxisd(dir, Vec3::UnitZ()) * Eigen::AngleAxisd(tilt, Vec3::UnitY())).toRotationMatrix();
+  Pose T_axis = base;
+  T_axis.linear() = R;
+  T_axis.translation() = base.translation() + R * Vec3(0, 0, 0.5 * s.z());
+  const bool thin = k == "rod";
+  b.addCylinder(id, id, T_axis, s.x(), 0.5 * s.z(), thin ? ObstacleKind::kThin : T,
+                thin ? Look::flat(0.55) : Look::textured(pick(g.texture, k == "pillar" ? "rock" : "concrete")));
+}
+
+// A rock: a tilted box.
+void buildRock(const ObjectBuild& o) {
+  [[maybe_unused]] auto& [g, id, base, s, yaw, detail, b] = o;
+  [[maybe_unused]] const std::string& k = g.kind;
+  [[maybe_unused]] const auto T = ObstacleKind::kTextured;
+  const Mat3 R = (Eigen::AngleAxisd(detail.uniform(-1, 1) * g.tilt_max_deg * kDeg, Vec3::UnitX()) *
+                  Eigen::AngleAxisd(detail.uniform(-1, 1) * g.tilt_max_deg * kDeg, Vec3::UnitY()))
+                     .toRotationMatrix();
+  b.addBox(id, id, local(base, Vec3(0, 0, 0.3 * s.z()), R), 0.5 * s, T, Look::textured(pick(g.texture, "rock")));
+}
+
+// A gazebo: four posts and a roof slab.
+void buildGazebo(const ObjectBuild& o) {
+  [[maybe_unused]] auto& [g, id, base, s, yaw, detail, b] = o;
+  [[maybe_unused]] const std::string& k = g.kind;
+  [[maybe_unused]] const auto T = ObstacleKind::kTextured;
+  // Four posts and a roof slab.
+  const std::string tex = pick(g.texture, "wood");
+  int p = 0;
+  for (double sx : {-0.5, 0.5})
+    for (double sy : {-0.5, 0.5})
+      b.addCylinder(id + "_post" + std::to_string(p++), id, local(base, Vec3(sx * s.x(), sy * s.y(), 0.5 * s.z())),
+                    0.1, 0.5 * s.z(), T, Look::textured(tex));
+  b.addBox(id + "_roof", id, local(base, Vec3(0, 0, s.z() + 0.15)), Vec3(0.5 * s.x() + 0.4, 0.5 * s.y() + 0.4, 0.15),
+           T, Look::textured(tex));
+}
+
 void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy, double yaw, const Vec3& s,
                  RngStream& detail, MjcfWorldBuilder& b) {
   const std::string& k = g.kind;
-  const auto T = ObstacleKind::kTextured;
   const Pose base = placed(xy, g.base_z_m, yaw);
-  if (k == "building" || k == "tower") {
-    const Look look = Look::textured(pick(g.texture, k == "tower" ? "concrete" : "facade"), "gravel");
-    if (g.variant == "burned") {
-      // A textured part and a burned, textureless part along the building's length.
-      const double lb = g.burned_fraction * s.x(), lt = s.x() - lb;
-      b.addBox(id + "_intact", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lt, 0, 0.5 * s.z())),
-               Vec3(0.5 * lt, 0.5 * s.y(), 0.5 * s.z()), T, look);
-      b.addBox(id + "_burned", id, local(base, Vec3(0.5 * s.x() - 0.5 * lb, 0, 0.45 * s.z())),
-               Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
-    } else if (isCollapsed(g)) {
-      // A lower remaining block, a slab leaning against it, and rubble. `collapsed_burned`: the
-      // far end of the block (burned_fraction of its length, away from the slab) is burned,
-      // flat and textureless.
-      const double block_l = 0.7 * s.x();
-      const double lb = g.variant == "collapsed_burned" ? g.burned_fraction * block_l : 0.0;
-      b.addBox(id + "_block", id, local(base, Vec3(-0.15 * s.x() + 0.5 * lb, 0, 0.3 * s.z())),
-               Vec3(0.5 * (block_l - lb), 0.5 * s.y(), 0.3 * s.z()), T, look);
-      if (lb > 0.0)
-        b.addBox(id + "_burned", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lb, 0, 0.3 * s.z())),
-                 Vec3(0.5 * lb, 0.5 * s.y(), 0.3 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
-      const double pitch = detail.uniform(25, 40) * kDeg;
-      const Mat3 R = Eigen::AngleAxisd(-pitch, Vec3::UnitY()).toRotationMatrix();
-      b.addBox(
-          id + "_slab", id,
-          local(base, Vec3(0.2 * s.x() + 0.25 * s.z() * std::cos(pitch), 0, 0.25 * s.z() * std::sin(pitch) + 0.2), R),
-          Vec3(0.25 * s.z(), 0.45 * s.y(), 0.2), T, Look::textured("concrete"));
-      for (int r = 0; r < 4; ++r) {
-        const Vec3 half(detail.uniform(0.4, 1.2), detail.uniform(0.4, 1.0), detail.uniform(0.3, 0.7));
-        const Vec3 off(detail.uniform(0.25, 0.5) * s.x(), detail.uniform(-0.4, 0.4) * s.y(), 0.5 * half.z());
-        const Mat3 Rr = Eigen::AngleAxisd(detail.uniform(0, M_PI), Vec3::UnitZ()).toRotationMatrix();
-        b.addBox(id + "_rubble" + std::to_string(r), id, local(base, off, Rr), half, T, Look::textured("concrete"));
-      }
-    } else {
-      b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T, look);
-    }
-  } else if (k == "house") {
-    // Brick walls and a gable roof of two slabs (30° pitch) meeting at the ridge.
-    b.addBox(id + "_walls", id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T,
+  const ObjectBuild o{g, id, base, s, yaw, detail, b};
+  if (k == "building" || k == "tower") buildBuilding(o);
+  else if (k == "house") buildHouse(o);
+  else if (isVehicleKind(k)) buildVehicle(k, id, base, s, detail, b);
+  else if (k == "tree") buildTree(o);
+  else if (k == "rod" || k == "pole" || k == "pillar") buildRod(o);
+  else if (k == "wall")
+    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, ObstacleKind::kTextured,
              Look::textured(pick(g.texture, "bricks")));
-    const double pitch = 30 * kDeg, half_w = 0.5 * s.y() + 0.4;
-    const double slab = half_w / std::cos(pitch);
-    for (int side : {1, -1}) {
-      const Mat3 R = Eigen::AngleAxisd(side * pitch, Vec3::UnitX()).toRotationMatrix();
-      const Vec3 c(0, -side * 0.5 * half_w, s.z() + 0.5 * half_w * std::tan(pitch));
-      b.addBox(id + (side > 0 ? "_roof_a" : "_roof_b"), id, local(base, c, R),
-               Vec3(0.5 * s.x() + 0.3, 0.5 * slab, 0.12), T, Look::textured("wood"));
-    }
-  } else if (isVehicleKind(k)) {
-    buildVehicle(k, id, base, s, detail, b);
-  } else if (k == "tree") {
-    // Bark trunk up into a foliage canopy (sphere of diameter size.x, top at size.z).
-    const double r = 0.5 * s.x(), trunk_r = std::max(0.12, 0.05 * s.x());
-    const double trunk_h = s.z() - r;
-    b.addCylinder(id + "_trunk", id, local(base, Vec3(0, 0, 0.5 * trunk_h)), trunk_r, 0.5 * trunk_h, T,
-                  Look::textured("bark"));
-    b.addSphere(id + "_canopy", id, base * Vec3(0, 0, s.z() - r), r, T, Look::textured(pick(g.texture, "foliage")));
-  } else if (k == "rod" || k == "pole" || k == "pillar") {
-    // Rods at ruins lean outwards (`yaw` is the ruin's outward normal there), others anywhere.
-    const double tilt = detail.uniform(0, g.tilt_max_deg) * kDeg;
-    const double dir =
-        g.near == "ruins" ? yaw + detail.uniform(-0.25 * M_PI, 0.25 * M_PI) : detail.uniform(-M_PI, M_PI);
-    const Mat3 R = (Eigen::AngleAxisd(dir, Vec3::UnitZ()) * Eigen::AngleAxisd(tilt, Vec3::UnitY())).toRotationMatrix();
-    Pose T_axis = base;
-    T_axis.linear() = R;
-    T_axis.translation() = base.translation() + R * Vec3(0, 0, 0.5 * s.z());
-    const bool thin = k == "rod";
-    b.addCylinder(id, id, T_axis, s.x(), 0.5 * s.z(), thin ? ObstacleKind::kThin : T,
-                  thin ? Look::flat(0.55) : Look::textured(pick(g.texture, k == "pillar" ? "rock" : "concrete")));
-  } else if (k == "wall") {
-    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, T, Look::textured(pick(g.texture, "bricks")));
-  } else if (k == "rock") {
-    const Mat3 R = (Eigen::AngleAxisd(detail.uniform(-1, 1) * g.tilt_max_deg * kDeg, Vec3::UnitX()) *
-                    Eigen::AngleAxisd(detail.uniform(-1, 1) * g.tilt_max_deg * kDeg, Vec3::UnitY()))
-                       .toRotationMatrix();
-    b.addBox(id, id, local(base, Vec3(0, 0, 0.3 * s.z()), R), 0.5 * s, T, Look::textured(pick(g.texture, "rock")));
-  } else if (k == "gazebo") {
-    // Four posts and a roof slab.
-    const std::string tex = pick(g.texture, "wood");
-    int p = 0;
-    for (double sx : {-0.5, 0.5})
-      for (double sy : {-0.5, 0.5})
-        b.addCylinder(id + "_post" + std::to_string(p++), id, local(base, Vec3(sx * s.x(), sy * s.y(), 0.5 * s.z())),
-                      0.1, 0.5 * s.z(), T, Look::textured(tex));
-    b.addBox(id + "_roof", id, local(base, Vec3(0, 0, s.z() + 0.15)), Vec3(0.5 * s.x() + 0.4, 0.5 * s.y() + 0.4, 0.15),
-             T, Look::textured(tex));
-  }
+  else if (k == "rock") buildRock(o);
+  else if (k == "gazebo") buildGazebo(o);
 }
 
 // Carves the cave: solid rock everywhere in the footprint except chambers and tunnels, and a
