@@ -467,6 +467,25 @@ void FisheyeRenderer::paintBeyondClip(int x, int y, int width, int height) {
 void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame* frame, RenderTiming* timing) {
   RenderTiming t;
   auto t0 = WallClock::now();
+  updateScene(data);
+  t.scene_ms = msSince(t0);
+  // Render every face rectangle into its atlas viewport with an off-centre frustum.
+  t0 = WallClock::now();
+  renderFaces(T_W_C);
+  glFinish();
+  t.render_ms = msSince(t0);
+  // Read-back of the atlas: at once, or face by face into its place.
+  t0 = WallClock::now();
+  const bool red_only = readBackAtlas();
+  t.readback_ms = msSince(t0);
+  // Grey conversion and fisheye remap.
+  t0 = WallClock::now();
+  remapInto(frame, red_only);
+  t.remap_ms = msSince(t0);
+  if (timing) *timing = t;
+}
+
+void FisheyeRenderer::updateScene(const mjData* data) {
   context_->makeCurrent();
   mjv_updateScene(model_, const_cast<mjData*>(data), &options_, nullptr, &free_camera_, mjCAT_ALL, &scene_);
   if (sun_direction_)
@@ -474,10 +493,9 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
       if (scene_.lights[i].directional && !scene_.lights[i].headlight)
         for (int k = 0; k < 3; ++k) scene_.lights[i].dir[k] = static_cast<float>((*sun_direction_)[k]);
   if (config_.cull_per_face) scene_geoms_.assign(scene_.geoms, scene_.geoms + scene_.ngeom);
-  t.scene_ms = msSince(t0);
+}
 
-  // Render every face rectangle into its atlas viewport with an off-centre frustum.
-  t0 = WallClock::now();
+void FisheyeRenderer::renderFaces(const Pose& T_W_C) {
   const float n = static_cast<float>(config_.near_clip_m);
   const Mat3 R_W_C = T_W_C.linear();
   const Vec3 pos = T_W_C.translation();
@@ -519,11 +537,9 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
       paintBeyondClip(0, 0, f.width, f.height);
     }
   }
-  glFinish();
-  t.render_ms = msSince(t0);
+}
 
-  // Read-back of the atlas: at once, or face by face into its place.
-  t0 = WallClock::now();
+bool FisheyeRenderer::readBackAtlas() {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   const bool red_only = config_.read_red_channel_only || single_channel_framebuffer_;
   cv::Mat& atlas = red_only ? atlas_grey_ : atlas_raw_;
@@ -544,17 +560,15 @@ void FisheyeRenderer::render(const mjData* data, const Pose& T_W_C, CameraFrame*
     glPixelStorei(GL_PACK_ROW_LENGTH, 0);
     mjr_restoreBuffer(&mjr_context_);
   }
-  t.readback_ms = msSince(t0);
+  return red_only;
+}
 
-  // Grey conversion and fisheye remap.
-  t0 = WallClock::now();
+void FisheyeRenderer::remapInto(CameraFrame* frame, bool red_only) {
   if (!red_only) cv::cvtColor(atlas_raw_, atlas_grey_, cv::COLOR_RGBA2GRAY);
   remap_.apply(atlas_grey_, fisheye_);
   frame->width = fisheye_.cols;
   frame->height = fisheye_.rows;
   frame->pixels.assign(fisheye_.datastart, fisheye_.dataend);
-  t.remap_ms = msSince(t0);
-  if (timing) *timing = t;
 }
 
 }  // namespace msb

@@ -145,6 +145,13 @@ class FisheyeRenderer final : public FrameRenderer {
   void storeGreyTexturesAsLuminance();
   // Leaves in scene_ only the geoms of scene_geoms_ that may be seen in a face (its frame in the
   // world, the eye, its tangent bounds).
+  // The steps of render(): the MuJoCo scene (with the sun's direction, the geoms kept for
+  // culling); every cube face drawn; the atlas read back (returns whether one channel was read);
+  // grey conversion and the fisheye remap into `frame`.
+  void updateScene(const mjData* data);
+  void renderFaces(const Pose& T_W_C);
+  bool readBackAtlas();
+  void remapInto(CameraFrame* frame, bool red_only);
   void cullToFace(const Mat3& R_W_F, const Vec3& eye, double tx0, double tx1, double ty0, double ty1);
 
   FisheyeRendererConfig config_;
