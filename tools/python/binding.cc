@@ -474,12 +474,10 @@ class PyMission {
   double last_t_s_ = 0.0;
 };
 
-}  // namespace
-}  // namespace msb
+// ---- the module's parts ------------------------------------------------------------------------
 
-PYBIND11_MODULE(_msbench, m) {
-  using namespace msb;
-  m.doc() = "msbench: deterministic closed-loop benchmark for monocular UAV exploration (docs/python.md)";
+// msbench.ConfigError (every configuration error of the CLI) and msbench.MethodError.
+void bindErrors(py::module_& m) {
   // Every configuration error of the CLI (file, key, reason) is one Python exception type.
   static py::exception<FileConfigError> config_error(m, "ConfigError", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {
@@ -494,6 +492,18 @@ PYBIND11_MODULE(_msbench, m) {
     }
   });
 
+  static py::exception<MethodError> method_error(m, "MethodError", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const MethodError& e) {
+      method_error(e.what());
+    }
+  });
+}
+
+// Scenario and TickRecord.
+void bindScenarioAndTicks(py::module_& m) {
   py::class_<PyScenario>(m, "Scenario", "A validated scenario file, as `msbench run` loads it.")
       .def_static("load", &PyScenario::load, py::arg("path"), py::arg("set") = std::vector<std::string>{},
                   "Loads a scenario with KEY=VALUE overrides (as --set); raises msbench.ConfigError.")
@@ -521,15 +531,10 @@ PYBIND11_MODULE(_msbench, m) {
       .def_readonly("true_velocity", &PyTick::true_velocity)
       .def_readonly("est_velocity", &PyTick::est_velocity);
 
-  static py::exception<MethodError> method_error(m, "MethodError", PyExc_RuntimeError);
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const MethodError& e) {
-      method_error(e.what());
-    }
-  });
+}
 
+// What a Python method sees: RngStream, Context, SlamFrame, Vehicle.
+void bindMethodTypes(py::module_& m) {
   py::class_<RngStream>(m, "RngStream", "A named random stream, seeded like msbench's own (scenario seed + name).")
       .def(py::init<uint64_t, std::string>(), py::arg("seed"), py::arg("name"))
       .def("uniform", py::overload_cast<>(&RngStream::uniform), "uniform in [0, 1)")
@@ -565,6 +570,9 @@ PYBIND11_MODULE(_msbench, m) {
       .def_readonly("position", &VehicleView::position)
       .def_readonly("velocity", &VehicleView::velocity);
 
+}
+
+void bindMission(py::module_& m) {
   py::class_<PyMission>(m, "Mission", "A mission of a scenario, stepped or run from Python.")
       .def(py::init<const PyScenario&, py::object>(), py::arg("scenario"), py::arg("method") = py::none(),
            "method: None (the scenario's) or a factory(Context) returning a Python method")
@@ -577,5 +585,16 @@ PYBIND11_MODULE(_msbench, m) {
       .def("write", &PyMission::write, py::arg("dir"), py::arg("overwrite") = false,
            "Writes the files msbench run writes into dir; returns its path.");
 
+}
+
+}  // namespace
+}  // namespace msb
+
+PYBIND11_MODULE(_msbench, m) {
+  m.doc() = "msbench: deterministic closed-loop benchmark for monocular UAV exploration (docs/python.md)";
+  msb::bindErrors(m);
+  msb::bindScenarioAndTicks(m);
+  msb::bindMethodTypes(m);
+  msb::bindMission(m);
   m.attr("__version__") = MSB_VERSION;
 }
