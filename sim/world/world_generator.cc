@@ -119,8 +119,8 @@ void buildHouse(const ObjectBuild& o) {
   for (int side : {1, -1}) {
     const Mat3 R = Eigen::AngleAxisd(side * pitch, Vec3::UnitX()).toRotationMatrix();
     const Vec3 c(0, -side * 0.5 * half_w, s.z() + 0.5 * half_w * std::tan(pitch));
-    b.addBox(id + (side > 0 ? "_roof_a" : "_roof_b"), id, local(base, c, R),
-             Vec3(0.5 * s.x() + 0.3, 0.5 * slab, 0.12), T, Look::textured("wood"));
+    b.addBox(id + (side > 0 ? "_roof_a" : "_roof_b"), id, local(base, c, R), Vec3(0.5 * s.x() + 0.3, 0.5 * slab, 0.12),
+             T, Look::textured("wood"));
   }
 }
 
@@ -144,8 +144,7 @@ void buildRod(const ObjectBuild& o) {
   [[maybe_unused]] const auto T = ObstacleKind::kTextured;
   // Rods at ruins lean outwards (`yaw` is the ruin's outward normal there), others anywhere.
   const double tilt = detail.uniform(0, g.tilt_max_deg) * kDeg;
-  const double dir =
-      g.near == "ruins" ? yaw + detail.uniform(-0.25 * M_PI, 0.25 * M_PI) : detail.uniform(-M_PI, M_PI);
+  const double dir = g.near == "ruins" ? yaw + detail.uniform(-0.25 * M_PI, 0.25 * M_PI) : detail.uniform(-M_PI, M_PI);
   const Mat3 R = (Eigen::AngleAxisd(dir, Vec3::UnitZ()) * Eigen::AngleAxisd(tilt, Vec3::UnitY())).toRotationMatrix();
   Pose T_axis = base;
   T_axis.linear() = R;
@@ -176,10 +175,10 @@ void buildGazebo(const ObjectBuild& o) {
   int p = 0;
   for (double sx : {-0.5, 0.5})
     for (double sy : {-0.5, 0.5})
-      b.addCylinder(id + "_post" + std::to_string(p++), id, local(base, Vec3(sx * s.x(), sy * s.y(), 0.5 * s.z())),
-                    0.1, 0.5 * s.z(), T, Look::textured(tex));
-  b.addBox(id + "_roof", id, local(base, Vec3(0, 0, s.z() + 0.15)), Vec3(0.5 * s.x() + 0.4, 0.5 * s.y() + 0.4, 0.15),
-           T, Look::textured(tex));
+      b.addCylinder(id + "_post" + std::to_string(p++), id, local(base, Vec3(sx * s.x(), sy * s.y(), 0.5 * s.z())), 0.1,
+                    0.5 * s.z(), T, Look::textured(tex));
+  b.addBox(id + "_roof", id, local(base, Vec3(0, 0, s.z() + 0.15)), Vec3(0.5 * s.x() + 0.4, 0.5 * s.y() + 0.4, 0.15), T,
+           Look::textured(tex));
 }
 
 void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy, double yaw, const Vec3& s,
@@ -187,16 +186,23 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
   const std::string& k = g.kind;
   const Pose base = placed(xy, g.base_z_m, yaw);
   const ObjectBuild o{g, id, base, s, yaw, detail, b};
-  if (k == "building" || k == "tower") buildBuilding(o);
-  else if (k == "house") buildHouse(o);
-  else if (isVehicleKind(k)) buildVehicle(k, id, base, s, detail, b);
-  else if (k == "tree") buildTree(o);
-  else if (k == "rod" || k == "pole" || k == "pillar") buildRod(o);
+  if (k == "building" || k == "tower")
+    buildBuilding(o);
+  else if (k == "house")
+    buildHouse(o);
+  else if (isVehicleKind(k))
+    buildVehicle(k, id, base, s, detail, b);
+  else if (k == "tree")
+    buildTree(o);
+  else if (k == "rod" || k == "pole" || k == "pillar")
+    buildRod(o);
   else if (k == "wall")
     b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, ObstacleKind::kTextured,
              Look::textured(pick(g.texture, "bricks")));
-  else if (k == "rock") buildRock(o);
-  else if (k == "gazebo") buildGazebo(o);
+  else if (k == "rock")
+    buildRock(o);
+  else if (k == "gazebo")
+    buildGazebo(o);
 }
 
 // Carves the cave: solid rock everywhere in the footprint except chambers and tunnels, and a

@@ -44,11 +44,47 @@ void printProgress(const std::string& name, const std::string& method, double du
                duration_s, rtf, area, counters.c_str(), (duration_s - sim_s) / std::max(rtf, 1e-9));
 }
 
+// Steps the mission to its end; records perception and prints progress between ticks; stops at
+// the end of a tick on SIGINT/SIGTERM (nothing is kept).
+void stepToEnd(Mission& mission, const ScenarioSpec& spec, PerceptionLogWriter* recorder, bool quiet) {
+  const auto wall_start = WallClock::now();
+  const int64_t progress_ticks = 10 * int64_t(mission.physicsHz());
+  while (mission.running()) {
+    throwIfInterrupted();
+    const TickRecord& t = mission.step();
+    setCrashContext(t.tick, t.t_s);
+    if (recorder && t.points) recorder->write(*t.points, t.frame->T_W_C);
+    if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
+      printProgress(spec.name, spec.method.type, spec.flight.duration_s, t.t_s, secondsSince(wall_start),
+                    mission.areaM2(), mission.explorer().counters());
+  }
+}
+
+// The run's result line, and the collision's if it ended in one.
+void printRunSummary(const ScenarioSpec& spec, const MissionResult& r, const nlohmann::json& metrics,
+                     const fs::path& dir) {
+  const auto& cov = metrics["coverage"];
+  char share[64] = "";  // ", NN % of explorable" when the box has explorable columns
+  if (!cov["box_share"].is_null())
+    std::snprintf(share, sizeof(share), ", %d %% of explorable", int(100 * cov["box_share"].get<double>()));
+  std::printf(
+      "run %s: %s after %.0f s simulated (%.0f s wall, RTF %.2f); A = %.0f m² (box %.0f m²%s), "
+      "%.0f m flown; hash %s -> %s\n",
+      spec.name.c_str(), runStatusName(r.flight.status), r.flight.sim_time_s, r.flight.wall_time_s,
+      r.flight.realTimeFactor(), cov["area_m2"].get<double>(), cov["area_box_m2"].get<double>(), share,
+      r.flight.distance_flown_m, hexHash(r.run_hash).c_str(), dir.c_str());
+  if (r.flight.collision)
+    std::printf("run %s: collision at t = %.1f s, vehicle at (%.1f, %.1f, %.1f), %s hit %s\n", spec.name.c_str(),
+                r.flight.collision->t_s, r.flight.collision->vehicle_position_m.x(),
+                r.flight.collision->vehicle_position_m.y(), r.flight.collision->vehicle_position_m.z(),
+                r.flight.collision->vehicle_geom.c_str(), r.flight.collision->world_geom.c_str());
+}
+
 // A scenario whose method is written in Python runs in the Python module, which binds this same
 // loop (the binary embeds no Python): `MSB_PYTHON -m msbench run ARGS...` replaces this process.
 [[noreturn]] void execPythonRun(const std::vector<std::string>& args) {
   std::string path = MSB_PYTHON_DIR;
-  if (const char* old = std::getenv("PYTHONPATH"); old && *old) path += ":" + std::string(old);
+  if (const char* old = std::getenv("PYTHONPATH"); old && *old) path.append(":").append(old);
   setenv("PYTHONPATH", path.c_str(), 1);
   std::vector<std::string> all = {MSB_PYTHON, "-m", "msbench", "run"};
   all.insert(all.end(), args.begin(), args.end());
@@ -112,19 +148,7 @@ int runRunCommand(int argc, char** argv) {
                        {"scenario", file}});
   MissionResult r;
   try {
-    // Step the mission to its end; record perception and print progress between ticks; stop at
-    // the end of a tick on SIGINT/SIGTERM (nothing is kept).
-    const auto wall_start = WallClock::now();
-    const int64_t progress_ticks = 10 * int64_t(mission.physicsHz());
-    while (mission.running()) {
-      throwIfInterrupted();
-      const TickRecord& t = mission.step();
-      setCrashContext(t.tick, t.t_s);
-      if (recorder && t.points) recorder->write(*t.points, t.frame->T_W_C);
-      if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
-        printProgress(spec.name, spec.method.type, spec.flight.duration_s, t.t_s, secondsSince(wall_start),
-                      mission.areaM2(), mission.explorer().counters());
-    }
+    stepToEnd(mission, spec, recorder.get(), quiet);
     r = mission.finish();
   } catch (const Interrupted&) {
     throw;  // unwinds: the recorder and the staging directory remove themselves
@@ -140,21 +164,7 @@ int runRunCommand(int argc, char** argv) {
   const nlohmann::json metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr);
   out.commit();
 
-  const auto& cov = metrics["coverage"];
-  std::printf(
-      "run %s: %s after %.0f s simulated (%.0f s wall, RTF %.2f); A = %.0f m² (box %.0f m²%s), "
-      "%.0f m flown; hash %s -> %s\n",
-      spec.name.c_str(), runStatusName(r.flight.status), r.flight.sim_time_s, r.flight.wall_time_s,
-      r.flight.realTimeFactor(), cov["area_m2"].get<double>(), cov["area_box_m2"].get<double>(),
-      cov["box_share"].is_null()
-          ? ""
-          : (", " + std::to_string(int(100 * cov["box_share"].get<double>())) + " % of explorable").c_str(),
-      r.flight.distance_flown_m, hexHash(r.run_hash).c_str(), out.finalDir().c_str());
-  if (r.flight.collision)
-    std::printf("run %s: collision at t = %.1f s, vehicle at (%.1f, %.1f, %.1f), %s hit %s\n", spec.name.c_str(),
-                r.flight.collision->t_s, r.flight.collision->vehicle_position_m.x(),
-                r.flight.collision->vehicle_position_m.y(), r.flight.collision->vehicle_position_m.z(),
-                r.flight.collision->vehicle_geom.c_str(), r.flight.collision->world_geom.c_str());
+  printRunSummary(spec, r, metrics, out.finalDir());
   return kExitOk;
 }
 

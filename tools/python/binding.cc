@@ -530,7 +530,6 @@ void bindScenarioAndTicks(py::module_& m) {
       .def_readonly("est_pose", &PyTick::est_pose, "4×4 body pose, VIO estimate")
       .def_readonly("true_velocity", &PyTick::true_velocity)
       .def_readonly("est_velocity", &PyTick::est_velocity);
-
 }
 
 // What a Python method sees: RngStream, Context, SlamFrame, Vehicle.
@@ -569,7 +568,6 @@ void bindMethodTypes(py::module_& m) {
       .def_readonly("pose", &VehicleView::pose)
       .def_readonly("position", &VehicleView::position)
       .def_readonly("velocity", &VehicleView::velocity);
-
 }
 
 void bindMission(py::module_& m) {
@@ -584,7 +582,6 @@ void bindMission(py::module_& m) {
       .def("hash", &PyMission::hash, "The determinism hash (as msbench run prints it).")
       .def("write", &PyMission::write, py::arg("dir"), py::arg("overwrite") = false,
            "Writes the files msbench run writes into dir; returns its path.");
-
 }
 
 }  // namespace
