@@ -121,18 +121,91 @@ bool matches(const Combination& c, const std::map<std::string, std::string>& lab
   return true;
 }
 
+// The sweep file's FNV-1a hash as 16 hex digits (a changed file is detected on resume).
+std::string fileHash(const std::string& path) {
+  std::ostringstream bytes;
+  bytes << std::ifstream(path, std::ios::binary).rdbuf();
+  const std::string text = bytes.str();
+  char hash[17];
+  std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(fnv1a64(text.data(), text.size())));
+  return hash;
+}
+
+// `seeds`: a list, or a count n meaning 1..n (default: seed 1).
+std::vector<uint64_t> readSeeds(MapReader& r) {
+  std::vector<uint64_t> seeds = {1};
+  if (r.has("seeds")) {
+    const YAML::Node s = r.raw("seeds");
+    seeds.clear();
+    if (s.IsSequence()) {
+      for (const auto& v : s) {
+        uint64_t x = 0;
+        r.value(v, "seeds", x);
+        seeds.push_back(x);
+      }
+    } else {
+      uint64_t n = 0;
+      r.value(s, "seeds", n);
+      if (n < 1 || n > 10000) throw ConfigError("seeds", "a count must be in [1, 10000]");
+      for (uint64_t k = 1; k <= n; ++k) seeds.push_back(k);
+    }
+    if (seeds.empty()) throw ConfigError("seeds", "expected at least one seed");
+  }
+  return seeds;
+}
+
+// The runs of the axes' combinations and the seeds (the first axis slowest, seeds fastest), with
+// include / exclude applied; an include or exclude entry that matches nothing is refused.
+void expandRuns(SweepPlan& plan, const std::string& base,
+                const std::vector<std::pair<std::string, std::string>>& common, const std::vector<Axis>& axes,
+                const std::vector<uint64_t>& seeds, const std::vector<Combination>& include,
+                const std::vector<Combination>& exclude) {
+  std::vector<bool> include_used(include.size(), false), exclude_used(exclude.size(), false);
+  std::vector<size_t> index(axes.size(), 0);
+  while (true) {
+    std::map<std::string, std::string> labels;
+    std::string id, file = base;
+    std::vector<std::pair<std::string, std::string>> sets = common;
+    for (size_t k = 0; k < axes.size(); ++k) {
+      const AxisValue& v = axes[k].values[index[k]];
+      labels[axes[k].name] = v.label;
+      id += v.label + "-";
+      if (!v.scenario.empty()) file = v.scenario;
+      sets.insert(sets.end(), v.sets.begin(), v.sets.end());
+    }
+    for (uint64_t s : seeds) {
+      std::map<std::string, std::string> with_seed = labels;
+      with_seed["seed"] = std::to_string(s);
+      auto hit = [&](const Combination& c) { return matches(c, with_seed); };
+      for (size_t i = 0; i < include.size(); ++i) include_used[i] = include_used[i] || hit(include[i]);
+      for (size_t i = 0; i < exclude.size(); ++i) exclude_used[i] = exclude_used[i] || hit(exclude[i]);
+      const bool kept = (include.empty() || std::any_of(include.begin(), include.end(), hit)) &&
+                        std::none_of(exclude.begin(), exclude.end(), hit);
+      if (kept) plan.runs.push_back({id + "s" + std::to_string(s), file, s, sets, labels});
+    }
+    size_t k = axes.size();
+    while (k > 0 && ++index[k - 1] == axes[k - 1].values.size()) index[--k] = 0;
+    if (k == 0) break;
+  }
+  for (size_t i = 0; i < include.size(); ++i)
+    if (!include_used[i])
+      throw ConfigError("include[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
+  for (size_t i = 0; i < exclude.size(); ++i)
+    if (!exclude_used[i])
+      throw ConfigError("exclude[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
+  for (size_t i = 0; i < plan.runs.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (plan.runs[i].id == plan.runs[j].id) throw ConfigError("axes", "two runs share the id " + plan.runs[i].id);
+  if (plan.runs.empty()) throw ConfigError("include", "no run left after include/exclude");
+}
+
 }  // namespace
 
 SweepPlan loadSweepPlan(const std::string& path) {
   const YAML::Node root = loadYamlFile(path);
   SweepPlan plan;
   plan.file = fs::absolute(path).lexically_normal().string();
-  std::ostringstream bytes;
-  bytes << std::ifstream(path, std::ios::binary).rdbuf();
-  const std::string text = bytes.str();
-  char hash[17];
-  std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(fnv1a64(text.data(), text.size())));
-  plan.file_hash = hash;
+  plan.file_hash = fileHash(path);
   const fs::path dir = fs::path(plan.file).parent_path();
   try {
     MapReader r(root, "");
@@ -146,70 +219,13 @@ SweepPlan loadSweepPlan(const std::string& path) {
     for (size_t i = 0; i < axes.size(); ++i)
       for (size_t j = 0; j < i; ++j)
         if (axes[i].name == axes[j].name) throw ConfigError("axes", "axis name '" + axes[i].name + "' given twice");
-    // Seeds: a list, or a count n meaning 1..n.
-    std::vector<uint64_t> seeds = {1};
-    if (r.has("seeds")) {
-      const YAML::Node s = r.raw("seeds");
-      seeds.clear();
-      if (s.IsSequence()) {
-        for (const auto& v : s) {
-          uint64_t x = 0;
-          r.value(v, "seeds", x);
-          seeds.push_back(x);
-        }
-      } else {
-        uint64_t n = 0;
-        r.value(s, "seeds", n);
-        if (n < 1 || n > 10000) throw ConfigError("seeds", "a count must be in [1, 10000]");
-        for (uint64_t k = 1; k <= n; ++k) seeds.push_back(k);
-      }
-      if (seeds.empty()) throw ConfigError("seeds", "expected at least one seed");
-    }
+    const std::vector<uint64_t> seeds = readSeeds(r);
     std::vector<Combination> include, exclude;
     if (r.has("include")) include = readCombinations(r, "include", axes);
     if (r.has("exclude")) exclude = readCombinations(r, "exclude", axes);
     r.finish();
     for (const Axis& a : axes) plan.axes.push_back(a.name);
-
-    // Expand: the first axis varies slowest, seeds fastest. Each include / exclude entry must
-    // match some combination: one that matches none (a misspelt value) is refused, not ignored.
-    std::vector<bool> include_used(include.size(), false), exclude_used(exclude.size(), false);
-    std::vector<size_t> index(axes.size(), 0);
-    while (true) {
-      std::map<std::string, std::string> labels;
-      std::string id, file = base;
-      std::vector<std::pair<std::string, std::string>> sets = common;
-      for (size_t k = 0; k < axes.size(); ++k) {
-        const AxisValue& v = axes[k].values[index[k]];
-        labels[axes[k].name] = v.label;
-        id += v.label + "-";
-        if (!v.scenario.empty()) file = v.scenario;
-        sets.insert(sets.end(), v.sets.begin(), v.sets.end());
-      }
-      for (uint64_t s : seeds) {
-        std::map<std::string, std::string> with_seed = labels;
-        with_seed["seed"] = std::to_string(s);
-        auto hit = [&](const Combination& c) { return matches(c, with_seed); };
-        for (size_t i = 0; i < include.size(); ++i) include_used[i] = include_used[i] || hit(include[i]);
-        for (size_t i = 0; i < exclude.size(); ++i) exclude_used[i] = exclude_used[i] || hit(exclude[i]);
-        const bool kept = (include.empty() || std::any_of(include.begin(), include.end(), hit)) &&
-                          std::none_of(exclude.begin(), exclude.end(), hit);
-        if (kept) plan.runs.push_back({id + "s" + std::to_string(s), file, s, sets, labels});
-      }
-      size_t k = axes.size();
-      while (k > 0 && ++index[k - 1] == axes[k - 1].values.size()) index[--k] = 0;
-      if (k == 0) break;
-    }
-    for (size_t i = 0; i < include.size(); ++i)
-      if (!include_used[i])
-        throw ConfigError("include[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
-    for (size_t i = 0; i < exclude.size(); ++i)
-      if (!exclude_used[i])
-        throw ConfigError("exclude[" + std::to_string(i) + "]", "matches no combination of the axes and seeds");
-    for (size_t i = 0; i < plan.runs.size(); ++i)
-      for (size_t j = 0; j < i; ++j)
-        if (plan.runs[i].id == plan.runs[j].id) throw ConfigError("axes", "two runs share the id " + plan.runs[i].id);
-    if (plan.runs.empty()) throw ConfigError("include", "no run left after include/exclude");
+    expandRuns(plan, base, common, axes, seeds, include, exclude);
   } catch (const ConfigError& e) {
     throw FileConfigError(path + ": " + e.what());
   } catch (const YAML::Exception& e) {
