@@ -118,6 +118,96 @@ cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
   return img;
 }
 
+// Fisheye views from 1.5 m above the start at four headings, in a 2x2 mosaic.
+cv::Mat startViews(const BuiltWorld& w) {
+  const Pose start = w.generated.start * poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
+  QuadrotorSim sim(PhysicsConfig{}, w.world_xml, start);
+  sim.beginTick();
+  const FisheyeCamera cam{FisheyeCameraConfig{}};
+  FisheyeRenderer renderer(FisheyeRendererConfig{}, cam, sim.model());
+  cv::Mat mosaic(2 * cam.height(), 2 * cam.width(), CV_8UC1);
+  for (int k = 0; k < 4; ++k) {
+    throwIfInterrupted();  // between views: the staging directory goes with the exception
+    CameraFrame f;
+    renderer.render(sim.data(), start * poseFromXyzYaw(Vec3::Zero(), k * M_PI / 2) * cam.T_B_C(), &f);
+    cv::Mat(f.height, f.width, CV_8UC1, f.pixels.data())
+        .copyTo(mosaic(cv::Rect((k % 2) * cam.width(), (k / 2) * cam.height(), cam.width(), cam.height())));
+  }
+  return mosaic;
+}
+
+// msbench world list.
+int worldList(int argc, char** argv) {
+  ArgParser args("msbench world list", "List the worlds.");
+  if (!args.parse(argc - 1, argv + 1)) return kExitOk;
+  for (const auto& w : listWorlds())
+    std::printf("%-10s %-9s %s\n", w.name.c_str(), w.generated ? "generated" : "mjcf", w.description.c_str());
+  return kExitOk;
+}
+
+// msbench world build NAME: generate (or reuse) and compile once in MuJoCo.
+int worldBuild(int argc, char** argv) {
+  ArgParser args("msbench world build", "Generate a world (MJCF, textures, shapes) into the cache.");
+  args.positional("NAME", "world name").option("seed", "", "placement seed (default: the spec's)");
+  if (!args.parse(argc - 1, argv + 1)) return kExitOk;
+  const auto t0 = WallClock::now();
+  const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
+  const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
+  // Compile once in MuJoCo (fails loudly on any MuJoCo error or warning).
+  QuadrotorSim sim(PhysicsConfig{}, w.world_xml, w.generated.start);
+  const double secs = secondsSince(t0);
+  std::printf("world %s: %s (%s) in %.2f s; %d collision + %d visual geoms (MuJoCo model: %d geoms)\n",
+              w.generated.name.c_str(), w.directory.c_str(), w.reused ? "cached" : "built", secs,
+              w.generated.collision_geoms, w.generated.visual_geoms, sim.geomCount());
+  for (const auto& [kind, n] : w.generated.object_counts) std::printf("  %-10s %d\n", kind.c_str(), n);
+  return kExitOk;
+}
+
+// msbench world show NAME --out DIR: top-down map, start views, explorable columns.
+int worldShow(int argc, char** argv) {
+  ArgParser args("msbench world show", "Write a top-down map and fisheye views of a world.");
+  args.positional("NAME", "world name")
+      .option("out", "", "output directory", true)
+      .option("seed", "", "placement seed (default: the spec's)")
+      .option("m-per-px", "0.2", "top-down map resolution")
+      .flag("overwrite", "replace an existing output directory");
+  if (!args.parse(argc - 1, argv + 1)) return kExitOk;
+  const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
+  const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
+  // The map's size follows from the resolution: 1 to 16384 pixels a side.
+  const double m_per_px = args.getDoubleIn("m-per-px", 1e-3, 1e3);
+  const auto [lo, hi] = topDownExtent(w.generated);
+  const double longest_px = (hi - lo).maxCoeff() / m_per_px;
+  if (longest_px > 16384 || (hi - lo).minCoeff() / m_per_px < 1)
+    throw UsageError("--m-per-px " + args.get("m-per-px") + ": the top-down map of " + w.generated.name + " (" +
+                     std::to_string(int(hi.x() - lo.x())) + " x " + std::to_string(int(hi.y() - lo.y())) +
+                     " m) would be " + std::to_string(long(longest_px)) +
+                     " pixels long; choose a resolution that gives 1 to 16384 pixels a side");
+  StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kWorldShow);
+  writePng(out.staging() / "topdown.png", viewOf(renderTopDown(w, m_per_px)));
+
+  writePng(out.staging() / "views.png", viewOf(startViews(w)));
+
+  const WorldTruth truth(w.generated.shapes);
+  const auto columns = truth.explorableColumns(w.generated.exploration_box);
+  const Aabb& b = w.generated.exploration_box;
+  const int total =
+      int(std::floor((b.max.x() - b.min.x()) / 2.5 + 1e-9)) * int(std::floor((b.max.y() - b.min.y()) / 2.5 + 1e-9));
+  nlohmann::json j = {{"world", w.generated.name},
+                      {"directory", w.directory},
+                      {"collision_geoms", w.generated.collision_geoms},
+                      {"visual_geoms", w.generated.visual_geoms},
+                      {"objects", w.generated.object_counts},
+                      {"box_columns", total},
+                      {"explorable_columns", columns.size()},
+                      {"explorable_area_m2", 6.25 * columns.size()}};
+  writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
+  out.commit();
+  std::printf("world %s: %zu of %d columns of the exploration box explorable (%.0f m2) -> %s\n",
+              w.generated.name.c_str(), columns.size(), total, 6.25 * columns.size(), out.finalDir().c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 int runWorldCommand(int argc, char** argv) {
@@ -130,86 +220,9 @@ int runWorldCommand(int argc, char** argv) {
         worldsDir().c_str(), worldCacheDir().c_str());
     return sub.empty() ? kExitUsage : kExitOk;
   }
-  if (sub == "list") {
-    ArgParser args("msbench world list", "List the worlds.");
-    if (!args.parse(argc - 1, argv + 1)) return kExitOk;
-    for (const auto& w : listWorlds())
-      std::printf("%-10s %-9s %s\n", w.name.c_str(), w.generated ? "generated" : "mjcf", w.description.c_str());
-    return kExitOk;
-  }
-  if (sub == "build") {
-    ArgParser args("msbench world build", "Generate a world (MJCF, textures, shapes) into the cache.");
-    args.positional("NAME", "world name").option("seed", "", "placement seed (default: the spec's)");
-    if (!args.parse(argc - 1, argv + 1)) return kExitOk;
-    const auto t0 = WallClock::now();
-    const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
-    const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
-    // Compile once in MuJoCo (fails loudly on any MuJoCo error or warning).
-    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, w.generated.start);
-    const double secs = secondsSince(t0);
-    std::printf("world %s: %s (%s) in %.2f s; %d collision + %d visual geoms (MuJoCo model: %d geoms)\n",
-                w.generated.name.c_str(), w.directory.c_str(), w.reused ? "cached" : "built", secs,
-                w.generated.collision_geoms, w.generated.visual_geoms, sim.geomCount());
-    for (const auto& [kind, n] : w.generated.object_counts) std::printf("  %-10s %d\n", kind.c_str(), n);
-    return kExitOk;
-  }
-  if (sub == "show") {
-    ArgParser args("msbench world show", "Write a top-down map and fisheye views of a world.");
-    args.positional("NAME", "world name")
-        .option("out", "", "output directory", true)
-        .option("seed", "", "placement seed (default: the spec's)")
-        .option("m-per-px", "0.2", "top-down map resolution")
-        .flag("overwrite", "replace an existing output directory");
-    if (!args.parse(argc - 1, argv + 1)) return kExitOk;
-    const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
-    const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
-    // The map's size follows from the resolution: 1 to 16384 pixels a side.
-    const double m_per_px = args.getDoubleIn("m-per-px", 1e-3, 1e3);
-    const auto [lo, hi] = topDownExtent(w.generated);
-    const double longest_px = (hi - lo).maxCoeff() / m_per_px;
-    if (longest_px > 16384 || (hi - lo).minCoeff() / m_per_px < 1)
-      throw UsageError("--m-per-px " + args.get("m-per-px") + ": the top-down map of " + w.generated.name + " (" +
-                       std::to_string(int(hi.x() - lo.x())) + " x " + std::to_string(int(hi.y() - lo.y())) +
-                       " m) would be " + std::to_string(long(longest_px)) +
-                       " pixels long; choose a resolution that gives 1 to 16384 pixels a side");
-    StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kWorldShow);
-    writePng(out.staging() / "topdown.png", viewOf(renderTopDown(w, m_per_px)));
-
-    // Fisheye views from 1.5 m above the start at four headings, in a 2x2 mosaic.
-    const Pose start = w.generated.start * poseFromXyzYaw(Vec3(0, 0, 1.5), 0.0);
-    QuadrotorSim sim(PhysicsConfig{}, w.world_xml, start);
-    sim.beginTick();
-    const FisheyeCamera cam{FisheyeCameraConfig{}};
-    FisheyeRenderer renderer(FisheyeRendererConfig{}, cam, sim.model());
-    cv::Mat mosaic(2 * cam.height(), 2 * cam.width(), CV_8UC1);
-    for (int k = 0; k < 4; ++k) {
-      throwIfInterrupted();  // between views: the staging directory goes with the exception
-      CameraFrame f;
-      renderer.render(sim.data(), start * poseFromXyzYaw(Vec3::Zero(), k * M_PI / 2) * cam.T_B_C(), &f);
-      cv::Mat(f.height, f.width, CV_8UC1, f.pixels.data())
-          .copyTo(mosaic(cv::Rect((k % 2) * cam.width(), (k / 2) * cam.height(), cam.width(), cam.height())));
-    }
-    writePng(out.staging() / "views.png", viewOf(mosaic));
-
-    const WorldTruth truth(w.generated.shapes);
-    const auto columns = truth.explorableColumns(w.generated.exploration_box);
-    const Aabb& b = w.generated.exploration_box;
-    const int total =
-        int(std::floor((b.max.x() - b.min.x()) / 2.5 + 1e-9)) * int(std::floor((b.max.y() - b.min.y()) / 2.5 + 1e-9));
-    nlohmann::json j = {{"world", w.generated.name},
-                        {"directory", w.directory},
-                        {"collision_geoms", w.generated.collision_geoms},
-                        {"visual_geoms", w.generated.visual_geoms},
-                        {"objects", w.generated.object_counts},
-                        {"box_columns", total},
-                        {"explorable_columns", columns.size()},
-                        {"explorable_area_m2", 6.25 * columns.size()}};
-    writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
-    out.commit();
-    std::printf("world %s: %zu of %d columns of the exploration box explorable (%.0f m2) -> %s\n",
-                w.generated.name.c_str(), columns.size(), total, 6.25 * columns.size(), out.finalDir().c_str());
-    return kExitOk;
-  }
+  if (sub == "list") return worldList(argc, argv);
+  if (sub == "build") return worldBuild(argc, argv);
+  if (sub == "show") return worldShow(argc, argv);
   throw UsageError("unknown world sub-command '" + sub + "' (list, build, show)");
 }
 
