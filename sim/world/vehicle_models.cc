@@ -41,28 +41,35 @@ bool isVehicleKind(const std::string& kind) {
   return kind == "car" || kind == "suv" || kind == "bus" || kind == "fire_truck" || kind == "ambulance";
 }
 
-void buildVehicle(const std::string& kind, const std::string& id, const Pose& base, const Vec3& size, RngStream& detail,
-                  MjcfWorldBuilder& b) {
-  const VehicleShape v = shapeOf(kind);
-  // Every part is drawn as part of one mesh per grey level of this vehicle (a few draws instead
-  // of one per part); the parts stay separate collision geoms.
-  auto flat = [&id](double grey) { return Look::flat(grey).mergedInto(id); };
-  const double L = size.x(), W = size.y(), H = size.z();
-  const double paint = detail.uniform(v.paint_min, v.paint_max);
-  const double rw = v.wheel_radius * H, clearance = 0.45 * rw;
-  const double body_top = v.body_top * H;
-  const Look body = flat(paint), dark = flat(0.07), rim = flat(0.75);
-  const Look light = flat(0.97), rear_light = flat(0.28), bumper = flat(0.18);
+// One vehicle being built: its kind, id, pose, dimensions, paint and the looks of its parts.
+struct VehicleBuild {
+  const std::string& kind;
+  const std::string& id;
+  const Pose& base;
+  VehicleShape v;
+  double L, W, H, paint, rw, clearance, body_top;
+  double cl, cw, cx;  // the upper box: length, width, offset along x
+  Look body, dark, rim, light, rear_light, bumper;
+  Look flat(double grey) const { return Look::flat(grey).mergedInto(id); }
+};
 
-  // Lower body (from the ground clearance to the belt line) and the upper box (cabin, bus
-  // body, ambulance box, fire-truck cab).
+// Lower body (from the ground clearance to the belt line) and the upper box (cabin, bus body,
+// ambulance box, fire-truck cab).
+void buildBodies(const VehicleBuild& c, MjcfWorldBuilder& b) {
+  const auto& [kind, id, base, v, L, W, H, paint, rw, clearance, body_top, cl, cw, cx, body, dark, rim, light,
+               rear_light, bumper] = c;
   b.addBox(id + "_body", id, at(base, Vec3(0, 0, 0.5 * (clearance + body_top))),
            Vec3(0.5 * L, 0.5 * W, 0.5 * (body_top - clearance)), kPaint, body);
-  const double cl = v.cabin_length * L, cw = v.cabin_width * W, cx = v.cabin_offset * L;
   b.addBox(id + "_upper", id, at(base, Vec3(cx, 0, 0.5 * (body_top + H))),
            Vec3(0.5 * cl, 0.5 * cw, 0.5 * (H - body_top)), kPaint,
-           kind == "ambulance" ? flat(std::min(1.0, paint + 0.05)) : body);
+           kind == "ambulance" ? c.flat(std::min(1.0, paint + 0.05)) : body);
+}
 
+// Windows, and the ambulance's band and light bar, the fire truck's ladder and lockers.
+void buildWindowsAndFittings(const VehicleBuild& c, MjcfWorldBuilder& b) {
+  const auto& [kind, id, base, v, L, W, H, paint, rw, clearance, body_top, cl, cw, cx, body, dark, rim, light,
+               rear_light, bumper] = c;
+  auto flat = [&c](double grey) { return c.flat(grey); };
   // Windows: dark panes standing 2 cm proud of the upper box's sides and front.
   const double win_h = kind == "bus" ? 0.45 * (H - body_top) : 0.6 * (H - body_top);
   const double win_z = kind == "bus" ? body_top + 0.5 * (H - body_top) : body_top + 0.45 * (H - body_top);
@@ -110,7 +117,12 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
                  at(base, Vec3(-0.35 * L + k * 0.22 * L, side * (0.5 * W + 0.01), 0.5 * (clearance + body_top))),
                  Vec3(0.09 * L, 0.02, 0.32 * (body_top - clearance)), kPaint, flat(std::min(1.0, paint + 0.35)));
   }
+}
 
+// Tyres with rims, bumpers and lights.
+void buildRunningGear(const VehicleBuild& c, MjcfWorldBuilder& b) {
+  const auto& [kind, id, base, v, L, W, H, paint, rw, clearance, body_top, cl, cw, cx, body, dark, rim, light,
+               rear_light, bumper] = c;
   // Tyres (axis along y) with rims standing out of the body's sides.
   const Mat3 axis_y = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()).toRotationMatrix();
   std::vector<double> axles = {0.34 * L, -0.32 * L};
@@ -135,6 +147,40 @@ void buildVehicle(const std::string& kind, const std::string& id, const Pose& ba
                at(base, Vec3(x - end * 0.02, side * 0.36 * W, body_top - 0.12 * H)), Vec3(0.03, 0.08 * W, 0.04 * H),
                kPaint, end > 0 ? light : rear_light);
   }
+}
+
+void buildVehicle(const std::string& kind, const std::string& id, const Pose& base, const Vec3& size, RngStream& detail,
+                  MjcfWorldBuilder& b) {
+  // Every part is drawn as part of one mesh per grey level of this vehicle (a few draws instead
+  // of one per part); the parts stay separate collision geoms.
+  const VehicleShape v = shapeOf(kind);
+  const double L = size.x(), W = size.y(), H = size.z();
+  const double paint = detail.uniform(v.paint_min, v.paint_max);
+  const double rw = v.wheel_radius * H;
+  auto flat = [&id](double grey) { return Look::flat(grey).mergedInto(id); };
+  const VehicleBuild c{kind,
+                       id,
+                       base,
+                       v,
+                       L,
+                       W,
+                       H,
+                       paint,
+                       rw,
+                       0.45 * rw,
+                       v.body_top * H,
+                       v.cabin_length * L,
+                       v.cabin_width * W,
+                       v.cabin_offset * L,
+                       flat(paint),
+                       flat(0.07),
+                       flat(0.75),
+                       flat(0.97),
+                       flat(0.28),
+                       flat(0.18)};
+  buildBodies(c, b);
+  buildWindowsAndFittings(c, b);
+  buildRunningGear(c, b);
 }
 
 }  // namespace msb
