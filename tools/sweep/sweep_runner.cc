@@ -158,9 +158,10 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
 
 std::string sweepBuildId() { return buildIdText(); }
 
-SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRunOptions& options,
-                      const std::function<bool()>& stop_requested) {
-  // The directory: new, or a sweep of the same file and build (resume).
+namespace {
+
+// The directory: new, or a sweep of the same file and build (resume; --accept-changes mixes).
+void prepareSweepDir(const SweepPlan& plan, const fs::path& dir, const SweepRunOptions& options) {
   if (options.task) {
     fs::create_directories(dir / "runs");
     fs::create_directories(dir / "logs");
@@ -186,7 +187,40 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
   }
   fs::create_directories(dir / "runs");
   fs::create_directories(dir / "logs");
+}
 
+// Records how run `i` ended (`wstatus` from waitpid): complete, pending (we stopped it) or failed
+// with its exit code or signal, log tail, last progress line and the crash handler's line.
+void recordRunEnd(const SweepPlan& plan, const fs::path& dir, size_t i, int wstatus, bool interrupted, RunState& s,
+                  size_t& failed) {
+  const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
+  s.exit_code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 0;
+  s.signal = WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
+  auto metrics = WIFEXITED(wstatus) && s.exit_code == 0 ? completeMetrics(m) : std::nullopt;
+  if (metrics) {
+    s.status = "complete";
+    s.metrics = std::move(*metrics);
+  } else if (interrupted) {
+    s.status = "pending";  // stopped by us: redone on resume
+  } else {
+    s.status = "failed";
+    const std::string log = readFileText(dir / "logs" / (plan.runs[i].id + ".log"));
+    s.log_tail = tail(log, 12);
+    s.last_progress = lastLineWith(log, ": t = ");
+    s.fatal = lastLineWith(log, ": fatal signal ");
+    ++failed;
+    std::fprintf(stderr, "sweep: run %s failed (%s %d); see %s\n", plan.runs[i].id.c_str(),
+                 s.signal ? "signal" : "exit code", s.signal ? s.signal : s.exit_code,
+                 (dir / "logs" / (plan.runs[i].id + ".log")).c_str());
+  }
+}
+
+}  // namespace
+
+SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRunOptions& options,
+                      const std::function<bool()>& stop_requested) {
+  // The directory: new, or a sweep of the same file and build (resume).
+  prepareSweepDir(plan, dir, options);
   // Complete runs are skipped.
   std::vector<RunState> states(plan.runs.size());
   std::vector<size_t> todo;
@@ -237,27 +271,7 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
     if (it == running.end()) continue;
     const size_t i = it->second;
     running.erase(it);
-    RunState& s = states[i];
-    const fs::path m = dir / "runs" / plan.runs[i].id / "metrics.json";
-    s.exit_code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 0;
-    s.signal = WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
-    auto metrics = WIFEXITED(wstatus) && s.exit_code == 0 ? completeMetrics(m) : std::nullopt;
-    if (metrics) {
-      s.status = "complete";
-      s.metrics = std::move(*metrics);
-    } else if (interrupted) {
-      s.status = "pending";  // stopped by us: redone on resume
-    } else {
-      s.status = "failed";
-      const std::string log = readFileText(dir / "logs" / (plan.runs[i].id + ".log"));
-      s.log_tail = tail(log, 12);
-      s.last_progress = lastLineWith(log, ": t = ");
-      s.fatal = lastLineWith(log, ": fatal signal ");
-      ++failed;
-      std::fprintf(stderr, "sweep: run %s failed (%s %d); see %s\n", plan.runs[i].id.c_str(),
-                   s.signal ? "signal" : "exit code", s.signal ? s.signal : s.exit_code,
-                   (dir / "logs" / (plan.runs[i].id + ".log")).c_str());
-    }
+    recordRunEnd(plan, dir, i, wstatus, interrupted, states[i], failed);
     ++done;
     if (!options.task) writeIndex(dir, plan, states, int(options.jobs));
     progress();
