@@ -87,6 +87,76 @@ cv::Mat replayTopDown(const PerceptionLog& log, const SphereMap& map) {
   return img;
 }
 
+// Ground truth for the safety check when the log's world is a generated world (else none).
+std::optional<WorldTruth> logTruth(const PerceptionLog& log) {
+  std::optional<WorldTruth> truth;
+  if (log.header.contains("world")) {
+    try {
+      const ResolvedWorld w = resolveWorld(log.header["world"].get<std::string>());
+      if (w.built) truth.emplace(w.built->generated.shapes);
+    } catch (const std::exception&) {
+      // not a known generated world: no safety statistics
+    }
+  }
+  return truth;
+}
+
+// Corridor coverage: share of the flown camera positions (every 10th frame) inside the map's
+// free space at the end; also without the take-off and landing metres (camera below 1 m).
+struct PathCoverage {
+  long samples = 0, covered = 0, high_samples = 0, high_covered = 0;
+};
+PathCoverage pathCoverage(const PerceptionLog& log, const SphereMap& map) {
+  PathCoverage c;
+  for (size_t i = 0; i < log.frames.size(); i += 10) {
+    const Vec3 p = log.frames[i].points.T_W_C.translation();
+    const bool inside = !map.spheresNear(p, 0.0).empty();
+    ++c.samples;
+    c.covered += inside;
+    if (log.frames[i].T_W_C_truth.translation().z() >= 1.0) ++c.high_samples, c.high_covered += inside;
+  }
+  return c;
+}
+
+// summary.json → map_safety (worlds with ground truth).
+nlohmann::json mapSafetyJson(const Replay& r) {
+  const auto& sf = r.safety;
+  nlohmann::json by_kind;
+  for (const auto& [k, n] : sf.unsafe_by_kind)
+    by_kind[k] = {{"unsafe_share", double(n) / std::max(1L, sf.events)},
+                  {"unsafe_volume_share", sf.unsafe_volume_by_kind.at(k) / std::max(1e-9, sf.volume)}};
+  return {{"sphere_events", sf.events},
+          {"unsafe_share", double(sf.unsafe) / std::max(1L, sf.events)},
+          {"unsafe_volume_share", sf.unsafe_volume / std::max(1e-9, sf.volume)},
+          {"safe_volume_share", 1.0 - sf.unsafe_volume / std::max(1e-9, sf.volume)},
+          {"unsafe_by_kind", by_kind},
+          {"unsafe_by_object", sf.unsafe_by_object},
+          {"free_volume_share", 1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)},
+          {"free_volume_share_by_nearest_kind",
+           [&] {
+             nlohmann::json k;
+             for (const auto& [kind, v] : sf.volume_by_kind)
+               k[kind] = 1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v);
+             return k;
+           }()},
+          {"median_intrusion_m", percentile(sf.intrusion_m, 0.5)},
+          {"rule", r.safety_rule}};
+}
+
+// The safety statistics on stdout.
+void printMapSafety(const Replay& r) {
+  const auto& sf = r.safety;
+  std::printf("map safety: %ld sphere creations/growths, %.2f %% unsafe (%.2f %% of volume)", sf.events,
+              100.0 * sf.unsafe / std::max(1L, sf.events), 100.0 * sf.unsafe_volume / std::max(1e-9, sf.volume));
+  for (const auto& [k, n] : sf.unsafe_by_kind) std::printf("; %s %ld", k.c_str(), n);
+  std::printf("\nmap safety: %.2f %% of the sphere volume is really free",
+              100.0 * (1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)));
+  for (const auto& [kind, v] : sf.volume_by_kind)
+    std::printf("; near %s %.2f %%", kind.c_str(),
+                100.0 * (1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v)));
+  std::printf("\n");
+}
+
 }  // namespace
 
 int runMapReplayCommand(int argc, char** argv) {
@@ -111,15 +181,7 @@ int runMapReplayCommand(int argc, char** argv) {
   StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kMapReplay);
   SphereMap map(cfg, cameraFromHeader(args.get("LOG"), log.header), seed);
   // Ground truth for the safety check when the log's world is a generated world.
-  std::optional<WorldTruth> truth;
-  if (log.header.contains("world")) {
-    try {
-      const ResolvedWorld w = resolveWorld(log.header["world"].get<std::string>());
-      if (w.built) truth.emplace(w.built->generated.shapes);
-    } catch (const std::exception&) {
-      // not a known generated world: no safety statistics
-    }
-  }
+  const std::optional<WorldTruth> truth = logTruth(log);
   const Replay r = replay(log, map, rate_hz, truth ? &*truth : nullptr);
 
   writeFileAtomic(out.staging() / "map_stats.csv", mapStatsCsv(r));
@@ -134,22 +196,13 @@ int runMapReplayCommand(int argc, char** argv) {
   for (const auto& [id, sp] : map.spheres()) columns.markDisk(sp.centre.head<2>(), sp.radius);
   double volume = 0;
   for (const auto& [id, sp] : map.spheres()) volume += 4.0 / 3.0 * M_PI * std::pow(sp.radius, 3);
-  // Corridor coverage: share of the flown camera positions (every 10th frame) inside the map's
-  // free space at the end; also without the take-off and landing metres (camera below 1 m).
-  long path_samples = 0, path_covered = 0, high_samples = 0, high_covered = 0;
-  for (size_t i = 0; i < log.frames.size(); i += 10) {
-    const Vec3 p = log.frames[i].points.T_W_C.translation();
-    const bool inside = !map.spheresNear(p, 0.0).empty();
-    ++path_samples;
-    path_covered += inside;
-    if (log.frames[i].T_W_C_truth.translation().z() >= 1.0) ++high_samples, high_covered += inside;
-  }
+  const PathCoverage pc = pathCoverage(log, map);
   const nlohmann::json j = {
       {"updates", r.stats.size()},
       {"covered_columns", columns.count()},
       {"covered_area_m2", columns.areaM2()},
-      {"flown_path_in_free_space_share", double(path_covered) / std::max(1L, path_samples)},
-      {"flown_path_above_1m_in_free_space_share", double(high_covered) / std::max(1L, high_samples)},
+      {"flown_path_in_free_space_share", double(pc.covered) / std::max(1L, pc.samples)},
+      {"flown_path_above_1m_in_free_space_share", double(pc.high_covered) / std::max(1L, pc.high_samples)},
       {"flown_path_above_1m_in_free_space_at_the_time_share", double(r.live_covered) / std::max(1L, r.live_samples)},
       {"sphere_volume_sum_m3", volume},
       {"spheres", map.spheres().size()},
@@ -164,36 +217,8 @@ int runMapReplayCommand(int argc, char** argv) {
       {"log", args.get("LOG")}};
   nlohmann::json summary = j;
   if (truth) {
-    const auto& sf = r.safety;
-    nlohmann::json by_kind;
-    for (const auto& [k, n] : sf.unsafe_by_kind)
-      by_kind[k] = {{"unsafe_share", double(n) / std::max(1L, sf.events)},
-                    {"unsafe_volume_share", sf.unsafe_volume_by_kind.at(k) / std::max(1e-9, sf.volume)}};
-    summary["map_safety"] = {{"sphere_events", sf.events},
-                             {"unsafe_share", double(sf.unsafe) / std::max(1L, sf.events)},
-                             {"unsafe_volume_share", sf.unsafe_volume / std::max(1e-9, sf.volume)},
-                             {"safe_volume_share", 1.0 - sf.unsafe_volume / std::max(1e-9, sf.volume)},
-                             {"unsafe_by_kind", by_kind},
-                             {"unsafe_by_object", sf.unsafe_by_object},
-                             {"free_volume_share", 1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)},
-                             {"free_volume_share_by_nearest_kind",
-                              [&] {
-                                nlohmann::json k;
-                                for (const auto& [kind, v] : sf.volume_by_kind)
-                                  k[kind] = 1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v);
-                                return k;
-                              }()},
-                             {"median_intrusion_m", percentile(sf.intrusion_m, 0.5)},
-                             {"rule", r.safety_rule}};
-    std::printf("map safety: %ld sphere creations/growths, %.2f %% unsafe (%.2f %% of volume)", sf.events,
-                100.0 * sf.unsafe / std::max(1L, sf.events), 100.0 * sf.unsafe_volume / std::max(1e-9, sf.volume));
-    for (const auto& [k, n] : sf.unsafe_by_kind) std::printf("; %s %ld", k.c_str(), n);
-    std::printf("\nmap safety: %.2f %% of the sphere volume is really free",
-                100.0 * (1.0 - sf.occupied_volume / std::max(1e-9, sf.volume)));
-    for (const auto& [kind, v] : sf.volume_by_kind)
-      std::printf("; near %s %.2f %%", kind.c_str(),
-                  100.0 * (1.0 - sf.occupied_volume_by_kind.at(kind) / std::max(1e-9, v)));
-    std::printf("\n");
+    summary["map_safety"] = mapSafetyJson(r);
+    printMapSafety(r);
   }
   writeFileAtomic(out.staging() / "summary.json", summary.dump(2) + "\n");
   out.commit();
@@ -202,7 +227,7 @@ int runMapReplayCommand(int argc, char** argv) {
       "%.0f %% of the flown path in free space (%.0f %% above 1 m; %.0f %% at the time); update ms median %.2f, p99 "
       "%.2f -> %s\n",
       r.stats.size(), map.spheres().size(), map.obstacles().size(), columns.count(), columns.areaM2(),
-      100.0 * path_covered / std::max(1L, path_samples), 100.0 * high_covered / std::max(1L, high_samples),
+      100.0 * pc.covered / std::max(1L, pc.samples), 100.0 * pc.high_covered / std::max(1L, pc.high_samples),
       100.0 * r.live_covered / std::max(1L, r.live_samples), percentile(r.total_ms, 0.5), percentile(r.total_ms, 0.99),
       out.finalDir().c_str());
   return kExitOk;
