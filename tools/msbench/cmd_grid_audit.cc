@@ -116,52 +116,8 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-}  // namespace
-
-int runGridAuditCommand(int argc, char** argv) {
-  const std::vector<std::string> sets = takeRepeatedOption(argc, argv, "set");
-  ArgParser args("msbench grid-audit",
-                 "Audit a grid-baseline collision: replay the run's perception log (msbench run ...\n"
-                 "--record LOG) through its grid map on the loop's schedule, watch the cells around\n"
-                 "the contact point (in the map frame) and describe every ray that hit or cleared\n"
-                 "them; re-run the predicted-path check on the flown estimate before contact.\n"
-                 "Prints a summary and writes it as JSON with --out. --set KEY=VALUE (repeatable)\n"
-                 "changes the run's configuration for the replay, e.g. --set method.map.prob_miss=0.45.");
-  args.positional("LOG", "perception log of the run")
-      .positional("RUN", "the run's result directory (metrics.json, config.yaml, trajectory.csv)")
-      .option("radius", "0.75", "watch cells whose centre lies within this of the contact point (m)")
-      .option("window", "5", "seconds before contact for the predicted-path check")
-      .option("out", "", "write the audit as JSON to this file");
-  if (!args.parse(argc, argv)) return kExitOk;
-  const fs::path run = args.get("RUN");
-  // --out is a new file, never one of the inputs or inside the run's directory.
-  if (!args.get("out").empty()) {
-    checkNoOverlap({{"LOG", args.get("LOG")}, {"RUN", run}}, {{"--out", args.get("out")}});
-    checkOutputFile(args.get("out"), /*overwrite=*/false, "out");
-  }
-  const double radius = args.getDoubleIn("radius", 0.1, 5.0), window = args.getDoubleIn("window", 0.5, 60.0);
-  const Contact contact = readContact(run);
-  const ScenarioSpec spec = loadScenario((run / "config.yaml").string(), sets);
-  const auto* grid = std::any_cast<GridExplorerConfig>(&spec.method.config);
-  if (!grid)
-    throw UsageError((run / "config.yaml").string() + ": method.type is " + spec.method.type + ", not grid_random");
-  const PerceptionLog log = readReplayableLog(args.get("LOG"));
-  const ResolvedWorld world = resolveWorld(log.header.at("world").get<std::string>());
-  if (!world.built) throw UsageError(args.get("LOG") + ": its world is not a generated world (no ground truth)");
-  const WorldTruth truth(world.built->generated.shapes);
-
-  // The map frame at contact: the VIO error of the last frame at or before it.
-  size_t last = 0;
-  for (size_t i = 0; i < log.frames.size(); ++i)
-    if (log.frames[i].points.t_s <= contact.t_s) last = i;
-  auto correction = [&](size_t i) { return Pose(log.frames[i].points.T_W_C * log.frames[i].T_W_C_truth.inverse()); };
-  const Pose at_contact = correction(last);
-  const Vec3 c_map = at_contact * contact.point;
-  const Vec3 normal_map = at_contact.linear() * surfaceNormal(truth, contact.point);
-
-  // The watched cells: centres within the radius of the contact point in the map frame.
-  GridMap map(grid->map);
-  const double res = grid->map.resolution_m;
+// The watched cells: centres within `radius` of the contact point in the map frame.
+std::vector<uint64_t> watchedKeys(const GridMap& map, const Vec3& c_map, double radius, double res) {
   std::vector<uint64_t> keys;
   const int n = int(std::ceil(radius / res)) + 1;
   for (int x = -n; x <= n; ++x)
@@ -169,15 +125,35 @@ int runGridAuditCommand(int argc, char** argv) {
       for (int z = -n; z <= n; ++z)
         if (const auto k = map.keyOf(c_map + res * Vec3(x, y, z)); k && (map.centreOf(*k) - c_map).norm() <= radius)
           keys.push_back(*k);
-  map.watch(keys);
-  const auto contact_key = map.keyOf(c_map);
+  return keys;
+}
 
-  // Replay up to contact, describing every watched update and re-running the path check.
-  const auto estimate = readEstimate(run / "trajectory.csv");
+// What the replay up to contact saw: every watched update described, the contact cell's
+// probability over time, and the predicted-path checks of the last `window` seconds.
+struct AuditReplay {
   std::vector<RayNote> notes;
   std::optional<double> first_check_fired, contact_p, max_p;
   double last_hit_t = -1, last_occupied_t = -1;
   int checks = 0, fired = 0;
+};
+
+// The frame-to-map correction (estimated camera pose over true) of log frame i.
+Pose logCorrection(const PerceptionLog& log, size_t i) {
+  return Pose(log.frames[i].points.T_W_C * log.frames[i].T_W_C_truth.inverse());
+}
+
+// Replays the log through `map` on the loop's schedule up to the contact.
+AuditReplay replayToContact(const PerceptionLog& log, const ScenarioSpec& spec, const GridExplorerConfig& grid,
+                            const WorldTruth& truth, const Contact& contact, const Vec3& c_map, const Vec3& normal_map,
+                            const std::optional<uint64_t>& contact_key, double window, const fs::path& run,
+                            GridMap& map) {
+  const auto estimate = readEstimate(run / "trajectory.csv");
+  AuditReplay a;
+  std::vector<RayNote>& notes = a.notes;
+  std::optional<double>&first_check_fired = a.first_check_fired, &contact_p = a.contact_p, &max_p = a.max_p;
+  double &last_hit_t = a.last_hit_t, &last_occupied_t = a.last_occupied_t;
+  int &checks = a.checks, &fired = a.fired;
+  auto correction = [&](size_t i) { return logCorrection(log, i); };
   for (size_t i : scheduledFrames(log, spec.flight.physics.physics_hz, spec.mission.map_rate_hz)) {
     throwIfInterrupted();
     const LoggedFrame& f = log.frames[i];
@@ -209,7 +185,7 @@ int runGridAuditCommand(int argc, char** argv) {
         if (t >= f.points.t_s && t <= contact.t_s) path.push_back(p);
       if (path.size() >= 2) {
         ++checks;
-        if (pathNearOccupied(map, path, path.front(), grid->check_ahead_m, grid->check_clearance_m)) {
+        if (pathNearOccupied(map, path, path.front(), grid.check_ahead_m, grid.check_clearance_m)) {
           ++fired;
           if (!first_check_fired) first_check_fired = contact.t_s - f.points.t_s;
         }
@@ -217,7 +193,16 @@ int runGridAuditCommand(int argc, char** argv) {
     }
   }
 
-  // Summary.
+  return a;
+}
+
+// The audit as JSON.
+nlohmann::json auditSummary(const fs::path& run, const Contact& contact, const Vec3& c_map,
+                            const std::vector<uint64_t>& keys, const GridMap& map, const AuditReplay& a) {
+  const std::vector<RayNote>& notes = a.notes;
+  const double last_hit_t = a.last_hit_t, last_occupied_t = a.last_occupied_t;
+  const std::optional<double>&contact_p = a.contact_p, &max_p = a.max_p, &first_check_fired = a.first_check_fired;
+  const int checks = a.checks, fired = a.fired;
   int hits = 0, misses = 0, misses_after_hit = 0, on_object = 0;
   std::vector<double> beyond, angle, pose_error, shift;
   for (const RayNote& r : notes) {
@@ -266,6 +251,62 @@ int runGridAuditCommand(int argc, char** argv) {
       {"path_checks", checks},
       {"path_checks_fired", fired},
       {"first_fired_before_contact_s", first_check_fired ? nlohmann::json(*first_check_fired) : nlohmann::json()}};
+  return j;
+}
+
+}  // namespace
+
+int runGridAuditCommand(int argc, char** argv) {
+  const std::vector<std::string> sets = takeRepeatedOption(argc, argv, "set");
+  ArgParser args("msbench grid-audit",
+                 "Audit a grid-baseline collision: replay the run's perception log (msbench run ...\n"
+                 "--record LOG) through its grid map on the loop's schedule, watch the cells around\n"
+                 "the contact point (in the map frame) and describe every ray that hit or cleared\n"
+                 "them; re-run the predicted-path check on the flown estimate before contact.\n"
+                 "Prints a summary and writes it as JSON with --out. --set KEY=VALUE (repeatable)\n"
+                 "changes the run's configuration for the replay, e.g. --set method.map.prob_miss=0.45.");
+  args.positional("LOG", "perception log of the run")
+      .positional("RUN", "the run's result directory (metrics.json, config.yaml, trajectory.csv)")
+      .option("radius", "0.75", "watch cells whose centre lies within this of the contact point (m)")
+      .option("window", "5", "seconds before contact for the predicted-path check")
+      .option("out", "", "write the audit as JSON to this file");
+  if (!args.parse(argc, argv)) return kExitOk;
+  const fs::path run = args.get("RUN");
+  // --out is a new file, never one of the inputs or inside the run's directory.
+  if (!args.get("out").empty()) {
+    checkNoOverlap({{"LOG", args.get("LOG")}, {"RUN", run}}, {{"--out", args.get("out")}});
+    checkOutputFile(args.get("out"), /*overwrite=*/false, "out");
+  }
+  const double radius = args.getDoubleIn("radius", 0.1, 5.0), window = args.getDoubleIn("window", 0.5, 60.0);
+  const Contact contact = readContact(run);
+  const ScenarioSpec spec = loadScenario((run / "config.yaml").string(), sets);
+  const auto* grid = std::any_cast<GridExplorerConfig>(&spec.method.config);
+  if (!grid)
+    throw UsageError((run / "config.yaml").string() + ": method.type is " + spec.method.type + ", not grid_random");
+  const PerceptionLog log = readReplayableLog(args.get("LOG"));
+  const ResolvedWorld world = resolveWorld(log.header.at("world").get<std::string>());
+  if (!world.built) throw UsageError(args.get("LOG") + ": its world is not a generated world (no ground truth)");
+  const WorldTruth truth(world.built->generated.shapes);
+
+  // The map frame at contact: the VIO error of the last frame at or before it.
+  size_t last = 0;
+  for (size_t i = 0; i < log.frames.size(); ++i)
+    if (log.frames[i].points.t_s <= contact.t_s) last = i;
+  const Pose at_contact = logCorrection(log, last);
+  const Vec3 c_map = at_contact * contact.point;
+  const Vec3 normal_map = at_contact.linear() * surfaceNormal(truth, contact.point);
+
+  // The watched cells: centres within the radius of the contact point in the map frame.
+  GridMap map(grid->map);
+  const double res = grid->map.resolution_m;
+  const std::vector<uint64_t> keys = watchedKeys(map, c_map, radius, res);
+  map.watch(keys);
+  const auto contact_key = map.keyOf(c_map);
+
+  // Replay up to contact, describing every watched update and re-running the path check.
+  AuditReplay replayed =
+      replayToContact(log, spec, *grid, truth, contact, c_map, normal_map, contact_key, window, run, map);
+  const nlohmann::json j = auditSummary(run, contact, c_map, keys, map, replayed);
   std::printf("%s\n", j.dump(2).c_str());
   if (!args.get("out").empty()) writeFileAtomic(args.get("out"), j.dump(2) + "\n");
   return kExitOk;
