@@ -10,6 +10,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "core/baseline/grid_explorer.h"
+#include "core/map/sphere_map.h"
 #include "tools/config/scenario_yaml.h"
 
 namespace msb {
@@ -77,6 +79,28 @@ TEST(ConfigFields, EveryFieldOfEverySectionIsWrittenAsAKey) {
   EXPECT_EQ(keysAt(e, "physics.vehicle"), fieldCount<QuadrotorConfig>());
   EXPECT_EQ(keysAt(e, "camera"), fieldCount<FisheyeCameraConfig>());
   EXPECT_EQ(keysAt(e, "mission"), fieldCount<MissionSettings>());
+}
+
+// The effective configuration of a default mission with method `type`, parsed.
+YAML::Node effectiveOf(const std::string& type) {
+  const fs::path d = fs::path(::testing::TempDir()) / "msb_config_fields";
+  fs::create_directories(d);
+  std::ofstream(d / "m.yaml") << "world: urban\nmethod: {type: " << type << "}\n";
+  return YAML::Load(effectiveScenarioYaml(loadScenario((d / "m.yaml").string())));
+}
+
+TEST(ConfigFields, TheMethodSectionsWriteEveryField) {
+  // The grid baseline: its map and planner sections, and its own keys beside the take-off's two
+  // (a base class counts as one field) and the two sections.
+  const YAML::Node g = effectiveOf("grid_random");
+  EXPECT_EQ(keysAt(g, "method.map"), fieldCount<GridMapConfig>());
+  EXPECT_EQ(keysAt(g, "method.planner"), fieldCount<GridPlannerConfig>());
+  EXPECT_EQ(keysAt(g, "method") - 1 /* type */ - 2 /* take-off */ + 1 /* base */, fieldCount<GridExplorerConfig>());
+  // MonoSpheres: the mapper's OVDE parameters, and the viewpoint section.
+  const YAML::Node m = effectiveOf("monospheres");
+  EXPECT_EQ(keysAt(m, "method.map.ovde_params"), fieldCount<OpenAreaDepthConfig>());
+  // The mapper: its section plus the two switches written under method.switches (ovde, dbof).
+  EXPECT_EQ(keysAt(m, "method.map") + 2, fieldCount<SphereMapConfig>());
 }
 
 }  // namespace
