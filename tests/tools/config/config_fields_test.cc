@@ -12,6 +12,7 @@
 
 #include "core/baseline/grid_explorer.h"
 #include "core/map/sphere_map.h"
+#include "core/planning/monospheres_explorer.h"
 #include "tools/config/scenario_yaml.h"
 
 namespace msb {
@@ -101,6 +102,11 @@ TEST(ConfigFields, TheMethodSectionsWriteEveryField) {
   EXPECT_EQ(keysAt(m, "method.map.ovde_params"), fieldCount<OpenAreaDepthConfig>());
   // The mapper: its section plus the two switches written under method.switches (ovde, dbof).
   EXPECT_EQ(keysAt(m, "method.map") + 2, fieldCount<SphereMapConfig>());
+  // The planner: its section plus fff (under method.switches), its take-off keys counted as the
+  // one base; viewpoints plus vpb (a switch); safety plus r_min_m, which is method.map.r_min_m.
+  EXPECT_EQ(keysAt(m, "method.planner") + 1 - 2 + 1, fieldCount<MonoSpheresPlannerConfig>());
+  EXPECT_EQ(keysAt(m, "method.planner.viewpoints") + 1, fieldCount<ViewpointConfig>());
+  EXPECT_EQ(keysAt(m, "method.planner.safety") + 1, fieldCount<SafetyCostConfig>());
 }
 
 }  // namespace
