@@ -149,17 +149,12 @@ AuditReplay replayToContact(const PerceptionLog& log, const ScenarioSpec& spec, 
                             GridMap& map) {
   const auto estimate = readEstimate(run / "trajectory.csv");
   AuditReplay a;
-  std::vector<RayNote>& notes = a.notes;
-  std::optional<double>&first_check_fired = a.first_check_fired, &contact_p = a.contact_p, &max_p = a.max_p;
-  double &last_hit_t = a.last_hit_t, &last_occupied_t = a.last_occupied_t;
-  int &checks = a.checks, &fired = a.fired;
-  auto correction = [&](size_t i) { return logCorrection(log, i); };
   for (size_t i : scheduledFrames(log, spec.flight.physics.physics_hz, spec.mission.map_rate_hz)) {
     throwIfInterrupted();
     const LoggedFrame& f = log.frames[i];
     if (f.points.t_s > contact.t_s) break;
     map.insert(f.points);
-    const Pose corr = correction(i);
+    const Pose corr = logCorrection(log, i);
     const Vec3 o = f.points.T_W_C.translation();
     for (const WatchedUpdate& u : map.lastWatched()) {
       const Vec3 p = f.points.points[size_t(u.point)].p_W, dir = (p - o).normalized();
@@ -167,16 +162,16 @@ AuditReplay replayToContact(const PerceptionLog& log, const ScenarioSpec& spec, 
       const NearestObstacle near = truth.nearest(p_true, 5.0);
       const std::string object =
           near.shape >= 0 && near.distance_m < 0.5 ? truth.shapes()[size_t(near.shape)].object : "";
-      notes.push_back({f.points.t_s, u.hit, (p - o).norm() - (map.centreOf(u.key) - o).norm(),
-                       std::asin(std::min(1.0, std::abs(dir.dot(normal_map)))) * 180.0 / M_PI,
-                       (f.points.T_W_C.translation() - f.T_W_C_truth.translation()).norm(),
-                       (corr * contact.point - c_map).norm(), object, std::abs(near.distance_m)});
-      if (u.hit) last_hit_t = f.points.t_s;
+      a.notes.push_back({f.points.t_s, u.hit, (p - o).norm() - (map.centreOf(u.key) - o).norm(),
+                         std::asin(std::min(1.0, std::abs(dir.dot(normal_map)))) * 180.0 / M_PI,
+                         (f.points.T_W_C.translation() - f.T_W_C_truth.translation()).norm(),
+                         (corr * contact.point - c_map).norm(), object, std::abs(near.distance_m)});
+      if (u.hit) a.last_hit_t = f.points.t_s;
     }
     if (contact_key) {
-      contact_p = map.probabilityOf(*contact_key);
-      if (contact_p && *contact_p > 0.5) last_occupied_t = f.points.t_s;
-      if (contact_p) max_p = std::max(max_p.value_or(0.0), *contact_p);
+      a.contact_p = map.probabilityOf(*contact_key);
+      if (a.contact_p && *a.contact_p > 0.5) a.last_occupied_t = f.points.t_s;
+      if (a.contact_p) a.max_p = std::max(a.max_p.value_or(0.0), *a.contact_p);
     }
     // The predicted-path check on the estimate flown from now (as the last path's stand-in).
     if (f.points.t_s >= contact.t_s - window) {
@@ -184,15 +179,14 @@ AuditReplay replayToContact(const PerceptionLog& log, const ScenarioSpec& spec, 
       for (const auto& [t, p] : estimate)
         if (t >= f.points.t_s && t <= contact.t_s) path.push_back(p);
       if (path.size() >= 2) {
-        ++checks;
+        ++a.checks;
         if (pathNearOccupied(map, path, path.front(), grid.check_ahead_m, grid.check_clearance_m)) {
-          ++fired;
-          if (!first_check_fired) first_check_fired = contact.t_s - f.points.t_s;
+          ++a.fired;
+          if (!a.first_check_fired) a.first_check_fired = contact.t_s - f.points.t_s;
         }
       }
     }
   }
-
   return a;
 }
 
