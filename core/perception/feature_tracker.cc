@@ -65,12 +65,14 @@ std::vector<bool> KltFeatureTracker::epipolarInliers(const std::vector<Vec2>& pr
   const double thr = std::acos(std::clamp(
       camera_.unproject(c).normalized().dot(camera_.unproject(c + Vec2(config_.ransac_threshold_px, 0)).normalized()),
       -1.0, 1.0));
-  const cv::Mat E = cv::findEssentialMat(n0, n1, cv::Mat::eye(3, 3, CV_64F), cv::RANSAC, 0.999, thr);
-  if (E.rows != 3 || E.cols != 3) return keep;  // degenerate: nothing rejected
+  // The fundamental matrix on normalised coordinates, as TrackKLT (7-point RANSAC, LMedS under
+  // 15 pairs; OpenCV seeds its generator per call).
+  const cv::Mat F = cv::findFundamentalMat(n0, n1, cv::FM_RANSAC, thr, 0.999);
+  if (F.rows != 3 || F.cols != 3) return keep;  // degenerate: nothing rejected
   Eigen::Matrix3d Em;
   for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k) Em(r, k) = E.at<double>(r, k);
-  // Angular epipolar error of every pair: distance of b1 from the epipolar plane of b0 (and
+    for (int k = 0; k < 3; ++k) Em(r, k) = F.at<double>(r, k);
+  // Angular epipolar error of every pair: distance of b1 from the epipolar plane F b0 (and
   // symmetrically), as a sine.
   for (size_t i = 0; i < prev_px.size(); ++i) {
     const Vec3 l1 = Em * b0[i], l0 = Em.transpose() * b1[i];

@@ -3,9 +3,9 @@
 // forward only as TrackKLT (a forward–backward check is an option, off), histogram equalisation,
 // up to 400 tracks with stable ids and ages. Works in fisheye pixel space; bearings come from the shared camera model.
 // Geometric outlier rejection as OpenVINS' front end does it: the tracked pairs' bearings within
-// ransac_max_angle_deg of the axis give an essential matrix by RANSAC (5-point, OpenCV) on
-// normalised coordinates; every tracked pair whose angular epipolar error exceeds the threshold
-// (ransac_threshold_px at the image centre) is dropped.
+// ransac_max_angle_deg of the axis give a fundamental matrix by RANSAC (7-point, OpenCV, as
+// TrackKLT) on normalised coordinates; every tracked pair whose angular epipolar error exceeds
+// the threshold (ransac_threshold_px at the image centre) is dropped.
 // Single-threaded OpenCV calls only (the caller sets cv::setNumThreads(0) for determinism).
 #pragma once
 

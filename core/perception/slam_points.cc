@@ -188,23 +188,26 @@ void SlamPointEstimator::addObservations(const TrackFrame& tracks, const Pose& T
 }
 
 int SlamPointEstimator::refineInState(std::map<uint64_t, SlamPoint>& points) {
-  // SLAM features in the state: refined with the new observation; two failures in a row
-  // marginalise the feature (its track starts a new window).
+  // SLAM features in the state: refined with the new observation. A failed update is OpenVINS'
+  // χ² rejection: the observation is not used, the feature keeps its estimate, and the failure
+  // counts for the feature's whole life (UpdaterSLAM never resets update_fail_count); the second
+  // failure marginalises it (VioManager: update_fail_count > 1) and its track starts a new window.
   int in_state = 0;
   for (auto& [id, s] : tracks_) {
     if (!s.slam) continue;
     SlamPoint p;
     if (refineFeature(s, &p)) {
       s.depth = p.depth_m;
-      s.fail_count = 0;
       s.last = p;
-    } else if (++s.fail_count > 1) {
-      const int64_t first_tick = s.first_tick;
-      s = TrackState{};
-      s.first_tick = first_tick;
-      continue;
     } else {
-      p = s.last;  // one failed update: the feature keeps its estimate
+      s.slam_obs.pop_back();  // this frame's observation, rejected
+      if (++s.fail_count > 1) {
+        const int64_t first_tick = s.first_tick;
+        s = TrackState{};
+        s.first_tick = first_tick;
+        continue;
+      }
+      p = s.last;
     }
     p.track_id = id;
     p.anchor_tick = s.slam_obs.front().tick;

@@ -18,8 +18,9 @@
 //  - in the state a feature is refined with every new observation (Gauss–Newton over its
 //    initialisation window and its most recent observations, a batch stand-in for the EKF
 //    update, which never forgets the window's information) for as long
-//    as it is tracked; a lost track is marginalised (dropped), as is a feature whose refinement
-//    fails twice in a row.
+//    as it is tracked; a lost track is marginalised (dropped). A failed refinement is the χ²
+//    gate's rejection: that observation is dropped and the failure counted for the feature's
+//    life, never reset; the second failure marginalises the feature (OpenVINS' update_fail_count).
 //
 // Parameterisation: with the anchor bearing b0 and an orthonormal pair (e1, e2) ⟂ b0,
 //     p_A(a, c, ρ) = (b0 + a e1 + c e2) / ρ           (ρ ≈ inverse depth along b0)
@@ -90,7 +91,7 @@ class SlamPointEstimator {
     bool slam = false;                  // in the state
     std::vector<Observation> slam_obs;  // anchor first, then the most recent
     double depth = 0.0;                 // along the anchor ray
-    int fail_count = 0;
+    int fail_count = 0;                 // failed updates in the feature's life (never reset)
     SlamPoint last;  // the latest estimate
   };
 

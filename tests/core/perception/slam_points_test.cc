@@ -154,6 +154,40 @@ TEST(SlamPoints, TracksBecomeSlamPointsOnlyAfterTheDelayAndOnceTheySpanTheWindow
   EXPECT_TRUE(est.update(TrackFrame{}, sidewaysPose(20)).points.empty());
 }
 
+// A frame in which track `id`'s pixel is `offset` off where the point projects.
+TrackFrame frameWithOffset(int i, const Pose& T, uint64_t id, const Vec3& p, const Vec2& offset) {
+  TrackFrame tf = frameOf(i, T, {{id, p}});
+  tf.tracks[0].pixel += offset;
+  return tf;
+}
+
+TEST(SlamPoints, TheSecondFailedUpdateInAFeaturesLifeMarginalisesItAsOpenVinsChi2Rule) {
+  // OpenVINS counts χ²-gate failures over a feature's whole life (update_fail_count is never
+  // reset) and marginalises at the second; a rejected observation is not used.
+  SlamPointsConfig cfg;
+  cfg.dt_slam_delay_s = 0.0;
+  SlamPointEstimator est(cfg, FisheyeCamera(), kFrameHz);
+  const Vec3 a(8, 1, 1);
+  int i = 0;
+  for (; i <= 8; ++i) est.update(frameOf(i, sidewaysPose(i), {{7, a}}), sidewaysPose(i));
+  auto pointsAt = [&](const TrackFrame& f) { return est.update(f, sidewaysPose(f.tick)).points; };
+  ASSERT_EQ(pointsAt(frameOf(i, sidewaysPose(i), {{7, a}})).size(), 1u);  // in the state
+  ++i;
+  // First failure: a 40-px jump is rejected; the feature keeps its estimate.
+  auto out = pointsAt(frameWithOffset(i, sidewaysPose(i), 7, a, Vec2(40, 0)));
+  ++i;
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_LT((out[0].p_W - a).norm(), 1e-3);
+  // Clean updates succeed (the rejected observation is not in them) ...
+  for (int k = 0; k < 5; ++k, ++i) {
+    out = pointsAt(frameOf(i, sidewaysPose(i), {{7, a}}));
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_LT(out[0].reprojection_rms_px, 1e-3);
+  }
+  // ... and do not reset the count: the second failure marginalises the feature.
+  EXPECT_TRUE(pointsAt(frameWithOffset(i, sidewaysPose(i), 7, a, Vec2(40, 0))).empty());
+}
+
 TEST(SlamPoints, AtMostMaxSlamInUpdateNewFeaturesPerFrameAndMaxSlamInTheState) {
   const FisheyeCamera cam;
   std::map<uint64_t, Vec3> pts;
