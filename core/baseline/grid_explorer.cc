@@ -70,29 +70,10 @@ bool GridExplorer::pathBlocked(const Vec3& from) const {
 }
 
 std::optional<PathCommand> GridExplorer::explore(const VehicleState& s) {
-  const Vec3 p = s.T_W_B.translation();
-  // Goal bookkeeping every goal period: reached, idle or timed out → a new goal.
-  if (s.t_s - last_goal_check_s_ >= config_.goal_period_s - 1e-9) {
-    last_goal_check_s_ = s.t_s;
-    bool need_goal = !goal_;
-    if (goal_ && (*goal_ - p).norm() <= config_.reach_distance_m) {
-      ++counters_["goals_reached"];
-      need_goal = true;
-    } else if (goal_ && path_sent_ && s.path_finished) {
-      ++counters_["goals_idle"];  // arrived at the closest reachable cell, or nowhere to go
-      need_goal = true;
-    } else if (goal_ && s.t_s - goal_since_s_ >= config_.goal_timeout_s) {
-      ++counters_["goals_timed_out"];
-      need_goal = true;
-    }
-    if (need_goal) {
-      goal_ = drawGoal(p);
-      goal_since_s_ = s.t_s;
-      path_sent_ = false;
-      replan_now_ = true;
-      ++counters_["goals_chosen"];
-    }
-  }
+  // Goal bookkeeping every goal period; nothing to do without a goal (after a chooser dropped
+  // the goal in flight: stop once).
+  if (s.t_s - last_goal_check_s_ >= config_.goal_period_s - 1e-9 && checkGoal(s))
+    return command(s, {{s.reference.position_m, std::nullopt}});
   if (!goal_) return std::nullopt;
 
   // The predicted-path check: stop and re-plan when the path ahead nears an occupied cell.
@@ -100,13 +81,70 @@ std::optional<PathCommand> GridExplorer::explore(const VehicleState& s) {
     ++counters_["blocked_stops"];
     replan_now_ = true;
     last_plan_s_ = s.t_s;
+    given_path_.clear();  // a chooser's path too: A* from here on
+    flying_given_ = false;
     return command(s, {{s.reference.position_m, std::nullopt}});
   }
+  return replan(s);
+}
 
-  // Re-plan every replan period (or at once after a new goal or a stop).
+bool GridExplorer::checkGoal(const VehicleState& s) {
+  // Reached, idle or timed out → a new goal: drawn, or asked of the chooser (which is asked at
+  // every check and may change the goal any time). Returns whether the vehicle must stop.
+  const Vec3 p = s.T_W_B.translation();
+  last_goal_check_s_ = s.t_s;
+  bool need_goal = !goal_;
+  if (goal_ && (*goal_ - p).norm() <= config_.reach_distance_m) {
+    ++counters_["goals_reached"];
+    need_goal = true;
+  } else if (goal_ && path_sent_ && s.path_finished) {
+    ++counters_["goals_idle"];  // arrived at the closest reachable cell, or nowhere to go
+    need_goal = true;
+  } else if (goal_ && s.t_s - goal_since_s_ >= config_.goal_timeout_s) {
+    ++counters_["goals_timed_out"];
+    need_goal = true;
+  }
+  if (!chooser_) {
+    if (need_goal) setGoal(s.t_s, drawGoal(p));
+    return false;
+  }
+  const std::optional<std::vector<Vec3>> choice = chooser_(GoalRequest{s.t_s, p, need_goal});
+  const bool moving = path_sent_ && !s.path_finished;
+  if (!choice) {
+    if (need_goal) setGoal(s.t_s, std::nullopt);
+    return false;
+  }
+  if (choice->empty()) {
+    setGoal(s.t_s, std::nullopt);
+    return moving;  // no goal: hover where the reference is
+  }
+  setGoal(s.t_s, choice->back(), choice->size() > 1 ? *choice : std::vector<Vec3>{});
+  return false;
+}
+
+void GridExplorer::setGoal(double t_s, std::optional<Vec3> goal, std::vector<Vec3> path) {
+  goal_ = goal;
+  given_path_ = std::move(path);
+  flying_given_ = false;
+  goal_since_s_ = t_s;
+  path_sent_ = false;
+  replan_now_ = true;
+  if (goal_) ++counters_["goals_chosen"];
+}
+
+std::optional<PathCommand> GridExplorer::replan(const VehicleState& s) {
+  // Re-plan every replan period (or at once after a new goal or a stop); a chooser's path is
+  // sent once and flown as given.
   if (!replan_now_ && s.t_s - last_plan_s_ < config_.replan_period_s - 1e-9) return std::nullopt;
+  if (flying_given_) return std::nullopt;
   replan_now_ = false;
   last_plan_s_ = s.t_s;
+  if (!given_path_.empty()) {
+    std::vector<Waypoint> w;
+    for (const Vec3& q : given_path_) w.push_back({q, std::nullopt});
+    path_sent_ = flying_given_ = true;
+    return command(s, std::move(w));
+  }
   if (map_changed_) {
     planner_.rebuild(map_);
     map_changed_ = false;

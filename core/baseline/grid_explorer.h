@@ -7,6 +7,7 @@
 //      goal_timeout_s on the same goal, draw a new goal uniformly in the square of side
 //      goal_square_m around the vehicle intersected with the exploration box, at a height
 //      uniform in the box's band (stream `baseline_goals`);
+//      (a GoalChooser, the goal-only helper of the Python module, replaces the draw);
 //   3. every replan_period_s (and after a stop): A* from the vehicle to the goal keeping
 //      clearance_m from occupied cells — to the reachable cell closest to the goal when the
 //      goal cannot be reached — sent as waypoints without headings (the camera faces the
@@ -17,10 +18,12 @@
 // leaf's real size after pruning).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/baseline/grid_map.h"
 #include "core/baseline/grid_path_planner.h"
@@ -48,6 +51,19 @@ struct GridExplorerConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, st
   void validate(ConfigChecker& c) const;
 };
 
+/// What a goal chooser is asked at every goal check (estimate frame).
+struct GoalRequest {
+  double t_s = 0.0;
+  Vec3 position = Vec3::Zero();  ///< the vehicle
+  bool needs_goal = true;        ///< the baseline would draw a new goal now (none, reached, idle, timed out)
+};
+
+/// A goal chooser replacing the random draw (the goal-only helper for Python methods,
+/// docs/python.md): nothing keeps the current goal (none if one is needed); an empty list means
+/// no goal (hover); one point is a goal A* plans to on the map; more are a path flown as given,
+/// its last point the goal (the predicted-path check still stops the vehicle, then A* takes over).
+using GoalChooser = std::function<std::optional<std::vector<Vec3>>(const GoalRequest&)>;
+
 /// The grid explorer.
 class GridExplorer : public Explorer {
  public:
@@ -67,9 +83,14 @@ class GridExplorer : public Explorer {
   const std::optional<Vec3>& goal() const { return goal_; }
   /// Draws a goal for a vehicle at p (advances the goal stream; tests).
   Vec3 drawGoal(const Vec3& p);
+  /// Goals from `chooser` instead of the random draw (asked every goal_period_s).
+  void setGoalChooser(GoalChooser chooser) { chooser_ = std::move(chooser); }
 
  private:
   std::optional<PathCommand> explore(const VehicleState& s);
+  bool checkGoal(const VehicleState& s);
+  void setGoal(double t_s, std::optional<Vec3> goal, std::vector<Vec3> path = {});
+  std::optional<PathCommand> replan(const VehicleState& s);
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
   bool pathBlocked(const Vec3& from) const;
 
@@ -81,6 +102,9 @@ class GridExplorer : public Explorer {
   TakeoffSequence takeoff_;
   bool map_changed_ = true;
   std::optional<Vec3> goal_;
+  GoalChooser chooser_;
+  std::vector<Vec3> given_path_;  // a chooser's path, flown as given (until a stop)
+  bool flying_given_ = false;     // that path was sent
   bool path_sent_ = false, replan_now_ = false;
   double goal_since_s_ = 0, last_goal_check_s_ = -1e9, last_plan_s_ = -1e9;
   std::vector<Vec3> last_path_;

@@ -18,6 +18,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/common/config_check.h"
+#include "core/baseline/grid_explorer.h"
 #include "core/common/rng.h"
 #include "core/explorer/explorer.h"
 #include "core/geometry/world_truth.h"
@@ -313,6 +314,83 @@ class PyExplorer final : public Explorer {
   py::object method_;
 };
 
+// ---- The goal-only helper -------------------------------------------------------------------
+
+/// What a goal chooser sees at a goal check: the time, the vehicle, whether the baseline would
+/// need a new goal, and msbench's OctoMap (its leaves, computed when asked; valid during the call).
+struct GoalRequestView {
+  double t_s = 0.0;
+  bool needs_goal = true;
+  py::object position;
+  const GridMap* map = nullptr;
+
+  const GridMap& liveMap() const {
+    if (!map) throw std::runtime_error("a GoalRequest's map is valid only during the goals() call");
+    return *map;
+  }
+  // Leaves as an N×4 array: centre x, y, z and edge length.
+  py::array_t<double> leafArray(bool occupied) const {
+    const std::vector<GridLeaf> leaves = liveMap().leaves(occupied);
+    py::array_t<double> a({py::ssize_t(leaves.size()), py::ssize_t(4)});
+    auto m = a.mutable_unchecked<2>();
+    for (size_t i = 0; i < leaves.size(); ++i) {
+      for (int k = 0; k < 3; ++k) m(py::ssize_t(i), k) = leaves[i].centre[k];
+      m(py::ssize_t(i), 3) = leaves[i].size_m;
+    }
+    return readOnly(a);
+  }
+};
+
+// A chooser's answer: None (keep), one point (x, y, z), or a list of points (a path; empty: hover).
+std::optional<std::vector<Vec3>> goalChoiceFrom(const py::object& r) {
+  if (r.is_none()) return std::nullopt;
+  const py::object list = py::module_::import("builtins").attr("list");
+  const py::list items = list(r);
+  auto isScalar = [](const py::handle& h) { return !py::hasattr(h, "__len__"); };
+  auto point = [&](const py::list& q) {
+    if (q.size() != 3 || !isScalar(q[0]) || !isScalar(q[1]) || !isScalar(q[2]))
+      throw std::runtime_error("goals() must return None, (x, y, z) or a list of (x, y, z)");
+    return Vec3(q[0].cast<double>(), q[1].cast<double>(), q[2].cast<double>());
+  };
+  if (items.size() == 3 && isScalar(items[0])) return std::vector<Vec3>{point(items)};
+  std::vector<Vec3> out;
+  for (const auto& e : items) {
+    if (isScalar(e)) throw std::runtime_error("goals() must return None, (x, y, z) or a list of (x, y, z)");
+    out.push_back(point(list(e)));
+  }
+  return out;
+}
+
+/// Sets a Python goal chooser on a grid explorer: goals(request) is called at every goal check
+/// with the GIL held; an exception becomes a MethodError.
+void setPythonGoalChooser(GridExplorer& explorer, py::object goals) {
+  const GridExplorer* ex = &explorer;
+  auto fn = std::make_shared<py::object>(std::move(goals));
+  explorer.setGoalChooser([ex, fn](const GoalRequest& q) -> std::optional<std::vector<Vec3>> {
+    py::gil_scoped_acquire gil;
+    try {
+      GoalRequestView v;
+      v.t_s = q.t_s;
+      v.needs_goal = q.needs_goal;
+      v.position = readOnly(vec3Array(q.position));
+      v.map = &ex->map();
+      py::object view = py::cast(v);
+      // The map is the explorer's: the view forgets it when the call returns or raises.
+      struct Forget {
+        py::object& view;
+        ~Forget() { view.cast<GoalRequestView&>().map = nullptr; }
+      } forget{view};
+      return goalChoiceFrom((*fn)(view));
+    } catch (py::error_already_set& e) {
+      throw MethodError("the Python goal chooser raised:\n" + pythonErrorText(e));
+    } catch (const py::cast_error& e) {
+      throw MethodError(std::string("the Python goal chooser returned a value of the wrong type: ") + e.what());
+    } catch (const std::runtime_error& e) {
+      throw MethodError(std::string("the Python goal chooser: ") + e.what());
+    }
+  });
+}
+
 // ---- Mission --------------------------------------------------------------------------------
 
 /// A mission of a scenario, stepped from Python.
@@ -320,9 +398,14 @@ class PyMission {
  public:
   // `method`: None (the scenario's method) or a factory called with a Context, returning an
   // object with the Python method protocol.
-  PyMission(const PyScenario& s, py::object method) : scenario_(s), world_(std::make_unique<MissionWorld>()) {
+  PyMission(const PyScenario& s, py::object method, py::object goals)
+      : scenario_(s), world_(std::make_unique<MissionWorld>()) {
     *world_ = prepareMissionWorld(scenario_.file, scenario_.spec);
     const WorldTruth* truth = world_->truth ? &*world_->truth : nullptr;
+    if (!goals.is_none()) {
+      buildWithGoalChooser(std::move(method), std::move(goals), truth);
+      return;
+    }
     // A scenario naming a Python method (method.type: python): its factory, from msbench.methods.
     if (method.is_none() && scenario_.spec.method.type == kPythonMethodType) {
       const auto& c = std::any_cast<const PythonMethodConfig&>(scenario_.spec.method.config);
@@ -349,6 +432,12 @@ class PyMission {
   }
 
   bool running() const { return !error_ && mission_->running(); }
+
+  /// Physics ticks per simulated second.
+  int64_t physicsHz() const { return mission_->physicsHz(); }
+
+  /// The coverage area so far (m², the metric's last evaluation).
+  double areaM2() const { return mission_->areaM2(); }
 
   // Steps up to n ticks (fewer if the run ends), the GIL released.
   PyTick step(int64_t n) {
@@ -428,6 +517,20 @@ class PyMission {
       error_ = e.what();
       throw;
     }
+  }
+
+  // The scenario's grid explorer with its goals from `goals` (the goal-only helper).
+  void buildWithGoalChooser(py::object method, py::object goals, const WorldTruth* truth) {
+    if (!method.is_none()) throw py::value_error("Mission: give a method or goals, not both");
+    if (scenario_.spec.method.type != "grid_random")
+      throw py::value_error(scenario_.file + ": goals= needs a scenario whose method.type is grid_random (got '" +
+                            scenario_.spec.method.type + "')");
+    std::unique_ptr<Explorer> explorer = scenario_.spec.method.make(
+        FisheyeCamera(scenario_.spec.flight.camera), explorerContext(scenario_.spec, world_->box));
+    setPythonGoalChooser(dynamic_cast<GridExplorer&>(*explorer), std::move(goals));
+    mission_ = buildNamingFile(scenario_.file, [&] {
+      return std::make_unique<Mission>(scenario_.spec, world_->box, truth, std::move(explorer));
+    });
   }
 
   const MissionResult& finished() {
@@ -560,6 +663,17 @@ void bindMethodTypes(py::module_& m) {
       .def_readonly("covariances", &SlamFrameView::covariances, "N×3×3")
       .def_readonly("track_ids", &SlamFrameView::track_ids, "N uint64");
 
+  py::class_<GoalRequestView>(m, "GoalRequest", "What a goal chooser sees (estimate frame).")
+      .def_readonly("t_s", &GoalRequestView::t_s)
+      .def_readonly("needs_goal", &GoalRequestView::needs_goal,
+                    "the baseline would draw a new goal now (none yet, reached, idle or timed out)")
+      .def_readonly("position", &GoalRequestView::position)
+      .def(
+          "occupied", [](const GoalRequestView& v) { return v.leafArray(true); },
+          "the OctoMap's occupied leaves, N×4 (x, y, z, edge m)")
+      .def(
+          "free", [](const GoalRequestView& v) { return v.leafArray(false); }, "its free leaves, N×4");
+
   py::class_<VehicleView>(m, "Vehicle", "The vehicle as a method plans for it (estimate frame).")
       .def_readonly("tick", &VehicleView::tick)
       .def_readonly("t_s", &VehicleView::t_s)
@@ -572,8 +686,13 @@ void bindMethodTypes(py::module_& m) {
 
 void bindMission(py::module_& m) {
   py::class_<PyMission>(m, "Mission", "A mission of a scenario, stepped or run from Python.")
-      .def(py::init<const PyScenario&, py::object>(), py::arg("scenario"), py::arg("method") = py::none(),
-           "method: None (the scenario's) or a factory(Context) returning a Python method")
+      .def(py::init<const PyScenario&, py::object, py::object>(), py::arg("scenario"), py::arg("method") = py::none(),
+           py::arg("goals") = py::none(),
+           "method: None (the scenario's) or a factory(Context) returning a Python method; goals: a "
+           "goal chooser goals(GoalRequest) -> None | (x, y, z) | [(x, y, z), ...] for the scenario's "
+           "grid method (the goal-only helper)")
+      .def("area_m2", &PyMission::areaM2, "The coverage area so far (m²).")
+      .def_property_readonly("physics_hz", &PyMission::physicsHz, "physics ticks per simulated second")
       .def_property_readonly("status", &PyMission::status)
       .def_property_readonly("running", &PyMission::running)
       .def("step", &PyMission::step, py::arg("n") = 1, "Steps up to n physics ticks; returns a TickRecord.")

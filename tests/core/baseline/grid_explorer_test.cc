@@ -1,6 +1,7 @@
 // The grid explorer's decisions: goals stay in the square around the vehicle and in the box,
 // take-off first, then a goal and a path that avoids mapped obstacles; the predicted-path
-// check stops the vehicle when an obstacle appears on its path.
+// check stops the vehicle when an obstacle appears on its path; a goal chooser's goals, paths
+// and "no goal" replace the draw.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -113,6 +114,55 @@ TEST(GridExplorer, AnObstacleOnThePathAheadStopsTheVehicle) {
   ASSERT_EQ(stop->waypoints.size(), 1u);
   EXPECT_TRUE(stop->waypoints[0].position_m.isApprox(Vec3(4, 0, 2)));
   EXPECT_EQ(e.counters().at("blocked_stops"), 1.0);
+}
+
+// Take-off done for an explorer at (4, 0, 2) (its two legs, as in the test above).
+void takeOff(GridExplorer& e) {
+  ASSERT_TRUE(e.plan(at(Vec3(0, 0, 0.05), 0.0, true)));
+  EXPECT_FALSE(e.plan(at(Vec3(0, 0, 2), 0.2, true)));
+  ASSERT_TRUE(e.plan(at(Vec3(0, 0, 2), 0.4, false)));
+  EXPECT_FALSE(e.plan(at(Vec3(4, 0, 2), 0.6, true)));
+}
+
+TEST(GridExplorer, AGoalChoosersGoalsPathsAndNoGoalReplaceTheDraw) {
+  GridExplorer e(traversableUnknown(), context());
+  std::vector<GoalRequest> asked;
+  std::optional<std::vector<Vec3>> answer = std::vector<Vec3>{Vec3(8, 3, 2)};
+  e.setGoalChooser([&](const GoalRequest& q) {
+    asked.push_back(q);
+    return answer;
+  });
+  takeOff(e);
+  // One point: a goal A* plans to.
+  auto cmd = e.plan(at(Vec3(4, 0, 2), 1.0, true));
+  ASSERT_EQ(asked.size(), 1u);
+  EXPECT_TRUE(asked[0].needs_goal);
+  EXPECT_EQ(asked[0].position, Vec3(4, 0, 2));
+  ASSERT_TRUE(e.goal() && cmd);
+  EXPECT_EQ(*e.goal(), Vec3(8, 3, 2));
+  EXPECT_LT((cmd->waypoints.back().position_m - Vec3(8, 3, 2)).norm(), 0.5);
+  // Nothing: the goal stays, the chooser is asked again at the next check (not needing a goal).
+  answer.reset();
+  EXPECT_FALSE(e.plan(at(Vec3(5, 1, 2), 1.5, false)));
+  e.plan(at(Vec3(5, 1, 2), 2.0, false));
+  ASSERT_EQ(asked.size(), 2u);
+  EXPECT_FALSE(asked[1].needs_goal);
+  EXPECT_EQ(*e.goal(), Vec3(8, 3, 2));
+  // Several points: a path flown exactly as given, not re-planned.
+  answer = std::vector<Vec3>{Vec3(5, 2, 2), Vec3(6, 4, 3)};
+  cmd = e.plan(at(Vec3(5, 1, 2), 3.0, false));
+  ASSERT_TRUE(cmd);
+  ASSERT_EQ(cmd->waypoints.size(), 2u);
+  EXPECT_EQ(cmd->waypoints[1].position_m, Vec3(6, 4, 3));
+  answer.reset();
+  EXPECT_FALSE(e.plan(at(Vec3(5, 1.5, 2), 4.5, false)));
+  // An empty list: no goal, and the moving vehicle stops where its reference is.
+  answer = std::vector<Vec3>{};
+  cmd = e.plan(at(Vec3(5, 2, 2), 5.5, false));
+  EXPECT_FALSE(e.goal());
+  ASSERT_TRUE(cmd);
+  ASSERT_EQ(cmd->waypoints.size(), 1u);
+  EXPECT_EQ(cmd->waypoints[0].position_m, Vec3(5, 2, 2));
 }
 
 }  // namespace

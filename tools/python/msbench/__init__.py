@@ -11,8 +11,9 @@
 The loop and the configuration are the command line's own (the C++ extension `_msbench`); the
 result loaders (`msbench.results`) are plain Python over the files every run writes.
 """
-from ._msbench import ConfigError, Context, MethodError, Mission, RngStream, Scenario, SlamFrame, TickRecord, Vehicle, __version__
-from . import results
+from ._msbench import (ConfigError, Context, GoalRequest, MethodError, Mission, RngStream, Scenario, SlamFrame,
+                       TickRecord, Vehicle, __version__)
+from . import gym, results
 
-__all__ = ["ConfigError", "Context", "MethodError", "Mission", "RngStream", "Scenario", "SlamFrame", "TickRecord",
-           "Vehicle", "results", "__version__"]
+__all__ = ["ConfigError", "Context", "GoalRequest", "MethodError", "Mission", "RngStream", "Scenario", "SlamFrame", "TickRecord",
+           "Vehicle", "gym", "results", "__version__"]

@@ -1,0 +1,152 @@
+"""The goal-only helper (goals chosen in Python on msbench's OctoMap) and the gym-style adapter
+over it: what the chooser sees and may answer, errors, determinism, reward = coverage gained."""
+import os
+
+import pytest
+
+import msbench
+from conftest import FAST, SOURCE_DIR
+
+GRID = os.path.join(SOURCE_DIR, "scenarios/missions/grid_random.yaml")
+MONOSPHERES = os.path.join(SOURCE_DIR, "scenarios/missions/urban_short.yaml")
+
+
+def grid_scenario(duration_s=14, seed=1):
+    return msbench.Scenario.load(GRID, set=FAST + ["world=urban", f"duration_s={duration_s}", f"seed={seed}"])
+
+
+def ahead(request):
+    """A chooser: 6 m ahead in x whenever a goal is needed."""
+    if not request.needs_goal:
+        return None
+    x, y, _ = request.position.tolist()
+    return (x + 6.0, y, 2.0)
+
+
+def test_the_chooser_sees_the_vehicle_and_the_octomap_and_its_goals_are_flown():
+    seen = []
+
+    def chooser(request):
+        free, occupied = request.free(), request.occupied()
+        seen.append((request.t_s, request.needs_goal, free.shape, occupied.shape, free.flags.writeable))
+        return ahead(request)
+
+    m = msbench.Mission(grid_scenario(), goals=chooser)
+    m.run(progress=False)
+    assert seen, "the chooser was never asked"
+    assert seen[0][1] is True  # the first check needs a goal
+    assert all(f[1] == 4 and o[1] == 4 and not w for _, _, f, o, w in seen)
+    assert seen[-1][2][0] > 0  # the map has free leaves by then
+    times = [t for t, *_ in seen]
+    assert all(b - a == pytest.approx(1.0, abs=0.01) for a, b in zip(times, times[1:]))  # every goal period
+    counters = m.result()["counters"]
+    assert counters["goals_chosen"] >= 1 and counters["paths_sent"] >= 2  # take-off, then A* to the goal
+    assert m.result()["coverage"]["area_m2"] > 0
+
+
+def test_the_same_choices_give_the_same_hash_and_a_path_is_flown_as_given():
+    hashes = []
+    for _ in range(2):
+        m = msbench.Mission(grid_scenario(), goals=ahead)
+        m.run(progress=False)
+        hashes.append(m.hash())
+    assert hashes[0] == hashes[1]
+
+    def path(request):
+        if not request.needs_goal:
+            return None
+        x, y, _ = request.position.tolist()
+        return [(x + 1.0, y, 2.0), (x + 2.0, y + 1.0, 2.0)]
+
+    m = msbench.Mission(grid_scenario(), goals=path)
+    m.run(progress=False)
+    assert m.hash() != hashes[0]
+    assert m.result()["counters"]["paths_to_closest_cell"] == 0  # no A* was needed for a given path
+
+
+def test_the_map_is_valid_only_during_the_call_and_errors_end_the_run():
+    kept = []
+
+    def keeper(request):
+        kept.append(request)
+        return None
+
+    m = msbench.Mission(grid_scenario(duration_s=10), goals=keeper)
+    m.run(progress=False)
+    with pytest.raises(RuntimeError, match="only during"):
+        kept[0].free()
+
+    def bad(request):
+        raise ValueError("no goal today")
+
+    m = msbench.Mission(grid_scenario(), goals=bad)
+    with pytest.raises(msbench.MethodError, match="no goal today"):
+        m.run(progress=False)
+    assert m.status == "error"
+
+    m = msbench.Mission(grid_scenario(), goals=lambda r: (1.0, 2.0))  # not a point
+    with pytest.raises(msbench.MethodError, match="must return None"):
+        m.run(progress=False)
+
+
+def test_goals_need_the_grid_method():
+    with pytest.raises(ValueError, match="grid_random"):
+        msbench.Mission(msbench.Scenario.load(MONOSPHERES, set=FAST), goals=ahead)
+    with pytest.raises(ValueError, match="not both"):
+        msbench.Mission(grid_scenario(), method=lambda c: None, goals=ahead)
+
+
+def run_episode(env, seed):
+    obs, info = env.reset(seed=seed)
+    rewards, steps = [], 0
+    while True:
+        x, y, _ = obs["position"].tolist()
+        obs, reward, terminated, truncated, info = env.step((x + 4.0, y + (3.0 if steps % 2 else -3.0), 2.0))
+        rewards.append(reward)
+        steps += 1
+        if terminated or truncated:
+            return obs, rewards, terminated, truncated, info
+
+
+def test_the_gym_adapter_steps_a_mission_and_rewards_coverage_gained():
+    env = msbench.gym.ExplorationEnv(GRID, set=FAST + ["world=urban", "duration_s=12"], decision_period_s=2.0)
+    with pytest.raises(RuntimeError, match="reset"):
+        env.step((0.0, 0.0, 2.0))
+    obs, info = env.reset(seed=1)
+    assert obs["frame"].shape == env.frame_shape and not obs["frame"].flags.writeable
+    assert obs["pose"].shape == (4, 4) and obs["position"].shape == (3,)
+    with pytest.raises(ValueError):
+        env.step([(1.0, 2.0)])
+    obs, rewards, terminated, truncated, info = run_episode(env, seed=1)
+    assert truncated and not terminated and info["status"] == "completed"
+    assert len(rewards) == 6  # 12 s in steps of 2 s
+    assert all(r >= 0 for r in rewards)
+    assert sum(rewards) == pytest.approx(env.mission.result()["coverage"]["area_m2"])
+    first = env.mission.hash()
+    run_episode(env, seed=1)
+    assert env.mission.hash() == first  # reset(seed) really seeds
+    run_episode(env, seed=2)
+    assert env.mission.hash() != first
+    with pytest.raises(RuntimeError, match="ended"):
+        env.step((0.0, 0.0, 2.0))
+
+
+def test_the_gym_adapter_is_a_gymnasium_env_when_gymnasium_is_there():
+    try:
+        import gymnasium
+    except ImportError:
+        assert msbench.gym.ExplorationEnv.__bases__ == (object,)
+    else:
+        assert issubclass(msbench.gym.ExplorationEnv, gymnasium.Env)
+    with pytest.raises(ValueError, match="grid_random"):
+        msbench.gym.ExplorationEnv(MONOSPHERES)
+    with pytest.raises(msbench.ConfigError):
+        msbench.gym.ExplorationEnv(GRID, set=["world=urban", "no_such_key=1"])
+
+
+def test_an_empty_answer_means_no_goal_and_the_vehicle_hovers():
+    m = msbench.Mission(grid_scenario(), goals=lambda request: [])
+    m.run(progress=False)
+    counters = m.result()["counters"]
+    assert counters["goals_chosen"] == 0
+    assert counters["paths_sent"] == 2  # the take-off's two legs only: no goal, nothing else flown

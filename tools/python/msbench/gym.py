@@ -1,0 +1,140 @@
+"""A gym-style environment over an msbench mission (docs/python.md, "Gym-style adapter").
+
+    env = msbench.gym.ExplorationEnv("scenarios/missions/grid_random.yaml", set=["world=urban"])
+    obs, info = env.reset(seed=1)
+    while True:
+        goal = (obs["position"][0] + 5.0, obs["position"][1], 2.0)   # an action: a goal or a path
+        obs, reward, terminated, truncated, info = env.step(goal)    # reward: coverage gained, m²
+        if terminated or truncated:
+            break
+
+The action is a goal (x, y, z) that msbench's A* plans to on its OctoMap, or a path (K×3,
+flown as given; the predicted-path check still stops the vehicle before an occupied cell), in the
+estimate frame. Each step flies `decision_period_s` of simulated time; the action takes effect
+at the grid method's next goal check (every `method.goal_period_s`, 1 s by default). The reward
+is the coverage area gained during the step (the paper's metric, m²); `terminated` means the run
+ended early (collision, VIO loss), `truncated` that the mission's duration ran out. The scenario
+must use the grid method (`method.type: grid_random`): its map scores the free space and plans to
+the goals; only the choice of goals is the agent's.
+
+The class subclasses `gymnasium.Env` when gymnasium is importable (not packaged for Debian 12) and
+is a plain class with the same methods otherwise.
+"""
+import math
+
+from ._msbench import Mission, Scenario
+
+try:  # gymnasium is optional
+    import gymnasium as _gymnasium
+    _Base = _gymnasium.Env
+except ImportError:  # pragma: no cover - depends on the machine
+    _gymnasium = None
+    _Base = object
+
+#: run statuses that end an episode early (anything else ending it is the time limit)
+EARLY_END = ("collided", "vio_lost", "diverged", "error")
+
+
+def _as_action(action):
+    """A goal as one (x, y, z) tuple, a path as a list of them (plain floats: deterministic)."""
+    values = action.tolist() if hasattr(action, "tolist") else action
+    if len(values) == 3 and not hasattr(values[0], "__len__"):
+        return tuple(float(v) for v in values)
+    path = [tuple(float(v) for v in p) for p in values]
+    if not path or any(len(p) != 3 for p in path):
+        raise ValueError("an action is a goal (x, y, z) or a non-empty path of (x, y, z)")
+    return path
+
+
+class ExplorationEnv(_Base):
+    """An exploration mission as a gym-style environment: reset(seed) -> (obs, info),
+    step(action) -> (obs, reward, terminated, truncated, info)."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, scenario, set=(), decision_period_s=2.0):
+        if not decision_period_s > 0:
+            raise ValueError("decision_period_s must be > 0")
+        self._path = scenario
+        self._sets = list(set)
+        self._period_s = float(decision_period_s)
+        probe = Scenario.load(scenario, set=self._sets)  # bad files and keys fail here (ConfigError)
+        if probe.method != "grid_random":
+            raise ValueError(f"{scenario}: ExplorationEnv needs method.type grid_random (got '{probe.method}')")
+        camera = probe.effective()["camera"]
+        self.frame_shape = (int(camera["height_px"]), int(camera["width_px"]))
+        self._mission = None
+        self._pending = None
+        self._area = 0.0
+        self._goal_requests = 0
+        if _gymnasium is not None:
+            spaces = _gymnasium.spaces
+            self.action_space = spaces.Box(-math.inf, math.inf, shape=(3,), dtype=float)
+            self.observation_space = spaces.Dict({
+                "frame": spaces.Box(0, 255, shape=self.frame_shape, dtype="uint8"),
+                "pose": spaces.Box(-math.inf, math.inf, shape=(4, 4), dtype=float),
+                "position": spaces.Box(-math.inf, math.inf, shape=(3,), dtype=float),
+                "velocity": spaces.Box(-math.inf, math.inf, shape=(3,), dtype=float),
+            })
+
+    @property
+    def mission(self):
+        """The current msbench.Mission (result(), hash(), write() once the episode ended)."""
+        return self._mission
+
+    def reset(self, seed=None, options=None):
+        """Starts a new mission (the scenario's seed, or `seed`); returns (obs, info)."""
+        sets = self._sets + ([f"seed={int(seed)}"] if seed is not None else [])
+        self._mission = Mission(Scenario.load(self._path, set=sets), goals=self._choose)
+        self._pending = None
+        self._area = 0.0
+        self._goal_requests = 0
+        tick = self._mission.step(1)
+        while tick.frame is None and self._mission.running:  # up to the first rendered frame
+            tick = self._mission.step(1)
+        self._frame = tick.frame
+        return self._observation(tick), self._info(tick)
+
+    def step(self, action):
+        """Flies decision_period_s towards the action; returns (obs, reward, terminated, truncated, info)."""
+        if self._mission is None:
+            raise RuntimeError("call reset() before step()")
+        if not self._mission.running:
+            raise RuntimeError("the episode has ended: call reset()")
+        self._pending = _as_action(action)
+        tick = self._mission.step(max(1, round(self._period_s * self._mission.physics_hz)))
+        if tick.frame is not None:
+            self._frame = tick.frame
+        area = self._area_now()
+        reward = area - self._area
+        self._area = area
+        terminated = self._mission.status in EARLY_END
+        truncated = not self._mission.running and not terminated
+        return self._observation(tick), reward, terminated, truncated, self._info(tick)
+
+    def _area_now(self):
+        # The last periodic evaluation while running; the run's final coverage once it ended.
+        if self._mission.running or self._mission.status == "error":
+            return self._mission.area_m2()
+        return self._mission.result()["coverage"]["area_m2"]
+
+    def _choose(self, request):
+        # The grid method's goal check: the agent's pending action once, else keep the goal.
+        self._goal_requests += 1
+        action, self._pending = self._pending, None
+        return action
+
+    def _observation(self, tick):
+        pose = tick.est_pose
+        return {"frame": self._frame, "pose": pose, "position": pose[:3, 3], "velocity": tick.est_velocity}
+
+    def _info(self, tick):
+        return {
+            "t_s": tick.t_s,
+            "area_m2": self._area_now(),
+            "status": self._mission.status,
+            "points": tick.points,  # the newest SLAM points of the step (N×3), or None
+            "track_ids": tick.track_ids,
+            "goal_requests": self._goal_requests,
+            "true_pose": tick.true_pose,  # ground truth: for analysis, not for the agent
+        }
