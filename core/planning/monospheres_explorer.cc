@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include "core/common/types.h"
@@ -415,9 +417,32 @@ void MonoSpheresExplorer::checkActiveGoal(const VehicleState& s, const SphereCos
   }
 }
 
+std::optional<uint64_t> MonoSpheresExplorer::askChooser(const VehicleState& s, const SphereCostField& field,
+                                                        bool* asked) {
+  // The reachable viewpoints by path cost for the chooser; its answer, checked.
+  *asked = false;
+  if (!chooser_) return std::nullopt;
+  ViewpointRequest q{s.t_s, s.T_W_B.translation(), {}};
+  for (const auto& [id, v] : viewpoints_.viewpoints()) {
+    const auto it = field.cost.find(v.sphere);
+    if (it != field.cost.end()) q.candidates.push_back({id, v.position, v.yaw_rad, it->second, v.value});
+  }
+  std::stable_sort(q.candidates.begin(), q.candidates.end(),
+                   [](const ViewpointCandidate& a, const ViewpointCandidate& b) { return a.path_cost_m < b.path_cost_m; });
+  const std::optional<uint64_t> id = chooser_(q);
+  if (!id) return std::nullopt;
+  *asked = true;
+  if (*id != 0 && std::none_of(q.candidates.begin(), q.candidates.end(),
+                               [&](const ViewpointCandidate& c) { return c.id == *id; }))
+    throw std::runtime_error("the viewpoint chooser chose " + std::to_string(*id) + ", not a candidate");
+  return id;
+}
+
 void MonoSpheresExplorer::takeNewGoal(const VehicleState& s, const SphereCostField& field) {
-  const auto g = chooseGoal(s, field);
-  if (!g) return;
+  bool asked = false;
+  std::optional<uint64_t> g = askChooser(s, field, &asked);
+  if (!asked) g = chooseGoal(s, field);
+  if (!g || *g == 0) return;
   goal_ = *g;
   goal_since_s_ = last_progress_s_ = s.t_s;
   best_remaining_m_ = 1e18;

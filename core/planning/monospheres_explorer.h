@@ -105,6 +105,28 @@ struct MonoSpheresConfig {
 /// Spheres, obstacle points and frontiers of a map as a snapshot (drawing, map.ply, hashing).
 ExplorerSnapshot sphereMapSnapshot(const SphereMap& map);
 
+/// A reachable viewpoint as a goal chooser sees it.
+struct ViewpointCandidate {
+  uint64_t id = 0;
+  Vec3 position = Vec3::Zero();
+  double yaw_rad = 0.0;
+  double path_cost_m = 0.0;  ///< along the sphere graph from the vehicle
+  int value = 0;             ///< frontiers it sees
+};
+
+/// What a viewpoint chooser is asked whenever MonoSpheres takes a new goal (estimate frame).
+struct ViewpointRequest {
+  double t_s = 0.0;
+  Vec3 position = Vec3::Zero();                ///< the vehicle
+  std::vector<ViewpointCandidate> candidates;  ///< reachable viewpoints by path cost (ties by id)
+};
+
+/// A goal chooser replacing MonoSpheres' goal rule (the goal-only helper for Python methods,
+/// docs/python.md): nothing keeps MonoSpheres' own choice, 0 takes no goal this step, another
+/// value is the id of one of the candidates (followed as MonoSpheres follows its goals; FFF's
+/// feasibility check is the chooser's business).
+using ViewpointChooser = std::function<std::optional<uint64_t>(const ViewpointRequest&)>;
+
 /// The MonoSpheres explorer.
 class MonoSpheresExplorer : public Explorer {
  public:
@@ -126,6 +148,8 @@ class MonoSpheresExplorer : public Explorer {
   const ViewpointSet& viewpoints() const { return viewpoints_; }
   /// The active goal's viewpoint id (0 = none).
   uint64_t goal() const { return goal_; }
+  /// Goals from `chooser` instead of MonoSpheres' rule (asked whenever a new goal is taken).
+  void setViewpointChooser(ViewpointChooser chooser) { chooser_ = std::move(chooser); }
 
  private:
   // One exploration step, in the order of the file comment; each step below is one part of it.
@@ -142,6 +166,7 @@ class MonoSpheresExplorer : public Explorer {
                                          const std::vector<uint64_t>& reachable);       // bridge or turn
   std::optional<PathCommand> followGoal(const VehicleState& s, uint64_t start_sphere);  // route, carrot
   std::optional<uint64_t> chooseGoal(const VehicleState& s, const SphereCostField& field);
+  std::optional<uint64_t> askChooser(const VehicleState& s, const SphereCostField& field, bool* asked);
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
   bool segmentFree(const Vec3& a, const Vec3& b) const;  // inside the sphere union and clear
   // True if x lies within the clearance of an obstacle point; with allow_moving_away only if x is
@@ -162,6 +187,7 @@ class MonoSpheresExplorer : public Explorer {
   SphereMap map_;
   ViewpointSet viewpoints_;
   TakeoffSequence takeoff_;
+  ViewpointChooser chooser_;
   uint64_t goal_ = 0;
   double goal_since_s_ = 0, best_remaining_m_ = 1e18, last_progress_s_ = 0;
   int local_misses_ = 0, blocked_steps_ = 0;

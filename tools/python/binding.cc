@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -20,6 +21,7 @@
 #include "core/common/config_check.h"
 #include "core/baseline/grid_explorer.h"
 #include "core/common/rng.h"
+#include "core/planning/monospheres_explorer.h"
 #include "core/explorer/explorer.h"
 #include "core/geometry/world_truth.h"
 #include "tools/config/scenario_yaml.h"
@@ -361,14 +363,79 @@ std::optional<std::vector<Vec3>> goalChoiceFrom(const py::object& r) {
   return out;
 }
 
+/// What a viewpoint chooser sees when MonoSpheres takes a new goal: the time, the vehicle and the
+/// reachable viewpoints by path cost (arrays, read-only).
+struct ViewpointRequestView {
+  double t_s = 0.0;
+  py::object position, ids, positions, yaws, path_costs, values;
+};
+
+ViewpointRequestView viewpointRequestView(const ViewpointRequest& q) {
+  const py::ssize_t n = py::ssize_t(q.candidates.size());
+  py::array_t<uint64_t> ids(n);
+  py::array_t<double> pos({n, py::ssize_t(3)}), yaw(n), cost(n);
+  py::array_t<int64_t> value(n);
+  auto pm = pos.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const ViewpointCandidate& c = q.candidates[size_t(i)];
+    ids.mutable_at(i) = c.id;
+    for (int k = 0; k < 3; ++k) pm(i, k) = c.position[k];
+    yaw.mutable_at(i) = c.yaw_rad;
+    cost.mutable_at(i) = c.path_cost_m;
+    value.mutable_at(i) = c.value;
+  }
+  ViewpointRequestView v;
+  v.t_s = q.t_s;
+  v.position = readOnly(vec3Array(q.position));
+  v.ids = readOnly(ids);
+  v.positions = readOnly(pos);
+  v.yaws = readOnly(yaw);
+  v.path_costs = readOnly(cost);
+  v.values = readOnly(value);
+  return v;
+}
+
+// Runs a goal chooser's call `f` with the GIL held; a Python exception, a wrong type or an answer
+// `f` refuses (runtime_error) becomes a MethodError.
+template <class F>
+auto callChooser(F&& f) -> decltype(f()) {
+  py::gil_scoped_acquire gil;
+  try {
+    return f();
+  } catch (py::error_already_set& e) {
+    throw MethodError("the Python goal chooser raised:\n" + pythonErrorText(e));
+  } catch (const py::cast_error& e) {
+    throw MethodError(std::string("the Python goal chooser returned a value of the wrong type: ") + e.what());
+  } catch (const std::runtime_error& e) {
+    throw MethodError(std::string("the Python goal chooser: ") + e.what());
+  }
+}
+
+/// Sets a Python viewpoint chooser on a MonoSpheres explorer: goals(request) -> None (MonoSpheres'
+/// own choice), 0 (no goal this step) or a candidate's id; an exception becomes a MethodError.
+void setPythonViewpointChooser(MonoSpheresExplorer& explorer, py::object goals) {
+  auto fn = std::make_shared<py::object>(std::move(goals));
+  explorer.setViewpointChooser([fn](const ViewpointRequest& q) {
+    return callChooser([&]() -> std::optional<uint64_t> {
+      const py::object r = (*fn)(viewpointRequestView(q));
+      if (r.is_none()) return std::nullopt;
+      if (!py::hasattr(r, "__index__")) throw std::runtime_error("goals() must return None or a viewpoint id");
+      const uint64_t id = r.cast<uint64_t>();
+      if (id != 0 && std::none_of(q.candidates.begin(), q.candidates.end(),
+                                  [&](const ViewpointCandidate& c) { return c.id == id; }))
+        throw std::runtime_error("goals() chose viewpoint " + std::to_string(id) + ", not a candidate");
+      return id;
+    });
+  });
+}
+
 /// Sets a Python goal chooser on a grid explorer: goals(request) is called at every goal check
 /// with the GIL held; an exception becomes a MethodError.
 void setPythonGoalChooser(GridExplorer& explorer, py::object goals) {
   const GridExplorer* ex = &explorer;
   auto fn = std::make_shared<py::object>(std::move(goals));
-  explorer.setGoalChooser([ex, fn](const GoalRequest& q) -> std::optional<std::vector<Vec3>> {
-    py::gil_scoped_acquire gil;
-    try {
+  explorer.setGoalChooser([ex, fn](const GoalRequest& q) {
+    return callChooser([&]() -> std::optional<std::vector<Vec3>> {
       GoalRequestView v;
       v.t_s = q.t_s;
       v.needs_goal = q.needs_goal;
@@ -381,13 +448,7 @@ void setPythonGoalChooser(GridExplorer& explorer, py::object goals) {
         ~Forget() { view.cast<GoalRequestView&>().map = nullptr; }
       } forget{view};
       return goalChoiceFrom((*fn)(view));
-    } catch (py::error_already_set& e) {
-      throw MethodError("the Python goal chooser raised:\n" + pythonErrorText(e));
-    } catch (const py::cast_error& e) {
-      throw MethodError(std::string("the Python goal chooser returned a value of the wrong type: ") + e.what());
-    } catch (const std::runtime_error& e) {
-      throw MethodError(std::string("the Python goal chooser: ") + e.what());
-    }
+    });
   });
 }
 
@@ -522,12 +583,15 @@ class PyMission {
   // The scenario's grid explorer with its goals from `goals` (the goal-only helper).
   void buildWithGoalChooser(py::object method, py::object goals, const WorldTruth* truth) {
     if (!method.is_none()) throw py::value_error("Mission: give a method or goals, not both");
-    if (scenario_.spec.method.type != "grid_random")
-      throw py::value_error(scenario_.file + ": goals= needs a scenario whose method.type is grid_random (got '" +
-                            scenario_.spec.method.type + "')");
     std::unique_ptr<Explorer> explorer = scenario_.spec.method.make(
         FisheyeCamera(scenario_.spec.flight.camera), explorerContext(scenario_.spec, world_->box));
-    setPythonGoalChooser(dynamic_cast<GridExplorer&>(*explorer), std::move(goals));
+    if (auto* grid = dynamic_cast<GridExplorer*>(explorer.get()))
+      setPythonGoalChooser(*grid, std::move(goals));
+    else if (auto* spheres = dynamic_cast<MonoSpheresExplorer*>(explorer.get()))
+      setPythonViewpointChooser(*spheres, std::move(goals));
+    else
+      throw py::value_error(scenario_.file + ": goals= needs a scenario whose method.type is grid_random or "
+                            "monospheres (got '" + scenario_.spec.method.type + "')");
     mission_ = buildNamingFile(scenario_.file, [&] {
       return std::make_unique<Mission>(scenario_.spec, world_->box, truth, std::move(explorer));
     });
@@ -674,6 +738,16 @@ void bindMethodTypes(py::module_& m) {
       .def(
           "free", [](const GoalRequestView& v) { return v.leafArray(false); }, "its free leaves, N×4");
 
+  py::class_<ViewpointRequestView>(m, "ViewpointRequest",
+                                   "What a goal chooser sees when MonoSpheres takes a new goal (estimate frame).")
+      .def_readonly("t_s", &ViewpointRequestView::t_s)
+      .def_readonly("position", &ViewpointRequestView::position)
+      .def_readonly("ids", &ViewpointRequestView::ids, "the reachable viewpoints' ids, N uint64, by path cost")
+      .def_readonly("positions", &ViewpointRequestView::positions, "N×3")
+      .def_readonly("yaws", &ViewpointRequestView::yaws, "N, rad")
+      .def_readonly("path_costs", &ViewpointRequestView::path_costs, "N, m along the sphere graph")
+      .def_readonly("values", &ViewpointRequestView::values, "N: frontiers each sees");
+
   py::class_<VehicleView>(m, "Vehicle", "The vehicle as a method plans for it (estimate frame).")
       .def_readonly("tick", &VehicleView::tick)
       .def_readonly("t_s", &VehicleView::t_s)
@@ -689,8 +763,9 @@ void bindMission(py::module_& m) {
       .def(py::init<const PyScenario&, py::object, py::object>(), py::arg("scenario"), py::arg("method") = py::none(),
            py::arg("goals") = py::none(),
            "method: None (the scenario's) or a factory(Context) returning a Python method; goals: a "
-           "goal chooser goals(GoalRequest) -> None | (x, y, z) | [(x, y, z), ...] for the scenario's "
-           "grid method (the goal-only helper)")
+           "goal chooser for the scenario's method (the goal-only helper): grid_random: "
+           "goals(GoalRequest) -> None | (x, y, z) | [(x, y, z), ...]; monospheres: "
+           "goals(ViewpointRequest) -> None | 0 | viewpoint id")
       .def("area_m2", &PyMission::areaM2, "The coverage area so far (m²).")
       .def_property_readonly("physics_hz", &PyMission::physicsHz, "physics ticks per simulated second")
       .def_property_readonly("status", &PyMission::status)

@@ -122,6 +122,41 @@ TEST(MonoSpheresExplorer, ChoosesAViewpointFliesThereAndReachesIt) {
   }
 }
 
+TEST(MonoSpheresExplorer, AViewpointChooserPicksAmongTheReachableViewpointsOrDefers) {
+  // None: MonoSpheres' own goal; an id: that viewpoint; 0: no goal; not a candidate: an error.
+  for (const int answer : {-1, 1, 0, 2}) {
+    Fixture f;
+    f.corridorWithFrontiers();
+    f.skipTakeoff();
+    std::vector<ViewpointRequest> asked;
+    f.explorer.setViewpointChooser([&](const ViewpointRequest& q) -> std::optional<uint64_t> {
+      asked.push_back(q);
+      if (answer == -1) return std::nullopt;
+      if (answer == 0) return 0;
+      if (answer == 2) return 999999;
+      return q.candidates.back().id;  // the most expensive
+    });
+    if (answer == 2) {
+      EXPECT_THROW(f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0)), std::runtime_error);
+      continue;
+    }
+    f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    ASSERT_FALSE(asked.empty());
+    const auto& c = asked[0].candidates;
+    ASSERT_GE(c.size(), 2u);
+    for (size_t i = 1; i < c.size(); ++i) EXPECT_LE(c[i - 1].path_cost_m, c[i].path_cost_m);
+    Fixture plain;  // the same scene without a chooser
+    plain.corridorWithFrontiers();
+    plain.skipTakeoff();
+    plain.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    const uint64_t want = answer == -1 ? plain.explorer.goal() : answer == 1 ? c.back().id : 0;
+    EXPECT_EQ(f.explorer.goal(), want) << "answer " << answer;
+    if (answer == 1) {
+      EXPECT_NE(want, plain.explorer.goal());
+    }
+  }
+}
+
 TEST(MonoSpheresExplorer, AGoalWithoutProgressFailsAfterTheTimeout) {
   Fixture f;
   f.corridorWithFrontiers();

@@ -1,5 +1,6 @@
-"""The goal-only helper (goals chosen in Python on msbench's OctoMap) and the gym-style adapter
-over it: what the chooser sees and may answer, errors, determinism, reward = coverage gained."""
+"""The goal-only helper (goals chosen in Python on msbench's OctoMap, or among MonoSpheres'
+viewpoints) and the gym-style adapter over it: what the chooser sees and may answer, errors,
+determinism, reward = coverage gained."""
 import os
 
 import pytest
@@ -89,9 +90,10 @@ def test_the_map_is_valid_only_during_the_call_and_errors_end_the_run():
         m.run(progress=False)
 
 
-def test_goals_need_the_grid_method():
-    with pytest.raises(ValueError, match="grid_random"):
-        msbench.Mission(msbench.Scenario.load(MONOSPHERES, set=FAST), goals=ahead)
+def test_goals_need_a_method_with_a_goal_rule():
+    hover_turn = os.path.join(SOURCE_DIR, "examples/hover_turn.yaml")
+    with pytest.raises(ValueError, match="grid_random or monospheres"):
+        msbench.Mission(msbench.Scenario.load(hover_turn, set=FAST), goals=ahead)
     with pytest.raises(ValueError, match="not both"):
         msbench.Mission(grid_scenario(), method=lambda c: None, goals=ahead)
 
@@ -150,3 +152,38 @@ def test_an_empty_answer_means_no_goal_and_the_vehicle_hovers():
     counters = m.result()["counters"]
     assert counters["goals_chosen"] == 0
     assert counters["paths_sent"] == 2  # the take-off's two legs only: no goal, nothing else flown
+
+
+def spheres_scenario(duration_s=20, seed=1):
+    return msbench.Scenario.load(MONOSPHERES, set=FAST + [f"duration_s={duration_s}", f"seed={seed}"])
+
+
+def test_a_viewpoint_chooser_picks_monospheres_goals_among_the_reachable_viewpoints():
+    own = msbench.Mission(spheres_scenario())
+    own.run(progress=False)
+    # Always None: MonoSpheres' own choice, the same run.
+    asked = []
+
+    def watch(request):
+        asked.append((request.ids.tolist(), request.path_costs.tolist(), request.positions.shape))
+        return None
+
+    m = msbench.Mission(spheres_scenario(), goals=watch)
+    m.run(progress=False)
+    assert m.hash() == own.hash()
+    assert asked and any(ids for ids, _, _ in asked)
+    for ids, costs, shape in asked:
+        assert shape == (len(ids), 3) and costs == sorted(costs)
+    # The farthest reachable viewpoint each time: another run, every goal a candidate.
+    m = msbench.Mission(spheres_scenario(), goals=lambda r: int(r.ids[-1]) if len(r.ids) else None)
+    m.run(progress=False)
+    assert m.hash() != own.hash() and m.result()["counters"]["goals_chosen"] >= 1
+    # 0: no goal at all.
+    m = msbench.Mission(spheres_scenario(), goals=lambda r: 0)
+    m.run(progress=False)
+    assert m.result()["counters"]["goals_chosen"] == 0
+    # Not a candidate: the run ends with an error.
+    m = msbench.Mission(spheres_scenario(), goals=lambda r: 987654321 if len(r.ids) else None)
+    with pytest.raises(msbench.MethodError, match="not a candidate"):
+        m.run(progress=False)
+    assert m.status == "error"

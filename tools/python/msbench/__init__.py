@@ -12,8 +12,8 @@ The loop and the configuration are the command line's own (the C++ extension `_m
 result loaders (`msbench.results`) are plain Python over the files every run writes.
 """
 from ._msbench import (ConfigError, Context, GoalRequest, MethodError, Mission, RngStream, Scenario, SlamFrame,
-                       TickRecord, Vehicle, __version__)
+                       TickRecord, Vehicle, ViewpointRequest, __version__)
 from . import gym, results
 
 __all__ = ["ConfigError", "Context", "GoalRequest", "MethodError", "Mission", "RngStream", "Scenario", "SlamFrame", "TickRecord",
-           "Vehicle", "gym", "results", "__version__"]
+           "Vehicle", "ViewpointRequest", "gym", "results", "__version__"]
