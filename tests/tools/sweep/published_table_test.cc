@@ -1,0 +1,101 @@
+// The README's Table I is the published report's: every row's runs, mean A with its interval,
+// max A, crashes, the paper's crash count and the box share equal results/table1/report.md, and
+// the verdict counts equal results/table1/findings.csv. Re-publishing Table I without updating
+// the README (or the other way round) fails here.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace msb {
+namespace {
+
+const std::string kSource = MSB_SOURCE_DIR;
+
+std::vector<std::string> readLines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
+  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+// A markdown table row's cells.
+std::vector<std::string> cells(const std::string& row) {
+  std::vector<std::string> out;
+  std::stringstream ss(row.substr(1));
+  for (std::string c; std::getline(ss, c, '|');) out.push_back(trim(c));
+  return out;
+}
+
+// The rows of the table whose header starts with `header`, up to the first line that is not a row.
+std::vector<std::vector<std::string>> tableAfter(const std::vector<std::string>& lines, const std::string& header) {
+  std::vector<std::vector<std::string>> rows;
+  auto it = std::find_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(header, 0) == 0; });
+  if (it == lines.end()) return rows;
+  for (it += 2; it != lines.end() && !it->empty() && (*it)[0] == '|'; ++it) rows.push_back(cells(*it));
+  return rows;
+}
+
+// "no OVDE" → "no_ovde", "MonoSpheres" → "monospheres".
+std::string methodKey(std::string s) {
+  for (char& c : s) c = c == ' ' ? '_' : char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
+  for (size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size())) s.replace(p, from.size(), to);
+  return s;
+}
+
+TEST(PublishedTable, TheReadmesTableIIsTheReportsRowForRow) {
+  const auto report = readLines(kSource + "/results/table1/report.md");
+  const auto readme = readLines(kSource + "/README.md");
+  const auto layout = tableAfter(report, "| world | method | method type |");
+  const auto beyond = tableAfter(report, "| world | method | box share |");
+  const auto table = tableAfter(readme, "| world | method | runs | msbench mean A");
+  ASSERT_FALSE(layout.empty());
+  ASSERT_EQ(table.size(), layout.size()) << "README Table I and report.md list different rows";
+  std::map<std::string, std::string> box_share;
+  for (const auto& r : beyond) box_share[r[0] + "/" + r[1]] = r[2].substr(0, r[2].find(' '));
+  for (size_t i = 0; i < table.size(); ++i) {
+    const auto& md = table[i];
+    const auto& rep = layout[i];
+    const std::string row = md[0] + " " + md[1];
+    EXPECT_EQ(md[0], rep[0]) << row;
+    EXPECT_EQ(methodKey(md[1]), rep[1]) << row;
+    EXPECT_EQ(md[2], rep[3]) << row << ": runs";
+    EXPECT_EQ(md[3], rep[4] + " / " + rep[5]) << row << ": mean A [CI] / max";
+    EXPECT_EQ(md[4], rep[6] + " / " + rep[7]) << row << ": the paper's mean / max";
+    EXPECT_EQ(md[5], rep[8]) << row << ": crashes";
+    EXPECT_EQ(md[6], replaceAll(rep[9], "p = ", "")) << row << ": the paper's crashes";
+    EXPECT_EQ(md[7], box_share[rep[0] + "/" + rep[1]]) << row << ": box share";
+  }
+}
+
+TEST(PublishedTable, TheReadmesVerdictCountsAreTheFindings) {
+  std::map<std::string, int> verdicts;
+  for (const auto& l : readLines(kSource + "/results/table1/findings.csv")) {
+    for (const char* v : {",holds,", ",fails,", ",undecided,"})
+      if (l.find(v) != std::string::npos) ++verdicts[v];
+  }
+  std::ostringstream want;
+  want << "**" << verdicts[",holds,"] << " hold, " << verdicts[",fails,"] << " fail, " << verdicts[",undecided,"]
+       << " undecided**";
+  const auto readme = readLines(kSource + "/README.md");
+  EXPECT_TRUE(std::any_of(readme.begin(), readme.end(),
+                          [&](const std::string& l) { return l.find(want.str()) != std::string::npos; }))
+      << "README does not say " << want.str();
+}
+
+}  // namespace
+}  // namespace msb
