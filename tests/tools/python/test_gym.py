@@ -12,7 +12,7 @@ GRID = os.path.join(SOURCE_DIR, "scenarios/missions/grid_random.yaml")
 MONOSPHERES = os.path.join(SOURCE_DIR, "scenarios/missions/urban_short.yaml")
 
 
-def grid_scenario(duration_s=14, seed=1):
+def grid_scenario(duration_s=12, seed=1):
     return msbench.Scenario.load(GRID, set=FAST + ["world=urban", f"duration_s={duration_s}", f"seed={seed}"])
 
 
@@ -154,7 +154,7 @@ def test_an_empty_answer_means_no_goal_and_the_vehicle_hovers():
     assert counters["paths_sent"] == 2  # the take-off's two legs only: no goal, nothing else flown
 
 
-def spheres_scenario(duration_s=20, seed=1):
+def spheres_scenario(duration_s=14, seed=1):
     return msbench.Scenario.load(MONOSPHERES, set=FAST + [f"duration_s={duration_s}", f"seed={seed}"])
 
 
