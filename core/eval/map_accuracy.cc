@@ -14,6 +14,15 @@ std::optional<double> MapAccuracy::reallyFreeShare() const {
   return double(free_really_free) / double(free_elements);
 }
 
+int placementOf(const WorldTruth& truth, const Vec3& p) {
+  const double d = truth.distance(p, 5.0);
+  return d < -0.5 ? 0 : d <= 0.5 ? 1 : 2;
+}
+
+void countPlacement(PointPlacement& counts, int placement) {
+  (placement == 0 ? counts.inside : placement == 1 ? counts.near_surface : counts.floating) += 1;
+}
+
 std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldTruth& truth) {
   if (map.obstacles.empty() && map.free_space.empty()) return std::nullopt;
   MapAccuracy a;

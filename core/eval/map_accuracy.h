@@ -23,6 +23,22 @@ struct MapAccuracy {
   std::optional<double> reallyFreeShare() const;
 };
 
+/// Where obstacle points lie against the truth (signed distance d to the nearest surface): inside
+/// an obstacle (d < -0.5 m: behind the surface seen), near a surface (|d| <= 0.5 m) or floating
+/// in free space (d > 0.5 m: the wrong points that take free space away).
+struct PointPlacement {
+  size_t inside = 0, near_surface = 0, floating = 0;
+
+  /// All points counted.
+  size_t total() const { return inside + near_surface + floating; }
+};
+
+/// The placement class of one point: 0 inside, 1 near a surface, 2 floating.
+int placementOf(const WorldTruth& truth, const Vec3& p);
+
+/// Adds one point of class `placement` (placementOf) to the counts.
+void countPlacement(PointPlacement& counts, int placement);
+
 /// The map's accuracy (nullopt for an empty map).
 std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldTruth& truth);
 

@@ -289,6 +289,7 @@ std::vector<Vec3> SphereMap::applyDbof(const SlamPointsFrame& frame, const FreeS
     if ((o.position - cam).norm() < alpha * d_eff) {
       eraseObstacle(id);
       ++st.deleted_obstacles;
+      st.dbof_deleted_ids.push_back(id);
     } else {
       constraints.push_back(o.position);
       ++st.protected_obstacles;

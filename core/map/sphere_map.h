@@ -111,6 +111,7 @@ struct MapUpdateStats {
   int input_points = 0;
   int virtual_points = 0;  ///< active OVDE points added to P_f
   int deleted_obstacles = 0, protected_obstacles = 0;
+  std::vector<uint64_t> dbof_deleted_ids;  ///< the obstacle points DBOF deleted in this update
   int updated_spheres = 0, deleted_spheres = 0, new_spheres = 0, sparsified_spheres = 0;
   int sphere_samples = 0;  ///< step 7 samples that fell inside P_f's cone
   int inserted_obstacles = 0;

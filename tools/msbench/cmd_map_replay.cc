@@ -143,6 +143,33 @@ nlohmann::json mapSafetyJson(const Replay& r) {
           {"rule", r.safety_rule}};
 }
 
+// summary.json → obstacle_truth: the obstacle points by placement against the truth.
+nlohmann::json obstacleTruthJson(const Replay& r) {
+  const auto counts = [](const PointPlacement& p) {
+    return nlohmann::json{{"inside", p.inside}, {"near_surface", p.near_surface}, {"floating", p.floating},
+                          {"floating_share", double(p.floating) / double(std::max<size_t>(1, p.total()))}};
+  };
+  return {{"inserted", counts(r.inserted)},
+          {"dbof_deleted", counts(r.dbof_deleted)},
+          {"final", counts(r.final_obstacles)},
+          {"rule",
+           "each point classified in the true frame of the update that inserted it: inside an obstacle "
+           "(signed distance < -0.5 m), near a surface (|d| <= 0.5 m), floating in free space (d > 0.5 m)"}};
+}
+
+// The obstacle points by placement on stdout.
+void printObstacleTruth(const Replay& r) {
+  const auto line = [](const char* what, const PointPlacement& p) {
+    std::printf("obstacle points %s: %zu (%.1f %% floating in free space, %.1f %% near a surface, %.1f %% inside)\n",
+                what, p.total(), 100.0 * p.floating / std::max<size_t>(1, p.total()),
+                100.0 * p.near_surface / std::max<size_t>(1, p.total()),
+                100.0 * p.inside / std::max<size_t>(1, p.total()));
+  };
+  line("inserted", r.inserted);
+  line("deleted by DBOF", r.dbof_deleted);
+  line("in the final map", r.final_obstacles);
+}
+
 // The safety statistics on stdout.
 void printMapSafety(const Replay& r) {
   const auto& sf = r.safety;
@@ -218,7 +245,9 @@ int runMapReplayCommand(int argc, char** argv) {
   nlohmann::json summary = j;
   if (truth) {
     summary["map_safety"] = mapSafetyJson(r);
+    summary["obstacle_truth"] = obstacleTruthJson(r);
     printMapSafety(r);
+    printObstacleTruth(r);
   }
   writeFileAtomic(out.staging() / "summary.json", summary.dump(2) + "\n");
   out.commit();

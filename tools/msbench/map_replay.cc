@@ -3,12 +3,31 @@
 #include "tools/msbench/interrupt.h"
 
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "core/common/config_check.h"
 #include "core/common/wall_time.h"
 
 namespace msb {
+
+namespace {
+
+// The obstacle points of one update against the truth: the new ones classified in the true frame
+// of this moment (ids only grow), DBOF's deletions counted by the class they entered with.
+void classifyObstacles(const SphereMap& map, const WorldTruth& truth, const Pose& T_true_est,
+                       const MapUpdateStats& st, std::map<uint64_t, int>& placement, Replay& r) {
+  for (uint64_t id : st.dbof_deleted_ids)
+    if (auto it = placement.find(id); it != placement.end()) countPlacement(r.dbof_deleted, it->second);
+  const uint64_t newest_known = placement.empty() ? 0 : placement.rbegin()->first;
+  for (auto it = map.obstacles().upper_bound(newest_known); it != map.obstacles().end(); ++it) {
+    const int c = placementOf(truth, T_true_est * it->second.position);
+    placement[it->first] = c;
+    countPlacement(r.inserted, c);
+  }
+}
+
+}  // namespace
 
 // Runs the mapper over the log at the given rate (frames at or after each period); with ground
 // truth, checks the map's safety (its Monte Carlo stream seeded here, once per replay).
@@ -17,6 +36,7 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
   std::optional<MapSafetyCheck> safety;
   if (truth) safety.emplace(*truth, 0);
   double next_t = -1e9;
+  std::map<uint64_t, int> placement;  // obstacle id -> placementOf at insertion
   for (const auto& f : log.frames) {
     throwIfInterrupted();  // a safe point: nothing of this frame is in the map yet
     // Corridor at the time: is the camera inside the free space the map has at that moment?
@@ -36,6 +56,7 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
         const Sphere& s = map.spheres().at(id);
         safety->checkSphere(s.centre, s.radius, T_true_est);
       }
+      classifyObstacles(map, *truth, T_true_est, r.stats.back(), placement, r);
     }
     r.t.push_back(f.points.t_s);
     r.spheres.push_back(int(map.spheres().size()));
@@ -43,6 +64,8 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
     r.frontiers.push_back(int(map.frontiers().size()));
   }
   if (safety) r.safety = safety->stats(), r.safety_rule = safety->rule();
+  for (const auto& [id, o] : map.obstacles())
+    if (auto it = placement.find(id); it != placement.end()) countPlacement(r.final_obstacles, it->second);
   return r;
 }
 

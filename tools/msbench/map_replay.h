@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/camera/fisheye_camera.h"
+#include "core/eval/map_accuracy.h"
 #include "core/eval/map_safety.h"
 #include "core/geometry/world_truth.h"
 #include "core/map/sphere_map.h"
@@ -24,6 +25,9 @@ struct Replay {
   std::vector<double> t;
   std::vector<int> spheres, obstacles, frontiers;
   long live_samples = 0, live_covered = 0;  // camera above 1 m inside the spheres of that moment
+  // With ground truth: the obstacle points, each classified in the true frame of the update that
+  // inserted it — all inserted, those DBOF deleted, those in the final map.
+  PointPlacement inserted, dbof_deleted, final_obstacles;
 };
 
 /// Runs the mapper over the log at `rate_hz` (the frames at or after each period); with ground

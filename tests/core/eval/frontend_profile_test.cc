@@ -94,5 +94,20 @@ TEST(MapAccuracy, ObstaclesNearASurfaceAndFreeElementsOutsideObstacles) {
   EXPECT_FALSE(MapAccuracy{}.reallyFreeShare().has_value());
 }
 
+TEST(MapAccuracy, PointPlacementInsideNearOrFloating) {
+  const WorldTruth truth = groundOnly();
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, -1.0)), 0);  // below the ground: behind the surface seen
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, -0.4)), 1);
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 0.5)), 1);
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 0.6)), 2);   // in free air: takes free space away
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 40.0)), 2);  // beyond the search range: still floating
+  PointPlacement c;
+  for (int k : {0, 1, 1, 2, 2, 2}) countPlacement(c, k);
+  EXPECT_EQ(c.inside, 1u);
+  EXPECT_EQ(c.near_surface, 2u);
+  EXPECT_EQ(c.floating, 3u);
+  EXPECT_EQ(c.total(), 6u);
+}
+
 }  // namespace
 }  // namespace msb

@@ -64,6 +64,7 @@ TEST(SphereMapRules, DbofDeletesPointsSeenAgainFromCloserAndProtectsTheOthers) {
   const uint64_t seen_from_close = map.addObstacle({2, 0, 7.75}, 5.0);  // 8 > 1.1 · 5: protected
   const MapUpdateStats st = map.update(wallFrame(15, 10));
   EXPECT_EQ(st.deleted_obstacles, 1);
+  EXPECT_EQ(st.dbof_deleted_ids, std::vector<uint64_t>{seen_from_far});  // named for evaluation
   EXPECT_EQ(st.protected_obstacles, 1);
   EXPECT_FALSE(map.obstacles().count(seen_from_far));
   ASSERT_TRUE(map.obstacles().count(seen_from_close));
