@@ -16,11 +16,12 @@ std::optional<double> MapAccuracy::reallyFreeShare() const {
 
 int placementOf(const WorldTruth& truth, const Vec3& p) {
   const double d = truth.distance(p, 5.0);
-  return d < -0.5 ? 0 : d <= 0.5 ? 1 : 2;
+  return d < -0.5 ? 0 : d <= 0.5 ? 1 : d <= 2.0 ? 2 : 3;
 }
 
 void countPlacement(PointPlacement& counts, int placement) {
   (placement == 0 ? counts.inside : placement == 1 ? counts.near_surface : counts.floating) += 1;
+  counts.floating_far += placement == 3;
 }
 
 std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldTruth& truth) {

@@ -25,15 +25,18 @@ struct MapAccuracy {
 
 /// Where obstacle points lie against the truth (signed distance d to the nearest surface): inside
 /// an obstacle (d < -0.5 m: behind the surface seen), near a surface (|d| <= 0.5 m) or floating
-/// in free space (d > 0.5 m: the wrong points that take free space away).
+/// in free space (d > 0.5 m: the wrong points that take free space away); floating_far counts
+/// the floating points more than 2 m from every surface (in the open, not just before a wall).
 struct PointPlacement {
   size_t inside = 0, near_surface = 0, floating = 0;
+  size_t floating_far = 0;  ///< of `floating`, those with d > 2 m
 
   /// All points counted.
   size_t total() const { return inside + near_surface + floating; }
 };
 
-/// The placement class of one point: 0 inside, 1 near a surface, 2 floating.
+/// The placement class of one point: 0 inside, 1 near a surface, 2 floating within 2 m of a
+/// surface, 3 floating farther.
 int placementOf(const WorldTruth& truth, const Vec3& p);
 
 /// Adds one point of class `placement` (placementOf) to the counts.

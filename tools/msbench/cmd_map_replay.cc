@@ -146,7 +146,10 @@ nlohmann::json mapSafetyJson(const Replay& r) {
 // summary.json → obstacle_truth: the obstacle points by placement against the truth.
 nlohmann::json obstacleTruthJson(const Replay& r) {
   const auto counts = [](const PointPlacement& p) {
-    return nlohmann::json{{"inside", p.inside}, {"near_surface", p.near_surface}, {"floating", p.floating},
+    return nlohmann::json{{"inside", p.inside},
+                          {"near_surface", p.near_surface},
+                          {"floating", p.floating},
+                          {"floating_over_2m", p.floating_far},
                           {"floating_share", double(p.floating) / double(std::max<size_t>(1, p.total()))}};
   };
   return {{"inserted", counts(r.inserted)},
@@ -154,14 +157,17 @@ nlohmann::json obstacleTruthJson(const Replay& r) {
           {"final", counts(r.final_obstacles)},
           {"rule",
            "each point classified in the true frame of the update that inserted it: inside an obstacle "
-           "(signed distance < -0.5 m), near a surface (|d| <= 0.5 m), floating in free space (d > 0.5 m)"}};
+           "(signed distance < -0.5 m), near a surface (|d| <= 0.5 m), floating in free space (d > 0.5 m; "
+           "floating_over_2m: d > 2 m)"}};
 }
 
 // The obstacle points by placement on stdout.
 void printObstacleTruth(const Replay& r) {
   const auto line = [](const char* what, const PointPlacement& p) {
-    std::printf("obstacle points %s: %zu (%.1f %% floating in free space, %.1f %% near a surface, %.1f %% inside)\n",
+    std::printf("obstacle points %s: %zu (%.1f %% floating in free space, %.1f %% over 2 m from a surface; "
+                "%.1f %% near a surface, %.1f %% inside)\n",
                 what, p.total(), 100.0 * p.floating / std::max<size_t>(1, p.total()),
+                100.0 * p.floating_far / std::max<size_t>(1, p.total()),
                 100.0 * p.near_surface / std::max<size_t>(1, p.total()),
                 100.0 * p.inside / std::max<size_t>(1, p.total()));
   };

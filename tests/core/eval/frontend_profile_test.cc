@@ -100,12 +100,14 @@ TEST(MapAccuracy, PointPlacementInsideNearOrFloating) {
   EXPECT_EQ(placementOf(truth, Vec3(0, 0, -0.4)), 1);
   EXPECT_EQ(placementOf(truth, Vec3(0, 0, 0.5)), 1);
   EXPECT_EQ(placementOf(truth, Vec3(0, 0, 0.6)), 2);   // in free air: takes free space away
-  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 40.0)), 2);  // beyond the search range: still floating
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 2.5)), 3);   // far from every surface
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 40.0)), 3);  // beyond the search range: still floating
   PointPlacement c;
-  for (int k : {0, 1, 1, 2, 2, 2}) countPlacement(c, k);
+  for (int k : {0, 1, 1, 2, 2, 3}) countPlacement(c, k);
   EXPECT_EQ(c.inside, 1u);
   EXPECT_EQ(c.near_surface, 2u);
   EXPECT_EQ(c.floating, 3u);
+  EXPECT_EQ(c.floating_far, 1u);
   EXPECT_EQ(c.total(), 6u);
 }
 
