@@ -1,7 +1,5 @@
 #include "core/eval/map_accuracy.h"
 
-#include <cmath>
-
 namespace msb {
 
 std::optional<double> MapAccuracy::nearSurfaceShare() const {
@@ -29,7 +27,7 @@ std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldT
   MapAccuracy a;
   a.obstacles = map.obstacles.size();
   a.free_elements = map.free_space.size();
-  for (const auto& p : map.obstacles) a.obstacles_near_surface += std::fabs(truth.distance(p, 5.0)) <= 0.5;
+  for (const auto& p : map.obstacles) a.obstacles_near_surface += placementOf(truth, p) == 1;
   for (const auto& d : map.free_space) a.free_really_free += truth.distance(d.centre, 5.0) > 0.0;
   return a;
 }
