@@ -12,14 +12,28 @@ std::optional<double> MapAccuracy::reallyFreeShare() const {
   return double(free_really_free) / double(free_elements);
 }
 
-int placementOf(const WorldTruth& truth, const Vec3& p) {
+Placement placementOf(const WorldTruth& truth, const Vec3& p) {
   const double d = truth.distance(p, 5.0);
-  return d < -0.5 ? 0 : d <= 0.5 ? 1 : d <= 2.0 ? 2 : 3;
+  if (d < -0.5) return Placement::inside;
+  if (d <= 0.5) return Placement::near_surface;
+  return d <= 2.0 ? Placement::floating_near : Placement::floating_far;
 }
 
-void countPlacement(PointPlacement& counts, int placement) {
-  (placement == 0 ? counts.inside : placement == 1 ? counts.near_surface : counts.floating) += 1;
-  counts.floating_far += placement == 3;
+void countPlacement(PointPlacement& counts, Placement placement) {
+  switch (placement) {
+    case Placement::inside:
+      ++counts.inside;
+      break;
+    case Placement::near_surface:
+      ++counts.near_surface;
+      break;
+    case Placement::floating_far:
+      ++counts.floating_far;
+      [[fallthrough]];
+    case Placement::floating_near:
+      ++counts.floating;
+      break;
+  }
 }
 
 std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldTruth& truth) {
@@ -27,7 +41,7 @@ std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldT
   MapAccuracy a;
   a.obstacles = map.obstacles.size();
   a.free_elements = map.free_space.size();
-  for (const auto& p : map.obstacles) a.obstacles_near_surface += placementOf(truth, p) == 1;
+  for (const auto& p : map.obstacles) a.obstacles_near_surface += placementOf(truth, p) == Placement::near_surface;
   for (const auto& d : map.free_space) a.free_really_free += truth.distance(d.centre, 5.0) > 0.0;
   return a;
 }

@@ -35,12 +35,15 @@ struct PointPlacement {
   size_t total() const { return inside + near_surface + floating; }
 };
 
-/// The placement class of one point: 0 inside, 1 near a surface, 2 floating within 2 m of a
-/// surface, 3 floating farther.
-int placementOf(const WorldTruth& truth, const Vec3& p);
+/// Where one point lies against the truth (the classes of PointPlacement).
+enum class Placement { inside, near_surface, floating_near, floating_far };
 
-/// Adds one point of class `placement` (placementOf) to the counts.
-void countPlacement(PointPlacement& counts, int placement);
+/// The placement of one point: inside (d < -0.5 m), near a surface (|d| <= 0.5 m), floating
+/// within 2 m of a surface, floating farther.
+Placement placementOf(const WorldTruth& truth, const Vec3& p);
+
+/// Adds one point of the given placement to the counts.
+void countPlacement(PointPlacement& counts, Placement placement);
 
 /// The map's accuracy (nullopt for an empty map).
 std::optional<MapAccuracy> mapAccuracy(const ExplorerSnapshot& map, const WorldTruth& truth);

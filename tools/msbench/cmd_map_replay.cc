@@ -164,12 +164,11 @@ nlohmann::json obstacleTruthJson(const Replay& r) {
 // The obstacle points by placement on stdout.
 void printObstacleTruth(const Replay& r) {
   const auto line = [](const char* what, const PointPlacement& p) {
-    std::printf("obstacle points %s: %zu (%.1f %% floating in free space, %.1f %% over 2 m from a surface; "
-                "%.1f %% near a surface, %.1f %% inside)\n",
-                what, p.total(), 100.0 * p.floating / std::max<size_t>(1, p.total()),
-                100.0 * p.floating_far / std::max<size_t>(1, p.total()),
-                100.0 * p.near_surface / std::max<size_t>(1, p.total()),
-                100.0 * p.inside / std::max<size_t>(1, p.total()));
+    const double pct = 100.0 / double(std::max<size_t>(1, p.total()));
+    std::printf(
+        "obstacle points %s: %zu (%.1f %% floating in free space, %.1f %% over 2 m from a surface; "
+        "%.1f %% near a surface, %.1f %% inside)\n",
+        what, p.total(), pct * p.floating, pct * p.floating_far, pct * p.near_surface, pct * p.inside);
   };
   line("inserted", r.inserted);
   line("deleted by DBOF", r.dbof_deleted);

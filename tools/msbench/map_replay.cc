@@ -15,13 +15,13 @@ namespace {
 
 // The obstacle points of one update against the truth: the new ones classified in the true frame
 // of this moment (ids only grow), DBOF's deletions counted by the class they entered with.
-void classifyObstacles(const SphereMap& map, const WorldTruth& truth, const Pose& T_true_est,
-                       const MapUpdateStats& st, std::map<uint64_t, int>& placement, Replay& r) {
+void classifyObstacles(const SphereMap& map, const WorldTruth& truth, const Pose& T_true_est, const MapUpdateStats& st,
+                       std::map<uint64_t, Placement>& placement, Replay& r) {
   for (uint64_t id : st.dbof_deleted_ids)
     if (auto it = placement.find(id); it != placement.end()) countPlacement(r.dbof_deleted, it->second);
   const uint64_t newest_known = placement.empty() ? 0 : placement.rbegin()->first;
   for (auto it = map.obstacles().upper_bound(newest_known); it != map.obstacles().end(); ++it) {
-    const int c = placementOf(truth, T_true_est * it->second.position);
+    const Placement c = placementOf(truth, T_true_est * it->second.position);
     placement[it->first] = c;
     countPlacement(r.inserted, c);
   }
@@ -36,7 +36,7 @@ Replay replay(const PerceptionLog& log, SphereMap& map, double rate_hz, const Wo
   std::optional<MapSafetyCheck> safety;
   if (truth) safety.emplace(*truth, 0);
   double next_t = -1e9;
-  std::map<uint64_t, int> placement;  // obstacle id -> placementOf at insertion
+  std::map<uint64_t, Placement> placement;  // obstacle id -> placementOf at insertion
   for (const auto& f : log.frames) {
     throwIfInterrupted();  // a safe point: nothing of this frame is in the map yet
     // Corridor at the time: is the camera inside the free space the map has at that moment?

@@ -96,14 +96,16 @@ TEST(MapAccuracy, ObstaclesNearASurfaceAndFreeElementsOutsideObstacles) {
 
 TEST(MapAccuracy, PointPlacementInsideNearOrFloating) {
   const WorldTruth truth = groundOnly();
-  EXPECT_EQ(placementOf(truth, Vec3(0, 0, -1.0)), 0);  // below the ground: behind the surface seen
-  EXPECT_EQ(placementOf(truth, Vec3(0, 0, -0.4)), 1);
-  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 0.5)), 1);
-  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 0.6)), 2);   // in free air: takes free space away
-  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 2.5)), 3);   // far from every surface
-  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 40.0)), 3);  // beyond the search range: still floating
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, -1.0)), Placement::inside);  // below the ground: behind the surface seen
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, -0.4)), Placement::near_surface);
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 0.5)), Placement::near_surface);
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 0.6)), Placement::floating_near);  // in free air: takes free space away
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 2.5)), Placement::floating_far);   // far from every surface
+  EXPECT_EQ(placementOf(truth, Vec3(0, 0, 40.0)), Placement::floating_far);  // beyond the search range: still floating
   PointPlacement c;
-  for (int k : {0, 1, 1, 2, 2, 3}) countPlacement(c, k);
+  using enum Placement;
+  for (Placement k : {inside, near_surface, near_surface, floating_near, floating_near, floating_far})
+    countPlacement(c, k);
   EXPECT_EQ(c.inside, 1u);
   EXPECT_EQ(c.near_surface, 2u);
   EXPECT_EQ(c.floating, 3u);
