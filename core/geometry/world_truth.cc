@@ -8,6 +8,9 @@ namespace msb {
 
 WorldTruth::WorldTruth(std::vector<Shape> shapes, double index_cell_m)
     : shapes_(std::move(shapes)), cell_(index_cell_m) {
+  bounds_.reserve(shapes_.size());
+  for (const Shape& s : shapes_)
+    bounds_.push_back(s.type == ShapeType::kHalfSpace ? std::pair<Vec3, Vec3>() : s.bounds());
   // Grid over the union of the bounded shapes' footprints.
   Vec2 lo = Vec2::Constant(1e18), hi = Vec2::Constant(-1e18);
   for (size_t i = 0; i < shapes_.size(); ++i) {
@@ -81,29 +84,77 @@ bool WorldTruth::inside(const Vec3& p) const {
   return hit;
 }
 
+void WorldTruth::rayTestShape(int i, const Vec3& o, const Vec3& d, double max_range_m,
+                              std::optional<RayHit>& best) const {
+  // Cheap rejection by the bounding box (slab test).
+  if (shapes_[i].type != ShapeType::kHalfSpace) {
+    const auto& [mn, mx] = bounds_[i];
+    double t0 = 0.0, t1 = max_range_m;
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(d[k]) < 1e-15) {
+        if (o[k] < mn[k] || o[k] > mx[k]) return;
+        continue;
+      }
+      double a = (mn[k] - o[k]) / d[k], b = (mx[k] - o[k]) / d[k];
+      if (a > b) std::swap(a, b);
+      t0 = std::max(t0, a), t1 = std::min(t1, b);
+      if (t0 > t1) return;
+    }
+  }
+  const auto t = shapes_[i].raycast(o, d);
+  if (!t || *t > max_range_m) return;
+  if (!best || *t < best->distance_m || (*t == best->distance_m && i < best->shape)) best = RayHit{*t, i};
+}
+
 std::optional<RayHit> WorldTruth::raycast(const Vec3& o, const Vec3& dir, double max_range_m) const {
   const Vec3 d = dir.normalized();
   std::optional<RayHit> best;
-  for (size_t i = 0; i < shapes_.size(); ++i) {
-    // Cheap rejection by the bounding box (slab test).
-    if (shapes_[i].type != ShapeType::kHalfSpace) {
-      const auto [mn, mx] = shapes_[i].bounds();
-      double t0 = 0.0, t1 = max_range_m;
-      bool miss = false;
-      for (int k = 0; k < 3 && !miss; ++k) {
-        if (std::abs(d[k]) < 1e-15) {
-          miss = o[k] < mn[k] || o[k] > mx[k];
-          continue;
-        }
-        double a = (mn[k] - o[k]) / d[k], b = (mx[k] - o[k]) / d[k];
-        if (a > b) std::swap(a, b);
-        t0 = std::max(t0, a), t1 = std::min(t1, b);
-        miss = t0 > t1;
-      }
-      if (miss) continue;
+  for (size_t i = 0; i < shapes_.size(); ++i) rayTestShape(int(i), o, d, max_range_m, best);
+  return best;
+}
+
+std::optional<RayHit> WorldTruth::raycastIndexed(const Vec3& o, const Vec3& dir, double max_range_m) const {
+  const Vec3 d = dir.normalized();
+  std::optional<RayHit> best;
+  for (int i : unbounded_) rayTestShape(i, o, d, max_range_m, best);
+  // The part of the ray over the grid: [t, t_end] (slab test against the grid's rectangle).
+  double t = 0.0, t_end = max_range_m;
+  const Vec2 lo = origin_, hi = origin_ + Vec2(nx_ * cell_, ny_ * cell_);
+  for (int k = 0; k < 2; ++k) {
+    if (std::abs(d[k]) < 1e-15) {
+      if (o[k] < lo[k] || o[k] > hi[k]) return best;
+      continue;
     }
-    const auto t = shapes_[i].raycast(o, d);
-    if (t && *t <= max_range_m && (!best || *t < best->distance_m)) best = RayHit{*t, static_cast<int>(i)};
+    double a = (lo[k] - o[k]) / d[k], b = (hi[k] - o[k]) / d[k];
+    if (a > b) std::swap(a, b);
+    t = std::max(t, a), t_end = std::min(t_end, b);
+  }
+  if (t > t_end) return best;
+  // Walk the cells the ray's footprint crosses (Amanatides–Woo), nearest first; a shape spans
+  // several cells, so each is tested once. Stop once the best hit lies before the next cell.
+  std::vector<char> tested(shapes_.size(), 0);
+  const Vec3 p = o + t * d;
+  int c[2], step[2];
+  double t_next[2], t_delta[2];
+  for (int k = 0; k < 2; ++k) {
+    c[k] = std::clamp(int(std::floor((p[k] - origin_[k]) / cell_)), 0, (k ? ny_ : nx_) - 1);
+    step[k] = d[k] > 0 ? 1 : -1;
+    const double edge = origin_[k] + (c[k] + (d[k] > 0 ? 1 : 0)) * cell_;
+    t_delta[k] = std::abs(d[k]) < 1e-15 ? 1e300 : cell_ / std::abs(d[k]);
+    t_next[k] = std::abs(d[k]) < 1e-15 ? 1e300 : (edge - o[k]) / d[k];
+  }
+  while (true) {
+    forCell(c[0], c[1], [&](int i) {
+      if (tested[size_t(i)]) return;
+      tested[size_t(i)] = 1;
+      rayTestShape(i, o, d, max_range_m, best);
+    });
+    const int k = t_next[0] < t_next[1] ? 0 : 1;
+    const double leave = t_next[k];
+    if ((best && best->distance_m <= leave) || leave > t_end) break;
+    c[k] += step[k];
+    t_next[k] += t_delta[k];
+    if (c[k] < 0 || c[k] >= (k ? ny_ : nx_)) break;
   }
   return best;
 }

@@ -51,6 +51,10 @@ class WorldTruth {
   bool inside(const Vec3& p) const;
   /// First obstacle hit by the ray o + t d (d need not be normalised), within max_range_m.
   std::optional<RayHit> raycast(const Vec3& o, const Vec3& d, double max_range_m = 1e6) const;
+  /// The same first hit as raycast() (equal distance and shape), found by walking the footprint
+  /// grid along the ray instead of testing every shape: for many short rays (what the camera
+  /// saw, core/eval/verified_coverage.h).
+  std::optional<RayHit> raycastIndexed(const Vec3& o, const Vec3& d, double max_range_m) const;
   /// Columns of `box` (cells of `cell_m`, from box.min) that are not fully occupied: at least
   /// one sample point on a `sample_m` lattice inside the column lies outside all obstacles.
   std::vector<Column> explorableColumns(const Aabb& box, double cell_m = 2.5, double sample_m = 0.5) const;
@@ -58,9 +62,13 @@ class WorldTruth {
  private:
   template <class F>
   void forCell(int cx, int cy, F&& f) const;
+  // The first hit of the unit ray o + t d among `shape`, kept if nearer than `best` (ties: the
+  // lower index, as raycast()).
+  void rayTestShape(int shape, const Vec3& o, const Vec3& d, double max_range_m, std::optional<RayHit>& best) const;
 
   std::vector<Shape> shapes_;
-  std::vector<int> unbounded_;  // half-spaces, always tested
+  std::vector<std::pair<Vec3, Vec3>> bounds_;  // each shape's bounding box (half-spaces: unused)
+  std::vector<int> unbounded_;                 // half-spaces, always tested
   double cell_;
   Vec2 origin_ = Vec2::Zero();
   int nx_ = 0, ny_ = 0;

@@ -110,6 +110,37 @@ TEST(WorldTruth, IndexedNearestMatchesBruteForce) {
   }
 }
 
+TEST(WorldTruth, IndexedRaycastFindsTheSameFirstHit) {
+  // The grid walk returns exactly what testing every shape returns (distance and shape), for
+  // rays from inside and outside the grid, in every direction, short and long.
+  RngStream rng(9, "rays");
+  std::vector<Shape> shapes;
+  Shape ground;
+  ground.type = ShapeType::kHalfSpace;
+  shapes.push_back(ground);
+  for (int i = 0; i < 80; ++i)
+    shapes.push_back(box({rng.uniform(-40, 40), rng.uniform(-40, 40), 2}, {rng.uniform(0.5, 3), rng.uniform(0.5, 3), 2},
+                         rng.uniform(0, 3)));
+  for (int i = 0; i < 30; ++i)
+    shapes.push_back(cylinder({rng.uniform(-40, 40), rng.uniform(-40, 40), 3}, 0.3, 3, rng.uniform(0, 0.4)));
+  const WorldTruth truth(shapes);
+  int hits = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const Vec3 o(rng.uniform(-60, 60), rng.uniform(-60, 60), rng.uniform(0.1, 8));
+    Vec3 d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-0.3, 0.3));
+    if (i % 50 == 0) d = Vec3(0, 0, -1);  // straight down
+    if (i % 50 == 1) d = Vec3(1, 0, 0);   // along a grid axis
+    const double range = i % 3 == 0 ? 10.0 : 100.0;
+    const auto a = truth.raycast(o, d, range), b = truth.raycastIndexed(o, d, range);
+    ASSERT_EQ(a.has_value(), b.has_value()) << i;
+    if (!a) continue;
+    ++hits;
+    EXPECT_EQ(a->distance_m, b->distance_m) << i;
+    EXPECT_EQ(a->shape, b->shape) << i;
+  }
+  EXPECT_GT(hits, 1000);
+}
+
 TEST(WorldTruth, ExplorableColumnsOnAHandBuiltWorld) {
   // Box 10 x 5 m (4 x 2 columns), z in [0, 4]. One column fully blocked by a 2.5 m cube-ish
   // block taller than the box; one half-blocked (still explorable); a low block (explorable).
