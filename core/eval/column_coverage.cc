@@ -48,6 +48,34 @@ size_t ColumnCoverage::countInside(const Vec2& lo, const Vec2& hi) const {
   return n;
 }
 
+int ColumnCoverage::markPlaced(const PlacedElement& e) {
+  if (e.footprint == FreeSpaceElement::Footprint::kDisk) return markDisk(e.centre.head<2>(), e.radius);
+  int added = 0;
+  for (const ColumnIndex& c : columnsUnder(e, cell_)) added += columns_.insert(c).second;
+  return added;
+}
+
+std::vector<ColumnIndex> columnsUnder(const PlacedElement& e, double cell) {
+  std::vector<ColumnIndex> out;
+  if (!(e.radius >= 0)) return out;
+  if (e.footprint == FreeSpaceElement::Footprint::kDisk) {
+    ColumnCoverage disk(cell);
+    disk.markDisk(e.centre.head<2>(), e.radius);
+    return {disk.columns().begin(), disk.columns().end()};
+  }
+  // A turned square: the nodes of its bounding box whose offset, turned back, lies inside it.
+  const double reach = e.radius * std::sqrt(2.0), c = std::cos(e.yaw_rad), s = std::sin(e.yaw_rad);
+  const Vec2 m = e.centre.head<2>();
+  const int64_t i0 = int64_t(std::ceil((m.x() - reach) / cell)), i1 = int64_t(std::floor((m.x() + reach) / cell));
+  const int64_t j0 = int64_t(std::ceil((m.y() - reach) / cell)), j1 = int64_t(std::floor((m.y() + reach) / cell));
+  for (int64_t i = i0; i <= i1; ++i)
+    for (int64_t j = j0; j <= j1; ++j) {
+      const double dx = cell * double(i) - m.x(), dy = cell * double(j) - m.y();
+      if (std::abs(c * dx + s * dy) <= e.radius && std::abs(-s * dx + c * dy) <= e.radius) out.push_back({i, j});
+    }
+  return out;
+}
+
 int ColumnCoverage::markFreeSpace(const std::vector<FreeSpaceElement>& elements) {
   int added = 0;
   for (const FreeSpaceElement& e : elements)

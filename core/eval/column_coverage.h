@@ -17,6 +17,19 @@ namespace msb {
 /// Column index (i, j): the column whose node is (cell·i, cell·j).
 using ColumnIndex = std::pair<int64_t, int64_t>;
 
+/// A free-space element placed in the true frame (the metric's view of it): a disk, or a square
+/// turned by the estimate → truth correction's yaw.
+struct PlacedElement {
+  uint64_t key = 0;  ///< identifies the element and its placement (id, geometry, correction)
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;  ///< the disk's radius or the square's half side
+  FreeSpaceElement::Footprint footprint = FreeSpaceElement::Footprint::kDisk;
+  double yaw_rad = 0.0;  ///< the square's turn (squares only)
+};
+
+/// The columns (cell `cell_m`) whose node lies in the element's xy footprint, in index order.
+std::vector<ColumnIndex> columnsUnder(const PlacedElement& e, double cell_m);
+
 /// Cumulative set of explored columns.
 class ColumnCoverage {
  public:
@@ -27,6 +40,10 @@ class ColumnCoverage {
   int markDisk(const Vec2& centre, double radius_m);
   /// Marks every column whose node lies inside the axis-aligned square |xy − c|∞ ≤ half_size.
   int markSquare(const Vec2& centre, double half_size_m);
+  /// Marks one column; returns 1 if it was new.
+  int markColumn(const ColumnIndex& c) { return int(columns_.insert(c).second); }
+  /// Marks every column whose node lies in the placed element's footprint (columnsUnder).
+  int markPlaced(const PlacedElement& e);
   /// Marks the footprint of every element (the only way a method's free space becomes columns:
   /// the methods expose geometry, the metric scores it). Returns how many columns were new.
   int markFreeSpace(const std::vector<FreeSpaceElement>& elements);

@@ -9,11 +9,12 @@ namespace msb {
 /// Explored area at one moment of a mission.
 struct CoverageSample {
   double t_s = 0;
-  double area_m2 = 0;      ///< unbounded, VIO frame (as the paper)
-  double area_box_m2 = 0;  ///< columns whose node lies in the exploration box
-  double area_gt_m2 = 0;   ///< unbounded, free space mapped to the true frame when first seen
-  double distance_m = 0;   ///< flown so far (ground truth)
-  double box_share = 0;    ///< explored explorable columns of the box / explorable (0 if unknown)
+  double area_m2 = 0;           ///< unbounded, VIO frame (as the paper)
+  double area_box_m2 = 0;       ///< columns whose node lies in the exploration box
+  double area_gt_m2 = 0;        ///< unbounded, free space mapped to the true frame when first seen
+  double area_verified_m2 = 0;  ///< verified columns (seen, covered, truly free; docs/metrics.md)
+  double distance_m = 0;        ///< flown so far (ground truth)
+  double box_share = 0;         ///< explored explorable columns of the box / explorable (0 if unknown)
 };
 
 /// A stretch of a mission without coverage gain: A (area_m2) did not grow from start_s to end_s.

@@ -2,7 +2,28 @@
 
 #include <cmath>
 
+#include "core/common/rng.h"
+
 namespace msb {
+
+std::optional<std::string> freeSpaceProblem(const std::vector<FreeSpaceElement>& free_space, const Aabb& box) {
+  if (free_space.size() > kMaxFreeSpaceElements)
+    return std::to_string(free_space.size()) + " free-space elements (the limit is " +
+           std::to_string(kMaxFreeSpaceElements) + ")";
+  for (size_t i = 0; i < free_space.size(); ++i) {
+    const FreeSpaceElement& e = free_space[i];
+    const std::string which = "free-space element " + std::to_string(i) + " (id " + std::to_string(e.id) + ")";
+    if (!std::isfinite(e.radius) || e.radius < 0 || e.radius > kMaxElementRadiusM)
+      return which + ": radius " + std::to_string(e.radius) + " m is not in [0, " +
+             std::to_string(int(kMaxElementRadiusM)) + "] m";
+    if (!e.centre.allFinite()) return which + ": its centre is not a finite point";
+    const Vec3 outside = (box.min - e.centre).cwiseMax(e.centre - box.max).cwiseMax(0.0);
+    if (outside.maxCoeff() > kMaxElementOffsetM)
+      return which + ": its centre lies " + std::to_string(outside.maxCoeff()) +
+             " m outside the exploration box (the limit is " + std::to_string(int(kMaxElementOffsetM)) + " m)";
+  }
+  return std::nullopt;
+}
 
 std::set<ColumnIndex> boxExplorableNodes(const WorldTruth& truth, const Aabb& box, double cell) {
   // Align the box to the cells centred on the nodes (cell·i, cell·j) that lie inside it.
@@ -21,6 +42,25 @@ std::set<ColumnIndex> boxExplorableNodes(const WorldTruth& truth, const Aabb& bo
 
 MissionCoverage::MissionCoverage(const Aabb& box, std::set<ColumnIndex> box_explorable)
     : box_(box), box_explorable_(std::move(box_explorable)) {}
+MissionCoverage::MissionCoverage(MissionCoverage&&) noexcept = default;
+MissionCoverage& MissionCoverage::operator=(MissionCoverage&&) noexcept = default;
+MissionCoverage::~MissionCoverage() = default;
+
+void MissionCoverage::enableVerification(const WorldTruth& truth, const FisheyeCamera& camera,
+                                         const VerifiedCoverageConfig& config) {
+  verified_ = std::make_unique<VerifiedCoverage>(truth, camera, config);
+}
+
+void MissionCoverage::look(const Pose& T_W_C_true) {
+  if (verified_) verified_->look(T_W_C_true);
+}
+
+size_t MissionCoverage::verifiedExplorableColumns() const {
+  size_t n = 0;
+  if (verified_)
+    for (const ColumnIndex& c : verified_->verified().columns()) n += box_explorable_.count(c);
+  return n;
+}
 
 size_t MissionCoverage::exploredExplorableColumns() const {
   size_t n = 0;
@@ -36,16 +76,28 @@ size_t MissionCoverage::trueFrameExploredExplorableColumns() const {
 
 void MissionCoverage::sample(double t_s, double distance_m, const std::vector<FreeSpaceElement>& free_space) {
   // True-frame columns: each element keeps the correction of the moment it was first seen.
+  std::vector<PlacedElement> placed;
+  placed.reserve(free_space.size());
   for (const auto& d : free_space) {
     const Pose& T = first_seen_.emplace(d.id, T_true_est_).first->second;
-    columns_gt_.markDisk((T * d.centre).head<2>(), d.radius);
+    PlacedElement e;
+    e.centre = T * d.centre;
+    e.radius = d.radius;
+    e.footprint = d.footprint;
+    e.yaw_rad = yawOf(T.linear());
+    const double key[6] = {double(d.id), e.centre.x(), e.centre.y(), e.centre.z(), e.radius, e.yaw_rad};
+    e.key = fnv1a64(key, sizeof(key), uint64_t(d.footprint));
+    columns_gt_.markPlaced(e);
+    placed.push_back(e);
   }
+  if (verified_) verified_->mark(placed);
   const double cell = columns_.cellM();
   CoverageSample c;
   c.t_s = t_s;
   c.area_m2 = columns_.areaM2();
   c.area_box_m2 = double(columns_.countInside(box_.min.head<2>(), box_.max.head<2>())) * cell * cell;
   c.area_gt_m2 = columns_gt_.areaM2();
+  if (verified_) c.area_verified_m2 = verified_->verified().areaM2();
   c.distance_m = distance_m;
   if (!box_explorable_.empty()) c.box_share = double(exploredExplorableColumns()) / double(box_explorable_.size());
   samples_.push_back(c);

@@ -5,17 +5,32 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <set>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "core/common/aabb.h"
 #include "core/eval/column_coverage.h"
 #include "core/eval/coverage_sample.h"
+#include "core/eval/verified_coverage.h"
 #include "core/explorer/snapshot.h"
 #include "core/geometry/world_truth.h"
 
 namespace msb {
+
+/// Limits on a method's free space (docs/metrics.md, "Limits"): more elements than this in one
+/// sample, a radius above kMaxElementRadiusM, or a centre farther than kMaxElementOffsetM outside
+/// the exploration box ends the run as an error. They bound the metric's work per sample.
+inline constexpr size_t kMaxFreeSpaceElements = 5'000'000;
+inline constexpr double kMaxElementRadiusM = 250.0;
+inline constexpr double kMaxElementOffsetM = 1000.0;
+
+/// What is wrong with the free space (NaN, negative or too large radius, centre not finite or
+/// too far from `box`, too many elements), naming the element; nullopt when it is within limits.
+std::optional<std::string> freeSpaceProblem(const std::vector<FreeSpaceElement>& free_space, const Aabb& box);
 
 /// Explorable columns of `box` in the metric's node convention: the nodes (cell·i, cell·j)
 /// inside the box whose cell of side `cell_m` is not fully occupied.
@@ -26,6 +41,9 @@ class MissionCoverage {
  public:
   /// `box`: the exploration box; `box_explorable`: its explorable nodes (empty = unknown).
   MissionCoverage(const Aabb& box, std::set<ColumnIndex> box_explorable);
+  MissionCoverage(MissionCoverage&&) noexcept;
+  MissionCoverage& operator=(MissionCoverage&&) noexcept;
+  ~MissionCoverage();
 
   /// The estimate → truth correction at the latest perception frame (T_true_est).
   void setTrueFromEstimate(const Pose& T_true_est) { T_true_est_ = T_true_est; }
@@ -35,11 +53,18 @@ class MissionCoverage {
   const ColumnCoverage& columns() const { return columns_; }
   /// Explored columns with free space mapped to the true frame.
   const ColumnCoverage& trueFrameColumns() const { return columns_gt_; }
-  /// Records a sample at t_s: maps the current free-space elements to the true frame (each
-  /// with the correction of the first time its id was seen) and appends A.
-  /// Squares are taken as their inscribed disks there: the correction rotates them, and a disk
-  /// stays a disk.
+  /// Turns on the verified coverage (worlds with ground truth; the camera gives the rays).
+  void enableVerification(const WorldTruth& truth, const FisheyeCamera& camera, const VerifiedCoverageConfig& config);
+  /// The camera's true pose at this sample (verified coverage: what the camera saw).
+  void look(const Pose& T_W_C_true);
+  /// Records a sample at t_s: places the current free-space elements in the true frame (each
+  /// with the correction of the first time its id was seen: disks moved, squares moved and
+  /// turned by the correction's yaw), verifies them, and appends A.
   void sample(double t_s, double distance_m, const std::vector<FreeSpaceElement>& free_space);
+  /// The verified coverage (null unless enabled).
+  const VerifiedCoverage* verified() const { return verified_.get(); }
+  /// Verified columns that are explorable columns of the box.
+  size_t verifiedExplorableColumns() const;
   /// All samples so far.
   const std::vector<CoverageSample>& samples() const { return samples_; }
   /// The exploration box and its explorable nodes.
@@ -59,6 +84,7 @@ class MissionCoverage {
   std::unordered_map<uint64_t, Pose> first_seen_;
   Pose T_true_est_ = Pose::Identity();
   std::vector<CoverageSample> samples_;
+  std::unique_ptr<VerifiedCoverage> verified_;
 };
 
 }  // namespace msb

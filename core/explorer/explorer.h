@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,13 @@ struct VehicleState {
   Vec3 velocity_mps = Vec3::Zero();  ///< VIO estimate
   TrajectoryReference reference;     ///< the tracker's current reference
   bool path_finished = true;         ///< the last command is done (at rest, heading reached)
+};
+
+/// A method's output broke the interface's contract (free space or waypoints not finite, out of
+/// range, too many): the run ends with status error naming the element and the tick.
+class MethodOutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// An exploration method.

@@ -204,6 +204,21 @@ void ClosedLoop::updateMap() {
   pending_points_.reset();
 }
 
+void ClosedLoop::checkWaypoints(const PathCommand& cmd, const VehicleState& vs) const {
+  for (size_t i = 0; i < cmd.waypoints.size(); ++i) {
+    const Waypoint& w = cmd.waypoints[i];
+    std::string why;
+    if (!w.position_m.allFinite() || (w.heading_rad && !std::isfinite(*w.heading_rad)))
+      why = "is not finite";
+    else if ((w.position_m - spec_.start_position_m).norm() > kMaxWaypointDistanceM)
+      why = "lies " + std::to_string((w.position_m - spec_.start_position_m).norm()) +
+            " m from the start (the limit is " + std::to_string(int(kMaxWaypointDistanceM)) + " m)";
+    if (!why.empty())
+      throw MethodOutputError("plan() at t = " + std::to_string(vs.t_s) + " s (tick " + std::to_string(vs.tick) +
+                              "): waypoint " + std::to_string(i) + " " + why);
+  }
+}
+
 void ClosedLoop::planPath() {
   if (!plan_schedule_->due(record_.tick)) return;
   const auto t0 = WallClock::now();
@@ -216,6 +231,7 @@ void ClosedLoop::planPath() {
   vs.path_finished = trajectory_.finished();
   const std::optional<PathCommand> cmd = setup_.explorer->plan(vs);
   record_.timing.planning_ms = msSince(t0);
+  if (cmd) checkWaypoints(*cmd, vs);
   if (cmd) trajectory_.setPath(cmd->waypoints), last_path_t_s_ = vs.t_s;
 }
 

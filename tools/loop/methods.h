@@ -27,6 +27,12 @@ struct MethodChoice {
   std::map<std::string, bool> switches;  ///< the method's on/off switches (ablations), for reports
   /// Creates the explorer for a mission.
   std::function<std::unique_ptr<Explorer>(const FisheyeCamera&, const ExplorerContext&)> make;
+  /// Why the method that flew cannot be rebuilt from the scenario ("" = it can): an in-process
+  /// Python factory or goal chooser that has no importable name. metrics.json then says
+  /// `replayable: false` and config.yaml opens with the reason.
+  std::string not_replayable;
+  /// The in-process goal chooser that chose the goals ("module:qualname"; "" = the method's own).
+  std::string goal_chooser;
 };
 
 /// The MethodChoice of `ExplorerT` with `config` (validated here; throws ConfigError). The

@@ -1,5 +1,8 @@
 #include "tools/loop/mission.h"
 
+#include <cmath>
+#include <stdexcept>
+
 #include "core/common/wall_time.h"
 #include "core/eval/slam_point_truth.h"
 
@@ -42,7 +45,12 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
   setup.map_rate_hz = spec.mission.map_rate_hz;
   setup.planning_rate_hz = spec.mission.planning_rate_hz;
   loop_ = std::make_unique<ClosedLoop>(missionFlight(spec), setup);
-  if (truth_) audit_.emplace(*truth_, loop_->camera());
+  if (truth_) {
+    audit_.emplace(*truth_, loop_->camera());
+    VerifiedCoverageConfig v;
+    v.z_lo_m = box.min.z(), v.z_hi_m = box.max.z();
+    coverage_.enableVerification(*truth_, loop_->camera(), v);
+  }
 }
 
 Mission::~Mission() = default;
@@ -56,6 +64,7 @@ const TickRecord& Mission::step() {
   stages_.planning_ms += t.timing.planning_ms;
   if (t.map_updated) map_update_ms_.push_back(t.timing.map_ms);
   // The estimate → truth correction of the latest perception frame (true-frame coverage).
+  if (t.frame) true_camera_ = t.frame->T_W_C;
   if (t.points) {
     true_from_est_ = t.frame->T_W_C * t.points->T_W_C.inverse();
     coverage_.setTrueFromEstimate(true_from_est_);
@@ -77,7 +86,11 @@ void Mission::sample(double t_s) {
   const auto t0 = WallClock::now();
   // The metric scores the method's free space (the method only exposes it).
   const std::vector<FreeSpaceElement> free_space = explorer_->freeSpace();
+  if (const auto problem = freeSpaceProblem(free_space, coverage_.box()))
+    throw MethodOutputError("the method's free space at t = " + std::to_string(t_s) + " s (tick " +
+                            std::to_string(std::llround(t_s * loop_->physicsHz())) + "): " + *problem);
   coverage_.columns().markFreeSpace(free_space);
+  if (true_camera_) coverage_.look(*true_camera_);
   if (audit_) audit_->addSample(t_s, free_space, true_from_est_);
   coverage_.sample(t_s, loop_->result().distance_flown_m, free_space);
   stages_.metric_ms += msSince(t0);
@@ -93,6 +106,11 @@ MissionResult Mission::finish() {
   r.coverage = coverage_.samples();
   r.columns = coverage_.columns();
   r.columns_gt = coverage_.trueFrameColumns();
+  if (const VerifiedCoverage* v = coverage_.verified()) {
+    r.columns_verified = v->verified();
+    r.seen_columns = v->seen().size();
+    r.box_verified_explorable_columns = int(coverage_.verifiedExplorableColumns());
+  }
   r.final_map = explorer_->snapshot();
   r.counters = explorer_->counters();
   r.stages = stages_;

@@ -30,13 +30,16 @@ struct StageTimes {
 
 /// Everything a mission produced.
 struct MissionResult {
-  std::string method;                      ///< method.type
-  FlightResult flight;                     ///< status, collision, trajectory, timing
-  std::vector<CoverageSample> coverage;    ///< at the metric rate
-  ColumnCoverage columns;                  ///< explored columns (VIO frame)
-  ColumnCoverage columns_gt;               ///< explored columns (true frame)
-  ExplorerSnapshot final_map;              ///< the map at the end
-  std::map<std::string, double> counters;  ///< the method's counters at the end
+  std::string method;                              ///< method.type
+  FlightResult flight;                             ///< status, collision, trajectory, timing
+  std::vector<CoverageSample> coverage;            ///< at the metric rate
+  ColumnCoverage columns;                          ///< explored columns (VIO frame)
+  ColumnCoverage columns_gt;                       ///< explored columns (true frame)
+  std::optional<ColumnCoverage> columns_verified;  ///< verified columns (worlds with ground truth)
+  size_t seen_columns = 0;                         ///< columns the camera saw (verified coverage's (c))
+  int box_verified_explorable_columns = 0;         ///< verified columns among the box's explorable ones
+  ExplorerSnapshot final_map;                      ///< the map at the end
+  std::map<std::string, double> counters;          ///< the method's counters at the end
   StageTimes stages;
   std::vector<std::pair<double, StageTimes>> stage_timeline;  ///< cumulative, every 10 simulated s
   std::vector<double> map_update_ms;                          ///< wall time of every map update (recorded only)
@@ -99,6 +102,7 @@ class Mission {
   std::optional<FrontEndProfiler> frontend_;     // the front-end error profile
   std::optional<CollisionAuditRecorder> audit_;  // what a collision audit needs
   Pose true_from_est_ = Pose::Identity();        // the latest frame's VIO → true correction
+  std::optional<Pose> true_camera_;              // the latest frame's true camera pose
 };
 
 /// Runs a mission to its end.

@@ -45,6 +45,12 @@ nlohmann::json coverageJson(const MissionResult& r) {
       {"longest_no_gain_s", r.longest_no_gain.lengthS()},
       {"longest_no_gain_from_s", r.longest_no_gain.start_s},
       {"area_true_frame_m2", r.columns_gt.areaM2()},
+      // Verified coverage (docs/metrics.md): covered, truly free and seen; null without ground truth.
+      {"verified_area_m2", r.columns_verified ? nlohmann::json(r.columns_verified->areaM2()) : nlohmann::json(nullptr)},
+      {"verified_box_share", r.columns_verified && r.box_explorable_columns
+                                 ? nlohmann::json(double(r.box_verified_explorable_columns) / r.box_explorable_columns)
+                                 : nlohmann::json(nullptr)},
+      {"seen_area_m2", r.columns_verified ? nlohmann::json(double(r.seen_columns) * cell2) : nlohmann::json(nullptr)},
       {"column_size_m", r.columns.cellM()},
       {"exploration_box", nlohmann::json{{"min", vec(r.exploration_box.min)}, {"max", vec(r.exploration_box.max)}}}};
 }
@@ -89,7 +95,10 @@ nlohmann::json mapAccuracyJson(const MapAccuracy& a) {
   return {{"obstacles", a.obstacles},
           {"obstacles_near_surface_share", share(a.nearSurfaceShare())},
           {"free_elements", a.free_elements},
-          {"free_really_free_share", share(a.reallyFreeShare())}};
+          {"free_really_free_share", share(a.reallyFreeShare())},
+          {"free_volume_m3", a.free_volume_m3},
+          {"falsely_free_volume_share", share(a.falselyFreeVolumeShare())},
+          {"falsely_free_element_share", share(a.falselyFreeElementShare())}};
 }
 
 // metrics.json → wall_ms_per_sim_second: wall time per simulated second, by stage; "other" =
@@ -114,6 +123,11 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
   j["method"] = spec.method.type;
   j["switches"] = spec.method.switches;
+  // What flew, as config.yaml records it: a Python method's entry, a goal chooser, replayability.
+  if (spec.method.type == kPythonMethodType)
+    j["method_entry"] = std::any_cast<const PythonMethodConfig&>(spec.method.config).entry;
+  if (!spec.method.goal_chooser.empty()) j["goal_chooser"] = spec.method.goal_chooser;
+  j["replayable"] = spec.method.not_replayable.empty();
   j["duration_s"] = spec.flight.duration_s;
   j["sim_time_s"] = f.sim_time_s;
   j["coverage"] = coverageJson(r);
@@ -149,11 +163,11 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
 
 std::string coverageCsv(const std::vector<CoverageSample>& samples) {
   std::ostringstream o;
-  o << "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share\n";
-  char line[160];
+  o << "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share,area_verified_m2\n";
+  char line[200];
   for (const auto& c : samples) {
-    std::snprintf(line, sizeof(line), "%.3f,%.2f,%.2f,%.2f,%.3f,%.4f\n", c.t_s, c.area_m2, c.area_box_m2, c.area_gt_m2,
-                  c.distance_m, c.box_share);
+    std::snprintf(line, sizeof(line), "%.3f,%.2f,%.2f,%.2f,%.3f,%.4f,%.2f\n", c.t_s, c.area_m2, c.area_box_m2,
+                  c.area_gt_m2, c.distance_m, c.box_share, c.area_verified_m2);
     o << line;
   }
   return o.str();
@@ -413,7 +427,12 @@ void writeTopdown(const std::filesystem::path& file, const MissionResult& r, con
   writeFileAtomic(file, encodePng(viewOf(c.img)));
 }
 
-std::string configYamlText(const std::string& scenario_file, bool with_overrides, const std::string& effective_yaml) {
+std::string configYamlText(const std::string& scenario_file, bool with_overrides, const std::string& effective_yaml,
+                           const std::string& not_replayable) {
+  if (!not_replayable.empty())
+    return "# NOT REPLAYABLE: " + not_replayable + ".\n# The configuration of " + scenario_file +
+           (with_overrides ? " with overrides" : "") +
+           " as the run used it; `msbench run` cannot reproduce the run from it.\n" + effective_yaml;
   return "# effective configuration (every key, defaults included) of " + scenario_file +
          (with_overrides ? " with overrides" : "") + "; `msbench run` reproduces the run from it\n" + effective_yaml;
 }

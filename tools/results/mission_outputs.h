@@ -29,8 +29,11 @@ std::string mapPly(const ExplorerSnapshot& snap);
 /// and a scale bar.
 void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth);
 
-/// config.yaml text: the effective configuration of `scenario_file`, headed by where it came from.
-std::string configYamlText(const std::string& scenario_file, bool with_overrides, const std::string& effective_yaml);
+/// config.yaml text: the effective configuration of `scenario_file`, headed by where it came from,
+/// or, when `not_replayable` gives a reason, by that reason (the file then does not claim to
+/// reproduce the run).
+std::string configYamlText(const std::string& scenario_file, bool with_overrides, const std::string& effective_yaml,
+                           const std::string& not_replayable = "");
 
 /// Writes a finished mission's result files into `dir` (coverage.csv, trajectory.csv, timing.csv,
 /// map.ply when the scenario asks for it, topdown.png, metrics.json last) and returns metrics.json's
