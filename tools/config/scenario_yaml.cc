@@ -169,6 +169,11 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
   ScenarioSpec spec =
       parseConfigNode<ScenarioSpec>(label, tree, [&](MapReader& r, ScenarioSpec& s) { readScenario(r, dir, s); });
   if (spec.name.empty()) spec.name = fs::path(path).stem().string();
+  // A Python method's directory as an absolute path: config.yaml, written elsewhere, replays it.
+  if (spec.method.type == kPythonMethodType) {
+    auto& c = std::any_cast<PythonMethodConfig&>(spec.method.config);
+    if (!c.path.empty() && fs::path(c.path).is_relative()) c.path = (dir / c.path).lexically_normal().string();
+  }
   // Names and paths end up in metrics.json (JSON is UTF-8): checked now, not after the mission.
   if (!isValidUtf8(path)) throw FileConfigError(path + ": the file name is not valid UTF-8");
   if (!isValidUtf8(spec.name)) throw FileConfigError(label + ": key 'name': not valid UTF-8");

@@ -18,12 +18,12 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "core/common/config_check.h"
 #include "core/baseline/grid_explorer.h"
+#include "core/common/config_check.h"
 #include "core/common/rng.h"
-#include "core/planning/monospheres_explorer.h"
 #include "core/explorer/explorer.h"
 #include "core/geometry/world_truth.h"
+#include "core/planning/monospheres_explorer.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/world_registry.h"
 #include "tools/loop/mission.h"
@@ -183,6 +183,13 @@ class MethodError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// An interrupt is never a method error: a KeyboardInterrupt raised inside a Python method's or
+/// goal chooser's call (Ctrl-C, or the runner's SIGTERM/SIGHUP/SIGQUIT handlers) propagates as
+/// it is, and the mission ends as interrupted (nothing recorded).
+void rethrowIfInterrupt(py::error_already_set& e) {
+  if (e.matches(PyExc_KeyboardInterrupt)) throw;
+}
+
 /// The SLAM-points frame a Python method observes (arrays read-only).
 struct SlamFrameView {
   int64_t tick = 0;
@@ -271,6 +278,9 @@ class PyExplorer final : public Explorer {
     ExplorerSnapshot snap;
     call([&] {
       for (const auto& e : method_.attr("free_space")()) {
+        if (snap.free_space.size() == kMaxFreeSpaceElements)
+          throw MethodOutputError("free_space() returned more than " + std::to_string(kMaxFreeSpaceElements) +
+                                  " elements (the limit, docs/metrics.md)");
         const py::sequence q = py::reinterpret_borrow<py::sequence>(e);
         if (q.size() != 5 && q.size() != 6)
           throw std::runtime_error("a free-space element is (id, x, y, z, radius[, kind])");
@@ -307,6 +317,7 @@ class PyExplorer final : public Explorer {
     try {
       f();
     } catch (py::error_already_set& e) {
+      rethrowIfInterrupt(e);
       throw MethodError("the Python method raised:\n" + pythonErrorText(e));
     } catch (const py::cast_error& e) {
       throw MethodError(std::string("the Python method returned a value of the wrong type: ") + e.what());
@@ -403,6 +414,7 @@ auto callChooser(F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (py::error_already_set& e) {
+    rethrowIfInterrupt(e);
     throw MethodError("the Python goal chooser raised:\n" + pythonErrorText(e));
   } catch (const py::cast_error& e) {
     throw MethodError(std::string("the Python goal chooser returned a value of the wrong type: ") + e.what());
@@ -468,6 +480,7 @@ class PyMission {
       return;
     }
     // A scenario naming a Python method (method.type: python): its factory, from msbench.methods.
+    const bool from_scenario = method.is_none();
     if (method.is_none() && scenario_.spec.method.type == kPythonMethodType) {
       const auto& c = std::any_cast<const PythonMethodConfig&>(scenario_.spec.method.config);
       method = py::module_::import("msbench.methods")
@@ -478,6 +491,7 @@ class PyMission {
                                  [&] { return std::make_unique<Mission>(scenario_.spec, world_->box, truth); });
       return;
     }
+    if (!from_scenario) recordInProcess(s, method, /*goal_chooser=*/false);
     const ExplorerContext ctx = explorerContext(scenario_.spec, world_->box);
     MethodContext pc;
     pc.box_min = {ctx.exploration_box.min.x(), ctx.exploration_box.min.y(), ctx.exploration_box.min.z()};
@@ -492,7 +506,7 @@ class PyMission {
     });
   }
 
-  bool running() const { return !error_ && mission_->running(); }
+  bool running() const { return !error_ && !interrupted_ && mission_->running(); }
 
   /// Physics ticks per simulated second.
   int64_t physicsHz() const { return mission_->physicsHz(); }
@@ -546,9 +560,11 @@ class PyMission {
   // Writes the files `msbench run` writes into `dir` (staged: whole or not at all); after a
   // method error, config.yaml and the error record.
   std::string write(const std::string& dir, bool overwrite) {
+    if (interrupted_) throw std::runtime_error("the mission was interrupted: nothing to write");
     StagedOutputDir out(dir, overwrite);
     writeFileAtomic(out.staging() / "config.yaml",
-                    configYamlText(scenario_.file, !scenario_.sets.empty(), scenario_.effective_yaml));
+                    configYamlText(scenario_.file, !scenario_.sets.empty(), scenario_.effective_yaml,
+                                   scenario_.spec.method.not_replayable));
     if (error_) {
       nlohmann::json j = errorMetrics(scenario_.spec, *error_);
       j["error_tick"] = last_tick_;
@@ -562,6 +578,7 @@ class PyMission {
 
   // The run's status word: running, error, or the loop's (completed, collided, ...).
   std::string status() {
+    if (interrupted_) return "interrupted";
     if (error_) return runStatusName(RunStatus::kError);
     if (mission_->running()) return "running";
     return runStatusName(finished().flight.status);
@@ -571,9 +588,14 @@ class PyMission {
   // Runs `f`; a method error (or any failure of the loop) ends the run with status error.
   template <class F>
   void guarded(F&& f) {
+    if (interrupted_) throw std::runtime_error("the mission was interrupted: it cannot go on or be written");
     if (error_) throw std::runtime_error("the mission ended with an error: " + *error_);
     try {
       f();
+    } catch (py::error_already_set& e) {
+      // Only a KeyboardInterrupt reaches here as a Python error (method errors are MethodError).
+      interrupted_ = true;
+      throw;
     } catch (const std::exception& e) {
       error_ = e.what();
       throw;
@@ -583,18 +605,50 @@ class PyMission {
   // The scenario's grid explorer with its goals from `goals` (the goal-only helper).
   void buildWithGoalChooser(py::object method, py::object goals, const WorldTruth* truth) {
     if (!method.is_none()) throw py::value_error("Mission: give a method or goals, not both");
-    std::unique_ptr<Explorer> explorer = scenario_.spec.method.make(
-        FisheyeCamera(scenario_.spec.flight.camera), explorerContext(scenario_.spec, world_->box));
+    recordInProcess(scenario_, goals, /*goal_chooser=*/true);
+    std::unique_ptr<Explorer> explorer = scenario_.spec.method.make(FisheyeCamera(scenario_.spec.flight.camera),
+                                                                    explorerContext(scenario_.spec, world_->box));
     if (auto* grid = dynamic_cast<GridExplorer*>(explorer.get()))
       setPythonGoalChooser(*grid, std::move(goals));
     else if (auto* spheres = dynamic_cast<MonoSpheresExplorer*>(explorer.get()))
       setPythonViewpointChooser(*spheres, std::move(goals));
     else
-      throw py::value_error(scenario_.file + ": goals= needs a scenario whose method.type is grid_random or "
-                            "monospheres (got '" + scenario_.spec.method.type + "')");
+      throw py::value_error(scenario_.file +
+                            ": goals= needs a scenario whose method.type is grid_random or "
+                            "monospheres (got '" +
+                            scenario_.spec.method.type + "')");
     mission_ = buildNamingFile(scenario_.file, [&] {
       return std::make_unique<Mission>(scenario_.spec, world_->box, truth, std::move(explorer));
     });
+  }
+
+  // Records what flies instead of the scenario's method: an in-process factory becomes a Python
+  // method named by its module and name (config.yaml replays it when that name imports back to
+  // it); a goal chooser is named beside the scenario's method, and such a run is never
+  // replayable (a scenario cannot name a chooser). The effective YAML is rebuilt from the
+  // scenario as loaded (`original`: before the world filled in the start).
+  void recordInProcess(const PyScenario& original, const py::object& obj, bool goal_chooser) {
+    const py::tuple rec = py::module_::import("msbench.methods").attr("record_of")(obj);
+    const std::string entry = rec[0].cast<std::string>(), why = rec[2].cast<std::string>();
+    ScenarioSpec spec = original.spec;
+    if (goal_chooser) {
+      spec.method.goal_chooser = entry;
+      spec.method.not_replayable = "the goals came from the in-process goal chooser " + entry;
+    } else {
+      PythonMethodConfig c;
+      c.entry = entry;
+      c.path = rec[1].cast<std::string>();
+      spec.method.type = kPythonMethodType;
+      spec.method.config = c;
+      spec.method.switches.clear();
+      spec.method.not_replayable = why;
+    }
+    scenario_.effective_yaml = effectiveScenarioYaml(spec);
+    scenario_.spec.method.type = spec.method.type;
+    scenario_.spec.method.config = spec.method.config;
+    scenario_.spec.method.switches = spec.method.switches;
+    scenario_.spec.method.not_replayable = spec.method.not_replayable;
+    scenario_.spec.method.goal_chooser = spec.method.goal_chooser;
   }
 
   const MissionResult& finished() {
@@ -637,6 +691,7 @@ class PyMission {
   std::unique_ptr<Mission> mission_;
   std::optional<MissionResult> result_;
   std::optional<std::string> error_;  // the run ended with an error (a Python method raised)
+  bool interrupted_ = false;          // a KeyboardInterrupt ended it: nothing to write
   int64_t last_tick_ = 0;
   double last_t_s_ = 0.0;
 };
@@ -664,6 +719,8 @@ void bindErrors(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const MethodError& e) {
+      method_error(e.what());
+    } catch (const MethodOutputError& e) {
       method_error(e.what());
     }
   });

@@ -2,9 +2,23 @@
 written in Python (msbench run hands them here): the same options, files, summary line and exit
 codes (0 ok, 1 the run ended in an error, 2 bad input, 130 interrupted)."""
 import argparse
+import signal
 import sys
 
 from . import ConfigError, MethodError, Mission, Scenario
+
+
+class _Signalled(KeyboardInterrupt):
+    """SIGTERM, SIGHUP or SIGQUIT, raised where Python runs next (a method's call included) so that
+    it ends the run as Ctrl-C does: interrupted, nothing written, exit 128 + signal."""
+
+    def __init__(self, signum):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+def _raise_signalled(signum, _frame):
+    raise _Signalled(signum)
 
 
 def run(argv):
@@ -36,9 +50,9 @@ def run(argv):
         out = mission.write(a.out, overwrite=a.overwrite)
         print(f"msbench run: error: {e} (recorded in {out})", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as e:
         print("msbench run: interrupted; nothing written", file=sys.stderr)
-        return 130
+        return 128 + getattr(e, "signum", signal.SIGINT)
     out = mission.write(a.out, overwrite=a.overwrite)
     r = mission.result()
     cov = r["coverage"]
@@ -52,7 +66,13 @@ def main():
         print("usage: python3 -m msbench run SCENARIO --out DIR [--set KEY=VALUE]... [--seed S] [--duration D] "
               "[--quiet] [--overwrite]", file=sys.stderr)
         return 2
-    return run(sys.argv[2:])
+    for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT):
+        signal.signal(sig, _raise_signalled)
+    try:
+        return run(sys.argv[2:])
+    except KeyboardInterrupt as e:  # before the run started (set-up)
+        print("msbench run: interrupted; nothing written", file=sys.stderr)
+        return 128 + getattr(e, "signum", signal.SIGINT)
 
 
 if __name__ == "__main__":

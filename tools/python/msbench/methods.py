@@ -22,6 +22,7 @@ def factory_of(entry, path, params, scenario_file):
             raise ConfigError(f"{scenario_file}: key 'method.path': not a directory: {full}")
         if full not in sys.path:
             sys.path.insert(0, full)
+    check_importable(entry, scenario_file)
     module_name, _, attr = entry.partition(":")
     try:
         module = importlib.import_module(module_name)
@@ -39,3 +40,40 @@ def factory_of(entry, path, params, scenario_file):
             raise ConfigError(f"{scenario_file}: key 'method.params': {e}") from e
 
     return build
+
+
+def record_of(factory):
+    """How a run records an in-process factory or goal chooser: (entry, path, why_not_replayable).
+    `entry` is "module:qualname"; `path` the directory that makes the module importable; the
+    reason is "" when importing `entry` from `path` gives back this very object (a scenario can
+    then name it, and config.yaml replays the run), else why it cannot (a lambda, a closure, a
+    bound parameter, a script run as __main__)."""
+    module_name = getattr(factory, "__module__", None) or "?"
+    qualname = getattr(factory, "__qualname__", None) or type(factory).__qualname__
+    entry = f"{module_name}:{qualname}"
+    if module_name == "__main__":
+        return entry, "", f"the method is the in-process factory {entry}, defined in a script run as __main__"
+    if "<" in qualname or "." in qualname:
+        return entry, "", f"the method is the in-process factory {entry}, which has no importable name"
+    module = sys.modules.get(module_name)
+    if module is None or getattr(module, qualname, None) is not factory:
+        return entry, "", f"the method is the in-process object {entry}, not a module-level factory"
+    file = getattr(module, "__file__", None)
+    if not file:
+        return entry, "", f"the method's module {module_name} has no file"
+    # The directory that makes `module_name` importable: up one level per package part.
+    root = os.path.dirname(os.path.abspath(file))
+    parts = module_name.split(".")
+    if os.path.basename(file) == "__init__.py":
+        root = os.path.dirname(root)
+    for _ in parts[:-1]:
+        root = os.path.dirname(root)
+    return entry, root, ""
+
+
+def check_importable(entry, scenario_file):
+    """A scenario's entry that names an in-process factory (recorded, not importable) is refused."""
+    module_name, _, attr = entry.partition(":")
+    if module_name == "__main__" or "<" in attr:
+        raise ConfigError(f"{scenario_file}: key 'method.entry': '{entry}' names an in-process factory that "
+                          "cannot be imported: the run it records was not replayable (its config.yaml says so)")
