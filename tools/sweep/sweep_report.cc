@@ -47,6 +47,8 @@ std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
         c.distance_m = x;
       else if (n == "box_share")
         c.box_share = x;
+      else if (n == "area_verified_m2")
+        c.area_verified_m2 = x;
     }
     out.push_back(c);
   }
@@ -149,6 +151,27 @@ const PaperRow* paperRowNamed(const std::string& world, const std::string& repor
   return paperRow(world, type, switches);
 }
 
+bool isTableOneSweep(const SweepResults& results) {
+  bool any = false;
+  for (const ReportRun& run : results.runs) {
+    if (!run.record) continue;
+    const nlohmann::json& m = run.metrics;
+    if (number(m, "duration_s", -1.0) != kPaperDurationS) return false;
+    if (!paperRow(m.value("world", std::string()), m.value("method", std::string()),
+                  m.value("switches", nlohmann::json())))
+      return false;
+    any = true;
+  }
+  return any;
+}
+
+std::string rowName(const ReportRow& row) {
+  std::string name;
+  for (const std::string& l : row.labels)
+    if (l != row.world && !l.empty()) name += (name.empty() ? "" : " ") + l;
+  return name.empty() ? row.method : name;
+}
+
 bool isSaturated(const ReportRow& row) { return row.complete > 0 && 2 * row.saturated > row.complete; }
 
 stats::Estimate estimateOf(const MeanOf& m) { return stats::bootstrapMean(m.values); }
@@ -222,7 +245,23 @@ std::optional<double> timeToBoxShare(const std::vector<CoverageSample>& coverage
   return std::nullopt;
 }
 
+// Verified coverage and map accuracy of a run (metrics.json; older records have neither).
+void addVerified(ReportRow& row, const nlohmann::json& m, double area) {
+  const nlohmann::json& cov = m["coverage"];
+  if (cov.contains("verified_area_m2") && cov["verified_area_m2"].is_number()) {
+    add(row.verified_area_m2, number(cov, "verified_area_m2"));
+    if (area > 0) add(row.verified_share, number(cov, "verified_area_m2") / area);
+  }
+  if (!m.contains("map_accuracy") || !m["map_accuracy"].is_object()) return;
+  const nlohmann::json& a = m["map_accuracy"];
+  if (a.contains("falsely_free_volume_share") && a["falsely_free_volume_share"].is_number())
+    add(row.falsely_free_volume, number(a, "falsely_free_volume_share"));
+  if (a.contains("falsely_free_element_share") && a["falsely_free_element_share"].is_number())
+    add(row.falsely_free_elements, number(a, "falsely_free_element_share"));
+}
+
 std::vector<ReportRow> reportRows(const SweepResults& results) {
+  const bool table_one = isTableOneSweep(results);
   std::vector<ReportRow> rows;
   for (const ReportRun& run : results.runs) {
     std::vector<std::string> labels;
@@ -243,7 +282,8 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
       row.world = m.value("world", std::string("?"));
       row.method = reportMethodName(m);
       if (const PaperRow* p =
-              paperRow(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json()))) {
+              table_one ? paperRow(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json()))
+                        : nullptr) {
         row.paper_mean_m2 = p->mean_area_m2, row.paper_max_m2 = p->max_area_m2;
         row.paper_runs = p->runs, row.paper_collisions = p->collisions;
       }
@@ -259,6 +299,7 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     }
     row.vio_lost += run.record->status == RunStatus::kVioLost;
     addFrontEndProfile(row, m);
+    addVerified(row, m, a);
     if (const auto t = timeToBoxShare(run.coverage, 0.5)) add(row.t50_s, *t);
     if (const auto t = timeToBoxShare(run.coverage, 0.9)) add(row.t90_s, *t);
     const double flown = number(m, "distance_flown_m");
@@ -297,22 +338,53 @@ std::string tableHead(const SweepResults& results, const std::vector<std::string
 // The paper's Table I layout, each mean with its interval.
 std::string tableOneSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
   std::ostringstream o;
-  o << "## Table I layout\n\nMean A with its 95 % bootstrap interval over the row's seeds (percentile, "
-    << stats::kDraws
+  const bool paper = isTableOneSweep(results);
+  o << (paper ? "## Table I layout\n\n" : "## Results\n\n")
+    << "Mean A with its 95 % bootstrap interval over the row's seeds (percentile, " << stats::kDraws
     << " resamples, fixed seed; docs/sweeps.md, \"Intervals and verdicts\"). Crashes: runs ended by "
-       "a collision, k/n with the Wilson 95 % interval of the rate; the paper's count where §V-C gives it, with "
-       "Fisher's exact p of the two counts.\n\n"
-    << tableHead(results, {"method type", "runs", "mean A (m²) [95 % CI]", "max A (m²)", "paper mean A", "paper max A",
-                           "crashes [95 % CI]", "paper crashes (p)"});
+       "a collision, k/n with the Wilson 95 % interval of the rate"
+    << (paper ? "; the paper's count where §V-C gives it, with Fisher's exact p of the two counts.\n\n"
+              : ". Not a Table I sweep (not every run is a Table I row flown for the paper's 1200 s): the paper's "
+                "figures and findings are not shown.\n\n");
+  std::vector<std::string> head = {"method type", "runs", "mean A (m²) [95 % CI]", "max A (m²)"};
+  if (paper) head.insert(head.end(), {"paper mean A", "paper max A"});
+  head.push_back("crashes [95 % CI]");
+  if (paper) head.push_back("paper crashes (p)");
+  o << tableHead(results, head);
   for (const ReportRow& r : rows) {
     o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
     if (r.complete < r.runs) o << " of " << r.runs;
-    o << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—")
-      << " | " << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | "
-      << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—") << " | " << (r.complete ? collisionCell(r) : "—") << " | "
-      << paperCollisionCell(r) << " |\n";
+    o << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—");
+    if (paper)
+      o << " | " << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | "
+        << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—");
+    o << " | " << (r.complete ? collisionCell(r) : "—");
+    if (paper) o << " | " << paperCollisionCell(r);
+    o << " |\n";
   }
   return o.str();
+}
+
+// Verified coverage and map accuracy per row (runs that recorded them).
+std::string verifiedSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
+  std::ostringstream body;
+  for (const ReportRow& r : rows) {
+    if (r.verified_area_m2.count == 0 && r.falsely_free_volume.count == 0) continue;
+    body << labelCells(r) << " " << intervalCell(r.area_m2, r.complete, 0) << " | "
+         << intervalCell(r.verified_area_m2, r.complete, 0) << " | " << intervalCell(r.verified_share, r.complete, 2)
+         << " | " << intervalCell(r.falsely_free_volume, r.complete, 3) << " | "
+         << intervalCell(r.falsely_free_elements, r.complete, 3) << " |\n";
+  }
+  if (body.str().empty()) return "";
+  return "\n## Verified coverage and map accuracy\n\nA is the method's own claim (the paper's metric: a column "
+         "counts when a free-space element covers its node). Verified A counts a column only when the element, "
+         "placed in the true frame, is truly free in that column and the camera saw the column (docs/metrics.md, "
+         "\"Verified coverage\"); rankings of arbitrary methods use it. Falsely free: the share of the final map's "
+         "declared free volume, and of its free elements, lying more than 0.5 m inside obstacles. Means over the "
+         "row's runs with 95 % intervals.\n\n" +
+         tableHead(results, {"A, claimed (m²)", "verified A (m²)", "verified / claimed", "falsely free volume",
+                             "falsely free elements"}) +
+         body.str();
 }
 
 // What the paper does not report, with intervals.
@@ -354,7 +426,8 @@ std::string frontEndSection(const SweepResults& results, const std::vector<Repor
          "the method; docs/perception.md): median distance to the nearest true surface by depth, the share of points "
          "more than 2 m off any surface (wrong points), the share of tracks whose published estimate moved more than "
          "0.3 m over its life; means over the row's runs with 95 % intervals.\n\n" +
-         tableHead(results, {"median error 0-5 m", "5-10 m", "10-20 m", "wrong points (> 2 m)", "tracks moved > 0.3 m"}) +
+         tableHead(results,
+                   {"median error 0-5 m", "5-10 m", "10-20 m", "wrong points (> 2 m)", "tracks moved > 0.3 m"}) +
          body.str();
 }
 
@@ -397,7 +470,7 @@ std::string pairedSection(const std::vector<ReportRow>& rows) {
       }
     if (!ref || ref == &r || r.area_m2.count == 0 || !(ref->area_m2.mean > 0)) continue;
     const PairedAreas p = pairedAreas(r, *ref);
-    body << "| " << r.world << " | " << r.method << " / " << ref->method << " | "
+    body << "| " << r.world << " | " << rowName(r) << " / " << rowName(*ref) << " | "
          << ratioText(stats::bootstrapRatio(r.area_m2.values, ref->area_m2.values)) << " (" << r.area_m2.count << ", "
          << ref->area_m2.count << ") | ";
     if (p.a.size() >= 2 && stats::mean(p.b) > 0) {
@@ -454,13 +527,13 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
           f.signal ? "signal " + std::to_string(f.signal) + (f.signal_name.empty() ? "" : " (" + f.signal_name + ")")
                    : "exit code " + std::to_string(f.exit_code);
       const std::string why = !f.problem.empty() ? f.problem : text(f.fatal);
-      o << "| " << r.id << " | " << (!f.problem.empty() ? std::string("unreadable results") : ended)
-        << " | " << text(f.last_progress) << " | " << why << " | logs/" << r.id << ".log |\n";
+      o << "| " << r.id << " | " << (!f.problem.empty() ? std::string("unreadable results") : ended) << " | "
+        << text(f.last_progress) << " | " << why << " | logs/" << r.id << ".log |\n";
     }
     o << "\n";
   }
-  o << tableOneSection(results, rows) << beyondPaperSection(results, rows) << frontEndSection(results, rows)
-    << saturationSection(rows) << pairedSection(rows);
+  o << tableOneSection(results, rows) << verifiedSection(results, rows) << beyondPaperSection(results, rows)
+    << frontEndSection(results, rows) << saturationSection(rows) << pairedSection(rows);
   // Every run, with its collision.
   o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | tracked (mean) | drift (m) | collision |\n"
        "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
@@ -500,12 +573,19 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
 
 std::string reportTableCsv(const SweepResults& results, const std::vector<ReportRow>& rows) {
   std::ostringstream o;
+  // The axes' columns first; a fixed column named like an axis is renamed (unique headers).
+  const auto axis = [&](const char* n) {
+    return std::find(results.axes.begin(), results.axes.end(), n) != results.axes.end();
+  };
   for (const auto& a : results.axes) o << a << ",";
-  o << "world,method,runs,complete,failed,crashes,mean_area_m2,max_area_m2,paper_mean_area_m2,paper_max_area_m2,"
+  o << (axis("world") ? "world_name" : "world") << "," << (axis("method") ? "method_type" : "method")
+    << ",runs,complete,failed,crashes,mean_area_m2,max_area_m2,paper_mean_area_m2,paper_max_area_m2,"
        "mean_box_share,t50_s,t50_runs,t90_s,t90_runs,area_per_100m,longest_no_gain_s,collisions_textureless,"
        "collisions_thin,collisions_textured,mean_rtf,area_ci_lo,area_ci_hi,box_share_ci_lo,box_share_ci_hi,"
        "t50_ci_lo,t50_ci_hi,t90_ci_lo,t90_ci_hi,area_per_100m_ci_lo,area_per_100m_ci_hi,collision_rate_ci_lo,"
-       "collision_rate_ci_hi,paper_runs,paper_collisions,collisions_fisher_p,vio_lost,saturated_runs,saturated\n";
+       "collision_rate_ci_hi,paper_runs,paper_collisions,collisions_fisher_p,vio_lost,saturated_runs,saturated,"
+       "mean_verified_area_m2,verified_area_ci_lo,verified_area_ci_hi,verified_share,falsely_free_volume_share,"
+       "falsely_free_volume_ci_lo,falsely_free_volume_ci_hi,falsely_free_element_share\n";
   for (const ReportRow& r : rows) {
     for (const auto& l : r.labels) o << l << ",";
     auto kind = [&](const std::string& k) { return r.collisions_by_kind.count(k) ? r.collisions_by_kind.at(k) : 0; };
@@ -523,7 +603,10 @@ std::string reportTableCsv(const SweepResults& results, const std::vector<Report
     o << "," << (r.paper_runs ? std::to_string(r.paper_runs) : "") << ","
       << (paper_count ? std::to_string(r.paper_collisions) : "") << ","
       << (paper_count ? fixed(stats::fisherExact(r.crashes, r.complete, r.paper_collisions, r.paper_runs), 4) : "")
-      << "," << r.vio_lost << "," << r.saturated << "," << (isSaturated(r) ? "yes" : "no") << "\n";
+      << "," << r.vio_lost << "," << r.saturated << "," << (isSaturated(r) ? "yes" : "no") << ","
+      << csvNumber(r.verified_area_m2, 1) << csvInterval(r.verified_area_m2, 1) << "," << csvNumber(r.verified_share, 4)
+      << "," << csvNumber(r.falsely_free_volume, 4) << csvInterval(r.falsely_free_volume, 4) << ","
+      << csvNumber(r.falsely_free_elements, 4) << "\n";
   }
   return o.str();
 }

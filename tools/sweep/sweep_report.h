@@ -26,11 +26,11 @@ struct ReportRun {
   std::string id;
   std::map<std::string, std::string> labels;  ///< axis name -> label
   uint64_t seed = 0;
-  std::string status;                    ///< the sweep's: complete | failed | pending
-  std::optional<MissionRecord> record;   ///< metrics.json read strictly (complete runs)
-  nlohmann::json metrics;                ///< metrics.json (complete runs; the record's)
+  std::string status;                      ///< the sweep's: complete | failed | pending
+  std::optional<MissionRecord> record;     ///< metrics.json read strictly (complete runs)
+  nlohmann::json metrics;                  ///< metrics.json (complete runs; the record's)
   std::optional<SweepRunFailure> failure;  ///< why it has no result (failed runs)
-  std::vector<CoverageSample> coverage;  ///< coverage.csv (complete runs)
+  std::vector<CoverageSample> coverage;    ///< coverage.csv (complete runs)
 };
 
 /// A sweep directory read back: its axes and runs in run order.
@@ -59,9 +59,11 @@ struct ReportRow {
   int vio_lost = 0;                                     ///< runs ended because the VIO lost track
   int saturated = 0;                                    ///< runs whose box share reached kSaturatedBoxShare
   MeanOf area_m2, box_share, t50_s, t90_s, area_per_100m, longest_no_gain_s, rtf;
-  MeanOf fe_median_m[3];                  ///< front-end profile: median SLAM-point error at 0-5, 5-10, 10-20 m
-  MeanOf fe_wrong_share, fe_moved_share;  ///< points over 2 m off a surface; tracks that moved > 0.3 m
-  std::vector<uint64_t> area_seeds;       ///< the seed of each value of area_m2 (pairing across rows)
+  MeanOf fe_median_m[3];                    ///< front-end profile: median SLAM-point error at 0-5, 5-10, 10-20 m
+  MeanOf fe_wrong_share, fe_moved_share;    ///< points over 2 m off a surface; tracks that moved > 0.3 m
+  MeanOf verified_area_m2, verified_share;  ///< verified A, and verified A / the paper's A (runs that have it)
+  MeanOf falsely_free_volume, falsely_free_elements;  ///< map accuracy over the final map's free elements
+  std::vector<uint64_t> area_seeds;                   ///< the seed of each value of area_m2 (pairing across rows)
   double max_area_m2 = 0.0;
   std::map<std::string, int> collisions_by_kind;  ///< textured / textureless / thin / ground / unknown
   std::optional<double> paper_mean_m2, paper_max_m2;
@@ -79,6 +81,19 @@ const PaperRow* paperRow(const std::string& world, const std::string& method, co
 
 /// The same for a method as the report names it ("monospheres -ovde").
 const PaperRow* paperRowNamed(const std::string& world, const std::string& report_method);
+
+/// The paper's mission length: Table I's runs are 20 simulated minutes.
+inline constexpr double kPaperDurationS = 1200.0;
+
+/// Whether the sweep is a Table I sweep, recognised exactly (docs/sweeps.md, "Reports"): it has
+/// a complete run, every complete run is a run of a Table I row (its world, method type and the
+/// one switch it turns off) and flew the paper's 1200 s. Only then does the report print the
+/// paper's figures and evaluate the paper's findings.
+bool isTableOneSweep(const SweepResults& results);
+
+/// A row's name in comparisons: its labels except the one naming its world (the sweep's variant
+/// names), or the method as the report names it when it has no other label.
+std::string rowName(const ReportRow& row);
 
 /// The method as the report names it: the type, plus the switches that are off
 /// ("monospheres -ovde").

@@ -22,6 +22,7 @@ ReportRun madeRun(const std::string& world, const std::string& type, const std::
                {"switches", switches},
                {"status", hit_kind.empty() ? "completed" : "collided"},
                {"sim_time_s", 100.0},
+               {"duration_s", 1200.0},
                {"determinism_hash", "0123456789abcdef"},
                {"coverage", {{"area_m2", area}, {"box_share", box_share}}}};
   if (!hit_kind.empty()) r.metrics["collision"] = {{"object", "x"}, {"kind", hit_kind}};

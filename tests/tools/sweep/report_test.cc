@@ -7,10 +7,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "tests/tools/cli_helpers.h"
+#include "tools/sweep/findings.h"
 #include "tools/sweep/regression.h"
 #include "tools/sweep/sweep_report.h"
 
@@ -35,6 +38,7 @@ ReportRun madeRun(const std::string& id, const std::string& world, const std::st
                {"distance_flown_m", 200.0},
                {"real_time_factor", 2.0},
                {"sim_time_s", 100.0},
+               {"duration_s", 1200.0},
                {"determinism_hash", "0123456789abcdef"},
                {"coverage", {{"area_m2", area}, {"box_share", area / 1000.0}, {"longest_no_gain_s", 30.0}}}};
   if (!kind.empty()) r.metrics["collision"] = {{"world_geom", "g"}, {"object", "bus_0"}, {"kind", kind}};
@@ -55,15 +59,15 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   s.axes = {"world", "method"};
   s.runs = {madeRun("urban-full-s1", "urban", "full", 800, "completed"),
             madeRun("urban-full-s2", "urban", "full", 600, "collided", "textureless"),
-            madeRun("urban-no_ovde-s1", "urban", "no_ovde", 400, "collided", "thin"),
-            madeRun("mars-full-s1", "mars", "full", 100, "completed")};
+            madeRun("urban-no_ovde-s1", "urban", "no_ovde", 400, "collided", "thin")};
   ReportRun failed;
   failed.id = "urban-full-s3";
   failed.labels = {{"world", "urban"}, {"method", "full"}};
   failed.status = "failed";
   s.runs.push_back(failed);
+  ASSERT_TRUE(isTableOneSweep(s));
   const auto rows = reportRows(s);
-  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows.size(), 2u);
   const ReportRow& full = rows[0];
   EXPECT_EQ(full.labels, (std::vector<std::string>{"urban", "full"}));
   EXPECT_EQ(full.runs, 3);
@@ -80,11 +84,10 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   EXPECT_DOUBLE_EQ(full.t50_s.mean, (70.0 + 90.0) / 2);
   EXPECT_EQ(full.t90_s.count, 0);
   EXPECT_DOUBLE_EQ(full.area_per_100m.mean, 350.0);
-  // The ablation row maps to the paper's No OVDE row; an unknown world has no paper row.
+  // The ablation row maps to the paper's No OVDE row.
   EXPECT_EQ(rows[1].method, "monospheres -ovde");
   EXPECT_DOUBLE_EQ(*rows[1].paper_mean_m2, 747.0);
   EXPECT_EQ(rows[1].collisions_by_kind.at("thin"), 1);
-  EXPECT_FALSE(rows[2].paper_mean_m2.has_value());
   // The Markdown names every row and the failed run; the CSV has a line per row.
   const std::string md = reportMarkdown(s, rows);
   // Two runs (600, 800): the bootstrap means are 600, 700, 800 with probabilities 1/4, 1/2, 1/4.
@@ -97,10 +100,57 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   EXPECT_FALSE(isSaturated(full));
   EXPECT_NE(md.find("| urban-full-s3 | failed |"), std::string::npos) << md;
   const std::string csv = reportTableCsv(s, rows);
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
   EXPECT_EQ(paperRow("cave", "grid_random", nlohmann::json::object())->mean_area_m2, 3171.0);
   EXPECT_EQ(paperRowNamed("urban", "monospheres -ovde")->mean_area_m2, 747.0);
   EXPECT_EQ(paperRowNamed("urban", "monospheres -ovde -dbof"), nullptr);
+}
+
+TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
+  // A custom sweep: a row that is no Table I row (a method of the user's), and 40-second runs
+  // of MonoSpheres beside it — no collision in four runs, which must not "hold" the paper's
+  // collision findings.
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  for (int seed = 1; seed <= 2; ++seed) {
+    ReportRun mine = madeRun("urban-mine-s" + std::to_string(seed), "urban", "mine", 300, "completed");
+    mine.metrics["method"] = "python";
+    mine.metrics["duration_s"] = 40.0;
+    mine.metrics["coverage"]["verified_area_m2"] = 120.0;
+    mine.record = missionRecordOf(mine.metrics, mine.id + "/metrics.json").record;
+    ReportRun ms = madeRun("urban-ms-s" + std::to_string(seed), "urban", "ms", 500, "completed");
+    ms.metrics["duration_s"] = 40.0;
+    ms.metrics["coverage"]["verified_area_m2"] = 450.0;
+    ms.record = missionRecordOf(ms.metrics, ms.id + "/metrics.json").record;
+    s.runs.push_back(mine);
+    s.runs.push_back(ms);
+  }
+  EXPECT_FALSE(isTableOneSweep(s));
+  const auto rows = reportRows(s);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_FALSE(rows[1].paper_mean_m2.has_value());  // MonoSpheres in urban, but not a Table I run
+  const std::string md = reportMarkdown(s, rows);
+  EXPECT_EQ(md.find("paper mean A"), std::string::npos) << md;
+  EXPECT_EQ(md.find("Table I layout"), std::string::npos) << md;
+  EXPECT_NE(md.find("Not a Table I sweep"), std::string::npos) << md;
+  // Paired rows by the sweep's variant names; verified A beside the claim.
+  EXPECT_NE(md.find("| urban | ms / mine |"), std::string::npos) << md;
+  EXPECT_NE(md.find("## Verified coverage and map accuracy"), std::string::npos) << md;
+  EXPECT_NE(md.find("| urban | mine | 300 [300, 300] | 120 [120, 120] | 0.40 [0.40, 0.40] |"), std::string::npos) << md;
+  // Every finding is n/a: nothing holds, fails or is undecided.
+  const FindingCounts c = countFindings(evaluateFindings(s, rows));
+  EXPECT_EQ(c.holds + c.fails + c.undecided, 0);
+  EXPECT_EQ(c.not_evaluated, int(findingsTable().size()));
+  // table.csv: every header once (the axes world/method, then world_name/method_type).
+  const std::string csv = reportTableCsv(s, rows);
+  std::istringstream head(csv.substr(0, csv.find('\n')));
+  std::set<std::string> names;
+  for (std::string n; std::getline(head, n, ',');) EXPECT_TRUE(names.insert(n).second) << "duplicate column " << n;
+  EXPECT_TRUE(names.count("method_type") && names.count("world_name") && names.count("mean_verified_area_m2"));
+  // A Table I run mixed in with an unknown world is no Table I sweep either.
+  s.runs.push_back(madeRun("mars-full-s1", "mars", "full", 100, "completed"));
+  EXPECT_FALSE(isTableOneSweep(s));
 }
 
 // Rewrites one run's metrics.json with a change.
