@@ -13,8 +13,8 @@
 // line-of-sight shortcuts over traversable cells.
 #pragma once
 
-#include <cstdint>
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <vector>
 

@@ -114,8 +114,7 @@ std::vector<Track> KltFeatureTracker::trackForward(const std::vector<cv::Mat>& p
   const cv::TermCriteria crit(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, config_.klt_max_iterations, 0.01);
   // No error output: the tracker never reads it, and OpenCV would spend one more window pass
   // per point on it. Its one side effect on the status is reproduced below.
-  cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, cv::noArray(), win, config_.klt_pyramid_levels,
-                           crit);
+  cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid, p0, p1, st_f, cv::noArray(), win, config_.klt_pyramid_levels, crit);
   dropOutsideWindowRange(p1, win, image, st_f);
   // Backward pass only for the points the forward pass tracked: LK solves every point on its
   // own, so this gives the same results for them and skips the lost ones.

@@ -42,10 +42,18 @@ void OracleFeatureSource::sampleLandmarks(RngStream& rng) {
     if (s.kind == ObstacleKind::kTextureless && !config_.textureless_landmarks) continue;
     if (s.kind == ObstacleKind::kThin && !config_.thin_landmarks) continue;
     switch (s.type) {
-      case ShapeType::kBox: sampleBox(s, rng); break;
-      case ShapeType::kCylinder: sampleCylinder(s, rng); break;
-      case ShapeType::kSphere: sampleSphere(s, rng); break;
-      case ShapeType::kHalfSpace: samplePlane(s, lo, hi, rng); break;
+      case ShapeType::kBox:
+        sampleBox(s, rng);
+        break;
+      case ShapeType::kCylinder:
+        sampleCylinder(s, rng);
+        break;
+      case ShapeType::kSphere:
+        sampleSphere(s, rng);
+        break;
+      case ShapeType::kHalfSpace:
+        samplePlane(s, lo, hi, rng);
+        break;
     }
   }
 }

@@ -92,7 +92,7 @@ class SlamPointEstimator {
     std::vector<Observation> slam_obs;  // anchor first, then the most recent
     double depth = 0.0;                 // along the anchor ray
     int fail_count = 0;                 // failed updates in the feature's life (never reset)
-    SlamPoint last;  // the latest estimate
+    SlamPoint last;                     // the latest estimate
   };
 
   bool refineFeature(TrackState& s, SlamPoint* out) const;

@@ -427,13 +427,14 @@ std::optional<uint64_t> MonoSpheresExplorer::askChooser(const VehicleState& s, c
     const auto it = field.cost.find(v.sphere);
     if (it != field.cost.end()) q.candidates.push_back({id, v.position, v.yaw_rad, it->second, v.value});
   }
-  std::stable_sort(q.candidates.begin(), q.candidates.end(),
-                   [](const ViewpointCandidate& a, const ViewpointCandidate& b) { return a.path_cost_m < b.path_cost_m; });
+  std::stable_sort(
+      q.candidates.begin(), q.candidates.end(),
+      [](const ViewpointCandidate& a, const ViewpointCandidate& b) { return a.path_cost_m < b.path_cost_m; });
   const std::optional<uint64_t> id = chooser_(q);
   if (!id) return std::nullopt;
   *asked = true;
-  if (*id != 0 && std::none_of(q.candidates.begin(), q.candidates.end(),
-                               [&](const ViewpointCandidate& c) { return c.id == *id; }))
+  if (*id != 0 &&
+      std::none_of(q.candidates.begin(), q.candidates.end(), [&](const ViewpointCandidate& c) { return c.id == *id; }))
     throw std::runtime_error("the viewpoint chooser chose " + std::to_string(*id) + ", not a candidate");
   return id;
 }

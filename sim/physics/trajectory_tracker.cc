@@ -100,8 +100,8 @@ const TrajectoryReference& TrajectoryTracker::update(double dt) {
   integrateTowards(carrot.v_des, dt);
   const double yaw_err = steerHeading(dt);
   const bool at_end = carrot.s >= cumulative_.back() && carrot.dist < 0.5;
-  finished_ = at_end && carrot.dist < config_.arrive_tolerance_m && ref_.velocity_mps.norm() < 0.05 &&
-              std::abs(yaw_err) < 0.02;
+  finished_ =
+      at_end && carrot.dist < config_.arrive_tolerance_m && ref_.velocity_mps.norm() < 0.05 && std::abs(yaw_err) < 0.02;
   return ref_;
 }
 

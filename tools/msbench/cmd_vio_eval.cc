@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/common/png.h"
+#include "core/eval/frontend_profile.h"
 #include "core/eval/slam_point_truth.h"
 #include "tools/config/flight_yaml.h"
 #include "tools/config/world_registry.h"
@@ -20,13 +21,12 @@
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/progress.h"
-#include "core/eval/frontend_profile.h"
 #include "tools/results/flight_records.h"
-#include "tools/results/vio_evaluation.h"
 #include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
 #include "tools/results/provenance.h"
+#include "tools/results/vio_evaluation.h"
 
 namespace msb {
 

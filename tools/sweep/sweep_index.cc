@@ -4,16 +4,22 @@ namespace msb {
 
 const char* sweepRunStatusName(SweepRunStatus s) {
   switch (s) {
-    case SweepRunStatus::kPending: return "pending";
-    case SweepRunStatus::kComplete: return "complete";
-    case SweepRunStatus::kFailed: return "failed";
+    case SweepRunStatus::kPending:
+      return "pending";
+    case SweepRunStatus::kComplete:
+      return "complete";
+    case SweepRunStatus::kFailed:
+      return "failed";
   }
   return "pending";
 }
 
 nlohmann::json sweepRunJson(const SweepRunRecord& r) {
-  nlohmann::json j = {{"id", r.id},         {"seed", r.seed},   {"scenario", r.scenario},
-                      {"labels", r.labels}, {"status", sweepRunStatusName(r.status)}};
+  nlohmann::json j = {{"id", r.id},
+                      {"seed", r.seed},
+                      {"scenario", r.scenario},
+                      {"labels", r.labels},
+                      {"status", sweepRunStatusName(r.status)}};
   j["sets"] = r.sets;
   if (r.failure) {
     const SweepRunFailure& f = *r.failure;
@@ -64,16 +70,21 @@ SweepRunRecord readSweepRun(const nlohmann::json& jr, const std::string& key,
     throw bad(key + ".id", "expected a run id (a non-empty name without '/')");
   SweepRunRecord r;
   r.id = jr["id"].get<std::string>();
-  if (jr.contains("seed") && !jr["seed"].is_number_unsigned()) throw bad(key + ".seed", "expected a non-negative integer");
+  if (jr.contains("seed") && !jr["seed"].is_number_unsigned())
+    throw bad(key + ".seed", "expected a non-negative integer");
   r.seed = jr.value("seed", uint64_t(0));
   if (jr.contains("scenario") && jr["scenario"].is_string()) r.scenario = jr["scenario"].get<std::string>();
   if (jr.contains("status") && !jr["status"].is_string())
     throw bad(key + ".status", "expected complete, failed or pending");
   const std::string status = jr.value("status", std::string("pending"));
-  if (status == "complete") r.status = SweepRunStatus::kComplete;
-  else if (status == "failed") r.status = SweepRunStatus::kFailed;
-  else if (status == "pending") r.status = SweepRunStatus::kPending;
-  else throw bad(key + ".status", "expected complete, failed or pending, got '" + status + "'");
+  if (status == "complete")
+    r.status = SweepRunStatus::kComplete;
+  else if (status == "failed")
+    r.status = SweepRunStatus::kFailed;
+  else if (status == "pending")
+    r.status = SweepRunStatus::kPending;
+  else
+    throw bad(key + ".status", "expected complete, failed or pending, got '" + status + "'");
   if (jr.contains("labels")) {
     if (!jr["labels"].is_object()) throw bad(key + ".labels", "expected a map of axis names to labels");
     for (const auto& [axis, label] : jr["labels"].items()) {

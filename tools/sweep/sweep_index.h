@@ -25,12 +25,12 @@ const char* sweepRunStatusName(SweepRunStatus s);
 /// Why a run has no result.
 struct SweepRunFailure {
   int exit_code = 0;
-  int signal = 0;              ///< the signal that ended it (0: it exited)
-  std::string signal_name;     ///< "SIGSEGV", ... ("" for no signal)
-  std::string log_tail;        ///< the end of its log
-  std::string last_progress;   ///< its last progress line ("" if none)
-  std::string fatal;           ///< the crash handler's line ("" if none)
-  std::string problem;         ///< the report's: its results did not read ("" otherwise)
+  int signal = 0;             ///< the signal that ended it (0: it exited)
+  std::string signal_name;    ///< "SIGSEGV", ... ("" for no signal)
+  std::string log_tail;       ///< the end of its log
+  std::string last_progress;  ///< its last progress line ("" if none)
+  std::string fatal;          ///< the crash handler's line ("" if none)
+  std::string problem;        ///< the report's: its results did not read ("" otherwise)
 };
 
 /// One run's entry.
@@ -41,9 +41,9 @@ struct SweepRunRecord {
   std::map<std::string, std::string> labels;  ///< axis name → label
   std::vector<std::string> sets;              ///< "key=value" overrides, in order
   SweepRunStatus status = SweepRunStatus::kPending;
-  std::optional<SweepRunFailure> failure;     ///< failed runs
-  std::optional<double> area_m2;              ///< complete runs: A
-  std::string run_status;                     ///< complete runs: the mission's status word
+  std::optional<SweepRunFailure> failure;  ///< failed runs
+  std::optional<double> area_m2;           ///< complete runs: A
+  std::string run_status;                  ///< complete runs: the mission's status word
 };
 
 /// The entry as sweep.json holds it.
