@@ -26,14 +26,10 @@ GridExplorer::GridExplorer(const GridExplorerConfig& config, const ExplorerConte
       map_(config.map),
       planner_(config.planner, context.exploration_box, config.map.resolution_m),
       goal_rng_(context.seed, "baseline_goals"),
-      takeoff_(context.start, config) {
-  for (const char* k : {"goals_chosen", "goals_reached", "goals_timed_out", "goals_idle", "paths_sent",
-                        "paths_to_closest_cell", "paths_failed", "blocked_stops", "map_points"})
-    counters_[k] = 0;
-}
+      takeoff_(context.start, config) {}
 
 void GridExplorer::observe(const SlamPointsFrame& frame) {
-  counters_["map_points"] += map_.insert(frame).points;
+  counters_[GridCounter::kMapPoints] += map_.insert(frame).points;
   map_changed_ = true;
 }
 
@@ -53,7 +49,7 @@ Vec3 GridExplorer::drawGoal(const Vec3& p) {
 }
 
 PathCommand GridExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
-  return sendPath(s, std::move(w), last_path_, counters_);
+  return sendPath(s, std::move(w), last_path_, counters_[GridCounter::kPathsSent]);
 }
 
 std::optional<PathCommand> GridExplorer::plan(const VehicleState& s) {
@@ -78,7 +74,7 @@ std::optional<PathCommand> GridExplorer::explore(const VehicleState& s) {
 
   // The predicted-path check: stop and re-plan when the path ahead nears an occupied cell.
   if (path_sent_ && !s.path_finished && pathBlocked(s.reference.position_m)) {
-    ++counters_["blocked_stops"];
+    ++counters_[GridCounter::kBlockedStops];
     replan_now_ = true;
     last_plan_s_ = s.t_s;
     given_path_.clear();  // a chooser's path too: A* from here on
@@ -95,13 +91,13 @@ bool GridExplorer::checkGoal(const VehicleState& s) {
   last_goal_check_s_ = s.t_s;
   bool need_goal = !goal_;
   if (goal_ && (*goal_ - p).norm() <= config_.reach_distance_m) {
-    ++counters_["goals_reached"];
+    ++counters_[GridCounter::kGoalsReached];
     need_goal = true;
   } else if (goal_ && path_sent_ && s.path_finished) {
-    ++counters_["goals_idle"];  // arrived at the closest reachable cell, or nowhere to go
+    ++counters_[GridCounter::kGoalsIdle];  // arrived at the closest reachable cell, or nowhere to go
     need_goal = true;
   } else if (goal_ && s.t_s - goal_since_s_ >= config_.goal_timeout_s) {
-    ++counters_["goals_timed_out"];
+    ++counters_[GridCounter::kGoalsTimedOut];
     need_goal = true;
   }
   if (!chooser_) {
@@ -129,7 +125,7 @@ void GridExplorer::setGoal(double t_s, std::optional<Vec3> goal, std::vector<Vec
   goal_since_s_ = t_s;
   path_sent_ = false;
   replan_now_ = true;
-  if (goal_) ++counters_["goals_chosen"];
+  if (goal_) ++counters_[GridCounter::kGoalsChosen];
 }
 
 std::optional<PathCommand> GridExplorer::replan(const VehicleState& s) {
@@ -151,11 +147,11 @@ std::optional<PathCommand> GridExplorer::replan(const VehicleState& s) {
   }
   const std::optional<GridPath> path = planner_.plan(s.reference.position_m, *goal_);
   if (!path || path->points.size() < 2) {
-    ++counters_["paths_failed"];
+    ++counters_[GridCounter::kPathsFailed];
     path_sent_ = true;  // nothing to fly: idle, a new goal at the next goal check
     return command(s, {{s.reference.position_m, std::nullopt}});
   }
-  if (!path->reaches_goal) ++counters_["paths_to_closest_cell"];
+  if (!path->reaches_goal) ++counters_[GridCounter::kPathsToClosestCell];
   std::vector<Waypoint> w;
   for (size_t i = 1; i < path->points.size(); ++i) w.push_back({path->points[i], std::nullopt});
   path_sent_ = true;
@@ -175,7 +171,7 @@ ExplorerSnapshot GridExplorer::snapshot() const {
 }
 
 std::map<std::string, double> GridExplorer::counters() const {
-  auto c = counters_;
+  auto c = counters_.toMap();
   const auto& tree = map_.tree();
   c["leaves"] = double(tree.getNumLeafNodes());
   c["map_memory_mb"] = double(tree.memoryUsage()) / (1024.0 * 1024.0);

@@ -18,6 +18,7 @@
 // leaf's real size after pruning).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -28,6 +29,7 @@
 #include "core/baseline/grid_map.h"
 #include "core/baseline/grid_path_planner.h"
 #include "core/common/rng.h"
+#include "core/explorer/counters.h"
 #include "core/explorer/explorer.h"
 #include "core/explorer/takeoff.h"
 
@@ -63,6 +65,24 @@ struct GoalRequest {
 /// no goal (hover); one point is a goal A* plans to on the map; more are a path flown as given,
 /// its last point the goal (the predicted-path check still stops the vehicle, then A* takes over).
 using GoalChooser = std::function<std::optional<std::vector<Vec3>>(const GoalRequest&)>;
+
+/// The counters of this method (metrics.json → counters; Counters<GridCounter>).
+enum class GridCounter {
+  kGoalsChosen,
+  kGoalsReached,
+  kGoalsTimedOut,
+  kGoalsIdle,
+  kPathsSent,
+  kPathsToClosestCell,
+  kPathsFailed,
+  kBlockedStops,
+  kMapPoints,
+  kCount
+};
+/// The JSON names of GridCounter, in its order.
+inline constexpr std::array<const char*, size_t(GridCounter::kCount)> kGridCounterNames = {
+    "goals_chosen",          "goals_reached", "goals_timed_out", "goals_idle", "paths_sent",
+    "paths_to_closest_cell", "paths_failed",  "blocked_stops",   "map_points"};
 
 /// The grid explorer.
 class GridExplorer : public Explorer {
@@ -108,7 +128,7 @@ class GridExplorer : public Explorer {
   bool path_sent_ = false, replan_now_ = false;
   double goal_since_s_ = 0, last_goal_check_s_ = -1e9, last_plan_s_ = -1e9;
   std::vector<Vec3> last_path_;
-  std::map<std::string, double> counters_;
+  Counters<GridCounter> counters_{kGridCounterNames};
 };
 
 }  // namespace msb

@@ -158,14 +158,10 @@ StarDiscoveryExplorer::StarDiscoveryExplorer(const StarDiscoveryConfig& config, 
       map_(config.map),
       planner_(config.planner, context.exploration_box, config.map.resolution_m),
       candidate_rng_(context.seed, "star_candidates"),
-      takeoff_(context.start, config) {
-  for (const char* k : {"stars", "star_rays", "global_steps", "fallback_steps", "holds", "interesting_cells",
-                        "transits_reached", "transits_failed", "blocked_stops", "paths_sent", "map_points"})
-    counters_[k] = 0;
-}
+      takeoff_(context.start, config) {}
 
 void StarDiscoveryExplorer::observe(const SlamPointsFrame& frame) {
-  counters_["map_points"] += map_.insert(frame).points;
+  counters_[StarDiscoveryCounter::kMapPoints] += map_.insert(frame).points;
   map_changed_ = true;
 }
 
@@ -177,7 +173,7 @@ void StarDiscoveryExplorer::rebuildPlanner() {
 
 PathCommand StarDiscoveryExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
   sent_ = true;
-  return sendPath(s, std::move(w), last_path_, counters_);
+  return sendPath(s, std::move(w), last_path_, counters_[StarDiscoveryCounter::kPathsSent]);
 }
 
 bool StarDiscoveryExplorer::pathBlocked(const Vec3& from) const {
@@ -188,8 +184,8 @@ std::optional<PathCommand> StarDiscoveryExplorer::startStar(const VehicleState& 
   rebuildPlanner();
   const Star star = planStar(planner_, s.reference.position_m, config_);
   origins_.push_back(star.origin);
-  ++counters_["stars"];
-  counters_["star_rays"] += double(star.ends.size());
+  ++counters_[StarDiscoveryCounter::kStars];
+  counters_[StarDiscoveryCounter::kStarRays] += double(star.ends.size());
   phase_ = Phase::kStar;
   // Out and back along every ray, the camera 90° to the motion.
   std::vector<Waypoint> w{{star.origin, std::nullopt}};
@@ -204,10 +200,10 @@ std::optional<PathCommand> StarDiscoveryExplorer::startStar(const VehicleState& 
 
 std::optional<PathCommand> StarDiscoveryExplorer::chooseNextOrigin(const VehicleState& s) {
   rebuildPlanner();
-  ++counters_["global_steps"];
+  ++counters_[StarDiscoveryCounter::kGlobalSteps];
   const std::vector<Vec3> interesting =
       interestingCells(map_, planner_, context_.exploration_box, origins_, config_.los_range_m);
-  counters_["interesting_cells"] = double(interesting.size());
+  counters_[StarDiscoveryCounter::kInterestingCells] = double(interesting.size());
   const std::vector<Vec3> component = largestComponent(interesting, config_.map.resolution_m);
   std::vector<std::pair<double, Vec3>> ranked;
   if (!component.empty()) {
@@ -220,14 +216,14 @@ std::optional<PathCommand> StarDiscoveryExplorer::chooseNextOrigin(const Vehicle
     // Every free cell is in sight of an origin (a sparse map's free space is mostly rays from
     // the camera positions): the paper does not say what then; we go on from the traversable
     // cells farthest from every origin, so the method keeps moving while free space grows.
-    ++counters_["fallback_steps"];
+    ++counters_[StarDiscoveryCounter::kFallbackSteps];
     for (const Vec3& c : interestingCells(map_, planner_, context_.exploration_box, {}, config_.los_range_m)) {
       double nearest = 1e9;
       for (const Vec3& o : origins_) nearest = std::min(nearest, (c - o).norm());
       if (nearest >= 2.0 * config_.min_ray_m) ranked.push_back({nearest, c});
     }
     if (ranked.empty()) {
-      ++counters_["holds"];  // nowhere to go yet: hold, look again later
+      ++counters_[StarDiscoveryCounter::kHolds];  // nowhere to go yet: hold, look again later
       phase_ = Phase::kHold;
       hold_until_s_ = s.t_s + config_.retry_period_s;
       return command(s, {{s.reference.position_m, std::nullopt}});
@@ -247,12 +243,12 @@ std::optional<PathCommand> StarDiscoveryExplorer::chooseNextOrigin(const Vehicle
   }
   // No candidate reachable: a star from here if this spot is not an origin yet, else hold and
   // look again after retry_period_s (the map may have grown).
-  ++counters_["transits_failed"];
+  ++counters_[StarDiscoveryCounter::kTransitsFailed];
   const Vec3 here = s.reference.position_m;
   const bool known = std::any_of(origins_.begin(), origins_.end(),
                                  [&](const Vec3& o) { return (o - here).norm() < config_.min_ray_m; });
   if (!known) return startStar(s);
-  ++counters_["holds"];
+  ++counters_[StarDiscoveryCounter::kHolds];
   phase_ = Phase::kHold;
   hold_until_s_ = s.t_s + config_.retry_period_s;
   return command(s, {{here, std::nullopt}});
@@ -277,7 +273,7 @@ std::optional<PathCommand> StarDiscoveryExplorer::plan(const VehicleState& s) {
       return std::nullopt;
     case Phase::kStar:
       if (!s.path_finished && pathBlocked(s.reference.position_m)) {
-        ++counters_["blocked_stops"];
+        ++counters_[StarDiscoveryCounter::kBlockedStops];
         phase_ = Phase::kGlobal;
         return command(s, {{s.reference.position_m, std::nullopt}});
       }
@@ -288,23 +284,23 @@ std::optional<PathCommand> StarDiscoveryExplorer::plan(const VehicleState& s) {
       return std::nullopt;
     case Phase::kTransit: {
       if ((s.T_W_B.translation() - *target_).norm() <= 1.0 && s.path_finished) {
-        ++counters_["transits_reached"];
+        ++counters_[StarDiscoveryCounter::kTransitsReached];
         return startStar(s);
       }
       if (s.t_s - transit_since_s_ > config_.transit_timeout_s) {
-        ++counters_["transits_failed"];
+        ++counters_[StarDiscoveryCounter::kTransitsFailed];
         phase_ = Phase::kGlobal;
         return command(s, {{s.reference.position_m, std::nullopt}});
       }
       const bool blocked = !s.path_finished && pathBlocked(s.reference.position_m);
-      if (blocked) ++counters_["blocked_stops"];
+      if (blocked) ++counters_[StarDiscoveryCounter::kBlockedStops];
       if (!blocked && !s.path_finished && s.t_s - last_plan_s_ < config_.replan_period_s - 1e-9) return std::nullopt;
       // Re-plan to the target (the map changed on the way, or the path ended short of it).
       last_plan_s_ = s.t_s;
       rebuildPlanner();
       const std::optional<GridPath> path = planner_.plan(s.reference.position_m, *target_);
       if (!path || !path->reaches_goal || path->points.size() < 2) {
-        ++counters_["transits_failed"];
+        ++counters_[StarDiscoveryCounter::kTransitsFailed];
         if (s.path_finished || blocked) {
           phase_ = Phase::kGlobal;  // a new target from here
           return command(s, {{s.reference.position_m, std::nullopt}});
@@ -335,7 +331,7 @@ ExplorerSnapshot StarDiscoveryExplorer::snapshot() const {
 }
 
 std::map<std::string, double> StarDiscoveryExplorer::counters() const {
-  auto c = counters_;
+  auto c = counters_.toMap();
   c["leaves"] = double(map_.tree().getNumLeafNodes());
   c["origins"] = double(origins_.size());
   return c;

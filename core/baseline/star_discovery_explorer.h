@@ -20,6 +20,7 @@
 // vehicle holds its position and looks again after retry_period_s.
 #pragma once
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -28,6 +29,7 @@
 #include "core/baseline/grid_map.h"
 #include "core/baseline/grid_path_planner.h"
 #include "core/common/rng.h"
+#include "core/explorer/counters.h"
 #include "core/explorer/explorer.h"
 #include "core/explorer/takeoff.h"
 
@@ -96,6 +98,27 @@ std::vector<Vec3> interestingCells(const GridMap& map, const GridPathPlanner& pl
 /// the one holding the earliest cell.
 std::vector<Vec3> largestComponent(const std::vector<Vec3>& cells, double resolution_m);
 
+/// The counters of this method (metrics.json → counters; Counters<StarDiscoveryCounter>).
+enum class StarDiscoveryCounter {
+  kStars,
+  kStarRays,
+  kGlobalSteps,
+  kFallbackSteps,
+  kHolds,
+  kInterestingCells,
+  kTransitsReached,
+  kTransitsFailed,
+  kBlockedStops,
+  kPathsSent,
+  kMapPoints,
+  kCount
+};
+/// The JSON names of StarDiscoveryCounter, in its order.
+inline constexpr std::array<const char*, size_t(StarDiscoveryCounter::kCount)> kStarDiscoveryCounterNames = {
+    "stars",         "star_rays",         "global_steps",     "fallback_steps",
+    "holds",         "interesting_cells", "transits_reached", "transits_failed",
+    "blocked_stops", "paths_sent",        "map_points"};
+
 /// The star discovery explorer.
 class StarDiscoveryExplorer : public Explorer {
  public:
@@ -129,7 +152,7 @@ class StarDiscoveryExplorer : public Explorer {
   std::optional<Vec3> target_;
   double last_plan_s_ = -1e9, transit_since_s_ = 0, hold_until_s_ = 0;
   std::vector<Vec3> last_path_;
-  std::map<std::string, double> counters_;
+  Counters<StarDiscoveryCounter> counters_{kStarDiscoveryCounterNames};
 };
 
 }  // namespace msb

@@ -7,11 +7,11 @@
 namespace msb {
 
 PathCommand sendPath(const VehicleState& vehicle, std::vector<Waypoint> waypoints, std::vector<Vec3>& last_path,
-                     std::map<std::string, double>& counters) {
+                     double& paths_sent) {
   PathCommand cmd{vehicle.tick, std::move(waypoints)};
   last_path = {vehicle.reference.position_m};
   for (const auto& wp : cmd.waypoints) last_path.push_back(wp.position_m);
-  ++counters["paths_sent"];
+  ++paths_sent;
   return cmd;
 }
 

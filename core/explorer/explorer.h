@@ -64,8 +64,8 @@ class Explorer {
 };
 
 /// A path command sent at this planning step: `last_path` becomes the vehicle's reference followed
-/// by the waypoints (for pictures and checks along it), and the "paths_sent" counter counts it.
+/// by the waypoints (for pictures and checks along it), and `paths_sent` counts it.
 PathCommand sendPath(const VehicleState& vehicle, std::vector<Waypoint> waypoints, std::vector<Vec3>& last_path,
-                     std::map<std::string, double>& counters);
+                     double& paths_sent);
 
 }  // namespace msb

@@ -98,13 +98,7 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
       context_(context),
       map_(config.map, camera, context.seed),
       viewpoints_(config.planner.viewpoints, context.seed),
-      takeoff_(context.start, config.planner) {
-  for (const char* k :
-       {"goals_chosen", "goals_reached", "goals_failed", "goals_failed_no_progress", "goals_failed_unreachable",
-        "goals_failed_blocked", "goals_global", "blocked_stops", "paths_sent", "idle_turns", "returns_to_free_space",
-        "returns_refused", "edges_blocked", "bridges", "relaxed_steps", "links_used", "clearance_escapes"})
-    counters_[k] = 0;
-}
+      takeoff_(context.start, config.planner) {}
 
 MonoSpheresExplorer::~MonoSpheresExplorer() = default;
 
@@ -112,7 +106,7 @@ void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) { map_.update(fr
 
 PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
   last_send_s_ = s.t_s;
-  return sendPath(s, std::move(w), last_path_, counters_);
+  return sendPath(s, std::move(w), last_path_, counters_[MonoSpheresCounter::kPathsSent]);
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {
@@ -224,17 +218,17 @@ std::optional<uint64_t> MonoSpheresExplorer::chooseGoal(const VehicleState& s, c
   if (++local_misses_ <= pc.local_misses_before_global) return std::nullopt;
   if (auto id = pick(all)) {
     local_misses_ = 0;
-    ++counters_["goals_global"];
+    ++counters_[MonoSpheresCounter::kGoalsGlobal];
     return id;
   }
   return std::nullopt;
 }
 
-void MonoSpheresExplorer::failGoal(double t_s, const char* reason) {
+void MonoSpheresExplorer::failGoal(double t_s, MonoSpheresCounter reason) {
   viewpoints_.markFailed(goal_, t_s);
   goal_ = 0;
-  ++counters_["goals_failed"];
-  ++counters_[std::string("goals_failed_") + reason];
+  ++counters_[MonoSpheresCounter::kGoalsFailed];
+  ++counters_[reason];
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
@@ -256,7 +250,7 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   reachable.clear();
   reachable.reserve(field.cost.size());
   for (const auto& [id, c] : field.cost) reachable.push_back(id);  // ascending ids
-  counters_["reachable_spheres"] = double(reachable.size());
+  counters_[MonoSpheresCounter::kReachableSpheres] = double(reachable.size());
   // 2. Viewpoints; 3. the active goal; 4. a new goal.
   updateViewpoints(s, reachable);
   checkActiveGoal(s, field);
@@ -292,10 +286,10 @@ std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleS
   for (const auto& [neg_depth, id] : candidates) {
     const Vec3& c = map_.spheres().at(id).centre;
     if (!segmentClear(p, c, p)) continue;
-    ++counters_["returns_to_free_space"];
+    ++counters_[MonoSpheresCounter::kReturnsToFreeSpace];
     return command(s, {{c, std::nullopt}});
   }
-  ++counters_["returns_refused"];
+  ++counters_[MonoSpheresCounter::kReturnsRefused];
   return command(s, {{s.reference.position_m, std::nullopt}});
 }
 
@@ -391,7 +385,7 @@ void MonoSpheresExplorer::updateViewpoints(const VehicleState& s, const std::vec
   // Nothing above the usual value for a while: accept viewpoints that see a few frontiers.
   const bool relaxed = !goal_ && no_goal_since_s_ >= 0 && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s &&
                        viewpoints_.viewpoints().empty();
-  if (relaxed) ++counters_["relaxed_steps"];
+  if (relaxed) ++counters_[MonoSpheresCounter::kRelaxedSteps];
   viewpoints_.update(
       map_, reachable, s.T_W_B.translation(), yawOf(s.T_W_B.linear()), s.t_s, goal_,
       [&box](const Vec3& x) { return box.contains(x); }, relaxed);
@@ -409,11 +403,11 @@ void MonoSpheresExplorer::checkActiveGoal(const VehicleState& s, const SphereCos
       std::abs(wrapAngle(v.yaw_rad - yaw)) <= pc.reach_angle_deg * kDeg) {
     viewpoints_.markReached(goal_, map_, p, yaw);
     goal_ = 0;
-    ++counters_["goals_reached"];
+    ++counters_[MonoSpheresCounter::kGoalsReached];
   } else if (!field.cost.count(v.sphere)) {
-    failGoal(s.t_s, "unreachable");
+    failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedUnreachable);
   } else if (s.t_s - last_progress_s_ > pc.no_progress_timeout_s) {
-    failGoal(s.t_s, "no_progress");
+    failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedNoProgress);
   }
 }
 
@@ -448,7 +442,7 @@ void MonoSpheresExplorer::takeNewGoal(const VehicleState& s, const SphereCostFie
   goal_since_s_ = last_progress_s_ = s.t_s;
   best_remaining_m_ = 1e18;
   blocked_steps_ = 0;
-  ++counters_["goals_chosen"];
+  ++counters_[MonoSpheresCounter::kGoalsChosen];
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::withoutGoal(const VehicleState& s, const SphereCostField& field,
@@ -471,14 +465,14 @@ std::optional<PathCommand> MonoSpheresExplorer::withoutGoal(const VehicleState& 
       if (segmentClear(p, sp.centre, p)) best = {d, id};
     }
     if (best) {
-      ++counters_["bridges"];
+      ++counters_[MonoSpheresCounter::kBridges];
       return command(s, {{map_.spheres().at(best->second).centre, std::nullopt}});
     }
   }
   // Nothing worth flying to: look around in place now and then.
   if (s.t_s - last_idle_turn_s_ >= pc.idle_turn_period_s && pc.idle_turn_deg > 0) {
     last_idle_turn_s_ = s.t_s;
-    ++counters_["idle_turns"];
+    ++counters_[MonoSpheresCounter::kIdleTurns];
     return command(s, {{s.reference.position_m, wrapAngle(s.reference.yaw_rad + pc.idle_turn_deg * kDeg)}});
   }
   return std::nullopt;
@@ -501,21 +495,21 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
       const uint64_t a = spath->spheres[k - 1], b = spath->spheres[k];
       if (segmentClear(map_.spheres().at(a).centre, map_.spheres().at(b).centre, p)) continue;
       blocked_edges_[{std::min(a, b), std::max(a, b)}] = s.t_s + pc.blocked_edge_timeout_s;
-      ++counters_["edges_blocked"];
+      ++counters_[MonoSpheresCounter::kEdgesBlocked];
       clear = false;
     }
     if (clear) break;
     spath.reset();
   }
   if (!spath) {
-    failGoal(s.t_s, "unreachable");
+    failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedUnreachable);
     return command(s, {{s.reference.position_m, std::nullopt}});  // hold; choose again next step
   }
   // A route over a link: remember its far sphere, to start from while crossing the gap.
   for (size_t k = 1; k < spath->spheres.size(); ++k) {
     const uint64_t a = spath->spheres[k - 1], b = spath->spheres[k];
     if (map_.neighbours(a).count(b)) continue;
-    if (transit_sphere_ != b || s.t_s >= transit_until_s_) ++counters_["links_used"];
+    if (transit_sphere_ != b || s.t_s >= transit_until_s_) ++counters_[MonoSpheresCounter::kLinksUsed];
     transit_sphere_ = b;
     transit_until_s_ = s.t_s + pc.no_progress_timeout_s;
     break;
@@ -528,13 +522,13 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
     // there): every route that starts even slightly towards it is blocked, so holding here
     // would fail goal after goal. Back away from the points instead and re-plan from there.
     if (auto away = clearanceEscape(s.reference.position_m)) {
-      ++counters_["clearance_escapes"];
+      ++counters_[MonoSpheresCounter::kClearanceEscapes];
       blocked_steps_ = 0;
       return command(s, {{*away, std::nullopt}});
     }
-    ++counters_["blocked_stops"];
+    ++counters_[MonoSpheresCounter::kBlockedStops];
     if (++blocked_steps_ >= pc.max_blocked_steps) {
-      failGoal(s.t_s, "blocked");
+      failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedBlocked);
       blocked_steps_ = 0;
     }
     return command(s, {{s.reference.position_m, std::nullopt}});  // stop; re-plan next step
@@ -581,7 +575,7 @@ ExplorerSnapshot MonoSpheresExplorer::snapshot() const {
 }
 
 std::map<std::string, double> MonoSpheresExplorer::counters() const {
-  auto c = counters_;
+  auto c = counters_.toMap();
   c["spheres"] = double(map_.spheres().size());
   c["obstacle_points"] = double(map_.obstacles().size());
   c["frontiers"] = double(map_.frontiers().size());

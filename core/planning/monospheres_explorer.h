@@ -36,9 +36,12 @@
 // first points get parallax.
 #pragma once
 
+#include <array>
+
 #include <memory>
 
 #include "core/camera/fisheye_camera.h"
+#include "core/explorer/counters.h"
 #include "core/explorer/explorer.h"
 #include "core/explorer/takeoff.h"
 #include "core/map/sphere_map.h"
@@ -127,6 +130,49 @@ struct ViewpointRequest {
 /// feasibility check is the chooser's business).
 using ViewpointChooser = std::function<std::optional<uint64_t>(const ViewpointRequest&)>;
 
+/// The counters of this method (metrics.json → counters; Counters<MonoSpheresCounter>).
+enum class MonoSpheresCounter {
+  kGoalsChosen,
+  kGoalsReached,
+  kGoalsFailed,
+  kGoalsFailedNoProgress,
+  kGoalsFailedUnreachable,
+  kGoalsFailedBlocked,
+  kGoalsGlobal,
+  kBlockedStops,
+  kPathsSent,
+  kIdleTurns,
+  kReturnsToFreeSpace,
+  kReturnsRefused,
+  kEdgesBlocked,
+  kBridges,
+  kRelaxedSteps,
+  kLinksUsed,
+  kClearanceEscapes,
+  kReachableSpheres,
+  kCount
+};
+/// The JSON names of MonoSpheresCounter, in its order.
+inline constexpr std::array<const char*, size_t(MonoSpheresCounter::kCount)> kMonoSpheresCounterNames = {
+    "goals_chosen",
+    "goals_reached",
+    "goals_failed",
+    "goals_failed_no_progress",
+    "goals_failed_unreachable",
+    "goals_failed_blocked",
+    "goals_global",
+    "blocked_stops",
+    "paths_sent",
+    "idle_turns",
+    "returns_to_free_space",
+    "returns_refused",
+    "edges_blocked",
+    "bridges",
+    "relaxed_steps",
+    "links_used",
+    "clearance_escapes",
+    "reachable_spheres"};
+
 /// The MonoSpheres explorer.
 class MonoSpheresExplorer : public Explorer {
  public:
@@ -180,7 +226,7 @@ class MonoSpheresExplorer : public Explorer {
   // inside, or the way out approaches another point).
   std::optional<Vec3> clearanceEscape(const Vec3& here) const;
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
-  void failGoal(double t_s, const char* reason);
+  void failGoal(double t_s, MonoSpheresCounter reason);
 
   MonoSpheresConfig config_;
   ExplorerContext context_;
@@ -199,7 +245,7 @@ class MonoSpheresExplorer : public Explorer {
   uint64_t transit_sphere_ = 0;      // far end of the link being crossed
   double transit_until_s_ = -1.0;
   std::map<std::pair<uint64_t, uint64_t>, double> blocked_edges_;  // (low id, high id) → until
-  std::map<std::string, double> counters_;
+  Counters<MonoSpheresCounter> counters_{kMonoSpheresCounterNames};
 };
 
 }  // namespace msb

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/explorer/counters.h"
 #include "core/explorer/explorer.h"
 
 namespace msb {
@@ -45,17 +46,29 @@ TEST(SendPath, RecordsThePathFromTheReferenceAndCountsIt) {
   v.tick = 42;
   v.reference.position_m = Vec3(1, 1, 1);
   std::vector<Vec3> last;
-  std::map<std::string, double> counters;
-  const PathCommand cmd = sendPath(v, {{Vec3(2, 2, 2), std::nullopt}, {Vec3(3, 3, 3), 0.5}}, last, counters);
+  double paths_sent = 0;
+  const PathCommand cmd = sendPath(v, {{Vec3(2, 2, 2), std::nullopt}, {Vec3(3, 3, 3), 0.5}}, last, paths_sent);
   EXPECT_EQ(cmd.tick, 42);
   ASSERT_EQ(cmd.waypoints.size(), 2u);
   ASSERT_EQ(last.size(), 3u);
   EXPECT_TRUE(last.front().isApprox(Vec3(1, 1, 1)));
   EXPECT_TRUE(last.back().isApprox(Vec3(3, 3, 3)));
-  EXPECT_EQ(counters["paths_sent"], 1.0);
-  sendPath(v, {{Vec3(0, 0, 1), std::nullopt}}, last, counters);
-  EXPECT_EQ(counters["paths_sent"], 2.0);
+  EXPECT_EQ(paths_sent, 1.0);
+  sendPath(v, {{Vec3(0, 0, 1), std::nullopt}}, last, paths_sent);
+  EXPECT_EQ(paths_sent, 2.0);
   EXPECT_EQ(last.size(), 2u);
+}
+
+enum class DemoCounter { kGoalsReached, kPathsSent, kCount };
+
+TEST(Counters, AreIndexedByTheEnumAndWrittenByName) {
+  Counters<DemoCounter> c({"goals_reached", "paths_sent"});
+  ++c[DemoCounter::kPathsSent];
+  c[DemoCounter::kPathsSent] += 2;
+  const auto m = c.toMap();
+  ASSERT_EQ(m.size(), 2u);  // zeros included: every counter is always written
+  EXPECT_EQ(m.at("goals_reached"), 0.0);
+  EXPECT_EQ(m.at("paths_sent"), 3.0);
 }
 
 }  // namespace
