@@ -191,3 +191,14 @@ def test_nan_or_far_waypoints_end_the_run_with_an_error():
         with pytest.raises(msbench.MethodError, match="waypoint 0"):
             m.run(progress=False)
         assert m.status == "error"
+
+
+def test_a_billion_free_space_elements_end_the_run_at_the_limit_without_exhausting_memory():
+    class Flood(Claim):
+        def free_space(self):
+            return ((1, 0.0, 0.0, 1.0, 1.0) for _ in range(10**9))
+
+    m = msbench.Mission(msbench.Scenario.load(SCENARIO, set=fast_sets(duration_s=2)), method=Flood)
+    with pytest.raises(msbench.MethodError, match="more than 5000000 elements"):
+        m.run(progress=False)
+    assert m.status == "error"
