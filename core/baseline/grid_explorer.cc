@@ -53,12 +53,8 @@ PathCommand GridExplorer::command(const VehicleState& s, std::vector<Waypoint> w
 }
 
 std::optional<PathCommand> GridExplorer::plan(const VehicleState& s) {
-  // Take off first; then explore.
-  if (!takeoff_.done()) {
-    if (auto w = takeoff_.step(s.path_finished)) return command(s, std::move(*w));
-    return std::nullopt;
-  }
-  return explore(s);
+  return takeOffThenExplore(
+      takeoff_, s, [&](std::vector<Waypoint> w) { return command(s, std::move(w)); }, [&] { return explore(s); });
 }
 
 bool GridExplorer::pathBlocked(const Vec3& from) const {
@@ -152,23 +148,13 @@ std::optional<PathCommand> GridExplorer::replan(const VehicleState& s) {
     return command(s, {{s.reference.position_m, std::nullopt}});
   }
   if (!path->reaches_goal) ++counters_[GridCounter::kPathsToClosestCell];
-  std::vector<Waypoint> w;
-  for (size_t i = 1; i < path->points.size(); ++i) w.push_back({path->points[i], std::nullopt});
   path_sent_ = true;
-  return command(s, std::move(w));
+  return command(s, pathWaypoints(path->points));
 }
 
 std::vector<FreeSpaceElement> GridExplorer::freeSpace() const { return freeLeaves(map_); }
 
-ExplorerSnapshot GridExplorer::snapshot() const {
-  ExplorerSnapshot snap;
-  // Free leaves as their inscribed spheres; occupied leaves as points.
-  snap.free_space = freeSpace();
-  for (const GridLeaf& leaf : map_.leaves(true)) snap.obstacles.push_back(leaf.centre);
-  if (goal_) snap.goal = ExplorerSnapshot::Pose2{*goal_, 0.0};
-  snap.path = last_path_;
-  return snap;
-}
+ExplorerSnapshot GridExplorer::snapshot() const { return gridSnapshot(map_, goal_, last_path_); }
 
 std::map<std::string, double> GridExplorer::counters() const {
   auto c = counters_.toMap();

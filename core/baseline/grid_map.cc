@@ -228,4 +228,19 @@ std::vector<FreeSpaceElement> freeLeaves(const GridMap& map) {
   return out;
 }
 
+ExplorerSnapshot gridSnapshot(const GridMap& map, const std::optional<Vec3>& goal, const std::vector<Vec3>& path) {
+  ExplorerSnapshot snap;
+  snap.free_space = freeLeaves(map);
+  for (const GridLeaf& leaf : map.leaves(true)) snap.obstacles.push_back(leaf.centre);
+  if (goal) snap.goal = ExplorerSnapshot::Pose2{*goal, 0.0};
+  snap.path = path;
+  return snap;
+}
+
+std::vector<Waypoint> pathWaypoints(const std::vector<Vec3>& points) {
+  std::vector<Waypoint> w;
+  for (size_t i = 1; i < points.size(); ++i) w.push_back({points[i], std::nullopt});
+  return w;
+}
+
 }  // namespace msb

@@ -142,4 +142,12 @@ bool pathNearOccupied(const GridMap& map, const std::vector<Vec3>& path, const V
 /// their real size after pruning) for the coverage metric and pictures.
 std::vector<FreeSpaceElement> freeLeaves(const GridMap& map);
 
+/// A grid method's snapshot: the free leaves (freeLeaves), the occupied leaves' centres as
+/// obstacle points, the goal (if any) and the last path.
+ExplorerSnapshot gridSnapshot(const GridMap& map, const std::optional<Vec3>& goal, const std::vector<Vec3>& path);
+
+/// The waypoints of a grid path (its points after the first, the vehicle's own cell), each
+/// flown facing the direction of travel.
+std::vector<Waypoint> pathWaypoints(const std::vector<Vec3>& points);
+
 }  // namespace msb

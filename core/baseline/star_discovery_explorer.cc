@@ -237,9 +237,7 @@ std::optional<PathCommand> StarDiscoveryExplorer::chooseNextOrigin(const Vehicle
     target_ = cell;
     phase_ = Phase::kTransit;
     last_plan_s_ = transit_since_s_ = s.t_s;
-    std::vector<Waypoint> w;
-    for (size_t i = 1; i < path->points.size(); ++i) w.push_back({path->points[i], std::nullopt});
-    return command(s, std::move(w));
+    return command(s, pathWaypoints(path->points));
   }
   // No candidate reachable: a star from here if this spot is not an origin yet, else hold and
   // look again after retry_period_s (the map may have grown).
@@ -307,9 +305,7 @@ std::optional<PathCommand> StarDiscoveryExplorer::plan(const VehicleState& s) {
         }
         return std::nullopt;
       }
-      std::vector<Waypoint> w;
-      for (size_t i = 1; i < path->points.size(); ++i) w.push_back({path->points[i], std::nullopt});
-      return command(s, std::move(w));
+      return command(s, pathWaypoints(path->points));
     }
     case Phase::kHold:
       if (s.t_s >= hold_until_s_ && s.path_finished) return chooseNextOrigin(s);
@@ -321,12 +317,8 @@ std::optional<PathCommand> StarDiscoveryExplorer::plan(const VehicleState& s) {
 std::vector<FreeSpaceElement> StarDiscoveryExplorer::freeSpace() const { return freeLeaves(map_); }
 
 ExplorerSnapshot StarDiscoveryExplorer::snapshot() const {
-  ExplorerSnapshot snap;
-  snap.free_space = freeSpace();
-  for (const GridLeaf& leaf : map_.leaves(true)) snap.obstacles.push_back(leaf.centre);
-  if (target_) snap.goal = ExplorerSnapshot::Pose2{*target_, 0.0};
+  ExplorerSnapshot snap = gridSnapshot(map_, target_, last_path_);
   for (const Vec3& o : origins_) snap.visited.push_back({o, 0.0});
-  snap.path = last_path_;
   return snap;
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
+#include "core/explorer/explorer.h"
 
 namespace msb {
 
@@ -50,5 +51,15 @@ class TakeoffSequence {
   Phase phase_ = Phase::kClimb;
   bool sent_ = false;
 };
+
+/// The take-off as the first part of a method's plan(): while it is not done, the path it sends
+/// now, if any (`send(waypoints)` makes the method's command); `explore()` once it is done.
+template <class Send, class Explore>
+std::optional<PathCommand> takeOffThenExplore(TakeoffSequence& takeoff, const VehicleState& s, Send&& send,
+                                              Explore&& explore) {
+  if (takeoff.done()) return explore();
+  if (auto w = takeoff.step(s.path_finished)) return send(std::move(*w));
+  return std::nullopt;
+}
 
 }  // namespace msb

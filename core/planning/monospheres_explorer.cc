@@ -110,12 +110,8 @@ PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Wayp
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {
-  // Take off first; then explore.
-  if (!takeoff_.done()) {
-    if (auto w = takeoff_.step(s.path_finished)) return command(s, std::move(*w));
-    return std::nullopt;
-  }
-  return explore(s);
+  return takeOffThenExplore(
+      takeoff_, s, [&](std::vector<Waypoint> w) { return command(s, std::move(w)); }, [&] { return explore(s); });
 }
 
 bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {

@@ -49,28 +49,35 @@ void boxSurface(const Pose& T, const Vec3& half, std::vector<Vec3>& v, std::vect
   }
 }
 
-// A cylinder's surface along T's z: an n-sided prism (side vertices shared around, so the side
-// is shaded smoothly) and two cap fans with their own vertices.
+// A cylinder's surface along T's z: an n-sided prism and two cap fans with their own vertices.
+// Without texture coordinates the side vertices are shared around (the side is shaded smoothly);
+// with them (`uv`, tiles of `tile` m) the seam column is repeated so the texture wraps around the
+// circumference, and the caps are mapped in plan.
 void cylinderSurface(const Pose& T, double radius, double half_height, int n, std::vector<Vec3>& v,
-                     std::vector<std::array<int, 3>>& f) {
-  const int side = int(v.size());
-  for (int k = 0; k < n; ++k) {
+                     std::vector<std::array<int, 3>>& f, std::vector<Vec2>* uv = nullptr, double tile = 1.0) {
+  const int side = int(v.size()), columns = uv ? n + 1 : n;
+  const double arc = 2 * M_PI * radius / n;
+  for (int k = 0; k < columns; ++k) {
     const double ang = 2 * M_PI * k / n;
-    for (double z : {-half_height, half_height})
+    for (double z : {-half_height, half_height}) {
       v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
+      if (uv) uv->emplace_back(k * arc / tile, (z + half_height) / tile);
+    }
   }
   for (int k = 0; k < n; ++k) {
-    const int a = side + 2 * k, b = side + 2 * ((k + 1) % n);  // bottom vertices; +1 = top
+    const int a = side + 2 * k, b = side + 2 * ((k + 1) % columns);  // bottom vertices; +1 = top
     f.push_back({a, b, b + 1});
     f.push_back({a, b + 1, a + 1});
   }
   for (double z : {-half_height, half_height}) {
     const int centre = int(v.size());
     v.push_back(T * Vec3(0, 0, z));
+    if (uv) uv->emplace_back(0, 0);
     const int ring = int(v.size());
     for (int k = 0; k < n; ++k) {
       const double ang = 2 * M_PI * k / n;
       v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
+      if (uv) uv->emplace_back(radius * std::cos(ang) / tile, radius * std::sin(ang) / tile);
     }
     for (int k = 0; k < n; ++k) {
       const int a = ring + k, b = ring + (k + 1) % n;
@@ -204,42 +211,10 @@ void MjcfWorldBuilder::addCylinder(const std::string& name, const std::string& o
   if (look.type != Look::kTextured) return;
 
   // Visual prism with N sides (texture wraps around the circumference) and two cap fans.
-  const double tile = textureTileMeters(look.texture);
-  const int n = radius > 0.5 ? 24 : 12;
   std::vector<Vec3> v;
   std::vector<Vec2> uv;
   std::vector<std::array<int, 3>> f;
-  const double arc = 2 * M_PI * radius / n;
-  for (int k = 0; k <= n; ++k) {
-    const double ang = 2 * M_PI * k / n;
-    for (double z : {-half_height, half_height}) {
-      v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
-      uv.emplace_back(k * arc / tile, (z + half_height) / tile);
-    }
-  }
-  for (int k = 0; k < n; ++k) {
-    const int a = 2 * k, b = 2 * (k + 1);  // bottom vertices; +1 = top
-    f.push_back({a, b, b + 1});
-    f.push_back({a, b + 1, a + 1});
-  }
-  for (double z : {-half_height, half_height}) {
-    const int centre = int(v.size());
-    v.push_back(T * Vec3(0, 0, z));
-    uv.emplace_back(0, 0);
-    const int ring = int(v.size());
-    for (int k = 0; k < n; ++k) {
-      const double ang = 2 * M_PI * k / n;
-      v.push_back(T * Vec3(radius * std::cos(ang), radius * std::sin(ang), z));
-      uv.emplace_back(radius * std::cos(ang) / tile, radius * std::sin(ang) / tile);
-    }
-    for (int k = 0; k < n; ++k) {
-      const int a = ring + k, b = ring + (k + 1) % n;
-      if (z > 0)
-        f.push_back({centre, a, b});
-      else
-        f.push_back({centre, b, a});
-    }
-  }
+  cylinderSurface(T, radius, half_height, radius > 0.5 ? 24 : 12, v, f, &uv, textureTileMeters(look.texture));
   addMesh(name + "_vis", v, uv, f, mat);
 }
 

@@ -181,16 +181,25 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
 }
 
 SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets) {
+  // The scenario's spelling without `method.`: switches.ovde / switches.dbof, map.KEY.
   YAML::Node tree(YAML::NodeType::Map);
   for (const auto& kv : sets) {
-    if (kv.rfind("map.", 0) != 0) throw UsageError("--set: expected map.KEY=VALUE, got '" + kv + "'");
+    if (kv.rfind("map.ovde=", 0) == 0 || kv.rfind("map.dbof=", 0) == 0)
+      throw UsageError("--set " + kv.substr(0, kv.find('=')) + ": the switch is spelt switches." + kv.substr(4, 4) +
+                       " (method.switches." + kv.substr(4, 4) + " in a scenario)");
+    if (kv.rfind("map.", 0) != 0 && kv.rfind("switches.", 0) != 0)
+      throw UsageError("--set: expected map.KEY=VALUE or switches.ovde|dbof=VALUE, got '" + kv + "'");
     applySet(tree, kv);
   }
   return parseConfigNode<SphereMapConfig>("--set", tree, [](MapReader& r, SphereMapConfig& c) {
+    if (r.has("switches")) {
+      MapReader w = r.sub("switches");
+      w.read("ovde", c.ovde);
+      w.read("dbof", c.dbof);
+      w.finish();
+    }
     if (r.has("map")) {
       MapReader m = r.sub("map");
-      m.read("ovde", c.ovde);
-      m.read("dbof", c.dbof);
       readSphereMapKeys(m, c);
       m.finish();
     }

@@ -196,7 +196,8 @@ int runMapReplayCommand(int argc, char** argv) {
   ArgParser args("msbench map-replay",
                  "Run the MonoSpheres mapper over a recorded perception log (vio-eval --record) and\n"
                  "write map.ply, map_stats.csv, topdown.png and summary.json. --set map.KEY=VALUE\n"
-                 "(repeatable) changes mapper settings, e.g. --set map.dbof=false.");
+                 "(repeatable) changes mapper settings, spelt as in a scenario without `method.`:\n"
+                 "--set switches.dbof=false, --set map.r_max_m=8.");
   args.positional("LOG", "perception log")
       .option("out", "", "output directory", true)
       .option("map-rate-hz", "5", "map update rate")

@@ -94,13 +94,21 @@ TEST(PerceptionLog, RoundTripAndMapReplayIsDeterministic) {
   EXPECT_EQ(ply, readBytes(d / "r2" / "map.ply"));
   EXPECT_NE(ply.find("element vertex"), std::string::npos);
   EXPECT_EQ(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" + (d / "r3").string() +
-                         "' --set map.dbof=false > /dev/null")
+                         "' --set switches.dbof=false > /dev/null")
                             .c_str()),
             0);
   EXPECT_NE(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" + (d / "r4").string() +
                          "' --set map.colour=blue > /dev/null 2>&1")
                             .c_str()),
             0);
+  // One spelling: the scenario's method.switches.dbof is switches.dbof here; map.dbof is refused
+  // with the right spelling in the message.
+  const std::string err = (d / "r5.err").string();
+  EXPECT_NE(std::system(("'" + exe + "' map-replay '" + (d / "a.log").string() + "' --out '" + (d / "r5").string() +
+                         "' --set map.dbof=false 2> '" + err + "'")
+                            .c_str()),
+            0);
+  EXPECT_NE(readBytes(err).find("switches.dbof"), std::string::npos) << readBytes(err);
 }
 
 }  // namespace
