@@ -15,8 +15,7 @@ void GridExplorerConfig::validate(ConfigChecker& c) const {
   c.nonNegative("goal_ceiling_margin_m", goal_ceiling_margin_m);
   c.positive("replan_period_s", replan_period_s);
   c.positive("reach_distance_m", reach_distance_m);
-  c.nonNegative("check_ahead_m", check_ahead_m);
-  c.nonNegative("check_clearance_m", check_clearance_m);
+  validatePathCheck(c);
   validateTakeoff(c);
 }
 

@@ -36,18 +36,16 @@
 namespace msb {
 
 /// Grid explorer settings (reference values; see docs/deviations.md for the replanning rate).
-struct GridExplorerConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, start_forward_m
-  GridMapConfig map;                         ///< OctoMap insertion
-  GridPlannerConfig planner;                 ///< A* and clearance
-  double goal_period_s = 1.0;                ///< goals are (re)drawn at most this often
-  double goal_timeout_s = 20.0;              ///< a goal is abandoned after this long
-  double goal_square_m = 40.0;               ///< side of the square around the vehicle goals are drawn in
-  double goal_min_altitude_m = 1.0;          ///< goal heights: the box band clipped to this ...
-  double goal_ceiling_margin_m = 0.5;        ///< ... and to this far below the box top
-  double replan_period_s = 1.0;              ///< path re-planned this often (reference code: 1 s; paper: 0.2 s)
-  double reach_distance_m = 1.0;             ///< a goal this close counts as reached
-  double check_ahead_m = 5.0;                ///< predicted-path check length ...
-  double check_clearance_m = 1.0;            ///< ... and clearance from occupied cells
+struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and path-check keys
+  GridMapConfig map;                                          ///< OctoMap insertion
+  GridPlannerConfig planner;                                  ///< A* and clearance
+  double goal_period_s = 1.0;                                 ///< goals are (re)drawn at most this often
+  double goal_timeout_s = 20.0;                               ///< a goal is abandoned after this long
+  double goal_square_m = 40.0;         ///< side of the square around the vehicle goals are drawn in
+  double goal_min_altitude_m = 1.0;    ///< goal heights: the box band clipped to this ...
+  double goal_ceiling_margin_m = 0.5;  ///< ... and to this far below the box top
+  double replan_period_s = 1.0;        ///< path re-planned this often (reference code: 1 s; paper: 0.2 s)
+  double reach_distance_m = 1.0;       ///< a goal this close counts as reached
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -21,8 +21,7 @@ void StarDiscoveryConfig::validate(ConfigChecker& c) const {
   c.positive("replan_period_s", replan_period_s);
   c.positive("transit_timeout_s", transit_timeout_s);
   c.positive("retry_period_s", retry_period_s);
-  c.nonNegative("check_ahead_m", check_ahead_m);
-  c.nonNegative("check_clearance_m", check_clearance_m);
+  validatePathCheck(c);
   validateTakeoff(c);
 }
 

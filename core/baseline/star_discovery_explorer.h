@@ -36,8 +36,8 @@
 namespace msb {
 
 /// Star discovery settings (the paper's where it gives them).
-struct StarDiscoveryConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, start_forward_m
-  GridMapConfig map;                          ///< OctoMap insertion (as the grid baseline)
+struct StarDiscoveryConfig : TakeoffConfig, PathCheckConfig {  // take-off and path-check keys
+  GridMapConfig map;                                           ///< OctoMap insertion (as the grid baseline)
   /// Traversability and A*: occupied cells inflated by clearance_m; only known free cells are
   /// traversable, unknown ones are not inflated (the paper: "inflation of the occupied voxels").
   GridPlannerConfig planner{.clearance_m = 1.5, .unknown_is_occupied = true, .unknown_clearance_m = 0.0};
@@ -52,8 +52,6 @@ struct StarDiscoveryConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, s
   double replan_period_s = 1.0;        ///< transit paths re-planned this often
   double transit_timeout_s = 60.0;     ///< a target not reached by then is given up
   double retry_period_s = 5.0;         ///< with no reachable candidate: hold, look again after this
-  double check_ahead_m = 5.0;          ///< predicted-path check length ...
-  double check_clearance_m = 1.0;      ///< ... and clearance from occupied cells
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

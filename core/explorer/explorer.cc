@@ -20,6 +20,11 @@ void TakeoffConfig::validateTakeoff(ConfigChecker& c) const {
   c.nonNegative("start_forward_m", start_forward_m);
 }
 
+void PathCheckConfig::validatePathCheck(ConfigChecker& c) const {
+  c.nonNegative("check_ahead_m", check_ahead_m);
+  c.nonNegative("check_clearance_m", check_clearance_m);
+}
+
 TakeoffSequence::TakeoffSequence(const Pose& start, double altitude_m, double forward_m)
     : start_(start.translation()), yaw_(yawOf(start.linear())), altitude_m_(altitude_m), forward_m_(forward_m) {}
 

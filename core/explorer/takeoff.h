@@ -29,6 +29,24 @@ void takeoffKeys(Keys& k, TakeoffConfig& c) {
   k.field("start_forward_m", c.start_forward_m);
 }
 
+/// The predicted-path check every method flies with: stop and re-plan when the first
+/// `check_ahead_m` of the path sent pass within `check_clearance_m` of a mapped obstacle. Shared
+/// by the methods' configs (they derive from it, so the keys stay where they are in a scenario).
+struct PathCheckConfig {
+  double check_ahead_m = 5.0;      ///< predicted-path check length ...
+  double check_clearance_m = 1.0;  ///< ... and clearance from mapped obstacles
+
+  /// Records invalid fields (a derived config calls it from its own validate()).
+  void validatePathCheck(ConfigChecker& c) const;
+};
+
+/// The path-check keys for a method's keys function.
+template <class Keys>
+void pathCheckKeys(Keys& k, PathCheckConfig& c) {
+  k.field("check_ahead_m", c.check_ahead_m);
+  k.field("check_clearance_m", c.check_clearance_m);
+}
+
 /// Take-off phases, stepped once per planning step.
 class TakeoffSequence {
  public:

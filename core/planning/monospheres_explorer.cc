@@ -54,8 +54,7 @@ void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
   c.inRange("max_goal_candidates", max_goal_candidates, 1, 10000);
   c.positive("carrot_distance_m", carrot_distance_m);
   c.positive("replan_period_s", replan_period_s);
-  c.nonNegative("check_ahead_m", check_ahead_m);
-  c.nonNegative("check_clearance_m", check_clearance_m);
+  validatePathCheck(c);
   c.inRange("max_blocked_steps", max_blocked_steps, 1, 10000);
   c.inRange("max_route_repairs", max_route_repairs, 1, 1000);
   c.positive("blocked_edge_timeout_s", blocked_edge_timeout_s);

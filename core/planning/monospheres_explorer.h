@@ -52,42 +52,40 @@
 namespace msb {
 
 /// Planner parameters (docs/architecture.md §8 defaults).
-struct MonoSpheresPlannerConfig : TakeoffConfig {  // take-off: takeoff_altitude_m, start_forward_m
-  bool fff = true;                                 ///< forced forward flight
-  double fff_turn_rate_rad_per_m = 0.314;          ///< heading change allowed per metre before a viewpoint
-  double align_before_route_deg = 90.0;            ///< FFF: turn in place first if the route starts this far off
-  ViewpointConfig viewpoints;                      ///< sampling, value, VPB
-  SafetyCostConfig safety;                         ///< A* edge cost
-  double start_max_outside_m = 1.5;                ///< start sphere may be this far outside
-  double local_radius_m = 15.0;                    ///< local goals lie within this distance
-  int local_misses_before_global = 3;              ///< steps without a local goal before searching all
-  int max_goal_candidates = 10;                    ///< FFF feasibility checks per goal choice
-  double carrot_distance_m = 15.0;                 ///< path sent up to this far along the route
-  double replan_period_s = 0.4;                    ///< how often the path is re-sent
-  double check_ahead_m = 5.0;                      ///< predicted-trajectory check length ...
-  double check_clearance_m = 1.0;                  ///< ... and clearance from obstacle points
-  bool allow_moving_away = true;                   ///< true: a sample inside the clearance passes if it is farther
-                                                   ///< from that point than the vehicle (the "approach rule");
-                                                   ///< false: any point inside the clearance blocks (the design)
-  int max_blocked_steps = 5;                       ///< consecutive blocked steps fail the goal
-  int max_route_repairs = 8;                       ///< searches per step, each blocking one too-close edge
-  double blocked_edge_timeout_s = 30.0;  ///< a graph edge found too close to obstacles stays blocked this long
-  double escape_margin_m = 0.3;          ///< a blocked vehicle inside a clearance backs out this far beyond it
-  int bridge_below_reachable = 10;       ///< without a goal and fewer reachable spheres than this ...
-  double bridge_range_m = 15.0;          ///< ... fly straight to the nearest other sphere within this range
-  double bridge_after_idle_s = 5.0;      ///< ... or after this long without any goal
-  double link_gap_m = 4.0;               ///< parts are linked across gaps up to this wide ...
-  double link_trail_radius_m = 2.0;      ///< ... or along the vehicle's path (within this) ...
-  double link_trail_max_m = 25.0;        ///< ... over at most this much of it
-  double trail_spacing_m = 1.0;          ///< the path is remembered every this far
-  int link_tests_per_pair = 4;           ///< candidate links tested per pair of parts
-  double return_range_m = 6.0;           ///< return to free space: spheres this far outside
-  double shortcut_depth_m = 0.3;         ///< shortcut samples must lie this deep inside a sphere
-  double reach_distance_m = 1.0;         ///< goal reached within ...
-  double reach_angle_deg = 90.0;         ///< ... and this heading difference
-  double no_progress_timeout_s = 10.0;   ///< goal failed without 0.5 m progress for this long
-  double idle_turn_deg = 90.0;           ///< without goals, turn in place by this much ...
-  double idle_turn_period_s = 3.0;       ///< ... this often
+struct MonoSpheresPlannerConfig : TakeoffConfig, PathCheckConfig {  // take-off and path-check keys
+  bool fff = true;                                                  ///< forced forward flight
+  double fff_turn_rate_rad_per_m = 0.314;  ///< heading change allowed per metre before a viewpoint
+  double align_before_route_deg = 90.0;    ///< FFF: turn in place first if the route starts this far off
+  ViewpointConfig viewpoints;              ///< sampling, value, VPB
+  SafetyCostConfig safety;                 ///< A* edge cost
+  double start_max_outside_m = 1.5;        ///< start sphere may be this far outside
+  double local_radius_m = 15.0;            ///< local goals lie within this distance
+  int local_misses_before_global = 3;      ///< steps without a local goal before searching all
+  int max_goal_candidates = 10;            ///< FFF feasibility checks per goal choice
+  double carrot_distance_m = 15.0;         ///< path sent up to this far along the route
+  double replan_period_s = 0.4;            ///< how often the path is re-sent
+  bool allow_moving_away = true;           ///< true: a sample inside the clearance passes if it is farther
+                                           ///< from that point than the vehicle (the "approach rule");
+                                           ///< false: any point inside the clearance blocks (the design)
+  int max_blocked_steps = 5;               ///< consecutive blocked steps fail the goal
+  int max_route_repairs = 8;               ///< searches per step, each blocking one too-close edge
+  double blocked_edge_timeout_s = 30.0;    ///< a graph edge found too close to obstacles stays blocked this long
+  double escape_margin_m = 0.3;            ///< a blocked vehicle inside a clearance backs out this far beyond it
+  int bridge_below_reachable = 10;         ///< without a goal and fewer reachable spheres than this ...
+  double bridge_range_m = 15.0;            ///< ... fly straight to the nearest other sphere within this range
+  double bridge_after_idle_s = 5.0;        ///< ... or after this long without any goal
+  double link_gap_m = 4.0;                 ///< parts are linked across gaps up to this wide ...
+  double link_trail_radius_m = 2.0;        ///< ... or along the vehicle's path (within this) ...
+  double link_trail_max_m = 25.0;          ///< ... over at most this much of it
+  double trail_spacing_m = 1.0;            ///< the path is remembered every this far
+  int link_tests_per_pair = 4;             ///< candidate links tested per pair of parts
+  double return_range_m = 6.0;             ///< return to free space: spheres this far outside
+  double shortcut_depth_m = 0.3;           ///< shortcut samples must lie this deep inside a sphere
+  double reach_distance_m = 1.0;           ///< goal reached within ...
+  double reach_angle_deg = 90.0;           ///< ... and this heading difference
+  double no_progress_timeout_s = 10.0;     ///< goal failed without 0.5 m progress for this long
+  double idle_turn_deg = 90.0;             ///< without goals, turn in place by this much ...
+  double idle_turn_period_s = 3.0;         ///< ... this often
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -90,8 +90,7 @@ void plannerKeys(Keys r, MonoSpheresPlannerConfig& c) {
   r.field("max_goal_candidates", c.max_goal_candidates);
   r.field("carrot_distance_m", c.carrot_distance_m);
   r.field("replan_period_s", c.replan_period_s);
-  r.field("check_ahead_m", c.check_ahead_m);
-  r.field("check_clearance_m", c.check_clearance_m);
+  pathCheckKeys(r, c);
   r.field("allow_moving_away", c.allow_moving_away);
   r.field("max_blocked_steps", c.max_blocked_steps);
   r.field("max_route_repairs", c.max_route_repairs);
@@ -187,8 +186,7 @@ void starDiscoveryKeys(Keys& m, StarDiscoveryConfig& c) {
   m.field("replan_period_s", c.replan_period_s);
   m.field("transit_timeout_s", c.transit_timeout_s);
   m.field("retry_period_s", c.retry_period_s);
-  m.field("check_ahead_m", c.check_ahead_m);
-  m.field("check_clearance_m", c.check_clearance_m);
+  pathCheckKeys(m, c);
   takeoffKeys(m, c);
 }
 
@@ -203,8 +201,7 @@ void gridRandomKeys(Keys& m, GridExplorerConfig& c) {
   m.field("goal_ceiling_margin_m", c.goal_ceiling_margin_m);
   m.field("replan_period_s", c.replan_period_s);
   m.field("reach_distance_m", c.reach_distance_m);
-  m.field("check_ahead_m", c.check_ahead_m);
-  m.field("check_clearance_m", c.check_clearance_m);
+  pathCheckKeys(m, c);
   takeoffKeys(m, c);
 }
 

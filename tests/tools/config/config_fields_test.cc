@@ -92,19 +92,21 @@ YAML::Node effectiveOf(const std::string& type) {
 
 TEST(ConfigFields, TheMethodSectionsWriteEveryField) {
   // The grid baseline: its map and planner sections, and its own keys beside the take-off's two
-  // (a base class counts as one field) and the two sections.
+  // and the path check's two (each base class counts as one field) and the two sections.
   const YAML::Node g = effectiveOf("grid_random");
   EXPECT_EQ(keysAt(g, "method.map"), fieldCount<GridMapConfig>());
   EXPECT_EQ(keysAt(g, "method.planner"), fieldCount<GridPlannerConfig>());
-  EXPECT_EQ(keysAt(g, "method") - 1 /* type */ - 2 /* take-off */ + 1 /* base */, fieldCount<GridExplorerConfig>());
+  EXPECT_EQ(keysAt(g, "method") - 1 /* type */ - 2 /* take-off */ - 2 /* path check */ + 2 /* bases */,
+            fieldCount<GridExplorerConfig>());
   // MonoSpheres: the mapper's OVDE parameters, and the viewpoint section.
   const YAML::Node m = effectiveOf("monospheres");
   EXPECT_EQ(keysAt(m, "method.map.ovde_params"), fieldCount<OpenAreaDepthConfig>());
   // The mapper: its section plus the two switches written under method.switches (ovde, dbof).
   EXPECT_EQ(keysAt(m, "method.map") + 2, fieldCount<SphereMapConfig>());
-  // The planner: its section plus fff (under method.switches), its take-off keys counted as the
-  // one base; viewpoints plus vpb (a switch); safety plus r_min_m, which is method.map.r_min_m.
-  EXPECT_EQ(keysAt(m, "method.planner") + 1 - 2 + 1, fieldCount<MonoSpheresPlannerConfig>());
+  // The planner: its section plus fff (under method.switches), its take-off and path-check keys
+  // counted as one base each; viewpoints plus vpb (a switch); safety plus r_min_m, which is
+  // method.map.r_min_m.
+  EXPECT_EQ(keysAt(m, "method.planner") + 1 - 2 - 2 + 2, fieldCount<MonoSpheresPlannerConfig>());
   EXPECT_EQ(keysAt(m, "method.planner.viewpoints") + 1, fieldCount<ViewpointConfig>());
   EXPECT_EQ(keysAt(m, "method.planner.safety") + 1, fieldCount<SafetyCostConfig>());
 }
