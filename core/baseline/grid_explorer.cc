@@ -99,7 +99,7 @@ bool GridExplorer::checkGoal(const VehicleState& s) {
     if (need_goal) setGoal(s.t_s, drawGoal(p));
     return false;
   }
-  const std::optional<std::vector<Vec3>> choice = chooser_(GoalRequest{s.t_s, p, need_goal});
+  const std::optional<std::vector<Vec3>> choice = chooser_(GoalRequest{s.t_s, p, need_goal, &map_});
   const bool moving = path_sent_ && !s.path_finished;
   if (!choice) {
     if (need_goal) setGoal(s.t_s, std::nullopt);

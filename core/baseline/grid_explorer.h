@@ -56,6 +56,7 @@ struct GoalRequest {
   double t_s = 0.0;
   Vec3 position = Vec3::Zero();  ///< the vehicle
   bool needs_goal = true;        ///< the baseline would draw a new goal now (none, reached, idle, timed out)
+  const GridMap* map = nullptr;  ///< the explorer's map (valid during the call)
 };
 
 /// A goal chooser replacing the random draw (the goal-only helper for Python methods,

@@ -276,9 +276,28 @@ MethodEntry methodEntry(const char* type, const char* summary, KeysFn keys, std:
 
 void readSphereMapKeys(MapReader& r, SphereMapConfig& c) { sphereMapKeys(r, c); }
 
+namespace {
+
+// The methods that take an outside goal chooser: the grid its goals, MonoSpheres its viewpoints.
+std::vector<MethodEntry> withGoalChooserHooks(std::vector<MethodEntry> table) {
+  for (MethodEntry& e : table) {
+    if (std::string(e.type) == "grid_random")
+      e.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
+        dynamic_cast<GridExplorer&>(x).setGoalChooser(c.goals);
+      };
+    if (std::string(e.type) == kMonoSpheresType)
+      e.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
+        dynamic_cast<MonoSpheresExplorer&>(x).setViewpointChooser(c.viewpoints);
+      };
+  }
+  return table;
+}
+
+}  // namespace
+
 const std::vector<MethodEntry>& methodTable() {
   // One entry per method: explorer and config types, `method.type`, summary, keys, Table I rows.
-  static const std::vector<MethodEntry> table = {
+  static const std::vector<MethodEntry> table = withGoalChooserHooks({
       // MonoSpheres paper, Table I: the full method in the four worlds and its urban ablations.
       methodEntry<MonoSpheresExplorer, MonoSpheresConfig>(
           kMonoSpheresType, "MonoSpheres: sphere map, frontier viewpoints, sphere-graph A* (the paper's method)",
@@ -311,7 +330,7 @@ const std::vector<MethodEntry>& methodTable() {
       methodEntry<PythonMethodStub, PythonMethodConfig>(
           kPythonMethodType, "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)",
           [](auto& k, PythonMethodConfig& c) { pythonMethodKeys(k, c); }, {}),
-  };
+  });
   return table;
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/baseline/grid_explorer.h"
 #include "tools/config/yaml_reader.h"
 #include "tools/config/yaml_writer.h"
 #include "tools/loop/methods.h"
@@ -29,6 +30,12 @@ struct PaperRow {
   int collisions = -1;  ///< runs ended by a collision (-1: the paper does not say)
 };
 
+/// Outside goal choosers (the goal-only helper, docs/python.md), one per kind a method can take.
+struct GoalChoosers {
+  GoalChooser goals;            ///< grid_random: the next goal(s) at a goal check
+  ViewpointChooser viewpoints;  ///< monospheres: the viewpoint to fly to
+};
+
 /// One registered method.
 struct MethodEntry {
   const char* type;                                     ///< `method.type`
@@ -37,6 +44,9 @@ struct MethodEntry {
   std::function<void(const std::any& config, MapWriter& method)> write;  ///< writes every key of its config
   std::vector<PaperRow> paper_rows;            ///< the Table I rows it answers to (none: not in the paper)
   std::vector<std::string> progress_counters;  ///< the counters the progress line shows, in order
+  /// Gives `explorer` (one this entry made) the chooser of `choosers` that fits it; null: the
+  /// method takes no outside goal chooser.
+  std::function<void(Explorer& explorer, const GoalChoosers& choosers)> attach_goal_chooser;
 };
 
 /// All methods, in the order they are listed.

@@ -1,0 +1,266 @@
+// Mission: a scenario's mission stepped or run from Python, and the files it writes.
+#include "tools/python/binding.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "core/geometry/world_truth.h"
+#include "tools/config/method_table.h"
+#include "tools/config/world_registry.h"
+#include "tools/loop/mission.h"
+#include "tools/results/mission_outputs.h"
+#include "tools/results/output_files.h"
+#include "tools/results/provenance.h"
+
+namespace msb {
+namespace binding {
+
+namespace {
+
+/// A mission of a scenario, stepped from Python.
+class PyMission {
+ public:
+  // `method`: None (the scenario's method) or a factory called with a Context, returning an
+  // object with the Python method protocol.
+  PyMission(const PyScenario& s, py::object method, py::object goals)
+      : scenario_(s), world_(std::make_unique<MissionWorld>()) {
+    *world_ = prepareMissionWorld(scenario_.file, scenario_.spec);
+    const WorldTruth* truth = world_->truth ? &*world_->truth : nullptr;
+    if (!goals.is_none()) {
+      buildWithGoalChooser(std::move(method), std::move(goals), truth);
+      return;
+    }
+    // A scenario naming a Python method (method.type: python): its factory, from msbench.methods.
+    const bool from_scenario = method.is_none();
+    if (method.is_none() && scenario_.spec.method.type == kPythonMethodType) {
+      const auto& c = std::any_cast<const PythonMethodConfig&>(scenario_.spec.method.config);
+      method = py::module_::import("msbench.methods")
+                   .attr("factory_of")(c.entry, c.path, yamlToPython(YAML::Load(c.params_yaml)), scenario_.file);
+    }
+    if (method.is_none()) {
+      mission_ = buildNamingFile(scenario_.file,
+                                 [&] { return std::make_unique<Mission>(scenario_.spec, world_->box, truth); });
+      return;
+    }
+    if (!from_scenario) recordInProcess(s, method, /*goal_chooser=*/false);
+    const ExplorerContext ctx = explorerContext(scenario_.spec, world_->box);
+    MethodContext pc;
+    pc.box_min = {ctx.exploration_box.min.x(), ctx.exploration_box.min.y(), ctx.exploration_box.min.z()};
+    pc.box_max = {ctx.exploration_box.max.x(), ctx.exploration_box.max.y(), ctx.exploration_box.max.z()};
+    pc.start_position = {ctx.start.translation().x(), ctx.start.translation().y(), ctx.start.translation().z()};
+    pc.start_yaw_rad = yawOf(ctx.start.linear());
+    pc.seed = ctx.seed;
+    pc.start_pose = readOnly(poseArray(ctx.start));
+    std::unique_ptr<Explorer> explorer = makePythonExplorer(method(pc));
+    mission_ = buildNamingFile(scenario_.file, [&] {
+      return std::make_unique<Mission>(scenario_.spec, world_->box, truth, std::move(explorer));
+    });
+  }
+
+  bool running() const { return !error_ && !interrupted_ && mission_->running(); }
+
+  /// Physics ticks per simulated second.
+  int64_t physicsHz() const { return mission_->physicsHz(); }
+
+  /// The coverage area so far (m², the metric's last evaluation).
+  double areaM2() const { return mission_->areaM2(); }
+
+  // Steps up to n ticks (fewer if the run ends), the GIL released.
+  PyTick step(int64_t n) {
+    if (n < 1) throw py::value_error("step(n): n must be >= 1");
+    std::optional<SlamPointsFrame> points;
+    bool new_frame = false;
+    guarded([&] {
+      py::gil_scoped_release release;
+      for (int64_t i = 0; i < n && mission_->running(); ++i) {
+        const TickRecord& r = mission_->step();
+        last_tick_ = r.tick;
+        last_t_s_ = r.t_s;
+        if (r.frame) new_frame = true;
+        if (r.points) points = *r.points;
+      }
+    });
+    return record(new_frame, points);
+  }
+
+  // Runs to the end, checking for Ctrl-C between simulated seconds; a progress line on a terminal.
+  void run(bool progress) {
+    const bool tty = progress && isatty(STDERR_FILENO);
+    const int64_t chunk = mission_->physicsHz();
+    int64_t next_progress = 10 * chunk;
+    while (running()) {
+      guarded([&] {
+        py::gil_scoped_release release;
+        for (int64_t i = 0; i < chunk && mission_->running(); ++i) last_tick_ = mission_->step().tick;
+      });
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // KeyboardInterrupt
+      if (tty && last_tick_ >= next_progress) {
+        next_progress += 10 * chunk;
+        std::fprintf(stderr, "\rmsbench %s: t = %.0f / %.0f s, A = %.0f m²   ", scenario_.spec.name.c_str(),
+                     double(last_tick_) / double(chunk), scenario_.spec.flight.duration_s, mission_->areaM2());
+      }
+    }
+    if (tty) std::fprintf(stderr, "\n");
+  }
+
+  // The metrics (metrics.json's content); finishes the mission on first call.
+  py::object result() { return jsonToPython(metrics()); }
+
+  std::string hash() { return hexHash(finished().run_hash); }
+
+  // Writes the files `msbench run` writes into `dir` (staged: whole or not at all); after a
+  // method error, config.yaml and the error record.
+  std::string write(const std::string& dir, bool overwrite) {
+    if (interrupted_) throw std::runtime_error("the mission was interrupted: nothing to write");
+    StagedOutputDir out(dir, overwrite);
+    writeFileAtomic(out.staging() / "config.yaml",
+                    configYamlText(scenario_.file, !scenario_.sets.empty(), scenario_.effective_yaml,
+                                   scenario_.spec.method.not_replayable));
+    if (error_) {
+      nlohmann::json j = errorMetrics(scenario_.spec, *error_);
+      j["error_tick"] = last_tick_;
+      writeFileAtomic(out.staging() / "metrics.json", j.dump(2) + "\n");
+    } else {
+      writeMissionOutputs(out.staging(), scenario_.spec, finished(), world_->truth ? &*world_->truth : nullptr);
+    }
+    out.commit();
+    return out.finalDir().string();
+  }
+
+  // The run's status word: running, error, or the loop's (completed, collided, ...).
+  std::string status() {
+    if (interrupted_) return "interrupted";
+    if (error_) return runStatusName(RunStatus::kError);
+    if (mission_->running()) return "running";
+    return runStatusName(finished().flight.status);
+  }
+
+ private:
+  // Runs `f`; a method error (or any failure of the loop) ends the run with status error.
+  template <class F>
+  void guarded(F&& f) {
+    if (interrupted_) throw std::runtime_error("the mission was interrupted: it cannot go on or be written");
+    if (error_) throw std::runtime_error("the mission ended with an error: " + *error_);
+    try {
+      f();
+    } catch (py::error_already_set& e) {
+      // Only a KeyboardInterrupt reaches here as a Python error (method errors are MethodError).
+      interrupted_ = true;
+      throw;
+    } catch (const std::exception& e) {
+      error_ = e.what();
+      throw;
+    }
+  }
+
+  // The scenario's grid explorer with its goals from `goals` (the goal-only helper).
+  void buildWithGoalChooser(py::object method, py::object goals, const WorldTruth* truth) {
+    if (!method.is_none()) throw py::value_error("Mission: give a method or goals, not both");
+    recordInProcess(scenario_, goals, /*goal_chooser=*/true);
+    std::unique_ptr<Explorer> explorer = scenario_.spec.method.make(FisheyeCamera(scenario_.spec.flight.camera),
+                                                                    explorerContext(scenario_.spec, world_->box));
+    attachGoalChooser(*explorer, scenario_.spec.method.type, std::move(goals), scenario_.file);
+    mission_ = buildNamingFile(scenario_.file, [&] {
+      return std::make_unique<Mission>(scenario_.spec, world_->box, truth, std::move(explorer));
+    });
+  }
+
+  // Records what flies instead of the scenario's method: an in-process factory becomes a Python
+  // method named by its module and name (config.yaml replays it when that name imports back to
+  // it); a goal chooser is named beside the scenario's method, and such a run is never
+  // replayable (a scenario cannot name a chooser). The effective YAML is rebuilt from the
+  // scenario as loaded (`original`: before the world filled in the start).
+  void recordInProcess(const PyScenario& original, const py::object& obj, bool goal_chooser) {
+    const py::tuple rec = py::module_::import("msbench.methods").attr("record_of")(obj);
+    const std::string entry = rec[0].cast<std::string>(), why = rec[2].cast<std::string>();
+    ScenarioSpec spec = original.spec;
+    if (goal_chooser) {
+      spec.method.goal_chooser = entry;
+      spec.method.not_replayable = "the goals came from the in-process goal chooser " + entry;
+    } else {
+      PythonMethodConfig c;
+      c.entry = entry;
+      c.path = rec[1].cast<std::string>();
+      spec.method.type = kPythonMethodType;
+      spec.method.config = c;
+      spec.method.switches.clear();
+      spec.method.not_replayable = why;
+    }
+    scenario_.effective_yaml = effectiveScenarioYaml(spec);
+    scenario_.spec.method.type = spec.method.type;
+    scenario_.spec.method.config = spec.method.config;
+    scenario_.spec.method.switches = spec.method.switches;
+    scenario_.spec.method.not_replayable = spec.method.not_replayable;
+    scenario_.spec.method.goal_chooser = spec.method.goal_chooser;
+  }
+
+  const MissionResult& finished() {
+    if (error_) throw std::runtime_error("the mission ended with an error (write() records it): " + *error_);
+    if (!result_) {
+      if (mission_->running())
+        throw std::runtime_error("the mission is still running: step() or run() it to its end first");
+      result_ = mission_->finish();
+    }
+    return *result_;
+  }
+
+  nlohmann::json metrics() {
+    const MissionResult& r = finished();
+    return missionMetrics(scenario_.spec, r, world_->truth ? &*world_->truth : nullptr);
+  }
+
+  PyTick record(bool new_frame, const std::optional<SlamPointsFrame>& points) const {
+    PyTick t;
+    t.tick = last_tick_;
+    t.t_s = last_t_s_;
+    t.running = mission_->running();
+    const ClosedLoop& loop = mission_->loop();
+    if (new_frame) {
+      const std::shared_ptr<const CameraFrame> f = loop.sharedFrame();
+      t.frame = frameView(f);
+      t.frame_pose = readOnly(poseArray(f->T_W_C));
+      t.frame_tick = py::int_(f->tick);
+    }
+    if (points) fillPoints(t, *points);
+    t.true_pose = readOnly(poseArray(loop.groundTruth().T_W_B));
+    t.est_pose = readOnly(poseArray(loop.estimate().T_W_B));
+    t.true_velocity = readOnly(vec3Array(loop.groundTruth().v_W_mps));
+    t.est_velocity = readOnly(vec3Array(loop.estimate().v_W_mps));
+    return t;
+  }
+
+  PyScenario scenario_;
+  std::unique_ptr<MissionWorld> world_;  // the truth the mission points into: never moves
+  std::unique_ptr<Mission> mission_;
+  std::optional<MissionResult> result_;
+  std::optional<std::string> error_;  // the run ended with an error (a Python method raised)
+  bool interrupted_ = false;          // a KeyboardInterrupt ended it: nothing to write
+  int64_t last_tick_ = 0;
+  double last_t_s_ = 0.0;
+};
+
+}  // namespace
+
+void bindMission(py::module_& m) {
+  py::class_<PyMission>(m, "Mission", "A mission of a scenario, stepped or run from Python.")
+      .def(py::init<const PyScenario&, py::object, py::object>(), py::arg("scenario"), py::arg("method") = py::none(),
+           py::arg("goals") = py::none(),
+           "method: None (the scenario's) or a factory(Context) returning a Python method; goals: a "
+           "goal chooser for the scenario's method (the goal-only helper): grid_random: "
+           "goals(GoalRequest) -> None | (x, y, z) | [(x, y, z), ...]; monospheres: "
+           "goals(ViewpointRequest) -> None | 0 | viewpoint id")
+      .def("area_m2", &PyMission::areaM2, "The coverage area so far (m²).")
+      .def_property_readonly("physics_hz", &PyMission::physicsHz, "physics ticks per simulated second")
+      .def_property_readonly("status", &PyMission::status)
+      .def_property_readonly("running", &PyMission::running)
+      .def("step", &PyMission::step, py::arg("n") = 1, "Steps up to n physics ticks; returns a TickRecord.")
+      .def("run", &PyMission::run, py::arg("progress") = true, "Runs to the end (Ctrl-C raises KeyboardInterrupt).")
+      .def("result", &PyMission::result, "metrics.json's content as a dict (the run must have ended).")
+      .def("hash", &PyMission::hash, "The determinism hash (as msbench run prints it).")
+      .def("write", &PyMission::write, py::arg("dir"), py::arg("overwrite") = false,
+           "Writes the files msbench run writes into dir; returns its path.");
+}
+
+}  // namespace binding
+}  // namespace msb
