@@ -75,22 +75,26 @@ size_t MissionCoverage::trueFrameExploredExplorableColumns() const {
 }
 
 void MissionCoverage::sample(double t_s, double distance_m, const std::vector<FreeSpaceElement>& free_space) {
-  // True-frame columns: each element keeps the correction of the moment it was first seen.
-  std::vector<PlacedElement> placed;
-  placed.reserve(free_space.size());
+  // True-frame columns: each element keeps the correction of the moment it was first seen; an
+  // element is placed (and its columns marked) when new or changed, and verified until settled.
   for (const auto& d : free_space) {
-    const Pose& T = first_seen_.emplace(d.id, T_true_est_).first->second;
-    PlacedElement e;
-    e.centre = T * d.centre;
-    e.radius = d.radius;
-    e.footprint = d.footprint;
-    e.yaw_rad = yawOf(T.linear());
-    const double key[6] = {double(d.id), e.centre.x(), e.centre.y(), e.centre.z(), e.radius, e.yaw_rad};
-    e.key = fnv1a64(key, sizeof(key), uint64_t(d.footprint));
-    columns_gt_.markPlaced(e);
-    placed.push_back(e);
+    auto [it, fresh] = elements_.try_emplace(d.id);
+    ElementState& st = it->second;
+    if (fresh) st.T_true_est = T_true_est_;
+    if (fresh || st.centre != d.centre || st.radius != d.radius || st.footprint != d.footprint) {
+      st.centre = d.centre, st.radius = d.radius, st.footprint = d.footprint;
+      PlacedElement& e = st.placed;
+      e.centre = st.T_true_est * d.centre;
+      e.radius = d.radius;
+      e.footprint = d.footprint;
+      e.yaw_rad = yawOf(st.T_true_est.linear());
+      const double key[6] = {double(d.id), e.centre.x(), e.centre.y(), e.centre.z(), e.radius, e.yaw_rad};
+      e.key = fnv1a64(key, sizeof(key), uint64_t(d.footprint));
+      columns_gt_.markPlaced(e);
+      st.settled = false;
+    }
+    if (verified_ && !st.settled) st.settled = verified_->markElement(st.placed);
   }
-  if (verified_) verified_->mark(placed);
   const double cell = columns_.cellM();
   CoverageSample c;
   c.t_s = t_s;

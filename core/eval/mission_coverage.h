@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
@@ -80,8 +81,19 @@ class MissionCoverage {
   Aabb box_;
   std::set<ColumnIndex> box_explorable_;
   ColumnCoverage columns_, columns_gt_;
-  // Estimate → truth correction per free-space element id (looked up only, never iterated).
-  std::unordered_map<uint64_t, Pose> first_seen_;
+  // What the metric knows of each free-space element id (looked up only, never iterated): the
+  // estimate → truth correction of its first sight, its geometry as last seen, its placement in
+  // the true frame, and whether verification has nothing left to decide for it. An element seen
+  // again unchanged costs one lookup.
+  struct ElementState {
+    Pose T_true_est = Pose::Identity();
+    Vec3 centre = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    double radius = -1.0;
+    FreeSpaceElement::Footprint footprint = FreeSpaceElement::Footprint::kDisk;
+    PlacedElement placed;
+    bool settled = false;
+  };
+  std::unordered_map<uint64_t, ElementState> elements_;
   Pose T_true_est_ = Pose::Identity();
   std::vector<CoverageSample> samples_;
   std::unique_ptr<VerifiedCoverage> verified_;

@@ -106,20 +106,27 @@ bool VerifiedCoverage::partIsFree(const PlacedElement& e, const ColumnIndex& c) 
 }
 
 int VerifiedCoverage::mark(const std::vector<PlacedElement>& elements) {
-  int added = 0;
-  for (const PlacedElement& e : elements) {
-    for (const ColumnIndex& c : columnsUnder(e, config_.cell_m)) {
-      if (verified_.columns().count(c) || !seen_.count(c)) continue;
-      const auto key = std::make_tuple(e.key, c.first, c.second);
-      if (not_free_.count(key)) continue;
-      if (!partIsFree(e, c)) {
-        not_free_.insert(key);
-        continue;
-      }
-      added += verified_.markColumn(c);
+  const size_t before = verified_.count();
+  for (const PlacedElement& e : elements) markElement(e);
+  return int(verified_.count() - before);
+}
+
+bool VerifiedCoverage::markElement(const PlacedElement& e) {
+  bool settled = true;  // false: a covered column not yet seen, look again at the next sample
+  for (const ColumnIndex& c : columnsUnder(e, config_.cell_m)) {
+    if (verified_.columns().count(c)) continue;
+    if (!seen_.count(c)) {
+      settled = false;
+      continue;
     }
+    const auto key = std::make_tuple(e.key, c.first, c.second);
+    if (not_free_.count(key)) continue;
+    if (partIsFree(e, c))
+      verified_.markColumn(c);
+    else
+      not_free_.insert(key);
   }
-  return added;
+  return settled;
 }
 
 }  // namespace msb

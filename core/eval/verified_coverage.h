@@ -45,6 +45,9 @@ class VerifiedCoverage {
   int look(const Pose& T_W_C);
   /// Verifies the columns the elements cover (conditions a–c). Returns how many were new.
   int mark(const std::vector<PlacedElement>& elements);
+  /// Verifies the columns one element covers; returns true when nothing is left to decide for it
+  /// (each column it covers is verified or not free for it), false while one is not yet seen.
+  bool markElement(const PlacedElement& e);
   /// Marks a column as seen (for tests of mark() without a camera).
   void markSeenForTest(const ColumnIndex& c) { seen_.insert(c); }
 
