@@ -13,16 +13,6 @@ namespace msb {
 
 namespace {
 
-// True if `ok` holds at every sample of the segment a→b: n + 1 evenly spaced points (ends
-// included), n = ceil(|b − a| / step) ≥ 1.
-template <class Pred>
-bool everySample(const Vec3& a, const Vec3& b, double step, Pred ok) {
-  const int n = std::max(1, int(std::ceil((b - a).norm() / step)));
-  for (int i = 0; i <= n; ++i)
-    if (!ok(Vec3(a + (double(i) / n) * (b - a)))) return false;
-  return true;
-}
-
 // Cuts a waypoint list at arc length `max_len` from `from` (the cut point keeps no heading
 // unless the cut falls exactly on a waypoint).
 std::vector<Waypoint> cutAt(const Vec3& from, const std::vector<Waypoint>& w, double max_len) {
@@ -96,6 +86,8 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
     : config_(withSharedMinRadius(checkValid(config))),
       context_(context),
       map_(config.map, camera, context.seed),
+      clearance_(map_, ClearanceConfig{config_.planner.check_ahead_m, config_.planner.check_clearance_m,
+                                       config_.planner.allow_moving_away, config_.planner.escape_margin_m}),
       viewpoints_(config.planner.viewpoints, context.seed),
       takeoff_(context.start, config.planner) {}
 
@@ -119,60 +111,6 @@ bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
     return !map_.spheresNear(x, -config_.planner.shortcut_depth_m).empty() &&
            !map_.anyObstacleNear(x, config_.planner.check_clearance_m);
   });
-}
-
-bool MonoSpheresExplorer::approachesPoint(const Vec3& x, const Vec3& here) const {
-  for (uint64_t id : map_.obstaclesNear(x, config_.planner.check_clearance_m)) {
-    const Vec3& o = map_.obstacles().at(id).position;
-    if ((x - o).norm() < (here - o).norm() - 1e-6) return true;
-  }
-  return false;
-}
-
-bool MonoSpheresExplorer::tooClose(const Vec3& x, const Vec3& here) const {
-  if (!config_.planner.allow_moving_away) return map_.anyObstacleNear(x, config_.planner.check_clearance_m);
-  return approachesPoint(x, here);
-}
-
-bool MonoSpheresExplorer::segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const {
-  return everySample(a, b, 0.3, [&](const Vec3& x) { return !tooClose(x, here); });
-}
-
-std::optional<Vec3> MonoSpheresExplorer::clearanceEscape(const Vec3& here) const {
-  // Away from the points within the clearance, each weighted by how deep inside it is, far
-  // enough to leave the nearest one's clearance (plus a margin); the segment may not approach
-  // any point it passes (the approach rule, whatever allow_moving_away says: escaping happens
-  // inside a clearance by definition).
-  const double clearance = config_.planner.check_clearance_m;
-  const std::vector<uint64_t> near = map_.obstaclesNear(here, clearance);
-  if (near.empty()) return std::nullopt;
-  Vec3 dir = Vec3::Zero();
-  double d_min = clearance;
-  for (uint64_t id : near) {
-    const Vec3 away = here - map_.obstacles().at(id).position;
-    const double d = away.norm();
-    if (d < 1e-6) continue;
-    dir += away / d * (clearance - d);
-    d_min = std::min(d_min, d);
-  }
-  if (dir.norm() < 1e-6) return std::nullopt;
-  const Vec3 target = here + dir.normalized() * (clearance - d_min + config_.planner.escape_margin_m);
-  if (!everySample(here, target, 0.1, [&](const Vec3& x) { return !approachesPoint(x, here); })) return std::nullopt;
-  return target;
-}
-
-bool MonoSpheresExplorer::pathBlocked(const std::vector<Vec3>& pts) const {
-  // Samples along the first check_ahead_m of the path (see tooClose()).
-  if (pts.empty()) return false;
-  double s = 0;
-  for (size_t i = 1; i < pts.size() && s < config_.planner.check_ahead_m; ++i) {
-    const Vec3 a = pts[i - 1], b = pts[i];
-    const double len = (b - a).norm();
-    for (double t = 0; t < len && s + t < config_.planner.check_ahead_m; t += 0.25)
-      if (tooClose(a + t / len * (b - a), pts.front())) return true;
-    s += len;
-  }
-  return false;
 }
 
 std::vector<Vec3> MonoSpheresExplorer::routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const {
@@ -280,7 +218,7 @@ std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleS
   std::sort(candidates.begin(), candidates.end());
   for (const auto& [neg_depth, id] : candidates) {
     const Vec3& c = map_.spheres().at(id).centre;
-    if (!segmentClear(p, c, p)) continue;
+    if (!clearance_.segmentClear(p, c, p)) continue;
     ++counters_[MonoSpheresCounter::kReturnsToFreeSpace];
     return command(s, {{c, std::nullopt}});
   }
@@ -457,7 +395,7 @@ std::optional<PathCommand> MonoSpheresExplorer::withoutGoal(const VehicleState& 
         continue;
       const double d = (sp.centre - p).norm();
       if (d > pc.bridge_range_m || (best && d >= best->first)) continue;
-      if (segmentClear(p, sp.centre, p)) best = {d, id};
+      if (clearance_.segmentClear(p, sp.centre, p)) best = {d, id};
     }
     if (best) {
       ++counters_[MonoSpheresCounter::kBridges];
@@ -488,7 +426,7 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
     bool clear = true;
     for (size_t k = 1; k < spath->spheres.size() && clear; ++k) {
       const uint64_t a = spath->spheres[k - 1], b = spath->spheres[k];
-      if (segmentClear(map_.spheres().at(a).centre, map_.spheres().at(b).centre, p)) continue;
+      if (clearance_.segmentClear(map_.spheres().at(a).centre, map_.spheres().at(b).centre, p)) continue;
       blocked_edges_[{std::min(a, b), std::max(a, b)}] = s.t_s + pc.blocked_edge_timeout_s;
       ++counters_[MonoSpheresCounter::kEdgesBlocked];
       clear = false;
@@ -512,11 +450,11 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   const std::vector<Vec3> route = routeTo(s.reference.position_m, *spath, v.position);
   const double remaining = pathLength(route);
   if (remaining < best_remaining_m_ - 0.5) best_remaining_m_ = remaining, last_progress_s_ = s.t_s;
-  if (pathBlocked(route)) {
+  if (clearance_.pathBlocked(route)) {
     // Already inside an obstacle point's clearance (the point appeared after the vehicle got
     // there): every route that starts even slightly towards it is blocked, so holding here
     // would fail goal after goal. Back away from the points instead and re-plan from there.
-    if (auto away = clearanceEscape(s.reference.position_m)) {
+    if (auto away = clearance_.escape(s.reference.position_m)) {
       ++counters_[MonoSpheresCounter::kClearanceEscapes];
       blocked_steps_ = 0;
       return command(s, {{*away, std::nullopt}});

@@ -45,6 +45,7 @@
 #include "core/explorer/explorer.h"
 #include "core/explorer/takeoff.h"
 #include "core/map/sphere_map.h"
+#include "core/planning/clearance_guard.h"
 #include "core/planning/path_shaping.h"
 #include "core/planning/sphere_graph_search.h"
 #include "core/planning/viewpoint_set.h"
@@ -213,22 +214,13 @@ class MonoSpheresExplorer : public Explorer {
   std::optional<uint64_t> askChooser(const VehicleState& s, const SphereCostField& field, bool* asked);
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
   bool segmentFree(const Vec3& a, const Vec3& b) const;  // inside the sphere union and clear
-  // True if x lies within the clearance of an obstacle point; with allow_moving_away only if x is
-  // also closer to it than `here` (the vehicle), so a vehicle already too close may move away.
-  bool tooClose(const Vec3& x, const Vec3& here) const;
-  // True if x lies within the clearance of an obstacle point and closer to it than `here`.
-  bool approachesPoint(const Vec3& x, const Vec3& here) const;
-  bool segmentClear(const Vec3& a, const Vec3& b, const Vec3& here) const;  // no sample too close
-  bool pathBlocked(const std::vector<Vec3>& pts) const;
-  // Where to back away to when `here` lies inside an obstacle point's clearance (none: not
-  // inside, or the way out approaches another point).
-  std::optional<Vec3> clearanceEscape(const Vec3& here) const;
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
   void failGoal(double t_s, MonoSpheresCounter reason);
 
   MonoSpheresConfig config_;
   ExplorerContext context_;
   SphereMap map_;
+  ClearanceGuard clearance_;  // clearance safety over map_'s obstacle points
   ViewpointSet viewpoints_;
   TakeoffSequence takeoff_;
   ViewpointChooser chooser_;
