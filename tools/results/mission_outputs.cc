@@ -212,6 +212,32 @@ namespace {
 
 // Ground-truth obstacles (not the ground) as faint footprints, coloured by kind: textured grey,
 // textureless orange, thin magenta (drawn at least 2 px wide so rods stay visible).
+// The convex xy footprint of a shape in pixels: a box's corners, a cylinder's rims, a sphere's
+// equator.
+template <class ToPixel>
+std::vector<cv::Point> footprintHull(const Shape& sh, ToPixel px) {
+  std::vector<cv::Point> outline;
+  if (sh.type == ShapeType::kBox) {
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 corner((k & 1 ? 1 : -1) * sh.size.x(), (k & 2 ? 1 : -1) * sh.size.y(), (k & 4 ? 1 : -1) * sh.size.z());
+      outline.push_back(px(sh.pose * corner));
+    }
+  } else {
+    const double radius = sh.size.x(), half = sh.type == ShapeType::kCylinder ? sh.size.z() : 0.0;
+    for (int k = 0; k < 24; ++k) {
+      const double a = 2.0 * M_PI * k / 24;
+      for (double end : {-half, half}) {
+        const Vec3 local = sh.type == ShapeType::kSphere ? Vec3(radius * std::cos(a), radius * std::sin(a), 0)
+                                                         : Vec3(radius * std::cos(a), radius * std::sin(a), end);
+        outline.push_back(sh.type == ShapeType::kSphere ? px(sh.pose.translation() + local) : px(sh.pose * local));
+      }
+    }
+  }
+  std::vector<cv::Point> hull;
+  cv::convexHull(outline, hull);
+  return hull;
+}
+
 template <class ToPixel>
 void drawTruthFootprints(cv::Mat& img, const WorldTruth& truth, ToPixel px) {
   cv::Mat layer = img.clone();
@@ -220,27 +246,7 @@ void drawTruthFootprints(cv::Mat& img, const WorldTruth& truth, ToPixel px) {
     const cv::Scalar colour = sh.kind == ObstacleKind::kTextureless ? cv::Scalar(60, 150, 245)
                               : sh.kind == ObstacleKind::kThin      ? cv::Scalar(200, 0, 200)
                                                                     : cv::Scalar(120, 120, 120);
-    std::vector<cv::Point> outline;
-    if (sh.type == ShapeType::kBox) {
-      for (int k = 0; k < 8; ++k) {
-        const Vec3 corner((k & 1 ? 1 : -1) * sh.size.x(), (k & 2 ? 1 : -1) * sh.size.y(),
-                          (k & 4 ? 1 : -1) * sh.size.z());
-        outline.push_back(px(sh.pose * corner));
-      }
-    } else {
-      // Cylinders (rim points at both ends) and spheres (their equator).
-      const double radius = sh.size.x(), half = sh.type == ShapeType::kCylinder ? sh.size.z() : 0.0;
-      for (int k = 0; k < 24; ++k) {
-        const double a = 2.0 * M_PI * k / 24;
-        for (double end : {-half, half}) {
-          const Vec3 local = sh.type == ShapeType::kSphere ? Vec3(radius * std::cos(a), radius * std::sin(a), 0)
-                                                           : Vec3(radius * std::cos(a), radius * std::sin(a), end);
-          outline.push_back(sh.type == ShapeType::kSphere ? px(sh.pose.translation() + local) : px(sh.pose * local));
-        }
-      }
-    }
-    std::vector<cv::Point> hull;
-    cv::convexHull(outline, hull);
+    const std::vector<cv::Point> hull = footprintHull(sh, px);
     cv::fillConvexPoly(layer, hull, colour, cv::LINE_AA);
     if (sh.kind == ObstacleKind::kThin) cv::polylines(layer, hull, true, colour, 2, cv::LINE_AA);
   }
@@ -374,6 +380,34 @@ void drawTrajectories(TopdownCanvas& canvas, const MissionResult& r) {
   }
 }
 
+// What ended the run, on top of everything: the geom hit (its footprint outlined in red), the
+// contact point (a red dot) and a label with its name, kind and height.
+void drawCollisionObject(TopdownCanvas& canvas, const MissionResult& r, const WorldTruth& truth) {
+  if (!r.flight.collision) return;
+  const auto& c = *r.flight.collision;
+  auto px = [&](const Vec3& p) { return canvas.px(p); };
+  const Shape* hit = truth.shapeNamed(c.world_geom);
+  std::string label = c.world_geom;
+  if (hit && hit->type != ShapeType::kHalfSpace) {
+    const std::vector<cv::Point> hull = footprintHull(*hit, px);
+    cv::polylines(canvas.img, hull, true, cv::Scalar(255, 255, 255), 5, cv::LINE_AA);
+    cv::polylines(canvas.img, hull, true, cv::Scalar(0, 0, 255), 2, cv::LINE_AA);
+    char extra[96];
+    std::snprintf(extra, sizeof(extra), " (%s, %.1f-%.1f m high)", obstacleKindName(hit->kind), hit->bounds().first.z(),
+                  hit->bounds().second.z());
+    label += extra;
+  }
+  const cv::Point at = px(c.contact_position_m);
+  cv::circle(canvas.img, at, 5, cv::Scalar(0, 0, 255), -1, cv::LINE_AA);
+  char contact[64];
+  std::snprintf(contact, sizeof(contact), ", contact at z = %.1f m", c.contact_position_m.z());
+  label = "hit " + label + contact;
+  const cv::Point text(std::min(at.x + 10, canvas.w - 8 * int(label.size()) - 4),
+                       std::max(at.y - 10, canvas.header + 14));
+  cv::putText(canvas.img, label, text, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 4, cv::LINE_AA);
+  cv::putText(canvas.img, label, text, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 200), 1, cv::LINE_AA);
+}
+
 void drawLegend(TopdownCanvas& canvas, const MissionResult& r, bool truth) {
   cv::Mat& img = canvas.img;
   const int w = canvas.w, header = canvas.header;
@@ -415,16 +449,22 @@ void drawScaleBar(TopdownCanvas& canvas) {
 
 }  // namespace
 
-void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth) {
+cv::Mat topdownImage(const MissionResult& r, const WorldTruth* truth) {
   TopdownCanvas c = topdownCanvas(r);
   if (truth) drawTruthFootprints(c.img, *truth, [&](const Vec3& p) { return c.px(p); });
   drawGrid(c);
   drawFreeSpace(c, r);
   drawMapMarks(c, r);
   drawTrajectories(c, r);
+  if (truth) drawCollisionObject(c, r, *truth);
   drawLegend(c, r, truth != nullptr);
   drawScaleBar(c);
-  writeFileAtomic(file, encodePng(viewOf(c.img)));
+  return c.img;
+}
+
+void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth) {
+  const cv::Mat img = topdownImage(r, truth);
+  writeFileAtomic(file, encodePng(viewOf(img)));
 }
 
 std::string configYamlText(const std::string& scenario_file, bool with_overrides, const std::string& effective_yaml,

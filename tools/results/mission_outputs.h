@@ -6,6 +6,7 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 
 #include "core/geometry/world_truth.h"
 #include "tools/loop/mission.h"
@@ -27,6 +28,10 @@ std::string mapPly(const ExplorerSnapshot& snap);
 /// viewpoints and visited markers, the true and estimated trajectories, the box, a collision;
 /// under them (faint) the ground-truth obstacles by kind when `truth` is given; axes in metres
 /// and a scale bar.
+/// The top-down picture as a BGR image (what writeTopdown encodes): when the run ended in a
+/// collision and `truth` is given, the geom hit is outlined in red on top of the map, with the
+/// contact point and a label (name, kind, height).
+cv::Mat topdownImage(const MissionResult& r, const WorldTruth* truth);
 void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth);
 
 /// config.yaml text: the effective configuration of `scenario_file`, headed by where it came from,
