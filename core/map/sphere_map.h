@@ -163,7 +163,15 @@ class SphereMap {
   /// The radius rule (step 6) for a centre, given P_f and the constraining points.
   double ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf, const std::vector<Vec3>& constraints) const;
 
-  /// Adds a sphere directly (tests, map loading); returns its id. Links it into the graph.
+  /// How far from a frontier an obstacle point can change its validity (see step 10).
+  double frontierObstacleReach() const;
+  /// Re-validates the frontiers near everything changed since the last update (step 10 does
+  /// this itself; tests and tools editing the map by hand call it); returns how many dropped.
+  int revalidateChangedFrontiers() { return revalidateDirtyFrontiers(); }
+
+ private:
+  friend struct SphereMapTestSeam;  // hand-built maps in tests (sphere_map_test_seam.h)
+  /// Adds a sphere directly (the test seam); returns its id. Links it into the graph.
   uint64_t addSphere(const Vec3& centre, double radius);
   /// Adds an obstacle point directly with its measurement distance; returns its id.
   uint64_t addObstacle(const Vec3& p, double d_min);
@@ -175,13 +183,7 @@ class SphereMap {
   /// Removes an obstacle point (as DBOF does); frontiers it may have affected are re-checked
   /// at the next update.
   void eraseObstacle(uint64_t id);
-  /// How far from a frontier an obstacle point can change its validity (see step 10).
-  double frontierObstacleReach() const;
-  /// Re-validates the frontiers near everything changed since the last update (step 10 does
-  /// this itself; tests and tools editing the map by hand call it); returns how many dropped.
-  int revalidateChangedFrontiers() { return revalidateDirtyFrontiers(); }
 
- private:
   void removeSphere(uint64_t id);
   void markDirty(const Vec3& centre, double reach) { dirty_.emplace_back(centre, reach); }
   int revalidateDirtyFrontiers();

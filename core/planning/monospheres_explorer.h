@@ -187,8 +187,6 @@ class MonoSpheresExplorer : public Explorer {
 
   /// The map (tests, tools).
   const SphereMap& map() const { return map_; }
-  /// The map for hand-built scenes (tests, tools): addSphere / addObstacle / tryAddFrontier.
-  SphereMap& mutableMap() { return map_; }
   /// The viewpoints (tests, tools).
   const ViewpointSet& viewpoints() const { return viewpoints_; }
   /// The active goal's viewpoint id (0 = none).
@@ -197,6 +195,8 @@ class MonoSpheresExplorer : public Explorer {
   void setViewpointChooser(ViewpointChooser chooser) { chooser_ = std::move(chooser); }
 
  private:
+  friend struct MonoSpheresTestSeam;  // hand-built maps in tests (monospheres_test_seam.h)
+
   // One exploration step, in the order of the file comment; each step below is one part of it.
   std::optional<PathCommand> explore(const VehicleState& s);
   EdgeFilter passable() const;                                          // graph edges not blocked

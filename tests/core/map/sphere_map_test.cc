@@ -1,6 +1,7 @@
 // The mapper's rules one by one (docs/architecture.md §7 steps 5, 6, 8, 9) on hand-built inputs, and a whole
 // update on a synthetic frame.
 #include "core/map/sphere_map.h"
+#include "core/map/sphere_map_test_seam.h"
 
 #include <gtest/gtest.h>
 
@@ -60,8 +61,8 @@ TEST(SphereMapRules, DbofDeletesPointsSeenAgainFromCloserAndProtectsTheOthers) {
   cfg.new_sphere_samples = 200;
   SphereMap map(cfg, cam, 1);
   // Both points lie 8 m from the camera, inside P_f (wall at 10 m).
-  const uint64_t seen_from_far = map.addObstacle({0, 0, 8}, 8.0);       // 8 < 1.1 · 8: deleted
-  const uint64_t seen_from_close = map.addObstacle({2, 0, 7.75}, 5.0);  // 8 > 1.1 · 5: protected
+  const uint64_t seen_from_far = SphereMapTestSeam::addObstacle(map, {0, 0, 8}, 8.0);       // 8 < 1.1 · 8: deleted
+  const uint64_t seen_from_close = SphereMapTestSeam::addObstacle(map, {2, 0, 7.75}, 5.0);  // 8 > 1.1 · 5: protected
   const MapUpdateStats st = map.update(wallFrame(15, 10));
   EXPECT_EQ(st.deleted_obstacles, 1);
   EXPECT_EQ(st.dbof_deleted_ids, std::vector<uint64_t>{seen_from_far});  // named for evaluation
@@ -74,7 +75,7 @@ TEST(SphereMapRules, DbofDeletesPointsSeenAgainFromCloserAndProtectsTheOthers) {
   // dbof: false never deletes.
   cfg.dbof = false;
   SphereMap keep(cfg, cam, 1);
-  keep.addObstacle({0, 0, 8}, 8.0);
+  SphereMapTestSeam::addObstacle(keep, {0, 0, 8}, 8.0);
   EXPECT_EQ(keep.update(wallFrame(15, 10)).deleted_obstacles, 0);
 }
 
@@ -93,7 +94,7 @@ TEST(SphereMapRules, DbofAgingLetsAPointMeasuredLongAgoBeDeleted) {
       SphereMapConfig cfg;
       cfg.dbof_age_per_m = age;
       SphereMap map(cfg, cam, 1);
-      const uint64_t id = map.addObstacle({2, 0, 7.75}, 5.0);
+      const uint64_t id = SphereMapTestSeam::addObstacle(map, {2, 0, 7.75}, 5.0);
       if (fly)
         for (double x : {0.0, 30.0, 60.0, 90.0}) map.update(shifted(wallFrame(15, 10), Vec3(1000 + x, 0, 0)));
       map.update(wallFrame(15, 10));
@@ -104,32 +105,32 @@ TEST(SphereMapRules, DbofAgingLetsAPointMeasuredLongAgoBeDeleted) {
 TEST(SphereMapRules, SparsificationNeverDisconnectsTheGraph) {
   const FisheyeCamera cam;
   SphereMap map(SphereMapConfig{}, cam, 1);
-  const uint64_t a = map.addSphere({0, 0, 0}, 2.0);
-  const uint64_t b = map.addSphere({0.5, 0, 0}, 2.0);  // redundant next to a ...
-  const uint64_t c = map.addSphere({3.8, 0, 0}, 1.5);  // ... but c hangs on b only
+  const uint64_t a = SphereMapTestSeam::addSphere(map, {0, 0, 0}, 2.0);
+  const uint64_t b = SphereMapTestSeam::addSphere(map, {0.5, 0, 0}, 2.0);  // redundant next to a ...
+  const uint64_t c = SphereMapTestSeam::addSphere(map, {3.8, 0, 0}, 1.5);  // ... but c hangs on b only
   ASSERT_TRUE(map.neighbours(c).count(b));
   ASSERT_FALSE(map.neighbours(c).count(a));
-  EXPECT_FALSE(map.sparsify(b));
+  EXPECT_FALSE(SphereMapTestSeam::sparsify(map, b));
   EXPECT_TRUE(map.connected());
   // Another sphere links a and c: now b can go.
-  map.addSphere({2.5, 0, 0}, 1.5);
-  EXPECT_TRUE(map.sparsify(b));
+  SphereMapTestSeam::addSphere(map, {2.5, 0, 0}, 1.5);
+  EXPECT_TRUE(SphereMapTestSeam::sparsify(map, b));
   EXPECT_TRUE(map.connected());
   EXPECT_FALSE(map.spheres().count(b));
   // Random clusters: sparsifying everything keeps a connected graph connected.
   RngStream rng(4, "sparsify");
   SphereMap dense(SphereMapConfig{}, cam, 1);
-  std::vector<uint64_t> ids = {dense.addSphere({0, 0, 0}, 2.0)};
+  std::vector<uint64_t> ids = {SphereMapTestSeam::addSphere(dense, {0, 0, 0}, 2.0)};
   for (int i = 0; i < 300; ++i) {
     // Each new sphere overlaps a random earlier one: connected by construction.
     const Sphere& s = dense.spheres().at(ids[rng.uniformInt(ids.size())]);
     const Vec3 dir = Vec3(rng.normal(), rng.normal(), rng.normal()).normalized();
     const double r = rng.uniform(1.6, 4.0);
-    ids.push_back(dense.addSphere(s.centre + dir * rng.uniform(0.1, 0.95) * (s.radius + r), r));
+    ids.push_back(SphereMapTestSeam::addSphere(dense, s.centre + dir * rng.uniform(0.1, 0.95) * (s.radius + r), r));
   }
   ASSERT_TRUE(dense.connected());
   int removed = 0;
-  for (uint64_t id : ids) removed += dense.sparsify(id);
+  for (uint64_t id : ids) removed += SphereMapTestSeam::sparsify(dense, id);
   EXPECT_GT(removed, 20);
   EXPECT_TRUE(dense.connected());
 }
@@ -137,10 +138,10 @@ TEST(SphereMapRules, SparsificationNeverDisconnectsTheGraph) {
 TEST(SphereMapRules, ObstaclePointsKeepTheClosestMeasurement) {
   const FisheyeCamera cam;
   SphereMap map(SphereMapConfig{}, cam, 1);
-  EXPECT_TRUE(map.insertObstacle({1, 1, 1}, 10.0));
-  EXPECT_TRUE(map.insertObstacle({1.1, 1, 1}, 5.0));   // closer: replaces
-  EXPECT_FALSE(map.insertObstacle({1, 1.1, 1}, 8.0));  // farther than the kept one: dropped
-  EXPECT_TRUE(map.insertObstacle({1.5, 1, 1}, 9.0));   // beyond the 0.3 m spacing: kept
+  EXPECT_TRUE(SphereMapTestSeam::insertObstacle(map, {1, 1, 1}, 10.0));
+  EXPECT_TRUE(SphereMapTestSeam::insertObstacle(map, {1.1, 1, 1}, 5.0));   // closer: replaces
+  EXPECT_FALSE(SphereMapTestSeam::insertObstacle(map, {1, 1.1, 1}, 8.0));  // farther than the kept one: dropped
+  EXPECT_TRUE(SphereMapTestSeam::insertObstacle(map, {1.5, 1, 1}, 9.0));   // beyond the 0.3 m spacing: kept
   ASSERT_EQ(map.obstacles().size(), 2u);
   EXPECT_DOUBLE_EQ(map.obstacles().begin()->second.d_min, 5.0);
   EXPECT_EQ(map.obstacles().begin()->second.position, Vec3(1.1, 1, 1));
@@ -149,7 +150,7 @@ TEST(SphereMapRules, ObstaclePointsKeepTheClosestMeasurement) {
 TEST(SphereMapRules, FrontierShellSpacingObstacleGapOneSidednessAndSkyNormal) {
   const FisheyeCamera cam;
   SphereMap map(SphereMapConfig{}, cam, 1);
-  map.addSphere({0, 0, 0}, 2.0);
+  SphereMapTestSeam::addSphere(map, {0, 0, 0}, 2.0);
   // Shell [r + 0.48, r + 2.72] = [2.48, 4.72] around the sphere; outside the sphere itself.
   const auto n = map.frontierNormal({3, 0, 0});
   ASSERT_TRUE(n);
@@ -165,16 +166,16 @@ TEST(SphereMapRules, FrontierShellSpacingObstacleGapOneSidednessAndSkyNormal) {
   EXPECT_FALSE(map.tryAddFrontier({0.5, 3, 0}));
   EXPECT_TRUE(map.tryAddFrontier({0, -3, 0}));
   // Gap to obstacle points.
-  map.addObstacle({3.5, 0, 0}, 5.0);
+  SphereMapTestSeam::addObstacle(map, {3.5, 0, 0}, 5.0);
   EXPECT_FALSE(map.frontierNormal({3, 0, 0}));
   // Free space on both sides is no frontier.
   SphereMap two(SphereMapConfig{}, cam, 1);
-  two.addSphere({-3, 0, 0}, 2.0);
-  two.addSphere({3, 0, 0}, 2.0);
+  SphereMapTestSeam::addSphere(two, {-3, 0, 0}, 2.0);
+  SphereMapTestSeam::addSphere(two, {3, 0, 0}, 2.0);
   EXPECT_FALSE(two.frontierNormal({0, 0, 0}));
   // Re-validation drops frontiers that new free space has swallowed.
   EXPECT_EQ(map.frontiers().size(), 2u);
-  map.addSphere({0, 3.5, 0}, 1.8);
+  SphereMapTestSeam::addSphere(map, {0, 3.5, 0}, 1.8);
   EXPECT_EQ(map.revalidateFrontiers(), 1);
   EXPECT_EQ(map.frontiers().size(), 1u);
 }
@@ -185,17 +186,17 @@ TEST(SphereMapRules, NoFrontierBehindTheWallThatBoundsASphere) {
   // it cannot see the free space through the wall.
   const FisheyeCamera cam;
   SphereMap open(SphereMapConfig{}, cam, 1), walled(SphereMapConfig{}, cam, 1);
-  open.addSphere({0, 0, 0}, 2.0);
-  walled.addSphere({0, 0, 0}, 2.0);
+  SphereMapTestSeam::addSphere(open, {0, 0, 0}, 2.0);
+  SphereMapTestSeam::addSphere(walled, {0, 0, 0}, 2.0);
   for (double y = -6; y <= 6; y += 0.3)
-    for (double z = -6; z <= 6; z += 0.3) walled.addObstacle({2.0, y, z}, 5.0);
+    for (double z = -6; z <= 6; z += 0.3) SphereMapTestSeam::addObstacle(walled, {2.0, y, z}, 5.0);
   EXPECT_TRUE(open.frontierNormal({4.2, 0, 0}));
   EXPECT_FALSE(walled.frontierNormal({4.2, 0, 0}));
   // Beside the wall's edge the way is open again.
   SphereMap edge(SphereMapConfig{}, cam, 1);
-  edge.addSphere({0, 0, 0}, 2.0);
+  SphereMapTestSeam::addSphere(edge, {0, 0, 0}, 2.0);
   for (double y = 1.0; y <= 6; y += 0.3)
-    for (double z = -6; z <= 6; z += 0.3) edge.addObstacle({2.0, y, z}, 5.0);
+    for (double z = -6; z <= 6; z += 0.3) SphereMapTestSeam::addObstacle(edge, {2.0, y, z}, 5.0);
   EXPECT_TRUE(edge.frontierNormal({3.5, -2.0, 0}));
 }
 
@@ -236,8 +237,8 @@ TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
 // an obstacle point blocks its line of sight to the second sphere B.
 struct BlockedSight {
   BlockedSight() : map(SphereMapConfig{}, FisheyeCamera{}, 1) {
-    map.addSphere({0, 0, 0}, 2.0);
-    map.addSphere({7, 0, 0}, 2.0);
+    SphereMapTestSeam::addSphere(map, {0, 0, 0}, 2.0);
+    SphereMapTestSeam::addSphere(map, {7, 0, 0}, 2.0);
   }
   SphereMap map;
   const Vec3 x{3.5, 0, 0};  // 3.5 m from both centres: in both shells
@@ -247,25 +248,25 @@ TEST(SphereMapRules, AFrontierIsDroppedWhenThePointThatMadeItValidIsDeleted) {
   BlockedSight f;
   EXPECT_FALSE(f.map.frontierNormal(f.x));  // sees both spheres: two-sided
   // A point 1.7 m away on the line of sight to B (outside the 1.5 m gap) makes it one-sided.
-  const uint64_t blocker = f.map.addObstacle({5.2, 0.15, 0}, 8.0);
+  const uint64_t blocker = SphereMapTestSeam::addObstacle(f.map, {5.2, 0.15, 0}, 8.0);
   const auto id = f.map.tryAddFrontier(f.x);
   ASSERT_TRUE(id);
   f.map.revalidateChangedFrontiers();
   ASSERT_TRUE(f.map.frontiers().count(*id));
   // Deleted (as DBOF deletes): the frontier is re-checked and dropped.
-  f.map.eraseObstacle(blocker);
+  SphereMapTestSeam::eraseObstacle(f.map, blocker);
   EXPECT_EQ(f.map.revalidateChangedFrontiers(), 1);
   EXPECT_FALSE(f.map.frontiers().count(*id));
 }
 
 TEST(SphereMapRules, AFrontierIsDroppedWhenThePointThatMadeItValidIsReplaced) {
   BlockedSight f;
-  f.map.addObstacle({5.2, 0.15, 0}, 8.0);
+  SphereMapTestSeam::addObstacle(f.map, {5.2, 0.15, 0}, 8.0);
   const auto id = f.map.tryAddFrontier(f.x);
   ASSERT_TRUE(id);
   f.map.revalidateChangedFrontiers();
   // Measured again from closer, 0.25 m to the side (step 9 replaces it): off the line of sight.
-  ASSERT_TRUE(f.map.insertObstacle({5.2, 0.40, 0}, 4.0));
+  ASSERT_TRUE(SphereMapTestSeam::insertObstacle(f.map, {5.2, 0.40, 0}, 4.0));
   EXPECT_EQ(f.map.obstacles().size(), 1u);
   EXPECT_EQ(f.map.revalidateChangedFrontiers(), 1);
   EXPECT_FALSE(f.map.frontiers().count(*id));
@@ -273,12 +274,12 @@ TEST(SphereMapRules, AFrontierIsDroppedWhenThePointThatMadeItValidIsReplaced) {
 
 TEST(SphereMapRules, AFrontierIsDroppedWhenAPointAppearsOnItsLineOfSight) {
   SphereMap map(SphereMapConfig{}, FisheyeCamera{}, 1);
-  map.addSphere({0, 0, 0}, 2.0);
+  SphereMapTestSeam::addSphere(map, {0, 0, 0}, 2.0);
   const auto id = map.tryAddFrontier({4.7, 0, 0});  // in the outer shell, facing the sphere
   ASSERT_TRUE(id);
   map.revalidateChangedFrontiers();
   // A point 2.5 m away, between the frontier and its only sphere: behind a wall now.
-  map.addObstacle({2.2, 0, 0}, 6.0);
+  SphereMapTestSeam::addObstacle(map, {2.2, 0, 0}, 6.0);
   EXPECT_GT(map.frontierObstacleReach(), 2.5);
   EXPECT_EQ(map.revalidateChangedFrontiers(), 1);
   EXPECT_FALSE(map.frontiers().count(*id));
@@ -315,7 +316,7 @@ TEST(SphereMapRules, ASidePointLimitsSpheres) {
   // that sphere: it limits the sphere all the same (here below r_min: deleted).
   for (const Vec3& side : {Vec3(3 * std::sin(85 * M_PI / 180), 0, 3 * std::cos(85 * M_PI / 180)), Vec3(2.5, 0, -0.5)}) {
     SphereMap map(SphereMapConfig{}, FisheyeCamera{}, 2);
-    const uint64_t beside = map.addSphere({3, 0, 0}, 3.0);
+    const uint64_t beside = SphereMapTestSeam::addSphere(map, {3, 0, 0}, 3.0);
     SlamPointsFrame f = wallFrame(18, 12, 3);
     SlamPoint p;
     p.track_id = 999;
@@ -335,7 +336,7 @@ TEST(SphereMapRules, PointsTooUncertainInDepthCanBeLeftOut) {
     cfg.max_point_depth_std_m = max_std;
     cfg.new_sphere_samples = 0;
     SphereMap map(cfg, FisheyeCamera{}, 2);
-    const uint64_t s = map.addSphere({0, 0, 6}, 3.0);
+    const uint64_t s = SphereMapTestSeam::addSphere(map, {0, 0, 6}, 3.0);
     SlamPointsFrame f = wallFrame(18, 12, 3);
     SlamPoint p;
     p.track_id = 999;

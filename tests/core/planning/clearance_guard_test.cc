@@ -1,5 +1,6 @@
 // The clearance rules on a hand-built map: too close, moving away, blocked paths, the escape.
 #include "core/planning/clearance_guard.h"
+#include "core/map/sphere_map_test_seam.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +14,7 @@ struct Scene {
 
 TEST(ClearanceGuard, TooCloseUnlessMovingAway) {
   Scene s;
-  s.map.addObstacle(Vec3(0, 0, 2), 1.0);
+  SphereMapTestSeam::addObstacle(s.map, Vec3(0, 0, 2), 1.0);
   ClearanceConfig c;  // clearance 1 m, moving away allowed
   const ClearanceGuard g(s.map, c);
   // The vehicle 0.8 m from the point: a sample closer to it is too close, one farther is not.
@@ -29,7 +30,7 @@ TEST(ClearanceGuard, TooCloseUnlessMovingAway) {
 
 TEST(ClearanceGuard, SegmentsAndPathsAheadAreCheckedBySamples) {
   Scene s;
-  s.map.addObstacle(Vec3(3, 0, 2), 1.0);
+  SphereMapTestSeam::addObstacle(s.map, Vec3(3, 0, 2), 1.0);
   const ClearanceGuard g(s.map, ClearanceConfig{});
   const Vec3 here(0, 0, 2);
   EXPECT_FALSE(g.segmentClear(here, Vec3(6, 0, 2), here));  // passes through the point
@@ -37,7 +38,7 @@ TEST(ClearanceGuard, SegmentsAndPathsAheadAreCheckedBySamples) {
   EXPECT_TRUE(g.pathBlocked({here, Vec3(6, 0, 2)}));
   // Only the first check_ahead_m (5 m) counts: a point 8 m along the path does not block it.
   Scene far;
-  far.map.addObstacle(Vec3(8, 0, 2), 1.0);
+  SphereMapTestSeam::addObstacle(far.map, Vec3(8, 0, 2), 1.0);
   const ClearanceGuard g2(far.map, ClearanceConfig{});
   EXPECT_FALSE(g2.pathBlocked({here, Vec3(10, 0, 2)}));
   EXPECT_FALSE(g2.pathBlocked({}));
@@ -46,7 +47,7 @@ TEST(ClearanceGuard, SegmentsAndPathsAheadAreCheckedBySamples) {
 TEST(ClearanceGuard, EscapeBacksOutBeyondTheClearance) {
   Scene s;
   const Vec3 o(0, 0, 2);
-  s.map.addObstacle(o, 1.0);
+  SphereMapTestSeam::addObstacle(s.map, o, 1.0);
   const ClearanceConfig c;
   const ClearanceGuard g(s.map, c);
   EXPECT_FALSE(g.escape(Vec3(3, 0, 2)));  // not inside a clearance

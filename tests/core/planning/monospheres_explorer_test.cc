@@ -5,7 +5,9 @@
 
 #include <cmath>
 
+#include "core/map/sphere_map_test_seam.h"
 #include "core/planning/monospheres_explorer.h"
+#include "core/planning/monospheres_test_seam.h"
 
 namespace msb {
 namespace {
@@ -45,8 +47,8 @@ struct Fixture {
   }
   // A chain of overlapping spheres along +x at z = 2 with a patch of frontiers beyond its end.
   void corridorWithFrontiers() {
-    SphereMap& m = explorer.mutableMap();
-    for (double x : {0.0, 4.0, 8.0, 12.0}) chain.push_back(m.addSphere({x, 0, 2}, 3.0));
+    SphereMap& m = MonoSpheresTestSeam::map(explorer);
+    for (double x : {0.0, 4.0, 8.0, 12.0}) chain.push_back(SphereMapTestSeam::addSphere(m, {x, 0, 2}, 3.0));
     for (double y = -4; y <= 4; y += 1.6)
       for (double z = -1; z <= 5; z += 1.6) frontiers += bool(m.tryAddFrontier({16.5, y, z}));
   }
@@ -175,7 +177,7 @@ TEST(MonoSpheresExplorer, AGoalCutOffFromTheVehicleIsDropped) {
   Fixture f;
   f.corridorWithFrontiers();
   const Vec3 island(0, 40, 2);
-  f.explorer.mutableMap().addSphere(island, 3.0);  // no overlap with the corridor
+  SphereMapTestSeam::addSphere(MonoSpheresTestSeam::map(f.explorer), island, 3.0);  // no overlap with the corridor
   f.skipTakeoff();
   ASSERT_TRUE(f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0)));
   ASSERT_NE(f.explorer.goal(), 0u);
@@ -191,11 +193,11 @@ TEST(MonoSpheresExplorer, AGoalCutOffFromTheVehicleIsDropped) {
 TEST(MonoSpheresExplorer, AnEdgeTooCloseToAnObstacleIsBlockedAndTheRouteGoesAround) {
   Fixture f;
   f.corridorWithFrontiers();
-  SphereMap& m = f.explorer.mutableMap();
+  SphereMap& m = MonoSpheresTestSeam::map(f.explorer);
   // An obstacle point on the corridor's first edge and a detour sphere beside it.
   const Vec3 obstacle(2, 0, 2);
-  m.addObstacle(obstacle, 2.0);
-  m.addSphere({2, 3.6, 2}, 2.5);
+  SphereMapTestSeam::addObstacle(m, obstacle, 2.0);
+  SphereMapTestSeam::addSphere(m, {2, 3.6, 2}, 2.5);
   f.skipTakeoff();
   const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
   ASSERT_TRUE(cmd);
@@ -208,10 +210,10 @@ TEST(MonoSpheresExplorer, AnEdgeTooCloseToAnObstacleIsBlockedAndTheRouteGoesArou
 
 TEST(MonoSpheresExplorer, BridgesOutOfASmallPocketWithoutGoals) {
   Fixture f;
-  SphereMap& m = f.explorer.mutableMap();
-  m.addSphere({0, 0, 2}, 2.0);
+  SphereMap& m = MonoSpheresTestSeam::map(f.explorer);
+  SphereMapTestSeam::addSphere(m, {0, 0, 2}, 2.0);
   const Vec3 other(0, 10, 2);
-  m.addSphere(other, 2.0);  // 6 m apart: another part of the graph, too far for a link
+  SphereMapTestSeam::addSphere(m, other, 2.0);  // 6 m apart: another part of the graph, too far for a link
   f.skipTakeoff();
   const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
   ASSERT_TRUE(cmd);
@@ -220,9 +222,9 @@ TEST(MonoSpheresExplorer, BridgesOutOfASmallPocketWithoutGoals) {
   EXPECT_TRUE(cmd->waypoints[0].position_m.isApprox(other));
   // An obstacle point on the straight line: no bridge, an idle turn instead.
   Fixture g;
-  g.explorer.mutableMap().addSphere({0, 0, 2}, 2.0);
-  g.explorer.mutableMap().addSphere(other, 2.0);
-  g.explorer.mutableMap().addObstacle({0, 5, 2}, 3.0);
+  SphereMapTestSeam::addSphere(MonoSpheresTestSeam::map(g.explorer), {0, 0, 2}, 2.0);
+  SphereMapTestSeam::addSphere(MonoSpheresTestSeam::map(g.explorer), other, 2.0);
+  SphereMapTestSeam::addObstacle(MonoSpheresTestSeam::map(g.explorer), {0, 5, 2}, 3.0);
   g.skipTakeoff();
   const auto turn = g.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
   EXPECT_EQ(g.counter("bridges"), 0.0);
@@ -237,10 +239,10 @@ TEST(MonoSpheresExplorer, ReturnToFreeSpaceRefusesABlockedSegment) {
   // lies on the way (then it stops where it is).
   for (bool blocked : {false, true}) {
     Fixture f;
-    SphereMap& m = f.explorer.mutableMap();
+    SphereMap& m = MonoSpheresTestSeam::map(f.explorer);
     const Vec3 centre(4, 0, 2);
-    m.addSphere(centre, 2.0);
-    if (blocked) m.addObstacle({2, 0, 2}, 3.0);
+    SphereMapTestSeam::addSphere(m, centre, 2.0);
+    if (blocked) SphereMapTestSeam::addObstacle(m, {2, 0, 2}, 3.0);
     f.skipTakeoff();
     const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
     ASSERT_TRUE(cmd);
@@ -259,10 +261,10 @@ TEST(MonoSpheresExplorer, MovingAwayFromAPointInsideTheClearanceIsAllowedOnlyUnd
     MonoSpheresConfig c;
     c.planner.allow_moving_away = moving_away;
     Fixture f(c);
-    SphereMap& m = f.explorer.mutableMap();
+    SphereMap& m = MonoSpheresTestSeam::map(f.explorer);
     const Vec3 centre(4, 0, 2);
-    m.addSphere(centre, 2.0);
-    m.addObstacle({-0.5, 0, 2}, 3.0);
+    SphereMapTestSeam::addSphere(m, centre, 2.0);
+    SphereMapTestSeam::addObstacle(m, {-0.5, 0, 2}, 3.0);
     f.skipTakeoff();
     const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
     ASSERT_TRUE(cmd);
@@ -282,11 +284,11 @@ TEST(MonoSpheresExplorer, AVehicleInsideAClearanceBacksAwayInsteadOfHolding) {
     Fixture f;
     f.corridorWithFrontiers();
     ASSERT_GE(f.frontiers, 10);
-    SphereMap& m = f.explorer.mutableMap();
+    SphereMap& m = MonoSpheresTestSeam::map(f.explorer);
     const Vec3 p(4, 2.2, 2), o(4.2, 1.4, 2);
-    m.addObstacle(o, 3.0);
+    SphereMapTestSeam::addObstacle(m, o, 3.0);
     const Vec3 away = (p - o).normalized();
-    if (exit_blocked) m.addObstacle(p + 1.2 * away, 3.0);
+    if (exit_blocked) SphereMapTestSeam::addObstacle(m, p + 1.2 * away, 3.0);
     f.skipTakeoff();
     const auto cmd = f.explorer.plan(Fixture::at(p, 0.0, 1.0));
     ASSERT_TRUE(cmd);
@@ -311,14 +313,15 @@ TEST(MonoSpheresExplorer, AVehicleInsideAClearanceBacksAwayInsteadOfHolding) {
 // second chain with frontiers at its far end.
 struct TwoParts : Fixture {
   explicit TwoParts(double gap) {
-    SphereMap& m = explorer.mutableMap();
-    for (double x : {0.0, 4.0}) m.addSphere({x, 0, 2}, 3.0);
+    SphereMap& m = MonoSpheresTestSeam::map(explorer);
+    for (double x : {0.0, 4.0}) SphereMapTestSeam::addSphere(m, {x, 0, 2}, 3.0);
     x0 = 4.0 + 3.0 + gap + 3.0;
-    for (double x : {x0, x0 + 4.0}) m.addSphere({x, 0, 2}, 3.0);
+    for (double x : {x0, x0 + 4.0}) SphereMapTestSeam::addSphere(m, {x, 0, 2}, 3.0);
   }
   void addFrontiers() {
     for (double y = -4; y <= 4; y += 1.6)
-      for (double z = -1; z <= 5; z += 1.6) frontiers += bool(explorer.mutableMap().tryAddFrontier({x0 + 8.5, y, z}));
+      for (double z = -1; z <= 5; z += 1.6)
+        frontiers += bool(MonoSpheresTestSeam::map(explorer).tryAddFrontier({x0 + 8.5, y, z}));
   }
   double x0 = 0;
 };
@@ -338,7 +341,7 @@ TEST(MonoSpheresExplorer, PartsOfTheGraphAreLinkedAcrossANarrowGap) {
   // An obstacle point in the gap: no link.
   TwoParts g(3.0);
   g.addFrontiers();
-  g.explorer.mutableMap().addObstacle({8.5, 0, 2}, 5.0);
+  SphereMapTestSeam::addObstacle(MonoSpheresTestSeam::map(g.explorer), {8.5, 0, 2}, 5.0);
   g.skipTakeoff();
   g.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
   EXPECT_EQ(g.counter("links"), 0.0);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/common/rng.h"
+#include "core/map/sphere_map_test_seam.h"
 #include "core/planning/sphere_graph_search.h"
 
 namespace msb {
@@ -30,13 +31,13 @@ struct TwoRoutes {
   SphereMap map = emptyMap();
   uint64_t s, n1, n2, n3, g, w1, w2;
   TwoRoutes() {
-    s = map.addSphere({0, 0, 0}, 2.0);
-    n1 = map.addSphere({3, 0, 0}, 1.7);
-    n2 = map.addSphere({6, 0, 0}, 1.7);
-    n3 = map.addSphere({9, 0, 0}, 1.7);
-    g = map.addSphere({12, 0, 0}, 2.0);
-    w1 = map.addSphere({0, 9, 0}, 7.5);
-    w2 = map.addSphere({12, 9, 0}, 7.5);
+    s = SphereMapTestSeam::addSphere(map, {0, 0, 0}, 2.0);
+    n1 = SphereMapTestSeam::addSphere(map, {3, 0, 0}, 1.7);
+    n2 = SphereMapTestSeam::addSphere(map, {6, 0, 0}, 1.7);
+    n3 = SphereMapTestSeam::addSphere(map, {9, 0, 0}, 1.7);
+    g = SphereMapTestSeam::addSphere(map, {12, 0, 0}, 2.0);
+    w1 = SphereMapTestSeam::addSphere(map, {0, 9, 0}, 7.5);
+    w2 = SphereMapTestSeam::addSphere(map, {12, 9, 0}, 7.5);
   }
 };
 
@@ -63,7 +64,8 @@ TEST(SphereGraphSearch, AStarMatchesDijkstraOnRandomGraphs) {
     SphereMap map = emptyMap();
     std::vector<uint64_t> ids;
     for (int i = 0; i < 60; ++i)
-      ids.push_back(map.addSphere({rng.uniform(0, 40), rng.uniform(0, 40), rng.uniform(0, 4)}, rng.uniform(1.6, 6)));
+      ids.push_back(SphereMapTestSeam::addSphere(map, {rng.uniform(0, 40), rng.uniform(0, 40), rng.uniform(0, 4)},
+                                                 rng.uniform(1.6, 6)));
     const SafetyCostConfig cfg;
     const SphereCostField field = sphereCostsFrom(map, ids[0], cfg);
     for (uint64_t g : ids) {
@@ -86,9 +88,9 @@ TEST(SphereGraphSearch, AStarMatchesDijkstraOnRandomGraphs) {
 
 TEST(SphereGraphSearch, UnreachableAndContainingSphere) {
   SphereMap map = emptyMap();
-  const uint64_t a = map.addSphere({0, 0, 0}, 3.0);
-  const uint64_t b = map.addSphere({2, 0, 0}, 2.0);
-  const uint64_t far = map.addSphere({50, 0, 0}, 2.0);
+  const uint64_t a = SphereMapTestSeam::addSphere(map, {0, 0, 0}, 3.0);
+  const uint64_t b = SphereMapTestSeam::addSphere(map, {2, 0, 0}, 2.0);
+  const uint64_t far = SphereMapTestSeam::addSphere(map, {50, 0, 0}, 2.0);
   const SafetyCostConfig cfg;
   EXPECT_FALSE(findSpherePath(map, a, far, cfg));
   EXPECT_EQ(*containingSphere(map, {0.5, 0, 0}, 1.5, 1.6), a);  // depth 2.5 vs 0.5

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/map/sphere_map_test_seam.h"
 #include "core/planning/viewpoint_set.h"
 
 namespace msb {
@@ -15,7 +16,7 @@ struct Scene {
   uint64_t sphere;
   int frontiers = 0;
   Scene() {
-    sphere = map.addSphere({0, 0, 2}, 3.0);
+    sphere = SphereMapTestSeam::addSphere(map, {0, 0, 2}, 3.0);
     for (double y = -4; y <= 4; y += 1.6)
       for (double z = -1; z <= 5; z += 1.6) frontiers += bool(map.tryAddFrontier({4.5, y, z}));
   }
@@ -69,7 +70,7 @@ TEST(ViewpointSet, WithNewFrontierBlockingMarkersLetNewerFrontiersThrough) {
   // once enough new ones appear, and not before.
   for (bool new_frontiers : {false, true}) {
     SphereMap map{SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1};
-    const uint64_t sphere = map.addSphere({0, 0, 2}, 3.0);
+    const uint64_t sphere = SphereMapTestSeam::addSphere(map, {0, 0, 2}, 3.0);
     int old_count = 0, new_count = 0;
     for (double y : {-2.4, -0.8})
       for (double z : {0.4, 2.0, 3.6}) old_count += bool(map.tryAddFrontier({4.2, y, z}));
@@ -170,10 +171,10 @@ TEST(ViewpointSet, WithAFrontierViewLimitFrontiersRetireAfterThatManyLooks) {
     if (vs.views(s.map, id) >= 2) old_id = id;
   ASSERT_NE(old_id, 0u);
   const Vec3 at = s.map.frontiers().at(old_id).position;
-  const uint64_t rock = s.map.addObstacle(at + Vec3(0.5, 0, 0), 5.0);
+  const uint64_t rock = SphereMapTestSeam::addObstacle(s.map, at + Vec3(0.5, 0, 0), 5.0);
   s.map.revalidateChangedFrontiers();
   ASSERT_FALSE(s.map.frontiers().count(old_id));
-  s.map.eraseObstacle(rock);
+  SphereMapTestSeam::eraseObstacle(s.map, rock);
   s.map.revalidateChangedFrontiers();
   const auto new_id = s.map.tryAddFrontier(at);
   ASSERT_TRUE(new_id.has_value());
@@ -236,7 +237,7 @@ TEST(ViewpointSet, UnreachableOrOutsideCandidatesAreNotSampled) {
 TEST(ViewpointSet, RelaxedValueAcceptsFewFrontiers) {
   // Three frontiers only: below min_value 7, above relaxed_min_value 2.
   SphereMap map{SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1};
-  const uint64_t sphere = map.addSphere({0, 0, 2}, 3.0);
+  const uint64_t sphere = SphereMapTestSeam::addSphere(map, {0, 0, 2}, 3.0);
   int n = 0;
   for (double y : {-1.6, 0.0, 1.6}) n += bool(map.tryAddFrontier({4.5, y, 2.0}));
   ASSERT_EQ(n, 3);
