@@ -88,17 +88,23 @@ TEST(Shapes, SignedDistanceIsExactOutsideAndNegativeInside) {
     }
 }
 
-TEST(WorldTruth, IndexedNearestMatchesBruteForce) {
-  RngStream rng(8, "truth");
+// A random town on a ground plane: `boxes` turned boxes and 30 tilted rods in 80 × 80 m.
+std::vector<Shape> randomTown(RngStream& rng, int boxes) {
   std::vector<Shape> shapes;
   Shape ground;
   ground.type = ShapeType::kHalfSpace;
   shapes.push_back(ground);
-  for (int i = 0; i < 60; ++i)
+  for (int i = 0; i < boxes; ++i)
     shapes.push_back(box({rng.uniform(-40, 40), rng.uniform(-40, 40), 2}, {rng.uniform(0.5, 3), rng.uniform(0.5, 3), 2},
                          rng.uniform(0, 3)));
   for (int i = 0; i < 30; ++i)
     shapes.push_back(cylinder({rng.uniform(-40, 40), rng.uniform(-40, 40), 3}, 0.3, 3, rng.uniform(0, 0.4)));
+  return shapes;
+}
+
+TEST(WorldTruth, IndexedNearestMatchesBruteForce) {
+  RngStream rng(8, "truth");
+  const std::vector<Shape> shapes = randomTown(rng, 60);
   const WorldTruth truth(shapes);
   for (int i = 0; i < 2000; ++i) {
     const Vec3 p(rng.uniform(-50, 50), rng.uniform(-50, 50), rng.uniform(0.1, 8));
@@ -114,16 +120,7 @@ TEST(WorldTruth, IndexedRaycastFindsTheSameFirstHit) {
   // The grid walk returns exactly what testing every shape returns (distance and shape), for
   // rays from inside and outside the grid, in every direction, short and long.
   RngStream rng(9, "rays");
-  std::vector<Shape> shapes;
-  Shape ground;
-  ground.type = ShapeType::kHalfSpace;
-  shapes.push_back(ground);
-  for (int i = 0; i < 80; ++i)
-    shapes.push_back(box({rng.uniform(-40, 40), rng.uniform(-40, 40), 2}, {rng.uniform(0.5, 3), rng.uniform(0.5, 3), 2},
-                         rng.uniform(0, 3)));
-  for (int i = 0; i < 30; ++i)
-    shapes.push_back(cylinder({rng.uniform(-40, 40), rng.uniform(-40, 40), 3}, 0.3, 3, rng.uniform(0, 0.4)));
-  const WorldTruth truth(shapes);
+  const WorldTruth truth(randomTown(rng, 80));
   int hits = 0;
   for (int i = 0; i < 5000; ++i) {
     const Vec3 o(rng.uniform(-60, 60), rng.uniform(-60, 60), rng.uniform(0.1, 8));
