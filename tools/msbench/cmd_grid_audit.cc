@@ -24,6 +24,7 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/msbench/map_replay.h"
+#include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
 
@@ -43,7 +44,7 @@ struct Contact {
 Vec3 vec3(const nlohmann::json& a) { return Vec3(a.at(0).get<double>(), a.at(1).get<double>(), a.at(2).get<double>()); }
 
 Contact readContact(const fs::path& run) {
-  const auto m = nlohmann::json::parse(readFileText(run / "metrics.json"));
+  const auto m = readJsonFile(run / "metrics.json");
   if (!m.contains("collision") || !m["collision"].is_object())
     throw UsageError((run / "metrics.json").string() + ": the run did not collide (no collision to audit)");
   const auto& c = m["collision"];
@@ -60,7 +61,7 @@ Contact readContact(const fs::path& run) {
 
 // (t, estimated position) rows of trajectory.csv.
 std::vector<std::pair<double, Vec3>> readEstimate(const fs::path& file) {
-  std::istringstream in(readFileText(file));
+  std::istringstream in(readInputFile(file));
   std::string line;
   std::getline(in, line);  // header: t,x,y,z,qw,qx,qy,qz,vx,vy,vz,est_x,est_y,est_z,...
   std::vector<std::pair<double, Vec3>> rows;

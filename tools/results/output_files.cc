@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/common/config_check.h"
+#include "tools/results/input_files.h"
 
 namespace msb {
 
@@ -111,6 +112,15 @@ std::string markerText(OutputKind k) {
          "); --overwrite may replace it with the same kind of output.\n";
 }
 
+// The marker file's text, empty if there is none or it is not a small regular file.
+std::string markerTextOf(const fs::path& dir) {
+  try {
+    return readInputFile(dir / kMarker, InputLimits{4096, 1});
+  } catch (const InputFileError&) {
+    return "";
+  }
+}
+
 // Weakly canonical absolute form (symlinks resolved where the path exists).
 fs::path canonicalOf(const fs::path& p) {
   std::error_code ec;
@@ -143,7 +153,7 @@ bool isMsbenchOutput(const fs::path& dir, OutputKind kind) {
   if (!fs::is_directory(dir)) return false;
   const fs::path marker = dir / kMarker;
   if (fs::exists(marker)) {
-    const std::string text = readFileText(marker);
+    const std::string text = markerTextOf(dir);
     if (text == markerText(kind)) return true;
     // A marker from before kinds: the kind's characteristic file decides (a run that ended in an
     // error left only its metrics.json).
@@ -156,12 +166,8 @@ bool isMsbenchOutput(const fs::path& dir, OutputKind kind) {
 }
 
 bool isMsbenchOutput(const fs::path& dir) {
-  if (!fs::is_directory(dir)) return false;
-  if (fs::exists(dir / kMarker)) return true;
-  // A result written before the marker existed: its metrics.json names msbench's versions.
-  std::ifstream in(dir / "metrics.json");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return text.find("\"versions\"") != std::string::npos && text.find("\"msbench\"") != std::string::npos;
+  // The marker only: a directory holding a copy of a metrics.json is not msbench's output.
+  return fs::is_directory(dir) && markerTextOf(dir).rfind("This directory was written by msbench", 0) == 0;
 }
 
 StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind kind)

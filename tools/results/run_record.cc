@@ -1,5 +1,7 @@
 #include "tools/results/run_record.h"
 
+#include "tools/results/input_files.h"
+
 #include <cctype>
 #include <fstream>
 #include <sstream>
@@ -59,7 +61,8 @@ MissionRecordRead missionRecordOf(const nlohmann::json& m, const std::filesystem
   if (!parsed) return problem("status", "unknown status '" + m["status"].get<std::string>() + "'");
   rec.status = *parsed;
   rec.area_m2 = m["coverage"]["area_m2"].get<double>();
-  if (!(rec.area_m2 >= 0.0)) return problem("coverage.area_m2", "negative");
+  if (!(rec.area_m2 >= 0.0 && rec.area_m2 <= kMaxAreaM2))
+    return problem("coverage.area_m2", "expected a number in [0, " + std::to_string(int(kMaxAreaM2)) + "] m²");
   if (const nlohmann::json* b = at(m, "coverage.box_share"); b && !b->is_null()) {
     if (!b->is_number() || b->get<double>() < 0.0 || b->get<double>() > 1.0)
       return problem("coverage.box_share", "expected a number in [0, 1] or null");
@@ -79,12 +82,12 @@ MissionRecordRead missionRecordOf(const nlohmann::json& m, const std::filesystem
 }
 
 MissionRecordRead readMissionRecord(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return {std::nullopt, file.string() + ": missing or unreadable"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  const nlohmann::json m = nlohmann::json::parse(text.str(), nullptr, false);
-  if (m.is_discarded()) return {std::nullopt, file.string() + ": not valid JSON (truncated?)"};
+  nlohmann::json m;
+  try {
+    m = readJsonFile(file);
+  } catch (const InputFileError& e) {
+    return {std::nullopt, e.what()};
+  }
   return missionRecordOf(m, file);
 }
 

@@ -14,6 +14,10 @@
 
 namespace msb {
 
+/// Largest area a record may claim (10 km², 160 times the largest world's ground): a larger one
+/// is a damaged or forged file.
+inline constexpr double kMaxAreaM2 = 1e7;
+
 /// What readers of a finished run rely on.
 struct MissionRecord {
   RunStatus status = RunStatus::kCompleted;

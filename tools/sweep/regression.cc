@@ -1,12 +1,15 @@
 #include "tools/sweep/regression.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 #include "core/common/config_check.h"
+#include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
+#include "tools/results/run_record.h"
 
 namespace msb {
 
@@ -53,10 +56,32 @@ nlohmann::json goldenFromSweep(const SweepResults& results, const RegressionTole
           {"runs", runs}};
 }
 
+namespace {
+
+std::string shortNumber(double v) {
+  char b[32];
+  std::snprintf(b, sizeof(b), "%g", v);
+  return b;
+}
+
+// A golden's number in [lo, hi], else a FileConfigError naming the key.
+void checkGoldenRange(const std::filesystem::path& file, const std::string& key, const nlohmann::json& v, double lo,
+                      double hi) {
+  if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
+    throw FileConfigError(file.string() + ": key '" + key + "': expected a number in [" + shortNumber(lo) + ", " +
+                          shortNumber(hi) + "]");
+}
+
+bool isHex16(const std::string& s) {
+  return s.size() == 16 && std::all_of(s.begin(), s.end(), [](char c) { return std::isxdigit((unsigned char)c); });
+}
+
+}  // namespace
+
 nlohmann::json readGolden(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) throw FileConfigError(file.string() + ": no such golden file");
-  const nlohmann::json g = nlohmann::json::parse(readFileText(file), nullptr, false);
-  if (g.is_discarded() || !g.is_object()) throw FileConfigError(file.string() + ": not a JSON object (truncated?)");
+  if (!std::filesystem::exists(file)) throw FileConfigError(file.string() + ": no such golden file");
+  const nlohmann::json g = readJsonFile(file);
+  if (!g.is_object()) throw FileConfigError(file.string() + ": not a JSON object");
   if (!g.contains("runs") || !g["runs"].is_array())
     throw FileConfigError(file.string() + ": key 'runs': expected a list");
   for (size_t i = 0; i < g["runs"].size(); ++i) {
@@ -70,14 +95,26 @@ nlohmann::json readGolden(const std::filesystem::path& file) {
     if (!r.contains("area_m2") || !r["area_m2"].is_number())
       throw FileConfigError(file.string() + ": key '" + key +
                             ".area_m2': " + (r.contains("area_m2") ? "expected a number" : "missing"));
+    checkGoldenRange(file, key + ".area_m2", r["area_m2"], 0.0, kMaxAreaM2);
+    if (!isHex16(r["determinism_hash"].get<std::string>()))
+      throw FileConfigError(file.string() + ": key '" + key + ".determinism_hash': expected 16 hexadecimal digits");
   }
-  if (g.contains("tolerance") && !g["tolerance"].is_object())
-    throw FileConfigError(file.string() + ": key 'tolerance': expected an object");
+  if (g.contains("tolerance")) {
+    const auto& t = g["tolerance"];
+    if (!t.is_object()) throw FileConfigError(file.string() + ": key 'tolerance': expected an object");
+    if (t.contains("relative")) checkGoldenRange(file, "tolerance.relative", t["relative"], 0.0, 1.0);
+    if (t.contains("absolute_m2")) checkGoldenRange(file, "tolerance.absolute_m2", t["absolute_m2"], 0.0, 1e5);
+  }
   return g;
 }
 
 bool isGoldenFile(const std::filesystem::path& file) {
-  const nlohmann::json g = nlohmann::json::parse(readFileText(file), nullptr, false);
+  nlohmann::json g;
+  try {
+    g = readJsonFile(file);
+  } catch (const InputFileError&) {
+    return false;
+  }
   if (!g.is_object()) return false;
   if (g.contains("kind")) return g["kind"] == kGoldenKind;
   // Written before "kind": exactly the keys a golden has.

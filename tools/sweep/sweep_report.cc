@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "tools/config/method_table.h"
+#include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
 
 namespace msb {
@@ -19,7 +20,7 @@ namespace {
 std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
   std::vector<CoverageSample> out;
   if (!fs::exists(file)) return out;
-  std::istringstream in(readFileText(file));
+  std::istringstream in(readInputFile(file));
   std::string line;
   if (!std::getline(in, line)) return out;
   std::vector<std::string> names;
@@ -196,7 +197,7 @@ stats::Interval collisionRate(const ReportRow& row) { return stats::wilson(row.c
 SweepResults loadSweepResults(const fs::path& dir) {
   const fs::path index = dir / "sweep.json";
   if (!fs::exists(index)) throw std::runtime_error(index.string() + ": not found (not a sweep directory?)");
-  const auto j = nlohmann::json::parse(readFileText(index), nullptr, false);
+  const auto j = readJsonFile(index);
   if (!j.is_object() || !j.contains("runs") || !j["runs"].is_array())
     throw std::runtime_error(index.string() + ": not a sweep index (no runs)");
   SweepResults r;

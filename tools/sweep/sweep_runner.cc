@@ -17,6 +17,7 @@
 
 #include "core/common/config_check.h"
 #include "core/common/wall_time.h"
+#include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
 #include "tools/results/run_record.h"
@@ -166,8 +167,8 @@ void prepareSweepDir(const SweepPlan& plan, const fs::path& dir, const SweepRunO
     fs::create_directories(dir / "runs");
     fs::create_directories(dir / "logs");
   } else if (fs::exists(dir / "sweep.json")) {
-    const auto old = nlohmann::json::parse(readFileText(dir / "sweep.json"), nullptr, false);
-    if (!old.is_object()) throw UsageError(dir.string() + "/sweep.json is unreadable: not a sweep directory?");
+    const auto old = readJsonFile(dir / "sweep.json");
+    if (!old.is_object()) throw UsageError(dir.string() + "/sweep.json is not a JSON object: not a sweep directory?");
     for (const char* key : {"sweep_file_hash", "build"})
       if (old.contains(key) && !old[key].is_string())
         throw UsageError((dir / "sweep.json").string() + ": key '" + key + "': expected a string");
@@ -204,7 +205,12 @@ void recordRunEnd(const SweepPlan& plan, const fs::path& dir, size_t i, int wsta
     s.status = "pending";  // stopped by us: redone on resume
   } else {
     s.status = "failed";
-    const std::string log = readFileText(dir / "logs" / (plan.runs[i].id + ".log"));
+    std::string log;
+    try {
+      log = readInputFile(dir / "logs" / (plan.runs[i].id + ".log"));
+    } catch (const InputFileError& e) {
+      log = e.what();
+    }
     s.log_tail = tail(log, 12);
     s.last_progress = lastLineWith(log, ": t = ");
     s.fatal = lastLineWith(log, ": fatal signal ");

@@ -64,3 +64,48 @@ TEST(JsonFuzz, SweepIndexes) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+// The message a golden file's reader refuses `text` with.
+std::string goldenRefusal(const std::string& text) {
+  const fs::path p = fuzz_test::dir("golden_ranges") / "golden.json";
+  std::ofstream(p) << text;
+  try {
+    readGolden(p);
+  } catch (const FileConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(JsonRanges, AGoldensToleranceAreaAndHashAreRangeChecked) {
+  // Before: a tolerance of 1e300 hid a 10x change, a negative one was accepted, and so was a
+  // 15-digit hash.
+  auto golden = [](const std::string& tolerance, const std::string& area, const std::string& hash) {
+    return R"({"kind": "msbench-golden", "machine": {"id": "m"}, "tolerance": )" + tolerance +
+           R"(, "runs": [{"id": "r", "status": "completed", "area_m2": )" + area +
+           R"(, "sim_time_s": 60, "determinism_hash": ")" + hash + R"(", "machine_id": "m"}]})";
+  };
+  const std::string ok_tol = R"({"relative": 0.25, "absolute_m2": 100})";
+  EXPECT_EQ(goldenRefusal(golden(ok_tol, "856", "a7eab0cdee45814a")), "");
+  EXPECT_NE(goldenRefusal(golden(R"({"relative": 1e300})", "856", "a7eab0cdee45814a")).find("'tolerance.relative'"),
+            std::string::npos);
+  EXPECT_NE(goldenRefusal(golden(R"({"absolute_m2": -1})", "856", "a7eab0cdee45814a")).find("'tolerance.absolute_m2'"),
+            std::string::npos);
+  EXPECT_NE(goldenRefusal(golden(ok_tol, "1e300", "a7eab0cdee45814a")).find("'runs[0].area_m2'"), std::string::npos);
+  EXPECT_NE(goldenRefusal(golden(ok_tol, "856", "a7eab0cdee45814")).find("16 hexadecimal digits"), std::string::npos);
+}
+
+TEST(JsonRanges, AMetricsFileClaimingAnAbsurdAreaOrAKeyTwiceIsRefused) {
+  const fs::path p = fuzz_test::dir("metrics_ranges") / "metrics.json";
+  std::string text = kMetrics;
+  std::ofstream(p) << std::string(text).replace(text.find("1862.5"), 6, "1e300");
+  EXPECT_NE(readMissionRecord(p).problem.find("'coverage.area_m2'"), std::string::npos);
+  std::ofstream(p) << text.substr(0, text.size() - 1) + R"(, "coverage": {"area_m2": 99999}})";
+  EXPECT_NE(readMissionRecord(p).problem.find("key 'coverage' appears twice"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace msb
