@@ -161,12 +161,42 @@ std::string sweepBuildId() { return buildIdText(); }
 
 namespace {
 
-// The directory: new, or a sweep of the same file and build (resume; --accept-changes mixes).
+constexpr char kSweepMarker[] = ".msbench-sweep";
+
+// True if msbench wrote `dir` as a sweep directory: its marker, or (a sweep from before the
+// marker) a sweep index with its runs, build and sweep-file hash.
+bool isSweepDir(const fs::path& dir) {
+  if (fs::exists(dir / kSweepMarker)) return true;
+  try {
+    const auto j = readJsonFile(dir / "sweep.json");
+    return j.is_object() && j.contains("runs") && j.contains("build") && j.contains("sweep_file_hash");
+  } catch (const InputFileError&) {
+    return false;
+  }
+}
+
+// No input of the sweep (its file, the runs' scenarios) is one of the files the sweep writes.
+void checkSweepInputs(const SweepPlan& plan, const fs::path& dir) {
+  std::vector<NamedPath> inputs = {{"SWEEP", plan.file}};
+  for (const auto& r : plan.runs)
+    if (inputs.back().path != r.scenario) inputs.push_back({"the scenario of run " + r.id, r.scenario});
+  std::vector<NamedPath> outputs;
+  for (const char* f : {"sweep.json", "runs.csv", "runs", "logs", kSweepMarker})
+    outputs.push_back({"--out " + (dir / f).string(), dir / f});
+  checkNoOverlap(inputs, outputs);
+}
+
+// The directory: new or empty, or one msbench wrote as a sweep (resume: of the same file and
+// build; --accept-changes mixes). Anything else is refused before a file is written.
 void prepareSweepDir(const SweepPlan& plan, const fs::path& dir, const SweepRunOptions& options) {
-  if (options.task) {
-    fs::create_directories(dir / "runs");
-    fs::create_directories(dir / "logs");
-  } else if (fs::exists(dir / "sweep.json")) {
+  if (fs::exists(fs::symlink_status(dir)) && !fs::is_directory(dir))
+    throw UsageError("--out " + dir.string() + ": exists and is not a directory");
+  checkSweepInputs(plan, dir);
+  if (fs::exists(dir) && !fs::is_empty(dir) && !isSweepDir(dir))
+    throw UsageError("--out " + dir.string() +
+                     ": exists, is not empty and is not a sweep directory msbench wrote (no " + kSweepMarker +
+                     " or sweep.json index); use a new or empty directory");
+  if (!options.task && fs::exists(dir / "sweep.json")) {
     const auto old = readJsonFile(dir / "sweep.json");
     if (!old.is_object()) throw UsageError(dir.string() + "/sweep.json is not a JSON object: not a sweep directory?");
     for (const char* key : {"sweep_file_hash", "build"})
@@ -183,11 +213,11 @@ void prepareSweepDir(const SweepPlan& plan, const fs::path& dir, const SweepRunO
       throw UsageError(msg + " use a new --out, or --accept-changes to mix results");
     }
     for (const auto& c : changes) std::fprintf(stderr, "sweep: resuming although %s\n", c.c_str());
-  } else if (fs::exists(dir) && !fs::is_empty(dir) && !fs::exists(dir / "runs")) {
-    throw UsageError(dir.string() + " exists and is not a sweep directory (no sweep.json)");
   }
   fs::create_directories(dir / "runs");
   fs::create_directories(dir / "logs");
+  if (!fs::exists(dir / kSweepMarker))
+    writeFileAtomic(dir / kSweepMarker, "This directory was written by msbench (sweep); a sweep resumes here.\n");
 }
 
 // Records how run `i` ended (`wstatus` from waitpid): complete, pending (we stopped it) or failed
@@ -277,6 +307,12 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
     if (it == running.end()) continue;
     const size_t i = it->second;
     running.erase(it);
+    // A Ctrl-C reaches the whole process group: the run it stopped is interrupted, not failed,
+    // and no new run starts (the stop is seen before the run's end is recorded).
+    if (!interrupted && stop_requested()) {
+      interrupted = true;
+      for (const auto& [p, j] : running) kill(p, SIGTERM);
+    }
     recordRunEnd(plan, dir, i, wstatus, interrupted, states[i], failed);
     ++done;
     if (!options.task) writeIndex(dir, plan, states, int(options.jobs));

@@ -279,3 +279,67 @@ TEST(Sweep, TaskIndexRunsOneRunAndAPlainCallWritesTheIndex) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+TEST(SweepDirectory, AUserDirectoryIsNeverWrittenIntoAndTheSweepFileIsNeverTheIndex) {
+  // Before: a directory that merely had a runs/ folder got its runs.csv and logs replaced, and
+  // --task-index wrote logs into any directory.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "userdir");
+  const fs::path f = writeSweep(d, "set: {duration_s: 2}\nseeds: 1\n");
+  const fs::path user = d / "mine";
+  fs::create_directories(user / "runs");
+  std::ofstream(user / "runs.csv") << "my data\n";
+  for (const std::string extra : {"", " --task-index 0"}) {
+    EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + user.string() + "'" + extra, d / "log"), 2) << extra;
+    EXPECT_NE(readText(d / "log").find("is not a sweep directory msbench wrote"), std::string::npos)
+        << readText(d / "log");
+    EXPECT_EQ(readText(user / "runs.csv"), "my data\n");
+    EXPECT_FALSE(fs::exists(user / "logs"));
+  }
+  // A sweep file named sweep.json inside --out would be replaced by the index: refused.
+  const fs::path own = d / "own";
+  fs::create_directories(own);
+  fs::copy_file(f, own / "sweep.json");
+  for (const std::string extra : {"", " --accept-changes"}) {
+    EXPECT_EQ(run("sweep '" + (own / "sweep.json").string() + "' --out '" + own.string() + "'" + extra, d / "log"), 2);
+    EXPECT_NE(readText(d / "log").find("overlaps the input SWEEP"), std::string::npos) << readText(d / "log");
+    EXPECT_EQ(readText(own / "sweep.json"), readText(f));
+  }
+  // An empty directory is fine, and a sweep's own directory resumes.
+  fs::create_directories(d / "empty");
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + (d / "empty").string() + "'", d / "log"), 0)
+      << readText(d / "log");
+  EXPECT_TRUE(fs::exists(d / "empty" / ".msbench-sweep"));
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + (d / "empty").string() + "'", d / "log"), 0);
+  EXPECT_NE(readText(d / "log").find("1 complete, 0 to run"), std::string::npos) << readText(d / "log");
+}
+
+TEST(SweepDirectory, CtrlCStopsTheSweepRecordsTheRunPendingAndStartsNoOther) {
+  // Ctrl-C signals the whole process group. Before, the stopped run was recorded failed and the
+  // next run started.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "ctrlc");
+  const fs::path f = writeSweep(d, "set: {duration_s: 12}\nseeds: 3\n");
+  const fs::path out = d / "out";
+  const std::string cmd = "setsid '" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() +
+                          "' > '" + (d / "log").string() + "' 2>&1 & echo $!";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_TRUE(p);
+  int pid = 0;
+  ASSERT_EQ(fscanf(p, "%d", &pid), 1);
+  pclose(p);
+  for (int i = 0; i < 1200 && readText(out / "logs" / "s1.log").find(": t = 10 / 12 s") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(-pid, SIGINT);  // what the terminal sends
+  for (int i = 0; i < 600 && kill(pid, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const auto r = rows(out);
+  ASSERT_EQ(r.size(), 3u) << readText(d / "log");
+  EXPECT_EQ(r.at("s1")[2], "pending") << readText(d / "log");
+  EXPECT_EQ(r.at("s2")[2], "pending");
+  EXPECT_FALSE(fs::exists(out / "logs" / "s2.log"));  // never started
+  EXPECT_EQ(readText(d / "log").find("failed ("), std::string::npos) << readText(d / "log");
+}
+
+}  // namespace
+}  // namespace msb
