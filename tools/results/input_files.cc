@@ -38,7 +38,7 @@ std::string readInputFile(const std::filesystem::path& path, const InputLimits& 
   const Fd f{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (f.fd < 0)
     throw InputFileError(name + ": " + (errno == ENOENT ? std::string("file not found") : std::strerror(errno)));
-  struct stat st{};
+  struct stat st {};
   if (::fstat(f.fd, &st) != 0) throw InputFileError(name + ": " + std::strerror(errno));
   if (!S_ISREG(st.st_mode)) throw InputFileError(name + ": is " + fileTypeName(st.st_mode) + ", not a regular file");
   if (size_t(st.st_size) > limits.max_bytes)
@@ -80,8 +80,7 @@ nlohmann::json parseJsonStrict(const std::string& text, const std::string& where
     // The library's message carries its own prefix; keep the position and the reason.
     std::string what = e.what();
     const auto colon = what.find("parse error");
-    throw InputFileError(where + ": not valid JSON (" + (colon == std::string::npos ? what : what.substr(colon)) +
-                         ")");
+    throw InputFileError(where + ": not valid JSON (" + (colon == std::string::npos ? what : what.substr(colon)) + ")");
   } catch (const nlohmann::json::out_of_range&) {
     throw InputFileError(where + ": a number too large for a double");
   } catch (const nlohmann::json::exception&) {

@@ -51,7 +51,9 @@ TEST(InputFiles, AFifoADeviceAndADirectoryAreRefusedWithoutReading) {
 
 TEST(InputFiles, AFileOverTheSizeLimitIsRefusedNamingTheLimit) {
   const fs::path p = writeText("big.json", std::string(5000, ' ') + "{}");
-  EXPECT_NE(refusal([&] { readJsonFile(p, InputLimits{4096, 64}); }).find("more than the limit of 4096"),
+  EXPECT_NE(refusal([&] {
+              readJsonFile(p, InputLimits{4096, 64});
+            }).find("more than the limit of 4096"),
             std::string::npos);
   EXPECT_TRUE(readJsonFile(p).is_object());
 }
@@ -59,8 +61,7 @@ TEST(InputFiles, AFileOverTheSizeLimitIsRefusedNamingTheLimit) {
 TEST(InputFiles, DeepNestingIsRefusedBeforeItIsBuilt) {
   // A million nested arrays crashed `report` (recursion) before the limit.
   const std::string deep = std::string(1000000, '[') + std::string(1000000, ']');
-  EXPECT_NE(refusal([&] { parseJsonStrict(deep, "deep.json"); }).find("nested more than 64 levels"),
-            std::string::npos);
+  EXPECT_NE(refusal([&] { parseJsonStrict(deep, "deep.json"); }).find("nested more than 64 levels"), std::string::npos);
   const std::string ok = std::string(60, '[') + std::string(60, ']');
   EXPECT_TRUE(parseJsonStrict(ok, "ok.json").is_array());
 }
