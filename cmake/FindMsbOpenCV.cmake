@@ -19,5 +19,14 @@ foreach(m IN LISTS _msb_cv_modules)
       INTERFACE_INCLUDE_DIRECTORIES ${MsbOpenCV_INCLUDE_DIR})
   endif()
 endforeach()
+# imgcodecs (reading images) only for the measurement tool texture-stats: optional.
+find_library(MsbOpenCV_imgcodecs_LIBRARY opencv_imgcodecs)
+if(MsbOpenCV_imgcodecs_LIBRARY AND MsbOpenCV_INCLUDE_DIR AND EXISTS ${MsbOpenCV_INCLUDE_DIR}/opencv2/imgcodecs.hpp
+   AND NOT TARGET opencv::imgcodecs)
+  add_library(opencv::imgcodecs UNKNOWN IMPORTED)
+  set_target_properties(opencv::imgcodecs PROPERTIES
+    IMPORTED_LOCATION ${MsbOpenCV_imgcodecs_LIBRARY}
+    INTERFACE_INCLUDE_DIRECTORIES ${MsbOpenCV_INCLUDE_DIR})
+endif()
 include(FindPackageHandleStandardArgs)
 find_package_handle_standard_args(MsbOpenCV REQUIRED_VARS MsbOpenCV_INCLUDE_DIR MsbOpenCV_FOUND)

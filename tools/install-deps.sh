@@ -7,7 +7,7 @@ packages=(
   build-essential cmake git pkg-config
   libmujoco-dev libqhull-dev libosmesa6-dev  # libqhull-dev: mujoco's CMake config names its include dir
   libopencv-core-dev libopencv-imgproc-dev libopencv-video-dev libpng-dev
-  libopencv-features2d-dev libopencv-calib3d-dev
+  libopencv-features2d-dev libopencv-calib3d-dev libopencv-imgcodecs-dev
   libcgal-dev libeigen3-dev libyaml-cpp-dev libgtest-dev liboctomap-dev nlohmann-json3-dev
   python3-matplotlib  # figures of `msbench report` (tools/report_figures.py)
   pybind11-dev python3-dev python3-numpy python3-pandas python3-pytest  # `import msbench` (docs/python.md)

@@ -18,8 +18,18 @@ struct Pattern {
 };
 
 constexpr Pattern kPatterns[] = {
-    {"grass", 2.0}, {"bricks", 2.0},  {"facade", 3.0}, {"concrete", 2.0}, {"rock", 3.0},
-    {"bark", 1.0},  {"foliage", 2.0}, {"wood", 1.5},   {"gravel", 1.5},
+    {"grass", 2.0},
+    {"bricks", 2.0},
+    {"facade", 3.0},
+    {"concrete", 2.0},
+    {"rock", 3.0},
+    {"bark", 1.0},
+    {"foliage", 2.0},
+    {"wood", 1.5},
+    {"gravel", 1.5},
+    // The collapsed house's burned brick at the reference texture's scale on its model (0.0154 m a
+    // texel, 512 texels; docs/worlds.md, "Burned parts").
+    {"burned", 7.9},
 };
 
 // Periodic value noise: a lattice of `period` × `period` random values, smoothly interpolated.
@@ -209,6 +219,33 @@ cv::Mat gravel(int s, RngStream& rng) {
   return img;
 }
 
+// Burned brick under soot, matched to the dark half of the reference's collapsed-house texture
+// (docs/worlds.md, "Burned parts"): courses of dark, fire-blackened bricks, and soot that buries
+// them in patches (a low-frequency field), leaving near-black, faintly grained areas.
+cv::Mat burned(int s, RngStream& rng) {
+  const int rows = 120, per_row = 40;
+  const double row_h = double(s) / rows, brick_w = double(s) / per_row;
+  const int mortar = std::max(1, s / 512);
+  cv::Mat img(s, s, CV_8UC1, cv::Scalar(24));  // mortar, darkened
+  for (int r = 0; r < rows; ++r) {
+    const double offset = (r % 2) * brick_w / 2;
+    for (int b = 0; b < per_row; ++b)
+      wrapRect(img, int(b * brick_w + offset) + mortar, int(r * row_h) + mortar, int(brick_w) - mortar,
+               int(row_h) - mortar, int(rng.uniform(30, 125)));
+  }
+  addGrain(img, 30, rng);
+  // Soot: where the low-frequency field is high, the bricks fade into a dark, faintly grained coat.
+  const cv::Mat soot = fbm(s, 3, 4, 0.5, rng), grain = fbm(s, 256, 2, 0.6, rng);
+  for (int y = 0; y < s; ++y)
+    for (int x = 0; x < s; ++x) {
+      const double w = std::clamp((soot.at<double>(y, x) - 0.42) / 0.16, 0.0, 1.0);
+      const double coat = 24 + 24 * (grain.at<double>(y, x) - 0.5);
+      uint8_t& v = img.at<uint8_t>(y, x);
+      v = cv::saturate_cast<uint8_t>((1 - w) * v + w * coat);
+    }
+  return img;
+}
+
 }  // namespace
 
 const std::vector<std::string>& textureNames() {
@@ -243,6 +280,7 @@ cv::Mat makeTexture(const std::string& name, int size_px, uint64_t seed) {
   if (name == "foliage") return foliage(size_px, rng);
   if (name == "wood") return wood(size_px, rng);
   if (name == "gravel") return gravel(size_px, rng);
+  if (name == "burned") return burned(size_px, rng);
   throw std::invalid_argument("unknown texture '" + name + "'");
 }
 

@@ -65,30 +65,36 @@ struct ObjectBuild {
   MjcfWorldBuilder& b;
 };
 
+// The burned part of a building: flat black and textureless, or the group's `burned_texture`.
+std::pair<ObstacleKind, Look> burnedLook(const ObjectGroupSpec& g) {
+  if (g.burned_texture.empty()) return {ObstacleKind::kTextureless, Look::flat(0.12)};
+  return {ObstacleKind::kTextured, Look::textured(g.burned_texture)};
+}
+
 // A building or tower: whole, with a burned part, or collapsed (block, slab, rubble).
 void buildBuilding(const ObjectBuild& o) {
   [[maybe_unused]] auto& [g, id, base, s, yaw, detail, b] = o;
   [[maybe_unused]] const std::string& k = g.kind;
   [[maybe_unused]] const auto T = ObstacleKind::kTextured;
   const Look look = Look::textured(pick(g.texture, k == "tower" ? "concrete" : "facade"), "gravel");
+  const auto [burned_kind, burned_look] = burnedLook(g);
   if (g.variant == "burned") {
-    // A textured part and a burned, textureless part along the building's length.
+    // A textured part and a burned part along the building's length.
     const double lb = g.burned_fraction * s.x(), lt = s.x() - lb;
     b.addBox(id + "_intact", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lt, 0, 0.5 * s.z())),
              Vec3(0.5 * lt, 0.5 * s.y(), 0.5 * s.z()), T, look);
     b.addBox(id + "_burned", id, local(base, Vec3(0.5 * s.x() - 0.5 * lb, 0, 0.45 * s.z())),
-             Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
+             Vec3(0.5 * lb, 0.5 * s.y(), 0.45 * s.z()), burned_kind, burned_look);
   } else if (isCollapsed(g)) {
     // A lower remaining block, a slab leaning against it, and rubble. `collapsed_burned`: the
-    // far end of the block (burned_fraction of its length, away from the slab) is burned,
-    // flat and textureless.
+    // far end of the block (burned_fraction of its length, away from the slab) is burned.
     const double block_l = 0.7 * s.x();
     const double lb = g.variant == "collapsed_burned" ? g.burned_fraction * block_l : 0.0;
     b.addBox(id + "_block", id, local(base, Vec3(-0.15 * s.x() + 0.5 * lb, 0, 0.3 * s.z())),
              Vec3(0.5 * (block_l - lb), 0.5 * s.y(), 0.3 * s.z()), T, look);
     if (lb > 0.0)
       b.addBox(id + "_burned", id, local(base, Vec3(-0.5 * s.x() + 0.5 * lb, 0, 0.3 * s.z())),
-               Vec3(0.5 * lb, 0.5 * s.y(), 0.3 * s.z()), ObstacleKind::kTextureless, Look::flat(0.12));
+               Vec3(0.5 * lb, 0.5 * s.y(), 0.3 * s.z()), burned_kind, burned_look);
     const double pitch = detail.uniform(25, 40) * kDeg;
     const Mat3 R = Eigen::AngleAxisd(-pitch, Vec3::UnitY()).toRotationMatrix();
     b.addBox(

@@ -30,6 +30,6 @@ GeneratedWorld generateWorld(const WorldSpec& spec);
 
 /// Version of the generator; part of the cache key so cached worlds rebuild when it changes.
 inline constexpr int kWorldGeneratorVersion =
-    4;  // 2: skybox texture, 3: sun light, 4: sky planes, outdoor sun only, vehicles
+    5;  // 2: skybox texture, 3: sun light, 4: sky planes, outdoor sun only, vehicles, 5: burned texture
 
 }  // namespace msb

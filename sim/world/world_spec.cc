@@ -32,6 +32,8 @@ void ObjectGroupSpec::validate(ConfigChecker& c) const {
   c.require(texture.empty() || isTextureName(texture), "texture", "unknown texture '" + texture + "'");
   c.inRange("tilt_max_deg", tilt_max_deg, 0.0, 60.0);
   c.inRange("burned_fraction", burned_fraction, 0.05, 0.95);
+  c.require(burned_texture.empty() || isTextureName(burned_texture), "burned_texture",
+            "unknown texture '" + burned_texture + "'");
   const bool variant_ok =
       variant.empty() ||
       (kind == "building" && (variant == "burned" || variant == "collapsed" || variant == "collapsed_burned"));

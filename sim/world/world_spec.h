@@ -27,11 +27,13 @@ struct ObjectGroupSpec {
   std::optional<double> yaw_deg;  ///< fixed yaw; default random (region) or 0 (at)
   Vec3 size_min = Vec3::Zero();   ///< size range (kind-specific meaning, see docs/worlds.md)
   Vec3 size_max = Vec3::Zero();
-  std::string variant;        ///< kind-specific: building burned|collapsed|collapsed_burned, ...
-  std::string texture;        ///< texture override (default per kind)
-  double tilt_max_deg = 0.0;  ///< random tilt (rods, poles, rocks)
-  double burned_fraction =
-      0.4;  ///< textureless share of a burned building's length (collapsed_burned: of its remaining block)
+  std::string variant;           ///< kind-specific: building burned|collapsed|collapsed_burned, ...
+  std::string texture;           ///< texture override (default per kind)
+  double tilt_max_deg = 0.0;     ///< random tilt (rods, poles, rocks)
+  double burned_fraction = 0.4;  ///< burned share of a burned building's length (collapsed_burned: of its block)
+  /// Look of the burned part: empty = flat black and textureless, else a texture name (e.g. the
+  /// collapsed house's sooted brick, "burned").
+  std::string burned_texture;
   double base_z_m = 0.0;  ///< height of the object's base
   /// "ruins": placed at the ruins built before (burned parts and collapsed buildings), not in a
   /// region — rods as reinforcement bars standing out of the ruins and their rubble.

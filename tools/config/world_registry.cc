@@ -50,6 +50,7 @@ void readObject(MapReader& r, ObjectGroupSpec& o) {
   r.read("texture", o.texture);
   r.read("tilt_max_deg", o.tilt_max_deg);
   r.read("burned_fraction", o.burned_fraction);
+  r.read("burned_texture", o.burned_texture);
   r.read("base_z_m", o.base_z_m);
   r.read("near", o.near);
   r.finish();

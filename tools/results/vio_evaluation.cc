@@ -45,6 +45,7 @@ void addSample(VioStats& st, const PerceptionSample& s, const std::optional<Worl
         ++st.silhouette;
         continue;
       }
+      st.point_ids_by_shape[truth->shapes()[t.shape].name].insert(p.track_id);
       int bin = 0;
       while (bin + 1 < kBins && t.true_depth_m >= kBinEdges[bin + 1]) ++bin;
       st.errors[bin].push_back(t.error_m);
@@ -85,6 +86,8 @@ nlohmann::json summaryJson(const VioStats& st, const FlightResult& r, const Flig
   nlohmann::json by_distance = nlohmann::json::object(), by_surface = nlohmann::json::object();
   for (int b = 0; b < kBins; ++b) by_distance[bins[b]["bin"].get<std::string>()] = st.points_by_distance[b] / n;
   for (const auto& [surface, count] : st.points_by_surface) by_surface[surface] = count / n;
+  nlohmann::json by_shape = nlohmann::json::object();
+  for (const auto& [shape, ids] : st.point_ids_by_shape) by_shape[shape] = ids.size();
   nlohmann::json j = {
       {"status", runStatusName(r.status)},
       {"world", spec.world_name.empty() ? spec.world_path : spec.world_name},
@@ -96,6 +99,7 @@ nlohmann::json summaryJson(const VioStats& st, const FlightResult& r, const Flig
       {"point_error_by_distance", bins},
       {"slam_points_per_frame_by_distance", by_distance},
       {"slam_points_per_frame_by_surface", truth ? by_surface : nlohmann::json(nullptr)},
+      {"distinct_slam_points_by_shape", truth ? by_shape : nlohmann::json(nullptr)},
       {"ground_truth", bool(truth)},
       {"textureless_point_share", truth ? nlohmann::json(st.textureless_interior / ps) : nlohmann::json(nullptr)},
       {"textureless_incl_silhouette_point_share",

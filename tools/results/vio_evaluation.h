@@ -8,6 +8,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,8 @@ struct VioStats {
   double tracks_sum = 0, points_sum = 0, tracker_ms = 0, tri_ms = 0, render_ms = 0;
   double points_by_distance[kBins] = {};            // SLAM points summed over frames, by distance from the camera
   std::map<std::string, double> points_by_surface;  // ... by the class of the surface hit (ground truth)
+  /// Distinct SLAM points (track ids) on each shape's interior (ground truth), by shape name.
+  std::map<std::string, std::set<uint64_t>> point_ids_by_shape;
   int frames = 0, min_tracks = 1 << 30;
   std::string csv =
       "t,tracks,new_tracks,lost_tracks,slam_points,median_error_m,tracker_ms,triangulation_ms,render_ms\n";

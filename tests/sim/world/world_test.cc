@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/common/rng.h"
@@ -194,9 +195,39 @@ TEST(Worlds, ACollapsedBurnedBuildingHasATexturelessBurnedEndAndRodsStandAtIt) {
   EXPECT_NEAR(2 * block->size.x(), 0.5 * 0.7 * 10.5, 1e-9);
   EXPECT_NEAR(2 * burned->size.z(), 0.6 * 3.5, 1e-9);
   EXPECT_EQ(rod_count, 3);
+  // With a burned texture (urban's collapsed houses) the burned part is textured, same size.
+  s.objects[0].burned_texture = "burned";
+  for (const auto& sh : generateWorld(s).shapes)
+    if (sh.name == "building_0_burned") {
+      EXPECT_EQ(sh.kind, ObstacleKind::kTextured);
+      EXPECT_NEAR(2 * sh.size.x(), 0.5 * 0.7 * 10.5, 1e-9);
+    }
   // A plain collapsed building has no burned part.
   s.objects[0].variant = "collapsed";
   for (const auto& sh : generateWorld(s).shapes) EXPECT_NE(sh.kind, ObstacleKind::kTextureless) << sh.name;
+}
+
+// The object kinds listed in docs/worlds.md's table "Textureless surfaces of urban" (first
+// column, in backticks).
+std::set<std::string> documentedTexturelessKinds() {
+  std::ifstream in(std::string(MSB_SOURCE_DIR) + "/docs/worlds.md");
+  std::set<std::string> kinds;
+  bool in_section = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("#", 0) == 0) in_section = line.find("Textureless surfaces of urban") != std::string::npos;
+    if (in_section && line.rfind("| `", 0) == 0) kinds.insert(line.substr(3, line.find('`', 3) - 3));
+  }
+  return kinds;
+}
+
+TEST(Worlds, EveryTexturelessSurfaceOfUrbanIsOfAKindTheDocsList) {
+  // The world spec cannot silently grow flat surfaces: each textureless shape's object kind (its
+  // id without the number) is in the documented list, and every listed kind has one.
+  std::set<std::string> kinds;
+  for (const auto& sh : generateWorld(spec("urban")).shapes)
+    if (sh.kind == ObstacleKind::kTextureless) kinds.insert(sh.object.substr(0, sh.object.rfind('_')));
+  EXPECT_EQ(kinds, documentedTexturelessKinds());
+  EXPECT_EQ(kinds.count("building"), 0u);
 }
 
 TEST(Worlds, UnknownObjectKindIsAConfigError) {
