@@ -75,6 +75,16 @@ struct PyScenario {
   py::object effective() const { return yamlToPython(YAML::Load(effective_yaml)); }
 };
 
+/// A path argument: str or os.PathLike, as a string.
+std::string pathOf(const py::handle& path);
+
+/// `set=` as KEY=VALUE strings: a list or tuple of such strings, or a dict {key: value} (True and
+/// False as true/false, lists and dicts as JSON flow, the rest as str()). TypeError otherwise.
+std::vector<std::string> setsOf(const py::handle& sets);
+
+/// A scenario argument: a loaded Scenario, or a path loaded without overrides.
+PyScenario scenarioOf(const py::handle& scenario);
+
 /// What a step produced: the tick, the newest frame and SLAM points of the ticks stepped (None
 /// when none was rendered in them), the vehicle's true and estimated state. Arrays read-only.
 struct PyTick {

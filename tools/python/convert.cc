@@ -90,34 +90,86 @@ void fillPoints(PyTick& t, const SlamPointsFrame& f) {
   t.track_ids = readOnly(ids);
 }
 
+std::string pathOf(const py::handle& path) {
+  if (py::isinstance<py::str>(path)) return path.cast<std::string>();
+  if (py::hasattr(path, "__fspath__")) return py::module_::import("os").attr("fspath")(path).cast<std::string>();
+  throw py::type_error("expected a path (str or os.PathLike), got " + std::string(py::str(path.get_type())));
+}
+
+std::vector<std::string> setsOf(const py::handle& sets) {
+  std::vector<std::string> out;
+  if (sets.is_none()) return out;
+  if (py::isinstance<py::dict>(sets)) {
+    const py::module_ json = py::module_::import("json");
+    for (const auto& [k, v] : sets.cast<py::dict>()) {
+      std::string value;
+      if (py::isinstance<py::bool_>(v))
+        value = v.cast<bool>() ? "true" : "false";
+      else if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v) || py::isinstance<py::dict>(v))
+        value = json.attr("dumps")(v).cast<std::string>();
+      else
+        value = py::str(v).cast<std::string>();
+      out.push_back(py::str(k).cast<std::string>() + "=" + value);
+    }
+    return out;
+  }
+  if (py::isinstance<py::list>(sets) || py::isinstance<py::tuple>(sets)) {
+    for (const auto& item : sets) {
+      if (!py::isinstance<py::str>(item))
+        throw py::type_error("set: each entry of a list is a 'KEY=VALUE' string, got " +
+                             std::string(py::str(item.get_type())));
+      out.push_back(item.cast<std::string>());
+    }
+    return out;
+  }
+  throw py::type_error("set: expected a dict {key: value} or a list of 'KEY=VALUE' strings, got " +
+                       std::string(py::str(sets.get_type())));
+}
+
+PyScenario scenarioOf(const py::handle& scenario) {
+  if (py::isinstance<PyScenario>(scenario)) return scenario.cast<PyScenario>();
+  return PyScenario::load(pathOf(scenario), {});
+}
+
 // Scenario and TickRecord.
 void bindScenarioAndTicks(py::module_& m) {
   py::class_<PyScenario>(m, "Scenario", "A validated scenario file, as `msbench run` loads it.")
-      .def_static("load", &PyScenario::load, py::arg("path"), py::arg("set") = std::vector<std::string>{},
-                  "Loads a scenario with KEY=VALUE overrides (as --set); raises msbench.ConfigError.")
+      .def_static(
+          "load",
+          [](const py::object& path, const py::object& sets) { return PyScenario::load(pathOf(path), setsOf(sets)); },
+          py::arg("path"), py::arg("set") = py::none(),
+          "Loads a scenario file (a path) with overrides as --set gives them: set= a dict {key: value} or a "
+          "list of 'KEY=VALUE' strings. Raises msbench.ConfigError naming the file and key.")
+      .def_property_readonly(
+          "sets", [](const PyScenario& s) { return s.sets; }, "The KEY=VALUE overrides it was loaded with.")
       .def("effective", &PyScenario::effective, "The full effective configuration as a dict.")
       .def(
           "effective_yaml", [](const PyScenario& s) { return s.effective_yaml; }, "config.yaml's text.")
-      .def_property_readonly("file", [](const PyScenario& s) { return s.file; })
-      .def_property_readonly("name", [](const PyScenario& s) { return s.spec.name; })
-      .def_property_readonly("seed", [](const PyScenario& s) { return s.spec.flight.seed; })
-      .def_property_readonly("method", [](const PyScenario& s) { return s.spec.method.type; })
-      .def_property_readonly("duration_s", [](const PyScenario& s) { return s.spec.flight.duration_s; });
+      .def_property_readonly(
+          "file", [](const PyScenario& s) { return s.file; }, "The scenario file's path.")
+      .def_property_readonly(
+          "name", [](const PyScenario& s) { return s.spec.name; }, "The scenario's name.")
+      .def_property_readonly(
+          "seed", [](const PyScenario& s) { return s.spec.flight.seed; }, "The run's seed.")
+      .def_property_readonly(
+          "method", [](const PyScenario& s) { return s.spec.method.type; }, "The method's type (method.type).")
+      .def_property_readonly(
+          "duration_s", [](const PyScenario& s) { return s.spec.flight.duration_s; }, "Simulated duration (s).");
 
   py::class_<PyTick>(m, "TickRecord", "What a step produced (arrays are read-only).")
-      .def_readonly("tick", &PyTick::tick)
-      .def_readonly("t_s", &PyTick::t_s)
-      .def_readonly("running", &PyTick::running)
+      .def_readonly("tick", &PyTick::tick, "physics tick after the step")
+      .def_readonly("t_s", &PyTick::t_s, "simulated time after the step (s)")
+      .def_readonly("running", &PyTick::running, "True until the run ends")
       .def_readonly("frame", &PyTick::frame, "H×W uint8 fisheye image (a view, no copy), or None")
       .def_readonly("frame_pose", &PyTick::frame_pose, "true camera pose of the frame, 4×4")
-      .def_readonly("frame_tick", &PyTick::frame_tick)
+      .def_readonly("frame_tick", &PyTick::frame_tick, "tick of the frame, or None")
       .def_readonly("points", &PyTick::points, "SLAM points N×3 (VIO frame), or None")
       .def_readonly("point_covariances", &PyTick::point_covariances, "N×3×3 (m²)")
       .def_readonly("track_ids", &PyTick::track_ids, "N uint64")
       .def_readonly("true_pose", &PyTick::true_pose, "4×4 body pose, ground truth")
       .def_readonly("est_pose", &PyTick::est_pose, "4×4 body pose, VIO estimate")
-      .def_readonly("true_velocity", &PyTick::true_velocity)
-      .def_readonly("est_velocity", &PyTick::est_velocity);
+      .def_readonly("true_velocity", &PyTick::true_velocity, "body velocity (m/s), ground truth")
+      .def_readonly("est_velocity", &PyTick::est_velocity, "body velocity (m/s), VIO estimate");
 }
 
 }  // namespace binding

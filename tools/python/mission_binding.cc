@@ -5,6 +5,7 @@
 
 #include <cstdio>
 
+#include "core/common/wall_time.h"
 #include "core/geometry/world_truth.h"
 #include "tools/config/method_table.h"
 #include "tools/config/world_registry.h"
@@ -84,24 +85,26 @@ class PyMission {
     return record(new_frame, points);
   }
 
-  // Runs to the end, checking for Ctrl-C between simulated seconds; a progress line on a terminal.
+  // Runs to the end, checking for Ctrl-C between simulated seconds; with `progress`, the command
+  // line's progress line on stderr every 10 simulated seconds (piped or not; wall time shown only).
   void run(bool progress) {
-    const bool tty = progress && isatty(STDERR_FILENO);
     const int64_t chunk = mission_->physicsHz();
     int64_t next_progress = 10 * chunk;
+    const auto wall_start = WallClock::now();
     while (running()) {
       guarded([&] {
         py::gil_scoped_release release;
         for (int64_t i = 0; i < chunk && mission_->running(); ++i) last_tick_ = mission_->step().tick;
       });
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // KeyboardInterrupt
-      if (tty && last_tick_ >= next_progress) {
+      if (progress && last_tick_ + 1 >= next_progress) {             // ticks count from 0: tick k ends at (k + 1) / hz
         next_progress += 10 * chunk;
-        std::fprintf(stderr, "\rmsbench %s: t = %.0f / %.0f s, A = %.0f m²   ", scenario_.spec.name.c_str(),
-                     double(last_tick_) / double(chunk), scenario_.spec.flight.duration_s, mission_->areaM2());
+        const double sim_s = double(last_tick_ + 1) / double(chunk), duration = scenario_.spec.flight.duration_s;
+        const double rtf = sim_s / std::max(secondsSince(wall_start), 1e-9);
+        std::fprintf(stderr, "run %s: t = %.0f / %.0f s, RTF %.2f, A = %.0f m², ETA %.0f s\n",
+                     scenario_.spec.name.c_str(), sim_s, duration, rtf, mission_->areaM2(), (duration - sim_s) / rtf);
       }
     }
-    if (tty) std::fprintf(stderr, "\n");
   }
 
   // The metrics (metrics.json's content); finishes the mission on first call.
@@ -244,20 +247,24 @@ class PyMission {
 
 void bindMission(py::module_& m) {
   py::class_<PyMission>(m, "Mission", "A mission of a scenario, stepped or run from Python.")
-      .def(py::init<const PyScenario&, py::object, py::object>(), py::arg("scenario"), py::arg("method") = py::none(),
-           py::arg("goals") = py::none(),
-           "method: None (the scenario's) or a factory(Context) returning a Python method; goals: a "
+      .def(py::init([](const py::object& scenario, py::object method, py::object goals) {
+             return std::make_unique<PyMission>(scenarioOf(scenario), std::move(method), std::move(goals));
+           }),
+           py::arg("scenario"), py::arg("method") = py::none(), py::arg("goals") = py::none(),
+           "scenario: a Scenario or a path; method: None (the scenario's) or a factory(Context) returning a Python "
+           "method; goals: a "
            "goal chooser for the scenario's method (the goal-only helper): grid_random: "
            "goals(GoalRequest) -> None | (x, y, z) | [(x, y, z), ...]; monospheres: "
            "goals(ViewpointRequest) -> None | 0 | viewpoint id")
-      .def("area_m2", &PyMission::areaM2, "The coverage area so far (m²).")
+      .def_property_readonly("area_m2", &PyMission::areaM2, "The coverage area so far (m², the paper's metric).")
       .def_property_readonly("physics_hz", &PyMission::physicsHz, "physics ticks per simulated second")
-      .def_property_readonly("status", &PyMission::status)
-      .def_property_readonly("running", &PyMission::running)
+      .def_property_readonly("status", &PyMission::status, "The run status: running, completed, collided, ...")
+      .def_property_readonly("running", &PyMission::running, "True until the run ends.")
       .def("step", &PyMission::step, py::arg("n") = 1, "Steps up to n physics ticks; returns a TickRecord.")
       .def("run", &PyMission::run, py::arg("progress") = true, "Runs to the end (Ctrl-C raises KeyboardInterrupt).")
       .def("result", &PyMission::result, "metrics.json's content as a dict (the run must have ended).")
-      .def("hash", &PyMission::hash, "The determinism hash (as msbench run prints it).")
+      .def_property_readonly("hash", &PyMission::hash,
+                             "The determinism hash (as msbench run prints it); the run must have ended.")
       .def("write", &PyMission::write, py::arg("dir"), py::arg("overwrite") = false,
            "Writes the files msbench run writes into dir; returns its path.");
 }

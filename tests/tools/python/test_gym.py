@@ -50,7 +50,7 @@ def test_the_same_choices_give_the_same_hash_and_a_path_is_flown_as_given():
     for _ in range(2):
         m = msbench.Mission(grid_scenario(), goals=ahead)
         m.run(progress=False)
-        hashes.append(m.hash())
+        hashes.append(m.hash)
     assert hashes[0] == hashes[1]
 
     def path(request):
@@ -61,7 +61,7 @@ def test_the_same_choices_give_the_same_hash_and_a_path_is_flown_as_given():
 
     m = msbench.Mission(grid_scenario(), goals=path)
     m.run(progress=False)
-    assert m.hash() != hashes[0]
+    assert m.hash != hashes[0]
     assert m.result()["counters"]["paths_to_closest_cell"] == 0  # no A* was needed for a given path
 
 
@@ -124,11 +124,11 @@ def test_the_gym_adapter_steps_a_mission_and_rewards_coverage_gained():
     assert len(rewards) == 6  # 12 s in steps of 2 s
     assert all(r >= 0 for r in rewards)
     assert sum(rewards) == pytest.approx(env.mission.result()["coverage"]["area_m2"])
-    first = env.mission.hash()
+    first = env.mission.hash
     run_episode(env, seed=1)
-    assert env.mission.hash() == first  # reset(seed) really seeds
+    assert env.mission.hash == first  # reset(seed) really seeds
     run_episode(env, seed=2)
-    assert env.mission.hash() != first
+    assert env.mission.hash != first
     with pytest.raises(RuntimeError, match="ended"):
         env.step((0.0, 0.0, 2.0))
 
@@ -170,14 +170,14 @@ def test_a_viewpoint_chooser_picks_monospheres_goals_among_the_reachable_viewpoi
 
     m = msbench.Mission(spheres_scenario(), goals=watch)
     m.run(progress=False)
-    assert m.hash() == own.hash()
+    assert m.hash == own.hash
     assert asked and any(ids for ids, _, _ in asked)
     for ids, costs, shape in asked:
         assert shape == (len(ids), 3) and costs == sorted(costs)
     # The farthest reachable viewpoint each time: another run, every goal a candidate.
     m = msbench.Mission(spheres_scenario(), goals=lambda r: int(r.ids[-1]) if len(r.ids) else None)
     m.run(progress=False)
-    assert m.hash() != own.hash() and m.result()["counters"]["goals_chosen"] >= 1
+    assert m.hash != own.hash and m.result()["counters"]["goals_chosen"] >= 1
     # 0: no goal at all.
     m = msbench.Mission(spheres_scenario(), goals=lambda r: 0)
     m.run(progress=False)

@@ -23,7 +23,7 @@ def test_the_python_twin_gives_the_cpp_methods_hash():
     cpp.run(progress=False)
     twin = msbench.Mission(s, method=hover_turn.factory)
     twin.run(progress=False)
-    assert twin.hash() == cpp.hash()
+    assert twin.hash == cpp.hash
     assert twin.result()["coverage"]["area_m2"] > 0  # the sphere was scored
 
 
@@ -69,3 +69,17 @@ def test_method_rng_streams_are_seeded_like_msbenchs():
     msbench.Mission(msbench.Scenario.load(CPP, set=FAST), method=lambda c: seen.append(c.rng("x").uniform()) or
                     hover_turn.HoverTurn(c))
     assert seen == [msbench.RngStream(1, "x").uniform()]
+
+
+def test_a_piped_python_run_prints_the_command_lines_progress_and_summary(tmp_path):
+    # Before: no progress when stderr was not a terminal, and a shorter summary than msbench run's.
+    sets = sum([["--set", s] for s in FAST + ["duration_s=20"]], [])
+    cpp = subprocess.run([MSBENCH_BIN, "run", CPP, "--out", str(tmp_path / "cpp")] + sets,
+                         capture_output=True, text=True, check=True)
+    py = subprocess.run([MSBENCH_BIN, "run", PY, "--out", str(tmp_path / "py")] + sets,
+                        capture_output=True, text=True, check=True)
+    assert "t = 10 / 20 s, RTF " in py.stderr and "ETA" in py.stderr
+    shape = lambda line: line.split(" after ")[1].split("(")[0] + line.split("); ")[1].split(" m flown")[0]
+    cpp_line = next(l for l in cpp.stdout.splitlines() if " after " in l)
+    py_line = next(l for l in py.stdout.splitlines() if " after " in l)
+    assert "s wall, RTF " in py_line and shape(py_line) == shape(cpp_line)

@@ -75,7 +75,7 @@ def test_an_importable_in_process_factory_is_recorded_and_its_config_replays_the
     assert metrics["replayable"] is True and metrics["switches"] == {}
     replay = run_config(out, tmp_path, "replay")
     assert replay.returncode == 0, replay.stderr
-    assert f"hash {m.hash()}" in replay.stdout
+    assert f"hash {m.hash}" in replay.stdout
 
 
 def test_a_lambda_factory_is_recorded_as_not_replayable(tmp_path):
@@ -100,7 +100,7 @@ def test_a_cpp_method_and_a_scenario_python_method_replay_from_their_config(tmp_
         assert json.load(open(os.path.join(out, "metrics.json")))["replayable"] is True
         replay = run_config(out, tmp_path, "replay_" + os.path.basename(scenario))
         assert replay.returncode == 0, replay.stderr
-        assert f"hash {m.hash()}" in replay.stdout
+        assert f"hash {m.hash}" in replay.stdout
 
 
 def test_a_goal_chooser_is_named_and_the_run_is_not_replayable(tmp_path):

@@ -54,11 +54,24 @@ def run(argv):
         print("msbench run: interrupted; nothing written", file=sys.stderr)
         return 128 + getattr(e, "signum", signal.SIGINT)
     out = mission.write(a.out, overwrite=a.overwrite)
-    r = mission.result()
-    cov = r["coverage"]
-    print(f"run {r['name']}: {r['status']} after {r['sim_time_s']:.0f} s simulated; A = {cov['area_m2']:.0f} m²; "
-          f"hash {r['determinism_hash']} -> {out}")
+    print(summary_line(mission.result(), out))
     return 0
+
+
+def summary_line(r, out):
+    """The result line `msbench run` prints, from a run's metrics (and its collision line)."""
+    cov = r["coverage"]
+    share = "" if cov.get("box_share") is None else f", {int(100 * cov['box_share'])} % of explorable"
+    line = (f"run {r['name']}: {r['status']} after {r['sim_time_s']:.0f} s simulated "
+            f"({r['wall_time_s']:.0f} s wall, RTF {r['real_time_factor']:.2f}); A = {cov['area_m2']:.0f} m² "
+            f"(box {cov['area_box_m2']:.0f} m²{share}), {r['distance_flown_m']:.0f} m flown; "
+            f"hash {r['determinism_hash']} -> {out}")
+    c = r.get("collision")
+    if c:
+        v = c.get("vehicle_position_m", [0, 0, 0])
+        line += (f"\nrun {r['name']}: collision at t = {c['t_s']:.1f} s, vehicle at ({v[0]:.1f}, {v[1]:.1f}, "
+                 f"{v[2]:.1f}), {c.get('vehicle_geom', '?')} hit {c.get('world_geom', '?')}")
+    return line
 
 
 def main():

@@ -18,11 +18,15 @@ must use the grid method (`method.type: grid_random`): its map scores the free s
 the goals; only the choice of goals is the agent's.
 
 The class subclasses `gymnasium.Env` when gymnasium is importable (not packaged for Debian 12) and
-is a plain class with the same methods otherwise.
+is a plain class with the same methods otherwise; its `action_space` and `observation_space` are
+gymnasium's spaces then, msbench's own (`msbench.spaces`: same fields, seeded `sample()`,
+`contains()`) without it — never None.
 """
 import math
+import os
 
 from ._msbench import Mission, Scenario
+from . import spaces as _spaces
 
 try:  # gymnasium is optional
     import gymnasium as _gymnasium
@@ -33,6 +37,21 @@ except ImportError:  # pragma: no cover - depends on the machine
 
 #: run statuses that end an episode early (anything else ending it is the time limit)
 EARLY_END = ("collided", "vio_lost", "diverged", "error")
+
+
+def _scenario_source(scenario, sets):
+    """(path, list of KEY=VALUE) from a path or a Scenario plus more `sets` (list or dict)."""
+    extra = [f"{k}={_set_value(v)}" for k, v in sets.items()] if isinstance(sets, dict) else list(sets)
+    if isinstance(scenario, Scenario):
+        return scenario.file, list(scenario.sets) + extra
+    return os.fspath(scenario), extra
+
+
+def _set_value(v):
+    """A Python value as the text of a --set value (YAML): true/false, numbers, strings."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return str(v)
 
 
 def _as_action(action):
@@ -53,12 +72,13 @@ class ExplorationEnv(_Base):
     metadata = {"render_modes": []}
 
     def __init__(self, scenario, set=(), decision_period_s=2.0):
+        """scenario: a path or a loaded msbench.Scenario (its `set` values kept); set: more
+        KEY=VALUE overrides (a list, or a dict); decision_period_s: simulated time per step."""
         if not decision_period_s > 0:
             raise ValueError("decision_period_s must be > 0")
-        self._path = scenario
-        self._sets = list(set)
+        self._path, self._sets = _scenario_source(scenario, set)
         self._period_s = float(decision_period_s)
-        probe = Scenario.load(scenario, set=self._sets)  # bad files and keys fail here (ConfigError)
+        probe = Scenario.load(self._path, set=self._sets)  # bad files and keys fail here (ConfigError)
         if probe.method != "grid_random":
             raise ValueError(f"{scenario}: ExplorationEnv needs method.type grid_random (got '{probe.method}')")
         camera = probe.effective()["camera"]
@@ -67,19 +87,17 @@ class ExplorationEnv(_Base):
         self._pending = None
         self._area = 0.0
         self._goal_requests = 0
-        if _gymnasium is not None:
-            spaces = _gymnasium.spaces
-            self.action_space = spaces.Box(-math.inf, math.inf, shape=(3,), dtype=float)
-            self.observation_space = spaces.Dict({
-                "frame": spaces.Box(0, 255, shape=self.frame_shape, dtype="uint8"),
-                "pose": spaces.Box(-math.inf, math.inf, shape=(4, 4), dtype=float),
-                "position": spaces.Box(-math.inf, math.inf, shape=(3,), dtype=float),
-                "velocity": spaces.Box(-math.inf, math.inf, shape=(3,), dtype=float),
-            })
+        self.action_space = _spaces.make_box(-math.inf, math.inf, (3,), float)
+        self.observation_space = _spaces.make_dict({
+            "frame": _spaces.make_box(0, 255, self.frame_shape, "uint8"),
+            "pose": _spaces.make_box(-math.inf, math.inf, (4, 4), float),
+            "position": _spaces.make_box(-math.inf, math.inf, (3,), float),
+            "velocity": _spaces.make_box(-math.inf, math.inf, (3,), float),
+        })
 
     @property
     def mission(self):
-        """The current msbench.Mission (result(), hash(), write() once the episode ended)."""
+        """The current msbench.Mission (result(), hash, write() once the episode ended)."""
         return self._mission
 
     def reset(self, seed=None, options=None):
@@ -115,7 +133,7 @@ class ExplorationEnv(_Base):
     def _area_now(self):
         # The last periodic evaluation while running; the run's final coverage once it ended.
         if self._mission.running or self._mission.status == "error":
-            return self._mission.area_m2()
+            return self._mission.area_m2
         return self._mission.result()["coverage"]["area_m2"]
 
     def _choose(self, request):
