@@ -16,6 +16,7 @@
 #include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
+#include "tools/msbench/interrupt.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
 
@@ -89,6 +90,7 @@ void benchPhysics(const std::string& world, long steps) {
   ref.position_m = p0;
   auto t0 = WallClock::now();
   for (long i = 0; i < steps; ++i) {
+    if (i % 1000 == 0) throwIfInterrupted();  // a timing loop still stops on Ctrl-C
     sim.beginTick();
     sim.endTick(controller.compute(sim.groundTruth(), ref));
   }
@@ -135,6 +137,7 @@ RenderBench timeRenderers(std::vector<std::unique_ptr<FisheyeRenderer>>& rendere
   std::vector<CameraFrame> frames_out(renderers.size());
   RenderTiming t;
   for (long i = 0; i < frames + 2; ++i) {
+    throwIfInterrupted();
     const Pose T_W_B = poseFromXyzYaw(p0, i * 6.0 * M_PI / 180.0);
     for (size_t k = 0; k < renderers.size(); ++k) {
       renderers[k]->render(rsim.data(), T_W_B * camera.T_B_C(), &frames_out[k], &t);

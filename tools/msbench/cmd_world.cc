@@ -153,8 +153,10 @@ int worldBuild(int argc, char** argv) {
   const auto t0 = WallClock::now();
   const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
   const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
+  throwIfInterrupted();  // the cache entry is whole (written and renamed) or absent
   // Compile once in MuJoCo (fails loudly on any MuJoCo error or warning).
   QuadrotorSim sim(PhysicsConfig{}, w.world_xml, w.generated.start);
+  throwIfInterrupted();
   const double secs = secondsSince(t0);
   std::printf("world %s: %s (%s) in %.2f s; %d collision + %d visual geoms (MuJoCo model: %d geoms)\n",
               w.generated.name.c_str(), w.directory.c_str(), w.reused ? "cached" : "built", secs,

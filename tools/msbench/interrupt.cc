@@ -33,6 +33,9 @@ void installInterruptHandlers() {
   sa.sa_handler = onSignal;
   sigemptyset(&sa.sa_mask);
   for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaction(sig, &sa, nullptr);
+  // A closed stdout (`msbench run ... | head -1`) must not kill a run half-way and leave its
+  // staging directory: writes to it fail instead, and the run finishes its files.
+  std::signal(SIGPIPE, SIG_IGN);
 }
 
 bool interruptRequested() { return g_signal != 0; }

@@ -21,7 +21,7 @@ class Interrupted : public std::runtime_error {
   int signal_;
 };
 
-/// Installs the SIGINT, SIGTERM, SIGHUP and SIGQUIT handlers (once, at start-up).
+/// Installs the SIGINT, SIGTERM, SIGHUP and SIGQUIT handlers and ignores SIGPIPE (once, at start-up).
 void installInterruptHandlers();
 /// Throws Interrupted if a signal arrived.
 void throwIfInterrupted();

@@ -167,7 +167,7 @@ bool isMsbenchOutput(const fs::path& dir, OutputKind kind) {
 
 bool isMsbenchOutput(const fs::path& dir) {
   // The marker only: a directory holding a copy of a metrics.json is not msbench's output.
-  return fs::is_directory(dir) && markerTextOf(dir).rfind("This directory was written by msbench", 0) == 0;
+  return fs::is_directory(dir) && markerTextOf(dir).find("msbench") != std::string::npos;
 }
 
 StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind kind)

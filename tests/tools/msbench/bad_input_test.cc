@@ -372,7 +372,7 @@ TEST(BadInput, ReportAndRegressNeverWriteOverResults) {
   t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g.json"),
                   {"g.json", "runs[0].determinism_hash", "missing"});
   t.write("g2.json", R"({"runs": [)");
-  t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g2.json"), {"g2.json", "not a JSON object"});
+  t.expectRefused("regress " + t.p("sw") + " --against " + t.p("g2.json"), {"g2.json", "not valid JSON"});
   // A malformed sweep index names the file and the key.
   const std::string index = readText(t.d / "sw/sweep.json");
   t.write("sw/sweep.json", R"({"axes": ["a"], "runs": [{"id": "a-s1", "seed": -3, "status": "complete"}]})");
@@ -496,6 +496,9 @@ TEST(BadInput, EveryCommandStopsAtItsSafePoints) {
       {"render-probe --world " + t.p("w.xml") + " --out " + t.p("p.png"), "INT:1", "p.png", 130},
       {"world show urban --out " + t.p("ws"), "TERM:2", "ws", 143},
       {"run " + m + " --out " + t.p("r") + " --quiet", "INT:5", "r", 130},
+      // These two ignored signals before (they have no output to stage: `out` names nothing).
+      {"world build sparse", "TERM:1", "none", 143},
+      {"bench-sim --world " + t.p("w.xml") + " --frames 5 --steps 2000", "INT:3", "none", 130},
   };
   for (const auto& s : kStops) {
     const std::string cmd =
@@ -506,6 +509,16 @@ TEST(BadInput, EveryCommandStopsAtItsSafePoints) {
     EXPECT_FALSE(fs::exists(t.d / s.out)) << s.args;
     EXPECT_FALSE(fs::exists(t.d / (s.out + ".partial"))) << s.args;
   }
+}
+
+TEST(BadInput, AClosedStdoutDoesNotKillARunHalfWay) {
+  // Before: SIGPIPE ended `run | head -1` at its first progress line and left DIR.partial.
+  const Dir t("sigpipe");
+  const std::string m = kSrc + "/scenarios/missions/test_world_short.yaml";
+  const std::string cmd = "'" + kExe + "' run " + m + " --out " + t.p("r") + " 2>&1 | head -c 1 > /dev/null";
+  ASSERT_EQ(std::system(("bash -c \"" + cmd + "\"").c_str()), 0);
+  EXPECT_TRUE(fs::exists(t.d / "r" / "metrics.json"));
+  EXPECT_FALSE(fs::exists(t.d / "r.partial"));
 }
 
 TEST(BadInput, InterruptsLeaveNothingBehind) {
