@@ -153,8 +153,9 @@ int runRunCommand(int argc, char** argv) {
   } catch (const Interrupted&) {
     throw;  // unwinds: the recorder and the staging directory remove themselves
   } catch (const std::exception& e) {
-    // A crashed run leaves a record saying so (a sweep goes on with the next run).
-    writeFileAtomic(out.staging() / "metrics.json", errorMetrics(spec, e.what()).dump(2) + "\n");
+    // A crashed run leaves a record saying so, and what it flew up to the error (a sweep goes on
+    // with the next run).
+    writeErroredMissionOutputs(out.staging(), spec, mission, e.what(), -1, truth ? &*truth : nullptr);
     out.commit();
     std::fprintf(stderr, "msbench run: error: %s (recorded in %s)\n", e.what(), out.finalDir().c_str());
     return kExitRuntime;

@@ -121,9 +121,8 @@ class PyMission {
                     configYamlText(scenario_.file, !scenario_.sets.empty(), scenario_.effective_yaml,
                                    scenario_.spec.method.not_replayable));
     if (error_) {
-      nlohmann::json j = errorMetrics(scenario_.spec, *error_);
-      j["error_tick"] = last_tick_;
-      writeFileAtomic(out.staging() / "metrics.json", j.dump(2) + "\n");
+      writeErroredMissionOutputs(out.staging(), scenario_.spec, *mission_, *error_, last_tick_,
+                                 world_->truth ? &*world_->truth : nullptr);
     } else {
       writeMissionOutputs(out.staging(), scenario_.spec, finished(), world_->truth ? &*world_->truth : nullptr);
     }

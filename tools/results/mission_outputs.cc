@@ -489,6 +489,25 @@ nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const Scena
   return metrics;
 }
 
+nlohmann::json writeErroredMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, Mission& mission,
+                                          const std::string& what, int64_t error_tick, const WorldTruth* truth) {
+  nlohmann::json m;
+  try {
+    MissionResult r = mission.finish();
+    r.flight.status = RunStatus::kError;
+    m = writeMissionOutputs(dir, spec, r, truth);
+    m["error"] = what;
+    if (error_tick < 0) error_tick = r.flight.ticks;
+  } catch (const std::exception& again) {
+    // The method fails again when asked for its map: the record alone, as before.
+    m = errorMetrics(spec, what);
+    m["finish_error"] = again.what();
+  }
+  m["error_tick"] = error_tick;
+  writeFileAtomic(dir / "metrics.json", m.dump(2) + "\n");
+  return m;
+}
+
 nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what) {
   return {{"name", spec.name},
           {"status", runStatusName(RunStatus::kError)},

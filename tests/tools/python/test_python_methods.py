@@ -59,6 +59,11 @@ def test_an_exception_in_a_python_method_ends_the_run_with_status_error(tmp_path
     assert metrics["status"] == "error"
     assert "in plan" in metrics["error"] and "ZeroDivisionError" in metrics["error"]  # the traceback
     assert 3.0 * 500 <= metrics["error_tick"] < 4.0 * 500
+    # What it flew up to the error is written too (before: metrics.json and config.yaml only).
+    names = set(os.listdir(out))
+    assert {"trajectory.csv", "coverage.csv", "topdown.png", "config.yaml"} <= names, names
+    rows = open(os.path.join(out, "trajectory.csv")).read().splitlines()
+    assert float(rows[-1].split(",")[0]) == pytest.approx(metrics["sim_time_s"], abs=0.15) and metrics["sim_time_s"] > 3.0
 
 
 def test_method_rng_streams_are_seeded_like_msbenchs():
