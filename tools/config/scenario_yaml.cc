@@ -135,6 +135,22 @@ void missionKeys(Keys r, MissionSettings& m) {
   r.finish();
 }
 
+// The `goals` section: entry, path, and params (a map, kept as YAML text for the factory).
+PythonMethodConfig readGoals(MapReader g) {
+  PythonMethodConfig c;
+  if (!g.read("entry", c.entry)) throw ConfigError(g.keyName("entry"), "is required (\"module:chooser\")");
+  g.read("path", c.path);
+  if (g.has("params")) {
+    const YAML::Node n = g.raw("params");
+    if (!n.IsMap()) throw ConfigError(g.keyName("params"), "expected a map of the chooser factory's keyword arguments");
+    YAML::Emitter e;
+    e << YAML::Flow << n;
+    c.params_yaml = e.c_str();
+  }
+  g.finish();
+  return c;
+}
+
 void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
   r.read("name", s.name);
   s.start_from_world = !r.has("start");
@@ -149,6 +165,7 @@ void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
     s.exploration_box = box;
   }
   if (r.has("mission")) missionKeys(r.sub("mission"), s.mission);
+  if (r.has("goals")) s.goals = readGoals(r.sub("goals"));
   r.finish();
 }
 
@@ -174,6 +191,8 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
     auto& c = std::any_cast<PythonMethodConfig&>(spec.method.config);
     if (!c.path.empty() && fs::path(c.path).is_relative()) c.path = (dir / c.path).lexically_normal().string();
   }
+  if (spec.goals && !spec.goals->path.empty() && fs::path(spec.goals->path).is_relative())
+    spec.goals->path = (dir / spec.goals->path).lexically_normal().string();
   // Names and paths end up in metrics.json (JSON is UTF-8): checked now, not after the mission.
   if (!isValidUtf8(path)) throw FileConfigError(path + ": the file name is not valid UTF-8");
   if (!isValidUtf8(spec.name)) throw FileConfigError(label + ": key 'name': not valid UTF-8");
@@ -220,6 +239,12 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec) {
   }
   MissionSettings mission = spec.mission;
   missionKeys(w.sub("mission"), mission);
+  if (spec.goals) {
+    MapWriter g = w.sub("goals");
+    g.field("entry", spec.goals->entry);
+    g.field("path", spec.goals->path);
+    g.node()["params"] = YAML::Load(spec.goals->params_yaml);
+  }
   return yamlText(w.node());
 }
 

@@ -35,6 +35,11 @@ void ScenarioSpec::validate(ConfigChecker& c) const {
     c.require(size.maxCoeff() <= 10000.0, "exploration_box", "must be at most 10 km on every axis");
   }
   c.nested("mission", mission);
+  if (goals) {
+    c.nested("goals", *goals);
+    c.require(method.type == "grid_random" || method.type == "monospheres", "goals",
+              "a goal chooser drives method.type grid_random or monospheres, not '" + method.type + "'");
+  }
 }
 
 }  // namespace msb

@@ -122,7 +122,7 @@ int runRunCommand(int argc, char** argv) {
   if (args.given("seed")) all_sets.push_back("seed=" + args.get("seed"));
   if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
   ScenarioSpec spec = loadScenario(file, all_sets);
-  if (spec.method.type == kPythonMethodType) execPythonRun(original_args);
+  if (spec.method.type == kPythonMethodType || spec.goals) execPythonRun(original_args);
   const std::string effective_yaml = effectiveScenarioYaml(spec);  // before the world fills in the start
   MissionWorld world = prepareMissionWorld(file, spec);
   const Aabb& box = world.box;

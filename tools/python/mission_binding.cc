@@ -29,7 +29,19 @@ class PyMission {
     *world_ = prepareMissionWorld(scenario_.file, scenario_.spec);
     const WorldTruth* truth = world_->truth ? &*world_->truth : nullptr;
     if (!goals.is_none()) {
-      buildWithGoalChooser(std::move(method), std::move(goals), truth);
+      buildWithGoalChooser(std::move(method), std::move(goals), truth, /*record=*/true);
+      return;
+    }
+    // A scenario naming a goal chooser (`goals:`): imported from its entry, recorded by the
+    // scenario itself (config.yaml's goals section replays it).
+    if (method.is_none() && scenario_.spec.goals) {
+      const PythonMethodConfig& g = *scenario_.spec.goals;
+      scenario_.spec.method.goal_chooser = g.entry;  // metrics.json names it; config.yaml replays it
+      buildWithGoalChooser(py::none(),
+                           py::module_::import("msbench.methods")
+                               .attr("chooser_of")(g.entry, g.path, yamlToPython(YAML::Load(g.params_yaml)),
+                                                   scenario_.file),
+                           truth, /*record=*/false);
       return;
     }
     // A scenario naming a Python method (method.type: python): its factory, from msbench.methods.
@@ -157,9 +169,9 @@ class PyMission {
   }
 
   // The scenario's grid explorer with its goals from `goals` (the goal-only helper).
-  void buildWithGoalChooser(py::object method, py::object goals, const WorldTruth* truth) {
+  void buildWithGoalChooser(py::object method, py::object goals, const WorldTruth* truth, bool record) {
     if (!method.is_none()) throw py::value_error("Mission: give a method or goals, not both");
-    recordInProcess(scenario_, goals, /*goal_chooser=*/true);
+    if (record) recordInProcess(scenario_, goals, /*goal_chooser=*/true);
     std::unique_ptr<Explorer> explorer = scenario_.spec.method.make(FisheyeCamera(scenario_.spec.flight.camera),
                                                                     explorerContext(scenario_.spec, world_->box));
     attachGoalChooser(*explorer, scenario_.spec.method.type, std::move(goals), scenario_.file);

@@ -13,24 +13,46 @@ import sys
 from ._msbench import ConfigError
 
 
-def factory_of(entry, path, params, scenario_file):
-    """The factory(context) of a scenario's Python method, its params bound. Import failures and
-    a missing callable raise ConfigError naming the key."""
+def _import_entry(entry, path, scenario_file, key):
+    """The callable `entry` ("module:name") names, `path` first on sys.path; ConfigError naming
+    `key`.entry or `key`.path otherwise."""
     if path:
         full = path if os.path.isabs(path) else os.path.join(os.path.dirname(os.path.abspath(scenario_file)), path)
         if not os.path.isdir(full):
-            raise ConfigError(f"{scenario_file}: key 'method.path': not a directory: {full}")
+            raise ConfigError(f"{scenario_file}: key '{key}.path': not a directory: {full}")
         if full not in sys.path:
             sys.path.insert(0, full)
-    check_importable(entry, scenario_file)
+    check_importable(entry, scenario_file, key)
     module_name, _, attr = entry.partition(":")
     try:
         module = importlib.import_module(module_name)
     except ImportError as e:
-        raise ConfigError(f"{scenario_file}: key 'method.entry': cannot import '{module_name}': {e}") from e
-    factory = getattr(module, attr, None)
-    if not callable(factory):
-        raise ConfigError(f"{scenario_file}: key 'method.entry': '{module_name}' has no callable '{attr}'")
+        raise ConfigError(f"{scenario_file}: key '{key}.entry': cannot import '{module_name}': {e}") from e
+    found = getattr(module, attr, None)
+    if not callable(found):
+        raise ConfigError(f"{scenario_file}: key '{key}.entry': '{module_name}' has no callable '{attr}'")
+    return found
+
+
+def chooser_of(entry, path, params, scenario_file):
+    """The goal chooser a scenario's `goals` section names: `entry` itself, or — with `params` —
+    what `entry(**params)` returns (a factory of choosers). ConfigError naming the key."""
+    found = _import_entry(entry, path, scenario_file, "goals")
+    if not params:
+        return found
+    try:
+        chooser = found(**dict(params))
+    except TypeError as e:
+        raise ConfigError(f"{scenario_file}: key 'goals.params': {e}") from e
+    if not callable(chooser):
+        raise ConfigError(f"{scenario_file}: key 'goals.entry': '{entry}(**params)' did not return a callable chooser")
+    return chooser
+
+
+def factory_of(entry, path, params, scenario_file):
+    """The factory(context) of a scenario's Python method, its params bound. Import failures and
+    a missing callable raise ConfigError naming the key."""
+    factory = _import_entry(entry, path, scenario_file, "method")
     params = dict(params or {})
 
     def build(context):
@@ -71,9 +93,9 @@ def record_of(factory):
     return entry, root, ""
 
 
-def check_importable(entry, scenario_file):
+def check_importable(entry, scenario_file, key="method"):
     """A scenario's entry that names an in-process factory (recorded, not importable) is refused."""
     module_name, _, attr = entry.partition(":")
     if module_name == "__main__" or "<" in attr:
-        raise ConfigError(f"{scenario_file}: key 'method.entry': '{entry}' names an in-process factory that "
+        raise ConfigError(f"{scenario_file}: key '{key}.entry': '{entry}' names an in-process factory that "
                           "cannot be imported: the run it records was not replayable (its config.yaml says so)")
