@@ -37,11 +37,11 @@ class PyMission {
     if (method.is_none() && scenario_.spec.goals) {
       const PythonMethodConfig& g = *scenario_.spec.goals;
       scenario_.spec.method.goal_chooser = g.entry;  // metrics.json names it; config.yaml replays it
-      buildWithGoalChooser(py::none(),
-                           py::module_::import("msbench.methods")
-                               .attr("chooser_of")(g.entry, g.path, yamlToPython(YAML::Load(g.params_yaml)),
-                                                   scenario_.file),
-                           truth, /*record=*/false);
+      buildWithGoalChooser(
+          py::none(),
+          py::module_::import("msbench.methods")
+              .attr("chooser_of")(g.entry, g.path, yamlToPython(YAML::Load(g.params_yaml)), scenario_.file),
+          truth, /*record=*/false);
       return;
     }
     // A scenario naming a Python method (method.type: python): its factory, from msbench.methods.
