@@ -13,7 +13,7 @@ result loaders (`msbench.results`) are plain Python over the files every run wri
 """
 from ._msbench import (ConfigError, Context, GoalRequest, MethodError, Mission, RngStream, Scenario, SlamFrame,
                        TickRecord, Vehicle, ViewpointRequest, __version__)
-from . import gym, results
+from . import gym, results, spaces, vector
 
 __all__ = ["ConfigError", "Context", "GoalRequest", "MethodError", "Mission", "RngStream", "Scenario", "SlamFrame", "TickRecord",
            "Vehicle", "ViewpointRequest", "gym", "results", "__version__"]
