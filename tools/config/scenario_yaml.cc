@@ -169,8 +169,8 @@ void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
   r.finish();
 }
 
-YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::string>& sets) {
-  std::vector<fs::path> chain;
+YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::string>& sets,
+                            std::vector<fs::path>& chain) {
   YAML::Node tree = loadChain(path, chain);
   for (const auto& kv : sets) applySet(tree, kv);
   return tree;
@@ -179,13 +179,15 @@ YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::stri
 }  // namespace
 
 ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string>& sets) {
-  const YAML::Node tree = loadScenarioTree(path, sets);
+  std::vector<fs::path> chain;
+  const YAML::Node tree = loadScenarioTree(path, sets, chain);
   const fs::path dir = fs::absolute(path).parent_path();
   const std::string label = sets.empty() ? path : path + " (with --set overrides)";
   // The defaults are ScenarioSpec's own (missionFlightDefaults()); the file overrides them.
   ScenarioSpec spec =
       parseConfigNode<ScenarioSpec>(label, tree, [&](MapReader& r, ScenarioSpec& s) { readScenario(r, dir, s); });
   if (spec.name.empty()) spec.name = fs::path(path).stem().string();
+  for (const auto& f : chain) spec.input_files.push_back(f.string());
   // A Python method's directory as an absolute path: config.yaml, written elsewhere, replays it.
   if (spec.method.type == kPythonMethodType) {
     auto& c = std::any_cast<PythonMethodConfig&>(spec.method.config);

@@ -43,6 +43,9 @@ struct ScenarioSpec {
   /// scenario's `goals` section (entry, path, params); runs through the Python module.
   std::optional<PythonMethodConfig> goals;
   MissionSettings mission;
+  /// The files the scenario was read from: the file itself, then its `base:` chain (absolute).
+  /// Outputs may not overlap them (checkNoOverlap).
+  std::vector<std::string> input_files;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -128,7 +128,7 @@ int runRunCommand(int argc, char** argv) {
   const Aabb& box = world.box;
   std::optional<WorldTruth>& truth = world.truth;
   // Outputs never overlap the inputs or each other; a replaced log must be a perception log.
-  checkNoOverlap({{"SCENARIO", file}}, {{"--out", args.get("out")}, {"--record", args.get("record")}});
+  checkNoOverlap(missionInputs(file, spec), {{"--out", args.get("out")}, {"--record", args.get("record")}});
   if (!args.get("record").empty())
     checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
   // Build the mission (world model, renderer, method) before any output exists: a world that

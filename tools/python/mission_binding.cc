@@ -28,6 +28,8 @@ class PyMission {
       : scenario_(s), world_(std::make_unique<MissionWorld>()) {
     *world_ = prepareMissionWorld(scenario_.file, scenario_.spec);
     const WorldTruth* truth = world_->truth ? &*world_->truth : nullptr;
+    noteModule(method, "the method's module");
+    noteModule(goals, "the goal chooser's module");
     if (!goals.is_none()) {
       buildWithGoalChooser(std::move(method), std::move(goals), truth, /*record=*/true);
       return;
@@ -37,11 +39,11 @@ class PyMission {
     if (method.is_none() && scenario_.spec.goals) {
       const PythonMethodConfig& g = *scenario_.spec.goals;
       scenario_.spec.method.goal_chooser = g.entry;  // metrics.json names it; config.yaml replays it
-      buildWithGoalChooser(
-          py::none(),
+      py::object chooser =
           py::module_::import("msbench.methods")
-              .attr("chooser_of")(g.entry, g.path, yamlToPython(YAML::Load(g.params_yaml)), scenario_.file),
-          truth, /*record=*/false);
+              .attr("chooser_of")(g.entry, g.path, yamlToPython(YAML::Load(g.params_yaml)), scenario_.file);
+      noteEntryModule(g.entry, "the goal chooser's module");
+      buildWithGoalChooser(py::none(), chooser, truth, /*record=*/false);
       return;
     }
     // A scenario naming a Python method (method.type: python): its factory, from msbench.methods.
@@ -50,6 +52,7 @@ class PyMission {
       const auto& c = std::any_cast<const PythonMethodConfig&>(scenario_.spec.method.config);
       method = py::module_::import("msbench.methods")
                    .attr("factory_of")(c.entry, c.path, yamlToPython(YAML::Load(c.params_yaml)), scenario_.file);
+      noteEntryModule(c.entry, "the method's module");
     }
     if (method.is_none()) {
       mission_ = buildNamingFile(scenario_.file,
@@ -128,6 +131,9 @@ class PyMission {
   // method error, config.yaml and the error record.
   std::string write(const std::string& dir, bool overwrite) {
     if (interrupted_) throw std::runtime_error("the mission was interrupted: nothing to write");
+    // The output may not be, hold or lie in what the mission reads: the scenario, its base: chain,
+    // its world file, the Python method's or chooser's module (before: overwrite=True deleted them).
+    checkNoOverlap(missionInputs(scenario_.file, scenario_.spec, moduleInputs_), {{"dir", dir}});
     StagedOutputDir out(dir, overwrite);
     writeFileAtomic(out.staging() / "config.yaml",
                     configYamlText(scenario_.file, !scenario_.sets.empty(), scenario_.effective_yaml,
@@ -244,7 +250,19 @@ class PyMission {
     return t;
   }
 
+  // Records the source file of `obj` (a function, class or module) as an input of write().
+  void noteModule(const py::object& obj, const std::string& what) {
+    if (obj.is_none()) return;
+    const py::object file = py::module_::import("msbench.methods").attr("source_file")(obj);
+    if (!file.is_none()) moduleInputs_.push_back({what, file.cast<std::string>()});
+  }
+  // The same for the module an entry ("module:name") names (imported already).
+  void noteEntryModule(const std::string& entry, const std::string& what) {
+    noteModule(py::module_::import("importlib").attr("import_module")(entry.substr(0, entry.find(':'))), what);
+  }
+
   PyScenario scenario_;
+  std::vector<NamedPath> moduleInputs_;  // Python modules the mission runs: outputs may not overlap them
   std::unique_ptr<MissionWorld> world_;  // the truth the mission points into: never moves
   std::unique_ptr<Mission> mission_;
   std::optional<MissionResult> result_;

@@ -508,6 +508,16 @@ nlohmann::json writeErroredMissionOutputs(const std::filesystem::path& dir, cons
   return m;
 }
 
+std::vector<NamedPath> missionInputs(const std::string& scenario_file, const ScenarioSpec& spec,
+                                     const std::vector<NamedPath>& extra) {
+  std::vector<NamedPath> in = {{"SCENARIO", scenario_file}};
+  for (size_t i = 1; i < spec.input_files.size(); ++i) in.push_back({"its base: file", spec.input_files[i]});
+  if (!spec.flight.world_path.empty() && spec.flight.world_name.empty())
+    in.push_back({"its world file", spec.flight.world_path});
+  in.insert(in.end(), extra.begin(), extra.end());
+  return in;
+}
+
 nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what) {
   return {{"name", spec.name},
           {"status", runStatusName(RunStatus::kError)},

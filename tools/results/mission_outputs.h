@@ -10,6 +10,7 @@
 
 #include "core/geometry/world_truth.h"
 #include "tools/loop/mission.h"
+#include "tools/results/output_files.h"
 
 namespace msb {
 
@@ -45,6 +46,11 @@ std::string configYamlText(const std::string& scenario_file, bool with_overrides
 /// content. What `msbench run` and the Python module write alike.
 nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, const MissionResult& r,
                                    const WorldTruth* truth);
+
+/// Everything a mission reads that its outputs must not overlap: the scenario file, its `base:`
+/// chain, an MJCF world file, and `extra` (e.g. a Python method's module file).
+std::vector<NamedPath> missionInputs(const std::string& scenario_file, const ScenarioSpec& spec,
+                                     const std::vector<NamedPath>& extra = {});
 
 /// metrics.json of a run that ended in an error (status `error`, the message, seed, versions).
 nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what);

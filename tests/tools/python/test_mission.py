@@ -2,6 +2,7 @@
 hash as `msbench run` (twice, in a spawned process, beside a busy thread), writing, Ctrl-C."""
 import multiprocessing
 import os
+import pathlib
 import signal
 import subprocess
 import sys
@@ -153,3 +154,24 @@ def test_result_before_the_end_is_refused(fast_scenario):
         m.result()
     with pytest.raises(ValueError):
         m.step(0)
+
+
+def test_write_never_replaces_what_the_mission_reads(tmp_path):
+    # Before: write(dir, overwrite=True) into an msbench output holding the scenario (a run's
+    # config.yaml, replayed) deleted it.
+    import shutil
+    m = msbench.Mission(msbench.Scenario.load(SCENARIO, set=fast_sets(duration_s=2)))
+    m.run(progress=False)
+    first = pathlib.Path(m.write(str(tmp_path / "run")))
+    replay = msbench.Mission(str(first / "config.yaml"))
+    replay.run(progress=False)
+    with pytest.raises(Exception, match="overlaps the input SCENARIO"):
+        replay.write(str(first), overwrite=True)
+    assert (first / "config.yaml").exists()
+    # A base: file inside the output directory is an input too.
+    (tmp_path / "top.yaml").write_text(f"base: {first / 'config.yaml'}\n")
+    top = msbench.Mission(str(tmp_path / "top.yaml"))
+    top.run(progress=False)
+    with pytest.raises(Exception, match="base: file"):
+        top.write(str(first), overwrite=True)
+    assert (first / "config.yaml").exists()

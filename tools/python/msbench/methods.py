@@ -34,6 +34,18 @@ def _import_entry(entry, path, scenario_file, key):
     return found
 
 
+def source_file(obj):
+    """The file a function, class, instance or module was defined in, or None (built-ins, code
+    typed at a prompt): an input that msbench's outputs may not overlap."""
+    import inspect
+    for candidate in (obj, type(obj)):
+        try:
+            return os.path.abspath(inspect.getsourcefile(candidate) or inspect.getfile(candidate))
+        except (TypeError, OSError):
+            continue
+    return None
+
+
 def chooser_of(entry, path, params, scenario_file):
     """The goal chooser a scenario's `goals` section names: `entry` itself, or — with `params` —
     what `entry(**params)` returns (a factory of choosers). ConfigError naming the key."""
