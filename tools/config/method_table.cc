@@ -222,13 +222,7 @@ void pythonMethodKeys(Keys& m, PythonMethodConfig& c) {
   m.field("entry", c.entry);
   m.field("path", c.path);
   if constexpr (Keys::kReading) {
-    if (m.has("params")) {
-      const YAML::Node n = m.raw("params");
-      if (!n.IsMap()) throw ConfigError(m.keyName("params"), "expected a map of the method's own keys");
-      YAML::Emitter e;
-      e << YAML::Flow << n;
-      c.params_yaml = e.c_str();
-    }
+    if (m.has("params")) c.params_yaml = m.flowMap("params", "the method's own keys");
   } else {
     m.node()["params"] = YAML::Load(c.params_yaml);
   }

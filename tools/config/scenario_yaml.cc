@@ -140,13 +140,7 @@ PythonMethodConfig readGoals(MapReader g) {
   PythonMethodConfig c;
   if (!g.read("entry", c.entry)) throw ConfigError(g.keyName("entry"), "is required (\"module:chooser\")");
   g.read("path", c.path);
-  if (g.has("params")) {
-    const YAML::Node n = g.raw("params");
-    if (!n.IsMap()) throw ConfigError(g.keyName("params"), "expected a map of the chooser factory's keyword arguments");
-    YAML::Emitter e;
-    e << YAML::Flow << n;
-    c.params_yaml = e.c_str();
-  }
+  if (g.has("params")) c.params_yaml = g.flowMap("params", "the chooser factory's keyword arguments");
   g.finish();
   return c;
 }

@@ -70,6 +70,15 @@ class MapReader {
     return MapReader(node_[key], keyName(key) + ".");
   }
 
+  /// The map under `key` as one-line YAML text (e.g. a Python factory's keyword arguments),
+  /// marked read; ConfigError "expected a map of `what`" if it is not a map.
+  std::string flowMap(const std::string& key, const std::string& what) {
+    const YAML::Node n = raw(key);
+    if (!n.IsMap()) throw ConfigError(keyName(key), "expected a map of " + what);
+    YAML::Emitter e;
+    e << YAML::Flow << n;
+    return e.c_str();
+  }
   // The raw node of `key` (marked used).
   YAML::Node raw(const std::string& key) {
     used_.insert(key);
