@@ -58,6 +58,11 @@ std::string encodePng(const ImageView& image) {
   png_set_compression_level(png, 6);
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8, colour,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_text text{};
+  text.compression = PNG_TEXT_COMPRESSION_NONE;
+  text.key = const_cast<char*>("Software");
+  text.text = const_cast<char*>("msbench");
+  png_set_text(png, info, &text, 1);
   png_write_info(png, info);
   if (image.channels >= 3) png_set_bgr(png);  // OpenCV's order
   for (int y = 0; y < image.height; ++y)
@@ -65,6 +70,13 @@ std::string encodePng(const ImageView& image) {
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   return out;
+}
+
+bool isMsbenchPng(const std::string& bytes) {
+  static const std::string kSignature = "\x89PNG\r\n\x1a\n", kChunk = std::string("tEXtSoftware\0msbench", 20);
+  const size_t idat = bytes.find("IDAT");
+  const size_t text = bytes.find(kChunk);
+  return bytes.compare(0, kSignature.size(), kSignature) == 0 && text != std::string::npos && text < idat;
 }
 
 void writePng(const std::filesystem::path& file, const ImageView& image) {

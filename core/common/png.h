@@ -24,9 +24,14 @@ ImageView viewOf(const Mat& m) {
   return {m.data, m.cols, m.rows, m.channels(), static_cast<size_t>(m.step)};
 }
 
-/// The PNG bytes of `image` (zlib level 6). Throws std::runtime_error on an invalid view or a
-/// libpng failure.
+/// The PNG bytes of `image` (zlib level 6), with a text chunk "Software: msbench" that marks the
+/// file as msbench's (isMsbenchPng). Throws std::runtime_error on an invalid view or a libpng
+/// failure.
 std::string encodePng(const ImageView& image);
+
+/// True if `bytes` are a PNG that encodePng wrote (its "Software: msbench" chunk before the
+/// pixels): only such a file may be replaced by an msbench output.
+bool isMsbenchPng(const std::string& bytes);
 
 /// Writes `image` as a PNG file (not atomically: callers stage their outputs). Throws
 /// std::runtime_error naming the file when it cannot be written.

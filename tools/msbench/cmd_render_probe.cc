@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/common/png.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/render/fisheye_renderer.h"
 #include "tools/config/strict_number.h"
@@ -71,7 +72,7 @@ int runRenderProbeCommand(int argc, char** argv) {
   if (!conditions) throw UsageError("--conditions: unknown preset '" + args.get("conditions") + "'");
   render_cfg.conditions = *conditions;
   const std::string world = resolveWorld(args.get("world")).world_xml;
-  checkOutputFile(args.get("out"), args.has("overwrite"), "out", "\x89PNG");
+  checkOutputFile(args.get("out"), args.has("overwrite"), "out", isMsbenchPng);
 
   const Pose T_W_B = poseFromXyzYaw(pose.head<3>(), pose[3] * M_PI / 180.0);
   // The start pose is what the user gave as --pose: a refusal names that flag, not start.position.

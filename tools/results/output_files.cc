@@ -54,12 +54,19 @@ bool existsNoFollow(const fs::path& p) {
 }  // namespace
 
 void checkOutputFile(const fs::path& file, bool overwrite, const std::string& flag, const std::string& magic) {
+  checkOutputFile(file, overwrite, flag, [&](const std::string& bytes) {
+    return magic.empty() || bytes.compare(0, magic.size(), magic) == 0;
+  });
+}
+
+void checkOutputFile(const fs::path& file, bool overwrite, const std::string& flag,
+                     const std::function<bool(const std::string&)>& ours) {
   const std::string name = "--" + flag + " " + file.string();
   if (file.empty() || !fs::absolute(file).has_filename()) throw UsageError(name + ": expected a file name");
   if (existsNoFollow(file)) {
     if (!fs::is_regular_file(fs::symlink_status(file))) throw UsageError(name + ": exists and is not a regular file");
     if (!overwrite) throw UsageError(name + ": exists (use --overwrite to replace it)");
-    if (!magic.empty() && readFileText(file).compare(0, magic.size(), magic) != 0)
+    if (!ours(readInputFile(file)))
       throw UsageError(name + ": exists and is not a file msbench wrote as this output; refusing to replace it");
   }
   const fs::path dir = fs::absolute(file).parent_path();

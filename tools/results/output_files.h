@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,11 @@ void writeFileAtomic(const std::filesystem::path& path, const std::string& bytes
 /// perception log, the PNG signature for a picture). Throws UsageError (exit 2).
 void checkOutputFile(const std::filesystem::path& file, bool overwrite, const std::string& flag,
                      const std::string& magic = "");
+
+/// The same with a predicate on the existing file's bytes deciding that msbench wrote it as this
+/// output (e.g. isMsbenchPng).
+void checkOutputFile(const std::filesystem::path& file, bool overwrite, const std::string& flag,
+                     const std::function<bool(const std::string&)>& ours);
 
 /// A path a command reads or writes, with the flag (or argument) the user gave it by.
 struct NamedPath {

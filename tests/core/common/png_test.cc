@@ -50,6 +50,17 @@ TEST(Png, BgrPixelsRoundTripThroughLibpngsReader) {
     }
 }
 
+TEST(Png, MsbenchsPngsCarryTheirMarkerAndOthersDoNot) {
+  const uint8_t px[4] = {0, 64, 128, 255};
+  const std::string ours = encodePng(ImageView{px, 2, 2, 1, 2});
+  EXPECT_TRUE(isMsbenchPng(ours));
+  std::string stripped = ours;
+  stripped.replace(stripped.find("msbench"), 7, "someone");  // another program's Software chunk
+  EXPECT_FALSE(isMsbenchPng(stripped));
+  EXPECT_FALSE(isMsbenchPng(std::string("\x89PNG\r\n\x1a\n", 8)));
+  EXPECT_FALSE(isMsbenchPng("msbench"));
+}
+
 TEST(Png, GreyImagesAndFilesAndInvalidViews) {
   const std::vector<uint8_t> grey = {0, 64, 128, 255};
   const ImageView view{grey.data(), 2, 2, 1, 2};

@@ -131,6 +131,15 @@ TEST(BadInput, OutputDirectoriesAreNeverLost) {
   t.expectRefused("run " + t.p("s.yaml") + " --record " + t.p("sentinel") + " --out " + t.p("r"),
                   {"--record", "exists"});
   t.expectRefused("render-probe --out " + t.p("sentinel"), {"--out", "exists"});
+  // --overwrite replaces only a PNG msbench wrote (its "Software: msbench" chunk), not any PNG.
+  const std::string foreign = std::string("\x89PNG\r\n\x1a\n", 8) + "someone else's picture";
+  t.write("photo.png", foreign);
+  t.expectRefused("render-probe --world " + t.p("w.xml") + " --out " + t.p("photo.png") + " --overwrite",
+                  {"--out", "not a file msbench wrote"});
+  EXPECT_EQ(readText(t.d / "photo.png"), foreign);
+  ASSERT_EQ(run("render-probe --world " + t.p("w.xml") + " --out " + t.p("own.png"), t.d / "log"), 0) << t.log();
+  EXPECT_EQ(run("render-probe --world " + t.p("w.xml") + " --out " + t.p("own.png") + " --overwrite", t.d / "log"), 0)
+      << t.log();
 }
 
 TEST(BadInput, WorldsAndLogs) {
