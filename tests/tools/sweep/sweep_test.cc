@@ -92,6 +92,19 @@ TEST(SweepPlan, BadSweepFilesNameTheFileAndKey) {
 }
 
 // A sweep directory's runs.csv as id → row fields.
+// Starts `msbench sweep FILE --out OUT` in the background as the leader of its own process group
+// (setsid), output to `log`; returns its pid (0 if it could not be started).
+int startSweepInItsOwnGroup(const fs::path& file, const fs::path& out, const fs::path& log) {
+  const std::string cmd = "setsid '" + msb_test::kExe + "' sweep '" + file.string() + "' --out '" + out.string() +
+                          "' > '" + log.string() + "' 2>&1 & echo $!";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return 0;
+  int pid = 0;
+  if (fscanf(p, "%d", &pid) != 1) pid = 0;
+  pclose(p);
+  return pid;
+}
+
 std::map<std::string, std::vector<std::string>> rows(const fs::path& dir) {
   std::map<std::string, std::vector<std::string>> out;
   std::istringstream in(readText(dir / "runs.csv"));
@@ -231,13 +244,8 @@ TEST(Sweep, AKilledSweepResumesToTheSameResults) {
   ASSERT_EQ(run("sweep '" + f.string() + "' --out '" + (d / "ref").string() + "'", d / "log_ref"), 0);
   // Killed (SIGKILL to the sweep and its run) once the first run is complete, then resumed.
   const fs::path out = d / "out";
-  const std::string cmd = "setsid '" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() +
-                          "' > '" + (d / "log_kill").string() + "' 2>&1 & echo $!";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_TRUE(p);
-  int pid = 0;
-  ASSERT_EQ(fscanf(p, "%d", &pid), 1);
-  pclose(p);
+  const int pid = startSweepInItsOwnGroup(f, out, d / "log_kill");
+  ASSERT_GT(pid, 0);
   for (int i = 0; i < 600 && !fs::exists(out / "runs" / "s1" / "metrics.json"); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   ASSERT_TRUE(fs::exists(out / "runs" / "s1" / "metrics.json"));
@@ -322,13 +330,8 @@ TEST(SweepDirectory, CtrlCStopsTheSweepRecordsTheRunPendingAndStartsNoOther) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "ctrlc");
   const fs::path f = writeSweep(d, "set: {duration_s: 12}\nseeds: 3\n");
   const fs::path out = d / "out";
-  const std::string cmd = "setsid '" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() +
-                          "' > '" + (d / "log").string() + "' 2>&1 & echo $!";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_TRUE(p);
-  int pid = 0;
-  ASSERT_EQ(fscanf(p, "%d", &pid), 1);
-  pclose(p);
+  const int pid = startSweepInItsOwnGroup(f, out, d / "log");
+  ASSERT_GT(pid, 0);
   for (int i = 0; i < 1200 && readText(out / "logs" / "s1.log").find(": t = 10 / 12 s") == std::string::npos; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   kill(-pid, SIGINT);  // what the terminal sends
