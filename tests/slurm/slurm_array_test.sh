@@ -85,7 +85,7 @@ YAML
 # Submitted as a job array, waited for.
 "$msbench" sweep "$work/sweep.yaml" --out "$work/slurm" --emit-slurm > "$work/job.sh"
 cat "$work/job.sh"
-mkdir -p "$work/slurm"
+
 job=$(sbatch --parsable --wait "$work/job.sh")
 echo "slurm-test: job array $job finished"
 "$msbench" sweep "$work/sweep.yaml" --out "$work/slurm" > "$work/index.log" 2>&1 || { cat "$work/index.log"; exit 1; }

@@ -27,7 +27,7 @@ int runSweepCommand(int argc, char** argv) {
       .option("jobs", "1", "runs at a time (processes)")
       .flag("list", "print the run ids in order and exit")
       .option("task-index", "", "run only run K of the list (0-based; default $SLURM_ARRAY_TASK_ID if set)")
-      .flag("emit-slurm", "print an sbatch script that runs the sweep as a job array, and exit")
+      .flag("emit-slurm", "prepare --out and print an sbatch script that runs the sweep as a job array, and exit")
       .flag("accept-changes", "resume although the sweep file or the msbench build changed");
   if (!args.parse(argc, argv)) return kExitOk;
   const SweepPlan plan = loadSweepPlan(args.get("SWEEP.yaml"));
@@ -37,7 +37,9 @@ int runSweepCommand(int argc, char** argv) {
   }
   if (args.get("out").empty()) throw UsageError("--out DIR is required (except with --list)");
   if (args.has("emit-slurm")) {
-    std::fputs(slurmArrayScript(plan, fs::absolute(args.get("out")), fs::canonical("/proc/self/exe").string()).c_str(),
+    std::fputs(prepareSlurmSweep(plan, fs::absolute(args.get("out")), fs::canonical("/proc/self/exe").string(),
+                                 args.has("accept-changes"))
+                   .c_str(),
                stdout);
     return kExitOk;
   }

@@ -181,7 +181,7 @@ void checkSweepInputs(const SweepPlan& plan, const fs::path& dir) {
   for (const auto& r : plan.runs)
     if (inputs.back().path != r.scenario) inputs.push_back({"the scenario of run " + r.id, r.scenario});
   std::vector<NamedPath> outputs;
-  for (const char* f : {"sweep.json", "runs.csv", "runs", "logs", kSweepMarker})
+  for (const char* f : {"sweep.json", "runs.csv", "runs", "logs", "slurm", kSweepMarker})
     outputs.push_back({"--out " + (dir / f).string(), dir / f});
   checkNoOverlap(inputs, outputs);
 }
@@ -326,12 +326,18 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
   return outcome;
 }
 
-std::string slurmArrayScript(const SweepPlan& plan, const fs::path& out, const std::string& exe) {
+std::string prepareSlurmSweep(const SweepPlan& plan, const fs::path& out, const std::string& exe, bool accept_changes) {
+  // The directory is checked and marked now: Slurm writes the tasks' logs into out/slurm before
+  // the first task starts, and needs that folder to exist.
+  SweepRunOptions options;
+  options.accept_changes = accept_changes;
+  prepareSweepDir(plan, out, options);
+  fs::create_directories(out / "slurm");
   // One array task per run, one core each; afterwards a plain `sweep` call writes the index.
   char text[4096];
   std::snprintf(text, sizeof(text),
                 "#!/bin/bash\n#SBATCH --job-name=msbench-sweep\n#SBATCH --array=0-%zu\n#SBATCH --cpus-per-task=1\n"
-                "#SBATCH --output=%s/slurm-%%A_%%a.out\n"
+                "#SBATCH --output=%s/slurm/slurm-%%A_%%a.out\n"
                 "'%s' sweep '%s' --out '%s' --task-index \"$SLURM_ARRAY_TASK_ID\"\n"
                 "# when all tasks are done: '%s' sweep '%s' --out '%s'   (writes sweep.json and runs.csv)\n",
                 plan.runs.size() - 1, out.c_str(), exe.c_str(), plan.file.c_str(), out.c_str(), exe.c_str(),

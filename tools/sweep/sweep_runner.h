@@ -39,9 +39,11 @@ struct SweepOutcome {
 SweepOutcome runSweep(const SweepPlan& plan, const std::filesystem::path& dir, const SweepRunOptions& options,
                       const std::function<bool()>& stop_requested);
 
-/// The sbatch script that runs `plan` as a job array into `out`, one task per run, with the
-/// msbench executable `exe`.
-std::string slurmArrayScript(const SweepPlan& plan, const std::filesystem::path& out, const std::string& exe);
+/// Prepares `out` for `plan` as runSweep would (new, empty or this sweep's directory; throws
+/// UsageError otherwise) with a `slurm/` folder for the tasks' logs, and returns the sbatch
+/// script that runs `plan` as a job array into it, one task per run, with the executable `exe`.
+std::string prepareSlurmSweep(const SweepPlan& plan, const std::filesystem::path& out, const std::string& exe,
+                              bool accept_changes);
 
 /// The build a sweep's results come from ("version+git revision").
 std::string sweepBuildId();

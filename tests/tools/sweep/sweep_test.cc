@@ -285,6 +285,28 @@ TEST(Sweep, TaskIndexRunsOneRunAndAPlainCallWritesTheIndex) {
   EXPECT_NE(readText(d / "log5").find("--task-index \"$SLURM_ARRAY_TASK_ID\""), std::string::npos);
 }
 
+TEST(Sweep, EmitSlurmPreparesTheDirectoryTheTasksWriteInto) {
+  // Slurm writes each task's log into --out/slurm before the task starts: the directory is marked
+  // as this sweep's when the script is made, so the first task finds a sweep directory.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "slurmdir");
+  const fs::path f = writeSweep(d, "set: {duration_s: 2}\nseeds: 1\n");
+  const fs::path out = d / "out";
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --emit-slurm", d / "script"), 0);
+  EXPECT_NE(readText(d / "script").find("#SBATCH --output=" + out.string() + "/slurm/slurm-%A_%a.out"),
+            std::string::npos)
+      << readText(d / "script");
+  ASSERT_TRUE(fs::is_directory(out / "slurm"));
+  std::ofstream(out / "slurm" / "slurm-7_0.out") << "task log\n";
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --task-index 0", d / "log"), 0)
+      << readText(d / "log");
+  // A user's directory is refused by --emit-slurm as by the sweep itself, and left as it was.
+  const fs::path user = d / "mine";
+  fs::create_directories(user);
+  std::ofstream(user / "notes.txt") << "mine\n";
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + user.string() + "' --emit-slurm", d / "log2"), 2);
+  EXPECT_FALSE(fs::exists(user / "slurm"));
+}
+
 }  // namespace
 }  // namespace msb
 
