@@ -107,17 +107,43 @@ std::vector<Combination> readCombinations(MapReader& r, const std::string& key, 
       std::string label;
       if (m.read(a.name, label)) c[a.name] = label;
     }
-    uint64_t seed = 0;
-    if (m.read("seed", seed)) c["seed"] = std::to_string(seed);
+    // `seed`: one seed, or a list of seeds (one combination each).
+    std::vector<uint64_t> seeds;
+    if (m.has("seed") && m.raw("seed").IsSequence()) {
+      size_t i = 0;
+      for (const YAML::Node& v : m.raw("seed")) {
+        uint64_t x = 0;
+        m.value(v, "seed[" + std::to_string(i++) + "]", x);
+        seeds.push_back(x);
+      }
+      if (seeds.empty()) throw ConfigError(m.keyName("seed"), "an empty list matches nothing");
+    } else if (uint64_t seed = 0; m.read("seed", seed)) {
+      seeds.push_back(seed);
+    }
     m.finish();
+    for (const uint64_t x : seeds) {
+      std::string& list = c["seed"];
+      if (!list.empty()) list.push_back(',');
+      list.append(std::to_string(x));
+    }
     out.push_back(c);
   });
   return out;
 }
 
 bool matches(const Combination& c, const std::map<std::string, std::string>& labels) {
-  for (const auto& [axis, label] : c)
-    if (!labels.count(axis) || labels.at(axis) != label) return false;
+  for (const auto& [axis, label] : c) {
+    if (!labels.count(axis)) return false;
+    if (axis == "seed") {  // one seed or a comma-separated list of them
+      std::istringstream list(label);
+      std::string one;
+      bool any = false;
+      while (std::getline(list, one, ',')) any = any || one == labels.at(axis);
+      if (!any) return false;
+    } else if (labels.at(axis) != label) {
+      return false;
+    }
+  }
   return true;
 }
 

@@ -65,6 +65,12 @@ exclude: [{world: b, variant: other}, {world: a, variant: full, seed: 2}]
   ASSERT_EQ(q.runs.size(), 2u);
   EXPECT_EQ(q.runs[0].id, "b-s3");
   EXPECT_EQ(q.runs[1].id, "b-s7");
+  // An entry's seed may be a list: one entry per row instead of one per seed (table1.yaml).
+  const fs::path h =
+      writeSweep(d, "axes: [{name: w, key: world, values: [a, b]}]\nseeds: 4\nexclude: [{w: b, seed: [2, 4]}]\n");
+  std::vector<std::string> kept;
+  for (const auto& run : loadSweepPlan(h.string()).runs) kept.push_back(run.id);
+  EXPECT_EQ(kept, (std::vector<std::string>{"a-s1", "a-s2", "a-s3", "a-s4", "b-s1", "b-s3"}));
 }
 
 TEST(SweepPlan, BadSweepFilesNameTheFileAndKey) {
@@ -89,6 +95,10 @@ TEST(SweepPlan, BadSweepFilesNameTheFileAndKey) {
   // An exclude entry that matches nothing (a misspelt value) is refused, not ignored.
   expectError("axes: [{name: w, key: world, values: [a, b]}]\nexclude: [{w: a}, {w: c}]\n",
               "exclude[1]': matches no combination");
+  expectError("axes: [{name: w, key: world, values: [a]}]\nexclude: [{w: a, seed: []}]\n", "exclude[0].seed");
+  expectError("axes: [{name: w, key: world, values: [a]}]\nexclude: [{w: a, seed: [1, x]}]\n", "exclude[0].seed[1]");
+  expectError("axes: [{name: w, key: world, values: [a]}]\nseeds: 2\nexclude: [{seed: [7, 8]}]\n",
+              "exclude[0]': matches no combination");
 }
 
 // A sweep directory's runs.csv as id → row fields.
