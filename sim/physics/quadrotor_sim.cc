@@ -175,10 +175,25 @@ std::string QuadrotorSim::outsideTheWorld(const Vec3& p) const {
 }
 
 void QuadrotorSim::checkWorldGeometry(const std::string& world_xml_path) const {
-  // A world is something to explore and to hit: at least one collision geom besides the vehicle.
+  // A world is something to explore and to hit: collision geoms besides the vehicle, which the
+  // vehicle's geoms can touch (MuJoCo's rule: contype of one & conaffinity of the other).
+  int vehicle_type = 0, vehicle_affinity = 0;
   for (int g = 0; g < m_->ngeom; ++g)
-    if (m_->geom_bodyid[g] != body_id_ && (m_->geom_contype[g] != 0 || m_->geom_conaffinity[g] != 0)) return;
-  throw ConfigError("world", world_xml_path + ": the world has no collision geometry (nothing to explore or to hit)");
+    if (m_->geom_bodyid[g] == body_id_)
+      vehicle_type |= m_->geom_contype[g], vehicle_affinity |= m_->geom_conaffinity[g];
+  bool collides = false, touchable = false;
+  for (int g = 0; g < m_->ngeom; ++g) {
+    if (m_->geom_bodyid[g] == body_id_) continue;
+    collides = collides || m_->geom_contype[g] != 0 || m_->geom_conaffinity[g] != 0;
+    touchable =
+        touchable || (m_->geom_contype[g] & vehicle_affinity) != 0 || (vehicle_type & m_->geom_conaffinity[g]) != 0;
+  }
+  if (!collides)
+    throw ConfigError("world", world_xml_path + ": the world has no collision geometry (nothing to explore or to hit)");
+  if (!touchable)
+    throw ConfigError("world", world_xml_path +
+                                   ": no geom of the world can touch the vehicle (their contype/conaffinity bits "
+                                   "never meet the vehicle's): a run could not collide");
 }
 
 void QuadrotorSim::checkStartPose(const std::string& world_xml_path) const {

@@ -107,7 +107,8 @@ class QuadrotorSim {
  private:
   std::optional<CollisionEvent> checkContacts() const;
   // Refuses a start pose below the ground, beyond the ground's extent or inside a world geom.
-  // Refuses a world without any collision geom of its own (ConfigError, key `world`).
+  // Refuses a world without any collision geom of its own or without one the vehicle can touch
+  // (ConfigError, key `world`).
   void checkWorldGeometry(const std::string& world_xml_path) const;
   void checkStartPose(const std::string& world_xml_path) const;
 

@@ -21,10 +21,12 @@ FixedPointRemap::FixedPointRemap(const cv::Mat& map_xy, const cv::Mat& map_inter
       const int x = xy[u][0], y = xy[u][1];
       const auto fx = uint16_t(interp[u] & (kTab - 1)), fy = uint16_t((interp[u] >> kTabBits) & (kTab - 1));
       const int32_t index = v * out_size_.width + u;
-      if (x >= 0 && y >= 0 && x < W - 1 && y < H - 1)
-        inner_.push_back({y * W + x, index, fx, fy});
-      else if (x + 1 >= 0 && y + 1 >= 0 && x < W && y < H)  // partly inside
+      if (x >= 0 && y >= 0 && x < W - 1 && y < H - 1) {
+        const auto a = uint16_t(kTab - fx), c = uint16_t(kTab - fy);
+        inner_.push_back({y * W + x, index, {uint16_t(a * c), uint16_t(fx * c), uint16_t(a * fy), uint16_t(fx * fy)}});
+      } else if (x + 1 >= 0 && y + 1 >= 0 && x < W && y < H) {  // partly inside
         border_.push_back({x, y, index, fx, fy});
+      }
       // Otherwise entirely outside: the border value 0.
     }
   }
@@ -39,11 +41,11 @@ void FixedPointRemap::apply(const cv::Mat& source, cv::Mat& out) const {
   uint8_t* d = out.data;
   const int W = source_size_.width;
   // OpenCV's bilinear weights for 8-bit images are (32 - f) * f' * 32 in units of 2^-15, so
-  // the 2^-15 rounding of their sum equals a 2^-10 rounding of the unscaled products.
+  // the 2^-15 rounding of their sum equals a 2^-10 rounding of the unscaled products (the
+  // products are exact integers: prepared once, the same sum).
   for (const InnerSample& p : inner_) {
     const uint8_t* q = s + p.source_offset;
-    const int a = kTab - p.fx, b = p.fx, c = kTab - p.fy, e = p.fy;
-    const int sum = (q[0] * a + q[1] * b) * c + (q[W] * a + q[W + 1] * b) * e;
+    const int sum = q[0] * p.w[0] + q[1] * p.w[1] + q[W] * p.w[2] + q[W + 1] * p.w[3];
     d[p.out_index] = uint8_t((sum + (1 << (2 * kTabBits - 1))) >> (2 * kTabBits));
   }
   for (const BorderSample& p : border_) {

@@ -27,11 +27,12 @@ class FixedPointRemap {
 
  private:
   // A sample whose four neighbours lie inside the source: its top-left neighbour's offset
-  // (row-major, in source pixels), output index and the fractional position in 1/32 pixel.
+  // (row-major, in source pixels), output index and the bilinear weights of its four
+  // neighbours (top-left, top-right, bottom-left, bottom-right) in units of 2^-10.
   struct InnerSample {
     int32_t source_offset;
     int32_t out_index;
-    uint16_t fx, fy;
+    uint16_t w[4];
   };
   // A sample at the border (some neighbours outside): its integer position kept as such.
   struct BorderSample {

@@ -250,6 +250,8 @@ void perceptionKeys(Keys r, PerceptionConfig& c) {
   if (r.has("oracle")) oracleKeys(r.sub("oracle"), c.oracle);
   r.field("lost_min_tracks", c.lost_min_tracks);
   r.field("lost_after_s", c.lost_after_s);
+  r.field("latency_frames", c.latency_frames);
+  r.field("threads", c.threads);
   r.finish();
 }
 

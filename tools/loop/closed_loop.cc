@@ -55,6 +55,9 @@ ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
   if (spec.frontend.image_noise_sigma > 0.0) image_noise_.emplace(spec.frontend.image_noise_sigma, spec.seed);
   if (spec.frontend.landmark_jitter_inv_depth > 0.0)
     jitter_.emplace(spec.frontend.landmark_jitter_inv_depth, spec.seed);
+  // A flight needs a ground to take off from and to stay above.
+  if (sim_.groundPlanes().empty())
+    throw ConfigError("world", spec.world_path + ": the world has no ground (a colliding plane facing up)");
   if (renderer_) result_.gl_description = renderer_->description();
   if (!setup_.explorer) {
     // A scripted path stays inside the world (above its ground, within its extent).
@@ -79,6 +82,24 @@ ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
   lost_ticks_ = clock.ticksFor(spec.perception.lost_after_s);
   max_ticks_ = clock.ticksFor(spec.duration_s);
   hold_ticks_ = clock.ticksFor(spec.hold_after_s);
+  startPipeline(spec, setup);
+}
+
+void ClosedLoop::startPipeline(const FlightSpec& spec, const LoopSetup& setup) {
+  if (!features_ || spec.perception.latency_frames == 0) return;
+  latency_ = spec.perception.latency_frames;
+  // The explorer's map updates and plans run with a frame's perception: on camera ticks only.
+  auto onCameraTicks = [&](double rate_hz, const char* key) {
+    const int64_t cam = std::llround(spec.camera_stream.rate_hz * 1000), r = std::llround(rate_hz * 1000);
+    if (r <= 0 || cam % r != 0)
+      throw ConfigError(key, "with perception.latency_frames >= 1 it must divide camera_stream.rate_hz (" +
+                                 std::to_string(spec.camera_stream.rate_hz) + " Hz)");
+  };
+  if (setup.explorer) {
+    onCameraTicks(setup.map_rate_hz, "mission.map_rate_hz");
+    onCameraTicks(setup.planning_rate_hz, "mission.planning_rate_hz");
+  }
+  if (spec.perception.threads == 2) worker_ = std::make_unique<JobWorker>(), result_.threads = 2;
 }
 
 ClosedLoop::~ClosedLoop() = default;
@@ -93,13 +114,15 @@ const TickRecord& ClosedLoop::step() {
   if (!stepPhysicsAndContacts()) return record_;
   // The VIO estimate of the true state (the controller and the planner fly on it).
   estimateState();
-  // Camera, then perception on the new frame (tracking loss ends the run).
+  // Camera, then perception on the new frame (tracking loss ends the run); pipelined: the
+  // results of the frame latency_frames back, then this frame's perception starts.
   if (renderer_ && cam_schedule_->due(record_.tick)) {
     renderFrame();
-    if (features_ && !perceive()) return record_;
+    if (features_ && !(latency_ > 0 ? usePerception() : perceive())) return record_;
+    if (latency_ > 0) launchPerception();
   }
   // The exploration method: map update, then planning (its path replaces the tracker's).
-  if (setup_.explorer) {
+  if (setup_.explorer && latency_ == 0) {
     updateMap();
     planPath();
   }
@@ -140,8 +163,10 @@ void ClosedLoop::estimateState() {
 void ClosedLoop::renderFrame() {
   const Pose T_W_C = gt_.T_W_B * camera_.T_B_C();
   frame_timing_ = RenderTiming{};
-  // A frame someone still holds (a Python view) is left alone: this one renders into a new one.
-  if (frame_.use_count() > 1) frame_ = std::make_shared<CameraFrame>();
+  // A frame someone still holds (a Python view, a perception job) is left alone: this one renders
+  // into one nobody holds.
+  if (frame_.use_count() > 1) frame_ = freeFrame();
+  ++frame_index_;
   CameraFrame& frame = *frame_;
   renderer_->render(sim_.data(), T_W_C, &frame, &frame_timing_);
   frame.tick = record_.tick;
@@ -171,9 +196,14 @@ bool ClosedLoop::perceive() {
   record_.timing.triangulation_ms = msSince(t0);
   record_.tracks = &tracks_;
   record_.points = &points_;
+  record_.perceived = frame_.get();
   if (setup_.explorer) pending_points_ = points_;
+  return trackingHolds(tracks_, record_.tick);
+}
+
+bool ClosedLoop::trackingHolds(const TrackFrame& tracks, int64_t frame_tick) {
   // Perception statistics (records only).
-  const int tracked = trackedFromPrevious(tracks_);
+  const int tracked = trackedFromPrevious(tracks);
   if (result_.perception_frames++ > 0) {
     result_.tracked_sum += tracked;
     result_.tracked_min = result_.tracked_min < 0 ? tracked : std::min(result_.tracked_min, tracked);
@@ -182,11 +212,11 @@ bool ClosedLoop::perceive() {
   // Tracking loss: too few features tracked from the previous frame (new detections do not
   // count) for lost_after_s.
   if (tracked < spec_.perception.lost_min_tracks) {
-    if (few_tracks_since_ < 0) few_tracks_since_ = record_.tick;
+    if (few_tracks_since_ < 0) few_tracks_since_ = frame_tick;
   } else {
     few_tracks_since_ = -1;
   }
-  if (few_tracks_since_ >= 0 && record_.tick - few_tracks_since_ >= lost_ticks_) {
+  if (few_tracks_since_ >= 0 && frame_tick - few_tracks_since_ >= lost_ticks_) {
     result_.status = RunStatus::kVioLost;
     result_.vio_lost_at_s = gt_.t_s;
     ended_ = true;
@@ -219,9 +249,7 @@ void ClosedLoop::checkWaypoints(const PathCommand& cmd, const VehicleState& vs) 
   }
 }
 
-void ClosedLoop::planPath() {
-  if (!plan_schedule_->due(record_.tick)) return;
-  const auto t0 = WallClock::now();
+VehicleState ClosedLoop::vehicleState() const {
   VehicleState vs;
   vs.tick = record_.tick;
   vs.t_s = double(record_.tick) / spec_.physics.physics_hz;
@@ -229,6 +257,13 @@ void ClosedLoop::planPath() {
   vs.velocity_mps = est_.v_W_mps;
   vs.reference = trajectory_.reference();
   vs.path_finished = trajectory_.finished();
+  return vs;
+}
+
+void ClosedLoop::planPath() {
+  if (!plan_schedule_->due(record_.tick)) return;
+  const auto t0 = WallClock::now();
+  const VehicleState vs = vehicleState();
   const std::optional<PathCommand> cmd = setup_.explorer->plan(vs);
   record_.timing.planning_ms = msSince(t0);
   if (cmd) checkWaypoints(*cmd, vs);
@@ -290,6 +325,10 @@ uint64_t ClosedLoop::stateHash() const {
 
 const FlightResult& ClosedLoop::finish() {
   if (finished_) return result_;
+  // The perception in flight completes; its error (once) is the run's.
+  sync();
+  for (auto& job : jobs_)
+    if (job->error) std::rethrow_exception(std::exchange(job->error, nullptr));
   finished_ = true;
   result_.ticks = sim_.tick();
   result_.sim_time_s = sim_.timeSeconds();
@@ -299,6 +338,114 @@ const FlightResult& ClosedLoop::finish() {
   result_.mujoco_warnings = sim_.warningCounts();
   result_.wall_time_s = secondsSince(wall_start_);
   return result_;
+}
+
+std::shared_ptr<CameraFrame> ClosedLoop::freeFrame() {
+  // The held frame joins the pool; one of the pool's frames nobody else holds is reused (every
+  // pixel is rendered again), else a new one.
+  frame_pool_.push_back(std::move(frame_));
+  for (size_t i = 0; i + 1 < frame_pool_.size(); ++i)
+    if (frame_pool_[i].use_count() == 1) {
+      std::shared_ptr<CameraFrame> f = std::move(frame_pool_[i]);
+      frame_pool_.erase(frame_pool_.begin() + std::ptrdiff_t(i));
+      return f;
+    }
+  return std::make_shared<CameraFrame>();
+}
+
+void ClosedLoop::launchPerception() {
+  // What the job reads is fixed now: the frame, the VIO's pose of it, the state planning starts from.
+  auto job = std::make_unique<PerceptionJob>();
+  job->frame_index = frame_index_;
+  job->tick = record_.tick;
+  job->frame = frame_;
+  job->camera_estimate = vio_.noisyCameraPose(frame_->T_W_C);
+  if (setup_.explorer) {
+    job->map_due = map_schedule_->due(record_.tick);
+    if (plan_schedule_->due(record_.tick)) job->plan_state = vehicleState();
+  }
+  PerceptionJob* p = job.get();
+  jobs_.push_back(std::move(job));
+  if (worker_) p->worker_id = worker_->submit([this, p] { runJob(*p); });
+}
+
+void ClosedLoop::runJob(PerceptionJob& j) {
+  // Tracks, SLAM points, then the explorer's map update and plan due on the frame's tick.
+  try {
+    auto t0 = WallClock::now();
+    j.tracks = features_->process(*j.frame);
+    j.timing.tracker_ms = msSince(t0);
+    t0 = WallClock::now();
+    j.points = slam_->update(j.tracks, j.camera_estimate);
+    if (jitter_) jitter_->apply(j.points);
+    j.timing.triangulation_ms = msSince(t0);
+    if (j.map_due) {
+      t0 = WallClock::now();
+      setup_.explorer->observe(j.points);
+      j.timing.map_ms = msSince(t0);
+      j.map_updated = true;
+    }
+    if (j.plan_state) {
+      t0 = WallClock::now();
+      j.cmd = setup_.explorer->plan(*j.plan_state);
+      j.timing.planning_ms = msSince(t0);
+      if (j.cmd) checkWaypoints(*j.cmd, *j.plan_state);
+    }
+  } catch (...) {
+    j.error = std::current_exception();
+  }
+  j.done = true;
+}
+
+void ClosedLoop::completeJob(PerceptionJob& job) {
+  if (worker_) {
+    const auto t0 = WallClock::now();
+    worker_->wait(job.worker_id);
+    result_.perception_wait_ms += msSince(t0);
+    return;
+  }
+  for (auto& q : jobs_) {  // one thread: the jobs run in order, when first needed
+    if (!q->done) runJob(*q);
+    if (q.get() == &job) return;
+  }
+}
+
+void ClosedLoop::sync() {
+  if (jobs_.empty()) return;
+  completeJob(*jobs_.back());
+}
+
+void ClosedLoop::abandon() {
+  if (worker_) {
+    worker_->cancelPending();
+    worker_->waitAll();
+  }
+  jobs_.clear();
+  ended_ = true;
+}
+
+bool ClosedLoop::usePerception() {
+  if (jobs_.empty() || jobs_.front()->frame_index > frame_index_ - latency_) return true;
+  completeJob(*jobs_.front());
+  used_ = std::move(jobs_.front());
+  jobs_.pop_front();
+  const PerceptionJob& j = *used_;
+  if (j.error) {  // the method failed: no later job of it runs
+    abandon();
+    std::rethrow_exception(j.error);
+  }
+  record_.tracks = &j.tracks;
+  record_.points = &j.points;
+  record_.perceived = j.frame.get();
+  record_.map_updated = j.map_updated;
+  record_.timing.tracker_ms = j.timing.tracker_ms;
+  record_.timing.triangulation_ms = j.timing.triangulation_ms;
+  record_.timing.map_ms = j.timing.map_ms;
+  record_.timing.planning_ms = j.timing.planning_ms;
+  // The frame's results take effect now: the drift rate, its path, tracking loss.
+  vio_.setTrackedFeatures(trackedFromPrevious(j.tracks));
+  if (j.cmd) trajectory_.setPath(j.cmd->waypoints), last_path_t_s_ = record_.t_s;
+  return trackingHolds(j.tracks, j.tick);
 }
 
 }  // namespace msb

@@ -5,6 +5,13 @@
 //   tracking loss) → map update → planning → trajectory + controller → records →
 //   physics step 2 (actuators, integration) → IMU
 //
+// With perception.latency_frames = k ≥ 1 (the pipelined loop), what a frame's tick computes
+// from its image — tracks, SLAM points, the map update and the plan due on that tick, from the
+// state snapshotted then — is used k frames later: render → use frame n − k's results (tracks,
+// tracking loss, path) → start frame n's perception. perception.threads = 2 runs that work on a
+// second thread while the loop renders; the results are the same with one thread (the latency,
+// not the thread, decides when they are used).
+//
 // A scripted flight and an exploration mission are two uses of the same loop: without an
 // explorer the trajectory tracker follows the flight's waypoints and the run ends
 // `hold_after_s` after the path; with one, the explorer observes SLAM points at the map rate,
@@ -18,6 +25,8 @@
 #pragma once
 
 #include <chrono>
+#include <deque>
+#include <exception>
 #include <map>
 #include <memory>
 #include <optional>
@@ -36,6 +45,7 @@
 #include "sim/sensors/imu_model.h"
 #include "sim/sensors/vio_drift.h"
 #include "tools/loop/flight_spec.h"
+#include "tools/loop/job_worker.h"
 #include "tools/loop/records.h"
 
 namespace msb {
@@ -53,6 +63,8 @@ struct FlightResult {
   std::vector<ImuSample> imu;             ///< every IMU sample
   int frames_rendered = 0;
   RenderTiming render_time_sum;   ///< summed over frames
+  double perception_wait_ms = 0;  ///< the loop's wall time waiting for its second thread (recorded only)
+  int threads = 1;                ///< threads the loop ran on
   double tracking_rms_m = 0.0;    ///< RMS |estimate − reference| over controller ticks
   double tracking_max_m = 0.0;    ///< max |estimate − reference|
   double distance_flown_m = 0.0;  ///< ground truth, summed every tick
@@ -91,10 +103,11 @@ struct TickRecord {
   double t_s = 0.0;                         ///< its simulated time
   bool completed = false;                   ///< false: the run ended inside this tick
   const CameraFrame* frame = nullptr;       ///< rendered this tick
-  const TrackFrame* tracks = nullptr;       ///< perceived this tick
-  const SlamPointsFrame* points = nullptr;  ///< SLAM points of this tick's frame
+  const TrackFrame* tracks = nullptr;       ///< perception results used this tick ...
+  const SlamPointsFrame* points = nullptr;  ///< ... and their SLAM points ...
+  const CameraFrame* perceived = nullptr;   ///< ... computed from this frame (latency_frames earlier)
   const RenderTiming* render = nullptr;     ///< render split of this tick's frame
-  bool map_updated = false;                 ///< the explorer integrated SLAM points this tick
+  bool map_updated = false;                 ///< the explorer integrated SLAM points (of `perceived`)
   TickTiming timing;
 };
 
@@ -119,8 +132,15 @@ class ClosedLoop {
   void run();
   /// The latest rendered frame, shared: it stays valid (and unchanged) while held.
   std::shared_ptr<const CameraFrame> sharedFrame() const { return frame_; }
-  /// Final records (timing, hash); call once the run has ended.
+  /// Final records (timing, hash); call once the run has ended. Completes the perception still
+  /// in flight (its map updates count; its paths are never flown) and rethrows its error.
   const FlightResult& finish();
+  /// Waits until every frame's perception started so far has run (the explorer may then be read
+  /// from this thread). Results do not depend on when it is called.
+  void sync();
+  /// Ends the run where it is (an interrupt, an error): the perception not yet started is
+  /// dropped, a job running on the second thread completes, no result in flight is used.
+  void abandon();
 
   /// The result so far (status, trajectory rows, distance).
   const FlightResult& result() const { return result_; }
@@ -155,6 +175,35 @@ class ClosedLoop {
   void trackAndControl();
   void recordTick();
   void actuateAndSampleImu();
+  // Tracking statistics and loss of a frame's tracks (`frame_tick`: the frame's tick); false
+  // when tracking has been lost.
+  bool trackingHolds(const TrackFrame& tracks, int64_t frame_tick);
+  // The vehicle state the explorer plans on (this tick).
+  VehicleState vehicleState() const;
+
+  // The pipelined loop: each rendered frame's perception is a job, run on the worker (or
+  // lazily on this thread) and used latency_frames frames later.
+  struct PerceptionJob {
+    int64_t frame_index = 0, tick = 0;
+    std::shared_ptr<const CameraFrame> frame;
+    Pose camera_estimate;                    // the VIO's camera pose of the frame
+    bool map_due = false;                    // the explorer's map update is due on its tick
+    std::optional<VehicleState> plan_state;  // planning is due on its tick: from this state
+    uint64_t worker_id = 0;                  // its task number on the worker
+    bool done = false;                       // (one thread) it has run
+    TrackFrame tracks;                       // outputs ...
+    SlamPointsFrame points;
+    std::optional<PathCommand> cmd;
+    bool map_updated = false;
+    TickTiming timing;
+    std::exception_ptr error;  // what the job threw (rethrown when used)
+  };
+  void startPipeline(const FlightSpec& spec, const LoopSetup& setup);
+  bool usePerception();
+  void launchPerception();
+  void runJob(PerceptionJob& job);
+  void completeJob(PerceptionJob& job);
+  std::shared_ptr<CameraFrame> freeFrame();
 
   FlightSpec spec_;
   LoopSetup setup_;
@@ -189,6 +238,13 @@ class ClosedLoop {
   TickRecord record_;
   FlightResult result_;
   std::chrono::steady_clock::time_point wall_start_;
+  // The pipelined loop (latency_frames ≥ 1 with perception).
+  int latency_ = 0;
+  int64_t frame_index_ = -1;                              // index of the latest rendered frame
+  std::deque<std::unique_ptr<PerceptionJob>> jobs_;       // started, not yet used (FIFO)
+  std::unique_ptr<PerceptionJob> used_;                   // the job whose results this tick used
+  std::vector<std::shared_ptr<CameraFrame>> frame_pool_;  // frames to render into again
+  std::unique_ptr<JobWorker> worker_;                     // last: stopped before the rest goes
 };
 
 }  // namespace msb

@@ -16,6 +16,10 @@ void PerceptionConfig::validate(ConfigChecker& c) const {
   c.positive("lost_after_s", lost_after_s);
   c.require(source == "klt" || source == "oracle", "source", "must be klt or oracle, got '" + source + "'");
   c.nested("oracle", oracle);
+  c.inRange("latency_frames", latency_frames, 0, 30);
+  c.inRange("threads", threads, 1, 2);
+  c.require(threads == 1 || latency_frames >= 1, "threads",
+            "2 needs latency_frames >= 1 (with no latency there is nothing to overlap)");
 }
 
 void FlightSpec::validate(ConfigChecker& c) const {

@@ -41,6 +41,14 @@ struct PerceptionConfig {
   OracleFeatureConfig oracle;  ///< settings of the oracle source
   int lost_min_tracks = 15;    ///< fewer features tracked from the previous frame than this ...
   double lost_after_s = 2.0;   ///< ... for this long ends the run as vio_lost
+  /// Camera frames between an image and the use of what was computed from it (tracks, SLAM
+  /// points, the map update and the plan of that frame's tick): 0 = the same tick (sequential
+  /// loop); k ≥ 1 = k frames later (pipelined loop; docs/performance.md, "Two cores").
+  int latency_frames = 0;
+  /// Threads of the pipelined loop: 1 runs each frame's perception on the loop's thread, 2 on a
+  /// second thread while the loop renders the next frame. Same results either way (the latency
+  /// fixes when results are used); needs latency_frames ≥ 1.
+  int threads = 1;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -66,12 +66,12 @@ const TickRecord& Mission::step() {
   // The estimate → truth correction of the latest perception frame (true-frame coverage).
   if (t.frame) true_camera_ = t.frame->T_W_C;
   if (t.points) {
-    true_from_est_ = t.frame->T_W_C * t.points->T_W_C.inverse();
+    true_from_est_ = t.perceived->T_W_C * t.points->T_W_C.inverse();
     coverage_.setTrueFromEstimate(true_from_est_);
     // The collision audit's record: the object each new SLAM point lies on (its anchor ray from
     // the true camera pose of this frame, where new points are anchored).
-    if (frontend_) frontend_->addFrame(*t.points, t.frame->T_W_C);
-    if (audit_) audit_->addFrame(*t.points, t.frame->T_W_C, t.tick);
+    if (frontend_) frontend_->addFrame(*t.points, t.perceived->T_W_C);
+    if (audit_) audit_->addFrame(*t.points, t.perceived->T_W_C, t.tick);
   }
   if (!t.completed) return t;
   // Coverage sample after this tick's map update.
@@ -83,6 +83,7 @@ const TickRecord& Mission::step() {
 }
 
 void Mission::sample(double t_s) {
+  loop_->sync();  // the pipelined loop's perception in flight has run
   const auto t0 = WallClock::now();
   // The metric scores the method's free space (the method only exposes it).
   const std::vector<FreeSpaceElement> free_space = explorer_->freeSpace();

@@ -77,8 +77,15 @@ class Mission {
   /// Final sample and records; call once, after the run has ended.
   MissionResult finish();
 
-  /// The exploration method (counters for progress lines).
-  const Explorer& explorer() const { return *explorer_; }
+  /// The exploration method (counters for progress lines), once its work in flight has run.
+  const Explorer& explorer() const {
+    loop_->sync();
+    return *explorer_;
+  }
+  /// Waits for the pipelined loop's perception in flight (results do not depend on it).
+  void sync() { loop_->sync(); }
+  /// Ends the run where it is, dropping the perception in flight (ClosedLoop::abandon).
+  void abandon() { loop_->abandon(); }
   /// Explored area so far (VIO frame, m²).
   double areaM2() const { return coverage_.columns().areaM2(); }
   /// The closed loop (frames, vehicle states) for callers that read more than a TickRecord.

@@ -8,6 +8,10 @@ FlightSpec missionFlightDefaults() {
   FlightSpec f;
   f.duration_s = 1200.0;
   f.perception.enabled = true;
+  // What a frame gives is used 3 frames (200 ms) later, as the reference's mapper lagged
+  // (docs/architecture.md §2); its perception runs on a second thread.
+  f.perception.latency_frames = 3;
+  f.perception.threads = 2;
   f.camera_stream.save_every_n = 0;
   return f;
 }

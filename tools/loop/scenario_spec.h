@@ -28,7 +28,8 @@ struct MissionSettings {
 };
 
 /// A flight with the defaults of a mission where they differ from a scripted flight's: 20
-/// simulated minutes (Table I), perception on, no frames saved.
+/// simulated minutes (Table I), perception on with a latency of 3 frames on a second thread,
+/// no frames saved.
 FlightSpec missionFlightDefaults();
 
 /// Everything `msbench run` needs. Default-constructed, it is a valid mission once it names a

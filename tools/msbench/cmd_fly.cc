@@ -92,7 +92,7 @@ int runFlyCommand(int argc, char** argv) {
   LoopSetup setup;
   setup.truth = truth ? &*truth : nullptr;
   ClosedLoop loop = buildNamingFile(file, [&] { return ClosedLoop(spec, setup); });
-  checkNoOverlap({{"FILE.yaml", file}}, {{"--out", args.get("out")}});
+  checkNoOverlap(flightInputs(file, spec), {{"--out", args.get("out")}});
   StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kFly);
   fs::create_directories(out.staging() / "frames");
 

@@ -33,20 +33,24 @@ std::string shellQuote(const std::string& s) {
   return q + "'";
 }
 
-// Runs `cmd` through /bin/sh and waits for it, stopping it (SIGTERM) and throwing Interrupted if
-// msbench is signalled meanwhile (std::system would ignore SIGINT and SIGQUIT while it waits).
-// Returns the command's exit status (-1: it did not exit normally).
+// Runs `cmd` through /bin/sh in a process group of its own and waits for it, stopping the whole
+// group (SIGTERM: the shell and the interpreter it started) and throwing Interrupted if msbench
+// is signalled meanwhile, by the terminal's group signal or alone (std::system would ignore
+// SIGINT and SIGQUIT while it waits). Returns the command's exit status (-1: it did not exit
+// normally).
 int runInterruptible(const std::string& cmd) {
   const pid_t child = fork();
   if (child < 0) throw std::runtime_error("cannot start the figure script (fork failed)");
   if (child == 0) {
+    setpgid(0, 0);
     execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
+  setpgid(child, child);  // also here: no window before the child's own call
   int status = 0;
   while (waitpid(child, &status, WNOHANG) == 0) {
     if (interruptRequested()) {
-      kill(child, SIGTERM);
+      kill(-child, SIGTERM);
       waitpid(child, &status, 0);
       throwIfInterrupted();
     }

@@ -53,7 +53,7 @@ void stepToEnd(Mission& mission, const ScenarioSpec& spec, PerceptionLogWriter* 
     throwIfInterrupted();
     const TickRecord& t = mission.step();
     setCrashContext(t.tick, t.t_s);
-    if (recorder && t.points) recorder->write(*t.points, t.frame->T_W_C);
+    if (recorder && t.points) recorder->write(*t.points, t.perceived->T_W_C);
     if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
       printProgress(spec.name, spec.method.type, spec.flight.duration_s, t.t_s, secondsSince(wall_start),
                     mission.areaM2(), mission.explorer().counters());

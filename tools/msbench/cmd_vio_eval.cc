@@ -118,7 +118,7 @@ int runVioEvalCommand(int argc, char** argv) {
   spec.perception.enabled = true;
   const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
   const long annotate_every = args.getIntIn("annotate-every", 0, 1000000);
-  checkNoOverlap({{"FILE.yaml", file}}, {{"--out", args.get("out")}, {"--record", args.get("record")}});
+  checkNoOverlap(flightInputs(file, spec), {{"--out", args.get("out")}, {"--record", args.get("record")}});
   if (!args.get("record").empty())
     checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
   std::optional<WorldTruth> truth;
@@ -160,7 +160,8 @@ int runVioEvalCommand(int argc, char** argv) {
     const TickRecord& t = loop.step();
     setCrashContext(t.tick, t.t_s);
     if (t.points)
-      evaluate({*t.frame, *t.tracks, *t.points, t.timing.tracker_ms, t.timing.triangulation_ms, t.timing.render_ms});
+      evaluate(
+          {*t.perceived, *t.tracks, *t.points, t.timing.tracker_ms, t.timing.triangulation_ms, t.timing.render_ms});
     progress.update(t, loop.physicsHz());
   }
   const FlightResult& r = loop.finish();

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <exception>
 
 #include "core/common/wall_time.h"
 #include "core/geometry/world_truth.h"
@@ -18,6 +19,27 @@ namespace msb {
 namespace binding {
 
 namespace {
+
+/// At scope exit, waits for the pipelined loop's perception in flight; when unwinding (a
+/// KeyboardInterrupt, an error) drops what has not started, so no method call follows.
+struct SyncAtExit {
+  Mission& mission;
+  int exceptions = std::uncaught_exceptions();
+  ~SyncAtExit() {
+    if (std::uncaught_exceptions() > exceptions)
+      mission.abandon();
+    else
+      mission.sync();
+  }
+};
+
+/// Runs Python's signal handlers (called without the GIL): a KeyboardInterrupt they raise is
+/// thrown here. Signals reach Python on this thread only, not while a method runs on the
+/// pipelined loop's second thread.
+void checkSignals() {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+}
 
 /// A mission of a scenario, stepped from Python.
 class PyMission {
@@ -74,6 +96,17 @@ class PyMission {
     });
   }
 
+  // The pipelined loop's perception in flight has run, the GIL released (a Python method or
+  // chooser on the loop's second thread takes the GIL): nothing runs on that thread once Python
+  // code continues or the mission goes.
+  ~PyMission() {
+    if (!mission_) return;
+    py::gil_scoped_release release;
+    mission_->sync();
+  }
+  PyMission(const PyMission&) = delete;
+  PyMission& operator=(const PyMission&) = delete;
+
   bool running() const { return !error_ && !interrupted_ && mission_->running(); }
 
   /// Physics ticks per simulated second.
@@ -89,12 +122,15 @@ class PyMission {
     bool new_frame = false;
     guarded([&] {
       py::gil_scoped_release release;
+      const SyncAtExit sync{*mission_, std::uncaught_exceptions()};
+      const int64_t hz = mission_->physicsHz();
       for (int64_t i = 0; i < n && mission_->running(); ++i) {
         const TickRecord& r = mission_->step();
         last_tick_ = r.tick;
         last_t_s_ = r.t_s;
         if (r.frame) new_frame = true;
         if (r.points) points = *r.points;
+        if ((i + 1) % hz == 0) checkSignals();  // Ctrl-C within a simulated second
       }
     });
     return record(new_frame, points);
@@ -109,10 +145,11 @@ class PyMission {
     while (running()) {
       guarded([&] {
         py::gil_scoped_release release;
+        const SyncAtExit sync{*mission_, std::uncaught_exceptions()};
         for (int64_t i = 0; i < chunk && mission_->running(); ++i) last_tick_ = mission_->step().tick;
+        checkSignals();
       });
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // KeyboardInterrupt
-      if (progress && last_tick_ + 1 >= next_progress) {             // ticks count from 0: tick k ends at (k + 1) / hz
+      if (progress && last_tick_ + 1 >= next_progress) {  // ticks count from 0: tick k ends at (k + 1) / hz
         next_progress += 10 * chunk;
         const double sim_s = double(last_tick_ + 1) / double(chunk), duration = scenario_.spec.flight.duration_s;
         const double rtf = sim_s / std::max(secondsSince(wall_start), 1e-9);

@@ -45,4 +45,10 @@ double percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
+std::vector<NamedPath> flightInputs(const std::string& flight_file, const FlightSpec& spec) {
+  std::vector<NamedPath> in = {{"FILE.yaml", flight_file}};
+  if (!spec.world_path.empty() && spec.world_name.empty()) in.push_back({"its world file", spec.world_path});
+  return in;
+}
+
 }  // namespace msb

@@ -7,6 +7,7 @@
 
 #include "core/common/messages.h"
 #include "tools/loop/closed_loop.h"
+#include "tools/results/output_files.h"
 
 namespace msb {
 
@@ -18,6 +19,10 @@ std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);
 
 /// imu.csv text.
 std::string imuCsv(const std::vector<ImuSample>& samples);
+
+/// Everything a scripted flight (`fly`, `vio-eval`) reads that its outputs must not overlap: the
+/// flight file and an MJCF world file it names.
+std::vector<NamedPath> flightInputs(const std::string& flight_file, const FlightSpec& spec);
 
 /// The q-quantile (0..1, nearest rank) of a sample; 0 for an empty one.
 double percentile(std::vector<double> values, double q);

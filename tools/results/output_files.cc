@@ -139,14 +139,31 @@ fs::path canonicalOf(const fs::path& p) {
 
 }  // namespace
 
+fs::path outputPathOf(const fs::path& path) {
+  // The parent as the filesystem resolves it (symlinks, then `..` from where they lead), the
+  // last component kept as named (a symlink there is refused by the writers, never followed).
+  fs::path p = fs::absolute(path);
+  while (!p.has_filename() && p.has_parent_path() && p != p.root_path()) p = p.parent_path();
+  const fs::path name = p.filename();
+  std::error_code ec;
+  if (name == "." || name == "..") {
+    fs::path c = fs::weakly_canonical(p, ec);
+    return ec ? p.lexically_normal() : c;
+  }
+  fs::path parent = fs::weakly_canonical(p.parent_path(), ec);
+  if (ec) parent = p.parent_path().lexically_normal();
+  return parent / name;
+}
+
 void checkNoOverlap(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
   auto overlap = [](const fs::path& a, const fs::path& b) { return isSameOrAncestor(a, b) || isSameOrAncestor(b, a); };
   for (size_t i = 0; i < outputs.size(); ++i) {
     if (outputs[i].path.empty()) continue;
-    const fs::path o = canonicalOf(outputs[i].path);
+    // The path as written to and, if it is a symlink, where it leads.
+    const fs::path o = outputPathOf(outputs[i].path), target = canonicalOf(outputs[i].path);
     const std::string name = outputs[i].flag + " " + outputs[i].path.string();
     for (const NamedPath& in : inputs)
-      if (!in.path.empty() && overlap(o, canonicalOf(in.path)))
+      if (!in.path.empty() && (overlap(o, canonicalOf(in.path)) || overlap(target, canonicalOf(in.path))))
         throw UsageError(name + ": overlaps the input " + in.flag + " " + in.path.string() +
                          " (an output may not be, hold or lie inside an input); refusing it, nothing was written");
     for (size_t j = i + 1; j < outputs.size(); ++j)
@@ -179,10 +196,10 @@ bool isMsbenchOutput(const fs::path& dir) {
 
 StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind kind)
     : overwrite_(overwrite), kind_(kind) {
-  // One normal absolute form (a trailing slash names the same directory).
+  // The form the overlap check uses (outputPathOf: symlinks and `..` resolved as the filesystem
+  // does; a trailing slash names the same directory).
   if (final_dir.empty()) throw UsageError("--out: empty path");
-  fs::path p = fs::absolute(final_dir).lexically_normal();
-  if (!p.has_filename()) p = p.parent_path();
+  const fs::path p = outputPathOf(final_dir);
   final_ = p;
   const std::string name = final_dir.string();
   if (!isValidUtf8(name)) throw UsageError("--out " + name + ": the path is not valid UTF-8");

@@ -47,8 +47,13 @@ enum class OutputKind { kRun, kReport, kFly, kVioEval, kMapReplay, kWorldShow };
 bool isMsbenchOutput(const std::filesystem::path& dir);
 bool isMsbenchOutput(const std::filesystem::path& dir, OutputKind kind);
 
+/// The path msbench writes an output `path` at: absolute, with symlinks and `..` in its parent
+/// resolved as the filesystem resolves them (not lexically: `link/../d` is d beside the link's
+/// target), the last component as named. The overlap check and every writer use this form.
+std::filesystem::path outputPathOf(const std::filesystem::path& path);
+
 /// A staging directory "<final>.partial" that becomes "<final>" on commit(). Safe by
-/// construction: the path is normalised (a trailing slash is the same directory); the current
+/// construction: the path is outputPathOf's (a trailing slash is the same directory); the current
 /// directory, its parents, `/` and anything that is not a directory are refused; a non-empty
 /// target needs `overwrite` and is replaced only if msbench wrote it (marker file); a
 /// "<final>.partial" msbench did not write is never touched. Every output directory gets the

@@ -3,7 +3,9 @@
 // stay bit-identical (MuJoCo pipeline_test style); the seams refuse impossible combinations.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include "core/geometry/world_truth.h"
 #include "tools/config/world_registry.h"
@@ -114,6 +116,86 @@ TEST(ClosedLoop, ShortOracleMissionExploresDeterministically) {
   EXPECT_EQ(a.coverage.size(), 26u);
   const MissionResult b = runMission(spec, box, &truth);
   EXPECT_EQ(a.run_hash, b.run_hash);
+}
+
+// The oracle mission of the test above, pipelined: what each frame computes is used one frame
+// later; `threads` 1 or 2.
+ScenarioSpec pipelinedOracleMission(int threads) {
+  ScenarioSpec spec;
+  spec.flight = oracleFlight();
+  spec.flight.waypoints.clear();
+  spec.flight.start_yaw_rad = yawOf(urban().generated.start.linear());
+  spec.flight.duration_s = 20.0;
+  spec.flight.perception.oracle.textureless_landmarks = true;
+  spec.flight.perception.latency_frames = 1;
+  spec.flight.perception.threads = threads;
+  spec.mission.progress = false;
+  return spec;
+}
+
+TEST(ClosedLoop, ThePipelinedLoopIsTheSameOnOneThreadOnTwoAndUnderLoad) {
+  // Two missions in lockstep, one running each frame's perception on a second thread: the same
+  // state every simulated second, the same tracks, the same mission hash.
+  const WorldTruth truth(urban().generated.shapes);
+  const Aabb box = urban().generated.exploration_box;
+  Mission one(pipelinedOracleMission(1), box, &truth), two(pipelinedOracleMission(2), box, &truth);
+  int64_t compared = 0, used = 0;
+  while (one.running()) {
+    ASSERT_TRUE(two.running());
+    const TickRecord& a = one.step();
+    const TickRecord& b = two.step();
+    ASSERT_EQ(bool(a.points), bool(b.points)) << "tick " << a.tick;
+    if (a.points) {
+      ++used;
+      // What is used at frame n was perceived at frame n - 1.
+      ASSERT_TRUE(a.frame && a.perceived && a.perceived != a.frame) << "tick " << a.tick;
+      ASSERT_LT(a.perceived->tick, a.tick);
+      ASSERT_EQ(a.points->points.size(), b.points->points.size()) << "tick " << a.tick;
+      ASSERT_EQ(a.map_updated, b.map_updated) << "tick " << a.tick;
+    }
+    if (a.tick % 500 == 0) {
+      ASSERT_EQ(one.loop().stateHash(), two.loop().stateHash()) << "tick " << a.tick;
+      ++compared;
+    }
+  }
+  EXPECT_FALSE(two.running());
+  const MissionResult ra = one.finish(), rb = two.finish();
+  ASSERT_EQ(ra.flight.status, RunStatus::kCompleted);
+  EXPECT_EQ(ra.run_hash, rb.run_hash);
+  EXPECT_GE(compared, 20);
+  EXPECT_GE(used, 290);
+  EXPECT_GT(ra.columns.areaM2(), 200.0);
+  // A busy thread competing for the cores changes when the second thread runs, not the result.
+  std::atomic<bool> stop{false};
+  std::thread busy([&] {
+    volatile double x = 1.0;
+    while (!stop) x = x * 1.0000001 + 1e-9;
+  });
+  const MissionResult loaded = runMission(pipelinedOracleMission(2), box, &truth);
+  stop = true;
+  busy.join();
+  EXPECT_EQ(loaded.run_hash, ra.run_hash);
+  // The latency is behaviour: the sequential loop flies otherwise.
+  ScenarioSpec sequential = pipelinedOracleMission(1);
+  sequential.flight.perception.latency_frames = 0;
+  EXPECT_NE(runMission(sequential, box, &truth).run_hash, ra.run_hash);
+}
+
+TEST(ClosedLoop, ThePipelinedLoopRefusesRatesOffTheCameraTicks) {
+  // The map update and the plan run with a frame's perception: their rates must divide the camera's.
+  const WorldTruth truth(urban().generated.shapes);
+  ScenarioSpec spec = pipelinedOracleMission(1);
+  spec.mission.map_rate_hz = 4.0;
+  try {
+    Mission m(spec, urban().generated.exploration_box, &truth);
+    ADD_FAILURE() << "a 4 Hz map on a 15 Hz camera was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("mission.map_rate_hz"), std::string::npos) << e.what();
+  }
+  // Two threads need a latency to overlap.
+  FlightSpec f = oracleFlight();
+  f.perception.threads = 2;
+  EXPECT_THROW(ClosedLoop(f, LoopSetup{}), ConfigError);
 }
 
 TEST(ScenarioSpec, ADefaultScenarioIsAValidMissionOnceItNamesAWorld) {

@@ -142,6 +142,36 @@ TEST(BadInput, OutputDirectoriesAreNeverLost) {
       << t.log();
 }
 
+TEST(BadInput, AnOutputThroughASymlinkIsReplacedWhereTheCheckLooked) {
+  // Before: the overlap check resolved `link/..` as the filesystem does (the link's target's
+  // parent), the replacement lexically (beside the link): `--out link/../A --overwrite` deleted
+  // A with the flight file inside although the check had looked at B/A. Fails before the fix.
+  const Dir t("symlink");
+  ASSERT_EQ(run("fly " + t.p("f.yaml") + " --out " + t.p("A"), t.d / "log"), 0) << t.log();
+  fs::copy_file(t.d / "f.yaml", t.d / "A" / "f.yaml");
+  fs::copy_file(t.d / "w.xml", t.d / "A" / "w.xml");
+  fs::create_directories(t.d / "B" / "sub");
+  fs::create_directories(t.d / "B" / "A");
+  fs::create_directory_symlink(t.d / "B" / "sub", t.d / "link");
+  const std::string out = "'" + (t.d / "link").string() + "/../A'";
+  // B/A is not msbench's: refused, both directories untouched.
+  t.write("B/A/mine.txt", "mine");
+  EXPECT_EQ(run("fly " + t.p("A/f.yaml") + " --out " + out + " --overwrite", t.d / "log"), 2) << t.log();
+  EXPECT_EQ(readText(t.d / "B" / "A" / "mine.txt"), "mine");
+  EXPECT_TRUE(fs::is_regular_file(t.d / "A" / "f.yaml"));
+  // Once B/A is gone, the flight is written there; A keeps its input.
+  fs::remove_all(t.d / "B" / "A");
+  EXPECT_EQ(run("fly " + t.p("A/f.yaml") + " --out " + out + " --overwrite", t.d / "log"), 0) << t.log();
+  EXPECT_TRUE(fs::is_regular_file(t.d / "B" / "A" / "metrics.json"));
+  EXPECT_TRUE(fs::is_regular_file(t.d / "A" / "f.yaml"));
+  // An output reached through `link/..` that holds the input is refused, the input kept.
+  fs::copy_file(t.d / "f.yaml", t.d / "B" / "A" / "f.yaml");
+  fs::copy_file(t.d / "w.xml", t.d / "B" / "A" / "w.xml");
+  EXPECT_EQ(run("fly " + t.p("B/A/f.yaml") + " --out " + out + " --overwrite", t.d / "log"), 2) << t.log();
+  EXPECT_NE(t.log().find("overlaps the input"), std::string::npos) << t.log();
+  EXPECT_TRUE(fs::is_regular_file(t.d / "B" / "A" / "f.yaml"));
+}
+
 TEST(BadInput, WorldsAndLogs) {
   const Dir t("worlds");
   // A world whose text mentions </mujoco> in a trailing comment is still a world (parsed, not
@@ -343,6 +373,16 @@ TEST(BadInput, OutputsNeverOverlapInputsOrEachOther) {
   t.expectRefused("grid-audit " + t.p("f.yaml") + " " + t.p(".") + " --out " + t.p("sentinel"),
                   {"--out", "overlaps the input RUN"});
   t.expectRefused("fly " + t.p("f.yaml") + " --out " + t.p("."), {"--out"});
+  // The world file a flight names is an input too (before: only the flight file was checked).
+  ASSERT_EQ(run("fly " + t.p("f.yaml") + " --out " + t.p("wo"), t.d / "log"), 0) << t.log();
+  fs::copy_file(t.d / "w.xml", t.d / "wo" / "w.xml");
+  t.write("fw.yaml",
+          "world: wo/w.xml\nduration_s: 1\ncamera_stream: {save_every_n: 0}\n"
+          "trajectory: {waypoints: [[0, 0, 1]]}\n");
+  for (const char* verb : {"fly", "vio-eval"})
+    t.expectRefused(std::string(verb) + " " + t.p("fw.yaml") + " --out " + t.p("wo") + " --overwrite",
+                    {"--out", "overlaps the input its world file"});
+  EXPECT_TRUE(fs::is_regular_file(t.d / "wo" / "w.xml"));
   // map-replay's output directory may not hold its own input log.
   fs::create_directories(t.d / "rd");
   t.write("rd/.msbench-output",
@@ -421,6 +461,18 @@ TEST(BadInput, AWorldNeedsCollisionGeometry) {
   for (const char* world : {"empty.xml", "visual.xml"}) {
     t.write("g.yaml", std::string("world: ") + world + "\nduration_s: 2\ntrajectory: {waypoints: [[0, 0, 1]]}\n");
     t.expectRefused("fly " + t.p("g.yaml") + " --out " + t.p("o"), {world, "no collision geometry"});
+  }
+  // Geoms the vehicle can never touch (bits that never meet its own), and a world without a
+  // ground: accepted before, refused now.
+  t.write("untouchable.xml",
+          "<mujoco><worldbody><geom type=\"plane\" size=\"20 20 0.1\" contype=\"4\" conaffinity=\"4\"/>"
+          "<geom type=\"box\" pos=\"5 0 1\" size=\"1 1 1\" contype=\"4\" conaffinity=\"4\"/></worldbody></mujoco>\n");
+  t.write("groundless.xml",
+          "<mujoco><worldbody><geom type=\"box\" pos=\"5 0 1\" size=\"1 1 1\"/></worldbody></mujoco>\n");
+  for (const auto& [world, why] :
+       {std::pair{"untouchable.xml", "can touch the vehicle"}, std::pair{"groundless.xml", "has no ground"}}) {
+    t.write("g.yaml", std::string("world: ") + world + "\nduration_s: 2\ntrajectory: {waypoints: [[0, 0, 1]]}\n");
+    t.expectRefused("fly " + t.p("g.yaml") + " --out " + t.p("o"), {world, why});
   }
 }
 

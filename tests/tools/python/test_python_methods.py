@@ -66,6 +66,31 @@ def test_an_exception_in_a_python_method_ends_the_run_with_status_error(tmp_path
     assert float(rows[-1].split(",")[0]) == pytest.approx(metrics["sim_time_s"], abs=0.15) and metrics["sim_time_s"] > 3.0
 
 
+PIPELINED = FAST + ["perception.latency_frames=1"]
+
+
+def test_a_python_method_on_the_pipelined_loops_second_thread_runs_as_on_one():
+    # The method's calls come from the loop's second thread (the GIL taken there): same run.
+    one = msbench.Mission(msbench.Scenario.load(CPP, set=PIPELINED))
+    one.run(progress=False)
+    two = msbench.Mission(msbench.Scenario.load(CPP, set=PIPELINED + ["perception.threads=2"]),
+                          method=hover_turn.factory)
+    two.run(progress=False)
+    assert two.hash == one.hash
+    # Stepped tick by tick and dropped half-way with work in flight: no hang.
+    m = msbench.Mission(msbench.Scenario.load(CPP, set=PIPELINED + ["perception.threads=2"]),
+                        method=hover_turn.factory)
+    for _ in range(40):
+        m.step(7)
+    del m
+    # A method raising on the second thread ends the run with status error, as on one thread.
+    m = msbench.Mission(msbench.Scenario.load(CPP, set=PIPELINED + ["perception.threads=2"]),
+                        method=lambda c: Failing(c))
+    with pytest.raises(msbench.MethodError, match="ZeroDivisionError: a bug in the method"):
+        m.run(progress=False)
+    assert m.status == "error" and not m.running
+
+
 def test_method_rng_streams_are_seeded_like_msbenchs():
     a, b = msbench.RngStream(7, "goals"), msbench.RngStream(7, "goals")
     assert [a.uniform() for _ in range(5)] == [b.uniform() for _ in range(5)]

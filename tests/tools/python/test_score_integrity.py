@@ -116,12 +116,13 @@ def test_a_goal_chooser_is_named_and_the_run_is_not_replayable(tmp_path):
 
 
 class SignalsItself(hover_turn.HoverTurn):
-    """Sends `sig` to its own process inside plan() after 2 s."""
+    """Sends `sig` to its own process once, inside plan() after 2 s (as one Ctrl-C would)."""
 
     sig = signal.SIGINT
 
     def plan(self, vehicle):
-        if vehicle.t_s > 2.0:
+        if vehicle.t_s > 2.0 and not getattr(self, "_sent", False):
+            self._sent = True
             os.kill(os.getpid(), self.sig)
         return super().plan(vehicle)
 
