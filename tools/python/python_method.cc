@@ -1,6 +1,8 @@
 // Methods written in Python: the Explorer over a Python object, its errors and the types it sees.
 #include "tools/python/binding.h"
 
+#include <cmath>
+
 #include "core/common/rng.h"
 #include "core/eval/mission_coverage.h"
 
@@ -36,6 +38,53 @@ Waypoint waypointFrom(const py::handle& h) {
   w.position_m = Vec3(seq[0].cast<double>(), seq[1].cast<double>(), seq[2].cast<double>());
   if (seq.size() == 4 && !seq[3].is_none()) w.heading_rad = seq[3].cast<double>();
   return w;
+}
+
+// The optional pictures of a Python method: snapshot() -> {"obstacles": N×3, "frontiers": N×3,
+// "viewpoints": [(x, y, z, yaw)], "goal": (x, y, z, yaw), "path": N×3}, every key optional.
+std::vector<Vec3> pointsFrom(const py::handle& h, const char* key) {
+  std::vector<Vec3> out;
+  for (const auto& e : py::reinterpret_borrow<py::sequence>(h)) {
+    if (out.size() == kMaxFreeSpaceElements)
+      throw std::runtime_error(std::string("snapshot()['") + key + "'] has more than " +
+                               std::to_string(kMaxFreeSpaceElements) + " points");
+    const py::sequence q = py::reinterpret_borrow<py::sequence>(e);
+    if (q.size() != 3) throw std::runtime_error(std::string("snapshot()['") + key + "']: a point is (x, y, z)");
+    const Vec3 p(q[0].cast<double>(), q[1].cast<double>(), q[2].cast<double>());
+    if (!p.allFinite()) throw std::runtime_error(std::string("snapshot()['") + key + "']: a point is not finite");
+    out.push_back(p);
+  }
+  return out;
+}
+
+ExplorerSnapshot::Pose2 poseFrom(const py::handle& h, const char* key) {
+  const py::sequence q = py::reinterpret_borrow<py::sequence>(h);
+  if (q.size() != 4) throw std::runtime_error(std::string("snapshot()['") + key + "']: a pose is (x, y, z, yaw)");
+  ExplorerSnapshot::Pose2 p{Vec3(q[0].cast<double>(), q[1].cast<double>(), q[2].cast<double>()), q[3].cast<double>()};
+  if (!p.position.allFinite() || !std::isfinite(p.yaw_rad))
+    throw std::runtime_error(std::string("snapshot()['") + key + "']: a pose is not finite");
+  return p;
+}
+
+void addPictures(const py::dict& d, ExplorerSnapshot& snap) {
+  for (const auto& kv : d) {
+    const std::string key = kv.first.cast<std::string>();
+    if (key == "obstacles") {
+      snap.obstacles = pointsFrom(kv.second, "obstacles");
+    } else if (key == "frontiers") {
+      snap.frontiers = pointsFrom(kv.second, "frontiers");
+    } else if (key == "path") {
+      snap.path = pointsFrom(kv.second, "path");
+    } else if (key == "viewpoints") {
+      for (const auto& v : py::reinterpret_borrow<py::sequence>(kv.second))
+        snap.viewpoints.push_back(poseFrom(v, "viewpoints"));
+    } else if (key == "goal") {
+      if (!kv.second.is_none()) snap.goal = poseFrom(kv.second, "goal");
+    } else {
+      throw std::runtime_error("snapshot() returned the unknown key '" + key +
+                               "' (obstacles, frontiers, viewpoints, goal, path)");
+    }
+  }
 }
 
 /// The Explorer interface over a Python object with observe(frame), plan(vehicle) -> None or a
@@ -108,6 +157,14 @@ class PyExplorer final : public Explorer {
         }
         snap.free_space.push_back(el);
       }
+      // What the pictures draw besides the free space, if the method says (snapshot(), optional).
+      if (py::hasattr(method_, "snapshot")) {
+        const py::object extra = method_.attr("snapshot")();
+        if (!extra.is_none()) {
+          if (!py::isinstance<py::dict>(extra)) throw std::runtime_error("snapshot() must return a dict or None");
+          addPictures(extra.cast<py::dict>(), snap);
+        }
+      }
     });
     return snap;
   }
@@ -134,6 +191,10 @@ class PyExplorer final : public Explorer {
       throw MethodError("the Python method raised:\n" + pythonErrorText(e));
     } catch (const py::cast_error& e) {
       throw MethodError(std::string("the Python method returned a value of the wrong type: ") + e.what());
+    } catch (const MethodOutputError&) {
+      throw;  // a limit of the metric, named as such
+    } catch (const std::runtime_error& e) {
+      throw MethodError(std::string("the Python method: ") + e.what());  // an answer of the wrong shape
     }
   }
 

@@ -3,6 +3,7 @@ viewpoints) and the gym-style adapter over it: what the chooser sees and may ans
 determinism, reward = coverage gained."""
 import os
 
+import numpy as np
 import pytest
 
 import msbench
@@ -131,6 +132,22 @@ def test_the_gym_adapter_steps_a_mission_and_rewards_coverage_gained():
     assert env.mission.hash != first
     with pytest.raises(RuntimeError, match="ended"):
         env.step((0.0, 0.0, 2.0))
+
+
+def test_the_observation_can_carry_a_top_down_map_of_the_octomap():
+    env = msbench.gym.ExplorationEnv(GRID, set=FAST + ["world=urban", "duration_s=14"], decision_period_s=2.0,
+                                     map_cells=40, map_cell_m=1.0)
+    assert env.observation_space["map"].shape == (40, 40)
+    obs, _ = env.reset(seed=1)
+    assert obs["map"].shape == (40, 40) and obs["map"].dtype == np.uint8
+    assert not obs["map"].any()  # no goal check yet: all unknown
+    for _ in range(6):  # the first goal check comes after the take-off
+        obs, *_ = env.step((float(obs["position"][0]) + 3.0, float(obs["position"][1]), 2.0))
+    assert env.observation_space.contains(obs)
+    values = set(np.unique(obs["map"]).tolist())
+    assert values == {0, 1, 2}  # free space and obstacles seen at flight height, the rest unknown
+    with pytest.raises(ValueError, match="map_cells"):
+        msbench.gym.ExplorationEnv(GRID, map_cells=-1)
 
 
 def test_the_gym_adapter_is_a_gymnasium_env_when_gymnasium_is_there():

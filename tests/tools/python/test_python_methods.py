@@ -91,6 +91,32 @@ def test_a_python_method_on_the_pipelined_loops_second_thread_runs_as_on_one():
     assert m.status == "error" and not m.running
 
 
+class WithPictures(hover_turn.HoverTurn):
+    """hover_turn handing obstacles, frontiers, a goal and its path to the pictures."""
+
+    def snapshot(self):
+        return {"obstacles": [(3.0, 0.0, 1.0), (3.0, 1.0, 1.0)], "frontiers": [(5.0, 5.0, 1.5)],
+                "viewpoints": [(5.0, 5.0, 1.5, 0.0)], "goal": (5.0, 5.0, 1.5, 0.0), "path": [(0, 0, 1), (5, 5, 1.5)]}
+
+
+def test_a_python_methods_snapshot_reaches_map_ply_and_the_pictures(tmp_path):
+    plain = msbench.Mission(msbench.Scenario.load(CPP, set=FAST), method=hover_turn.factory)
+    plain.run(progress=False)
+    drawn = msbench.Mission(msbench.Scenario.load(CPP, set=FAST), method=lambda c: WithPictures(c))
+    drawn.run(progress=False)
+    a, b = plain.write(str(tmp_path / "plain")), drawn.write(str(tmp_path / "drawn"))
+    ply = open(os.path.join(b, "map.ply")).read()
+    assert "\n3.0000 0.0000 1.0000 0 1\n" in ply and "\n5.0000 5.0000 1.5000 0 2\n" in ply
+    assert open(os.path.join(a, "topdown.png"), "rb").read() != open(os.path.join(b, "topdown.png"), "rb").read()
+    # A wrong answer is a method error naming the key.
+    class Bad(hover_turn.HoverTurn):
+        def snapshot(self):
+            return {"obstacle": []}
+    m = msbench.Mission(msbench.Scenario.load(CPP, set=FAST), method=lambda c: Bad(c))
+    with pytest.raises(msbench.MethodError, match="unknown key 'obstacle'"):
+        m.run(progress=False)
+
+
 def test_method_rng_streams_are_seeded_like_msbenchs():
     a, b = msbench.RngStream(7, "goals"), msbench.RngStream(7, "goals")
     assert [a.uniform() for _ in range(5)] == [b.uniform() for _ in range(5)]

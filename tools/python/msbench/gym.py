@@ -25,6 +25,8 @@ gymnasium's spaces then, msbench's own (`msbench.spaces`: same fields, seeded `s
 import math
 import os
 
+import numpy as np
+
 from ._msbench import Mission, Scenario
 from . import spaces as _spaces
 
@@ -65,17 +67,51 @@ def _as_action(action):
     return path
 
 
+def _top_down(request, cells, cell_m, z_band):
+    """The OctoMap's leaves reaching into the height band z_band, in a cells × cells window
+    centred on the vehicle: 0 unknown, 1 free, 2 occupied (occupied wins in a column). A leaf
+    larger than a cell fills every cell it covers."""
+    grid = np.zeros((cells, cells), np.uint8)
+    origin = np.asarray(request.position[:2], float) - 0.5 * cells * cell_m
+    for value, leaves in ((1, request.free()), (2, request.occupied())):
+        leaves = leaves[(leaves[:, 2] + 0.5 * leaves[:, 3] > z_band[0]) & (leaves[:, 2] - 0.5 * leaves[:, 3] < z_band[1])]
+        if len(leaves) == 0:
+            continue
+        half = 0.5 * leaves[:, 3:4]
+        lo = np.floor((leaves[:, :2] - half - origin) / cell_m).astype(int)
+        hi = np.ceil((leaves[:, :2] + half - origin) / cell_m).astype(int)
+        lo, hi = np.clip(lo, 0, cells), np.clip(hi, 0, cells)
+        for (x0, y0), (x1, y1) in zip(lo, hi):
+            if x1 > x0 and y1 > y0:
+                view = grid[y0:y1, x0:x1]
+                np.maximum(view, value, out=view)
+    return grid
+
+
 class ExplorationEnv(_Base):
     """An exploration mission as a gym-style environment: reset(seed) -> (obs, info),
     step(action) -> (obs, reward, terminated, truncated, info)."""
 
     metadata = {"render_modes": []}
 
-    def __init__(self, scenario, set=(), decision_period_s=2.0):
+    def __init__(self, scenario, set=(), decision_period_s=2.0, map_cells=0, map_cell_m=1.0, map_z_m=(0.5, 4.0)):
         """scenario: a path or a loaded msbench.Scenario (its `set` values kept); set: more
-        KEY=VALUE overrides (a list, or a dict); decision_period_s: simulated time per step."""
+        KEY=VALUE overrides (a list, or a dict); decision_period_s: simulated time per step;
+        map_cells > 0 adds obs["map"]: a map_cells × map_cells top-down window of the grid
+        method's OctoMap centred on the vehicle, map_cell_m a cell, of the leaves that reach into
+        the height band map_z_m (the ground stays out): 0 unknown, 1 free, 2 occupied (occupied
+        wins in a column); rows along y, columns along x, estimate frame; as of the last goal
+        check (none before the first: all unknown)."""
         if not decision_period_s > 0:
             raise ValueError("decision_period_s must be > 0")
+        if int(map_cells) != map_cells or not 0 <= map_cells <= 1024:
+            raise ValueError("map_cells must be an integer in [0, 1024]")
+        if not map_cell_m > 0:
+            raise ValueError("map_cell_m must be > 0")
+        if len(map_z_m) != 2 or not map_z_m[0] < map_z_m[1]:
+            raise ValueError("map_z_m must be (low, high) with low < high")
+        self._map_cells, self._map_cell_m, self._map_z_m = int(map_cells), float(map_cell_m), tuple(map_z_m)
+        self._map = None
         self._path, self._sets = _scenario_source(scenario, set)
         self._period_s = float(decision_period_s)
         probe = Scenario.load(self._path, set=self._sets)  # bad files and keys fail here (ConfigError)
@@ -93,6 +129,7 @@ class ExplorationEnv(_Base):
             "pose": _spaces.make_box(-math.inf, math.inf, (4, 4), float),
             "position": _spaces.make_box(-math.inf, math.inf, (3,), float),
             "velocity": _spaces.make_box(-math.inf, math.inf, (3,), float),
+            **({"map": _spaces.make_box(0, 2, (self._map_cells, self._map_cells), "uint8")} if self._map_cells else {}),
         })
 
     @property
@@ -107,6 +144,7 @@ class ExplorationEnv(_Base):
         self._pending = None
         self._area = 0.0
         self._goal_requests = 0
+        self._map = None
         tick = self._mission.step(1)
         while tick.frame is None and self._mission.running:  # up to the first rendered frame
             tick = self._mission.step(1)
@@ -139,12 +177,17 @@ class ExplorationEnv(_Base):
     def _choose(self, request):
         # The grid method's goal check: the agent's pending action once, else keep the goal.
         self._goal_requests += 1
+        if self._map_cells:
+            self._map = _top_down(request, self._map_cells, self._map_cell_m, self._map_z_m)
         action, self._pending = self._pending, None
         return action
 
     def _observation(self, tick):
         pose = tick.est_pose
-        return {"frame": self._frame, "pose": pose, "position": pose[:3, 3], "velocity": tick.est_velocity}
+        obs = {"frame": self._frame, "pose": pose, "position": pose[:3, 3], "velocity": tick.est_velocity}
+        if self._map_cells:
+            obs["map"] = self._map if self._map is not None else np.zeros((self._map_cells,) * 2, np.uint8)
+        return obs
 
     def _info(self, tick):
         return {
