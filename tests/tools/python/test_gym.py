@@ -204,3 +204,30 @@ def test_a_viewpoint_chooser_picks_monospheres_goals_among_the_reachable_viewpoi
     with pytest.raises(msbench.MethodError, match="not a candidate"):
         m.run(progress=False)
     assert m.status == "error"
+
+
+def test_the_viewpoint_env_lets_an_agent_pick_monospheres_goals():
+    sets = FAST + ["duration_s=30", "seed=1"]
+    env = msbench.gym.ViewpointEnv(MONOSPHERES, set=sets, decision_period_s=1.0, max_candidates=8)
+    assert env.action_space.n == 9 and env.observation_space["candidates"].shape == (8, 6)
+    own = msbench.Mission(msbench.Scenario.load(MONOSPHERES, set=sets))
+    own.run(progress=False)
+    # Always 8 (= K): MonoSpheres' own choice, the same run.
+    obs, _ = env.reset(seed=1)
+    seen = 0
+    while env.mission.running:
+        obs, *_ = env.step(8)
+        seen = max(seen, int(obs["mask"].sum()))
+        assert env.observation_space.contains(obs)
+    assert env.mission.hash == own.hash and seen >= 1
+    # The farthest listed rank whenever there is a list: another run, goals from the candidates.
+    obs, _ = env.reset(seed=1)
+    while env.mission.running:
+        n = int(obs["mask"].sum())
+        obs, *_ = env.step(n - 1 if n else 8)
+    assert env.mission.hash != own.hash and env.mission.result()["counters"]["goals_chosen"] >= 3
+    with pytest.raises(ValueError, match="index"):
+        env.reset(seed=1) and env.step(9)
+    with pytest.raises(ValueError, match="monospheres"):
+        msbench.gym.ViewpointEnv(GRID, set=["world=urban"])
+

@@ -93,6 +93,7 @@ class ExplorationEnv(_Base):
     step(action) -> (obs, reward, terminated, truncated, info)."""
 
     metadata = {"render_modes": []}
+    _METHOD = "grid_random"  # the method whose goal choice the agent makes
 
     def __init__(self, scenario, set=(), decision_period_s=2.0, map_cells=0, map_cell_m=1.0, map_z_m=(0.5, 4.0)):
         """scenario: a path or a loaded msbench.Scenario (its `set` values kept); set: more
@@ -115,8 +116,8 @@ class ExplorationEnv(_Base):
         self._path, self._sets = _scenario_source(scenario, set)
         self._period_s = float(decision_period_s)
         probe = Scenario.load(self._path, set=self._sets)  # bad files and keys fail here (ConfigError)
-        if probe.method != "grid_random":
-            raise ValueError(f"{scenario}: ExplorationEnv needs method.type grid_random (got '{probe.method}')")
+        if probe.method != self._METHOD:
+            raise ValueError(f"{scenario}: {type(self).__name__} needs method.type {self._METHOD} (got '{probe.method}')")
         camera = probe.effective()["camera"]
         self.frame_shape = (int(camera["height_px"]), int(camera["width_px"]))
         self._mission = None
@@ -157,7 +158,7 @@ class ExplorationEnv(_Base):
             raise RuntimeError("call reset() before step()")
         if not self._mission.running:
             raise RuntimeError("the episode has ended: call reset()")
-        self._pending = _as_action(action)
+        self._pending = self._action(action)
         tick = self._mission.step(max(1, round(self._period_s * self._mission.physics_hz)))
         if tick.frame is not None:
             self._frame = tick.frame
@@ -173,6 +174,9 @@ class ExplorationEnv(_Base):
         if self._mission.running or self._mission.status == "error":
             return self._mission.area_m2
         return self._mission.result()["coverage"]["area_m2"]
+
+    def _action(self, action):
+        return _as_action(action)
 
     def _choose(self, request):
         # The grid method's goal check: the agent's pending action once, else keep the goal.
@@ -199,3 +203,66 @@ class ExplorationEnv(_Base):
             "goal_requests": self._goal_requests,
             "true_pose": tick.true_pose,  # ground truth: for analysis, not for the agent
         }
+
+
+class ViewpointEnv(ExplorationEnv):
+    """MonoSpheres' goal choice as a gym-style environment: the agent picks one of the viewpoints
+    MonoSpheres found reachable (its frontiers' viewpoints, by path cost along the sphere graph)
+    whenever MonoSpheres takes a new goal; everything else — map, paths, safety — is MonoSpheres'.
+    reset(seed) -> (obs, info), step(action) -> (obs, reward, terminated, truncated, info)."""
+
+    _METHOD = "monospheres"
+
+    def __init__(self, scenario, set=(), decision_period_s=2.0, max_candidates=32):
+        """scenario: a MonoSpheres scenario (path or msbench.Scenario); set, decision_period_s as
+        for ExplorationEnv; max_candidates: the observation lists the first K candidates of the
+        last goal choice (by path cost; MonoSpheres makes its viewpoints anew as the map grows,
+        so a list is only valid at its own choice). The action is a rank a < K — at the next goal
+        choice take the a-th cheapest reachable viewpoint, MonoSpheres' own choice if there are
+        fewer — or K to leave the choice to MonoSpheres."""
+        if int(max_candidates) != max_candidates or not 1 <= max_candidates <= 4096:
+            raise ValueError("max_candidates must be an integer in [1, 4096]")
+        self._k = int(max_candidates)
+        super().__init__(scenario, set=set, decision_period_s=decision_period_s)
+        self._candidates = np.zeros((self._k, 6))
+        self._ids = []
+        self.action_space = _spaces.make_discrete(self._k + 1)
+        self.observation_space = _spaces.make_dict({
+            **self.observation_space.spaces,
+            "candidates": _spaces.make_box(-math.inf, math.inf, (self._k, 6), float),
+            "mask": _spaces.make_box(0, 1, (self._k,), "uint8"),
+        })
+
+    def reset(self, seed=None, options=None):
+        """Starts a new mission (the scenario's seed, or `seed`); returns (obs, info)."""
+        self._candidates = np.zeros((self._k, 6))
+        self._ids = []
+        return super().reset(seed=seed, options=options)
+
+    def _action(self, action):
+        a = int(action)
+        if a != action or not 0 <= a <= self._k:
+            raise ValueError(f"an action is an index in [0, {self._k}] ({self._k}: MonoSpheres' own choice)")
+        return None if a == self._k else a
+
+    def _choose(self, request):
+        # MonoSpheres takes a new goal: the viewpoint of the agent's pending rank if there is one,
+        # else its own; then the candidates the agent sees next.
+        self._goal_requests += 1
+        rank, self._pending = self._pending, None
+        ids = [int(i) for i in request.ids]
+        n = min(len(ids), self._k)
+        self._ids = ids[:n]
+        self._candidates = np.zeros((self._k, 6))
+        if n:
+            self._candidates[:n, :3] = request.positions[:n]
+            self._candidates[:n, 3] = request.yaws[:n]
+            self._candidates[:n, 4] = request.path_costs[:n]
+            self._candidates[:n, 5] = request.values[:n]
+        return ids[rank] if rank is not None and rank < len(ids) else None
+
+    def _observation(self, tick):
+        obs = super()._observation(tick)
+        obs["candidates"] = self._candidates.copy()
+        obs["mask"] = (np.arange(self._k) < len(self._ids)).astype(np.uint8)
+        return obs
