@@ -224,17 +224,26 @@ class PyMission {
   }
 
   // Records what flies instead of the scenario's method: an in-process factory becomes a Python
-  // method named by its module and name (config.yaml replays it when that name imports back to
-  // it); a goal chooser is named beside the scenario's method, and such a run is never
-  // replayable (a scenario cannot name a chooser). The effective YAML is rebuilt from the
-  // scenario as loaded (`original`: before the world filled in the start).
+  // method, a goal chooser the scenario's `goals` section, named by module and name —
+  // config.yaml replays the run when that name imports back to the object, and says why not
+  // otherwise (a lambda, a closure, a script's own function). The effective YAML is rebuilt
+  // from the scenario as loaded (`original`: before the world filled in the start).
   void recordInProcess(const PyScenario& original, const py::object& obj, bool goal_chooser) {
     const py::tuple rec = py::module_::import("msbench.methods").attr("record_of")(obj);
     const std::string entry = rec[0].cast<std::string>(), why = rec[2].cast<std::string>();
     ScenarioSpec spec = original.spec;
-    if (goal_chooser) {
+    if (goal_chooser && why.empty()) {
+      // A module-level chooser imports back to itself: recorded as a scenario's `goals` section,
+      // so config.yaml replays the run.
+      PythonMethodConfig g;
+      g.entry = entry;
+      g.path = rec[1].cast<std::string>();
+      spec.goals = g;
       spec.method.goal_chooser = entry;
-      spec.method.not_replayable = "the goals came from the in-process goal chooser " + entry;
+      scenario_.spec.goals = g;
+    } else if (goal_chooser) {
+      spec.method.goal_chooser = entry;
+      spec.method.not_replayable = "the goals came from the in-process goal chooser " + entry + " (" + why + ")";
     } else {
       PythonMethodConfig c;
       c.entry = entry;

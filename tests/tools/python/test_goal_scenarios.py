@@ -70,3 +70,31 @@ def test_a_bad_goals_section_is_a_configuration_error(tmp_path):
     bad.write_text(text + "method: {type: python, entry: 'x:y'}\n")
     r = subprocess.run([MSBENCH_BIN, "run", str(bad), "--out", str(tmp_path / "r")], capture_output=True, text=True)
     assert r.returncode == 2 and "goals" in r.stderr, r.stderr
+
+
+def test_an_importable_in_process_chooser_is_recorded_as_a_goals_section_and_replays(tmp_path):
+    # A module-level chooser (no params) imports back to itself: config.yaml names it in `goals`.
+    (tmp_path / "mods").mkdir()
+    (tmp_path / "mods" / "north_goals.py").write_text(textwrap.dedent('''
+        def north(request):
+            if not request.needs_goal:
+                return None
+            x, y, z = request.position.tolist()
+            return (x, y + 5.0, 2.0)
+    '''))
+    import sys
+    sys.path.insert(0, str(tmp_path / "mods"))
+    import north_goals
+    m = msbench.Mission(msbench.Scenario.load(GRID, set=["world=urban", "duration_s=10"] + FAST),
+                        goals=north_goals.north)
+    m.run(progress=False)
+    out = m.write(str(tmp_path / "run"))
+    metrics = json.load(open(os.path.join(out, "metrics.json")))
+    assert metrics["goal_chooser"] == "north_goals:north" and metrics["replayable"] is True
+    config = open(os.path.join(out, "config.yaml")).read()
+    assert "NOT REPLAYABLE" not in config and "north_goals:north" in config
+    replay = subprocess.run([MSBENCH_BIN, "run", os.path.join(out, "config.yaml"), "--quiet", "--out",
+                             str(tmp_path / "replay")], capture_output=True, text=True)
+    assert replay.returncode == 0, replay.stderr
+    assert f"hash {m.hash}" in replay.stdout
+
