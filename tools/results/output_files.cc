@@ -148,7 +148,10 @@ fs::path outputPathOf(const fs::path& path) {
   std::error_code ec;
   if (name == "." || name == "..") {
     fs::path c = fs::weakly_canonical(p, ec);
-    return ec ? p.lexically_normal() : c;
+    if (ec) c = p.lexically_normal();
+    // "d/." of a directory that does not exist yet normalises to "d/": the directory is d.
+    while (!c.has_filename() && c.has_parent_path() && c != c.root_path()) c = c.parent_path();
+    return c;
   }
   fs::path parent = fs::weakly_canonical(p.parent_path(), ec);
   if (ec) parent = p.parent_path().lexically_normal();

@@ -1,0 +1,93 @@
+// The one output-replacement routine every command goes through (checkNoOverlap, then
+// StagedOutputDir): a seeded property test over generated trees of directories, symlinks,
+// `..` and trailing slashes, with an input file somewhere and msbench-marked outputs here and
+// there. Whatever the path, either the output is refused before anything changes, or it is
+// written at outputPathOf(path) — and the input is never lost.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/common/config_check.h"
+#include "core/common/rng.h"
+#include "tests/tools/cli_helpers.h"
+#include "tools/results/output_files.h"
+
+namespace msb {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A tree: dirs d0..d3 (d1, d2 inside d0), symlinks l0 -> d0/d1 and d3/l1 -> d0; a marked msbench
+// run output in some directories; the input file in one of them.
+struct Tree {
+  fs::path root, input;
+};
+
+Tree makeTree(const fs::path& root, RngStream& rng) {
+  fs::remove_all(root);
+  for (const char* d : {"d0/d1", "d0/d2", "d3"}) fs::create_directories(root / d);
+  fs::create_directory_symlink(root / "d0" / "d1", root / "l0");
+  fs::create_directory_symlink(root / "d0", root / "d3" / "l1");
+  const std::vector<fs::path> dirs = {root / "d0", root / "d0" / "d1", root / "d0" / "d2", root / "d3"};
+  for (const fs::path& d : dirs)
+    if (rng.uniformInt(2) == 0) {
+      fs::create_directories(d / "res");
+      std::ofstream(d / "res" / ".msbench-output") << "This directory was written by msbench (run).\n";
+      std::ofstream(d / "res" / "metrics.json") << "{}\n";
+    }
+  Tree t{root, dirs[rng.uniformInt(dirs.size())] / (rng.uniformInt(2) ? "res" : "") / "scenario.yaml"};
+  fs::create_directories(t.input.parent_path());
+  std::ofstream(t.input) << "the input\n";
+  return t;
+}
+
+// A path from the root through generated components (names, symlinks, `.`, `..`).
+std::string makePath(const fs::path& root, RngStream& rng) {
+  static const char* const kParts[] = {"d0", "d1", "d2", "d3", "l0", "l1", "..", ".", "res", "new"};
+  std::string p = root.string();
+  const int n = 1 + int(rng.uniformInt(4));
+  for (int i = 0; i < n; ++i) p += std::string("/") + kParts[rng.uniformInt(10)];
+  if (rng.uniformInt(3) == 0) p += "/";
+  return p;
+}
+
+TEST(OutputFiles, NoGeneratedOutputPathEverLosesTheInputOrWritesElsewhere) {
+  const fs::path root = msb_test::tempDir("msb_outprop_", "tree");
+  RngStream rng(20261127, "output-paths");
+  int written = 0, refused = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Tree t = makeTree(root / "t", rng);
+    const std::string out = makePath(root / "t", rng);
+    const fs::path expected = outputPathOf(out);
+    try {
+      checkNoOverlap({{"SCENARIO", t.input}}, {{"--out", out}});
+      StagedOutputDir dir(out, /*overwrite=*/true);
+      writeFileAtomic(dir.staging() / "metrics.json", "{\"new\": true}\n");
+      dir.commit();
+      ++written;
+      EXPECT_EQ(dir.finalDir(), expected) << out;
+      EXPECT_EQ(readAll(expected / "metrics.json"), "{\"new\": true}\n") << out << " -> " << expected;
+    } catch (const UsageError&) {
+      ++refused;
+    }
+    ASSERT_TRUE(fs::is_regular_file(t.input)) << "case " << i << ": --out " << out << " lost " << t.input;
+    EXPECT_EQ(readAll(t.input), "the input\n") << out;
+  }
+  // Both outcomes occur: the generator reaches the refusals and the replacements.
+  EXPECT_GT(written, 40);
+  EXPECT_GT(refused, 40);
+}
+
+}  // namespace
+}  // namespace msb
