@@ -45,6 +45,12 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
   setup.map_rate_hz = spec.mission.map_rate_hz;
   setup.planning_rate_hz = spec.mission.planning_rate_hz;
   loop_ = std::make_unique<ClosedLoop>(missionFlight(spec), setup);
+  // A box with nothing above the ground has nothing to explore.
+  for (const GroundPlane& g : loop_->sim().groundPlanes())
+    if (box.max.z() <= g.centre.z())
+      throw ConfigError("exploration_box", "its top z = " + std::to_string(box.max.z()) +
+                                               " m is not above the ground plane " + g.name +
+                                               " (z = " + std::to_string(g.centre.z()) + " m)");
   if (truth_) {
     audit_.emplace(*truth_, loop_->camera());
     VerifiedCoverageConfig v;

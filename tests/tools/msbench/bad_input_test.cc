@@ -234,6 +234,9 @@ TEST(BadInput, MeaninglessValuesThatLoadAreRefused) {
                   {"viewpoints.candidates", "must be in [1, 100000]"});
   t.expectRefused(run_s + "--set 'exploration_box={min: [0, 0, 0], max: [0.01, 0.01, 0.01]}'",
                   {"exploration_box", "at least 2.5 m x 2.5 m"});
+  // A box under the ground (accepted before): nothing in it can be explored.
+  t.expectRefused(run_s + "--set 'exploration_box={min: [-10, -10, -8], max: [10, 10, -1]}'",
+                  {"s.yaml", "exploration_box", "not above the ground plane 'ground'"});
   t.expectRefused(run_s + "--set camera.width_px=100000", {"camera.width_px", "must be in [16, 4096]"});
   // Waypoints mean nothing to a mission: refused, not ignored.
   t.expectRefused(run_s + "--set 'trajectory.waypoints=[[0, 0, 1]]'", {"trajectory.waypoints", "msbench fly"});

@@ -117,6 +117,20 @@ def test_a_python_methods_snapshot_reaches_map_ply_and_the_pictures(tmp_path):
         m.run(progress=False)
 
 
+class Exits(hover_turn.HoverTurn):
+    def plan(self, vehicle):
+        if vehicle.t_s > 2.0:
+            sys.exit(3)
+        return super().plan(vehicle)
+
+
+def test_sys_exit_inside_a_method_is_a_method_error_not_the_end_of_python():
+    m = msbench.Mission(msbench.Scenario.load(CPP, set=FAST), method=lambda c: Exits(c))
+    with pytest.raises(msbench.MethodError, match="SystemExit: 3"):
+        m.run(progress=False)
+    assert m.status == "error"
+
+
 def test_method_rng_streams_are_seeded_like_msbenchs():
     a, b = msbench.RngStream(7, "goals"), msbench.RngStream(7, "goals")
     assert [a.uniform() for _ in range(5)] == [b.uniform() for _ in range(5)]
