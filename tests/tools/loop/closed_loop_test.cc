@@ -95,16 +95,22 @@ TEST(ClosedLoop, TwoLoopsInLockstepStayIdentical) {
   EXPECT_GE(compared, 5);
 }
 
-TEST(ClosedLoop, ShortOracleMissionExploresDeterministically) {
-  const WorldTruth truth(urban().generated.shapes);
+// A mission of `duration_s` from the town's start on the null renderer and oracle features, with
+// a perfect front end (the textureless vehicles near the start carry landmarks too).
+ScenarioSpec oracleMission(double duration_s) {
   ScenarioSpec spec;
   spec.flight = oracleFlight();
   spec.flight.waypoints.clear();
   spec.flight.start_yaw_rad = yawOf(urban().generated.start.linear());
-  spec.flight.duration_s = 25.0;
-  // A perfect front end: the textureless vehicles near the start carry landmarks too.
+  spec.flight.duration_s = duration_s;
   spec.flight.perception.oracle.textureless_landmarks = true;
   spec.mission.progress = false;
+  return spec;
+}
+
+TEST(ClosedLoop, ShortOracleMissionExploresDeterministically) {
+  const WorldTruth truth(urban().generated.shapes);
+  const ScenarioSpec spec = oracleMission(25.0);
   const Aabb box = urban().generated.exploration_box;
   const MissionResult a = runMission(spec, box, &truth);
   ASSERT_EQ(a.flight.status, RunStatus::kCompleted)
@@ -121,15 +127,9 @@ TEST(ClosedLoop, ShortOracleMissionExploresDeterministically) {
 // The oracle mission of the test above, pipelined: what each frame computes is used one frame
 // later; `threads` 1 or 2.
 ScenarioSpec pipelinedOracleMission(int threads) {
-  ScenarioSpec spec;
-  spec.flight = oracleFlight();
-  spec.flight.waypoints.clear();
-  spec.flight.start_yaw_rad = yawOf(urban().generated.start.linear());
-  spec.flight.duration_s = 20.0;
-  spec.flight.perception.oracle.textureless_landmarks = true;
+  ScenarioSpec spec = oracleMission(20.0);
   spec.flight.perception.latency_frames = 1;
   spec.flight.perception.threads = threads;
-  spec.mission.progress = false;
   return spec;
 }
 
