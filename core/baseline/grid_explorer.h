@@ -97,7 +97,6 @@ class GridExplorer : public Explorer {
 
   /// The map (tests, tools).
   const GridMap& map() const { return map_; }
-  GridMap& mutableMap() { return map_; }
   /// The current goal, if any.
   const std::optional<Vec3>& goal() const { return goal_; }
   /// Draws a goal for a vehicle at p (advances the goal stream; tests).
@@ -106,6 +105,7 @@ class GridExplorer : public Explorer {
   void setGoalChooser(GoalChooser chooser) { chooser_ = std::move(chooser); }
 
  private:
+  friend struct GridExplorerTestSeam;  // hand-built maps in tests (grid_test_seam.h)
   std::optional<PathCommand> explore(const VehicleState& s);
   bool checkGoal(const VehicleState& s);
   void setGoal(double t_s, std::optional<Vec3> goal, std::vector<Vec3> path = {});

@@ -127,10 +127,9 @@ class StarDiscoveryExplorer : public Explorer {
   ExplorerSnapshot snapshot() const override;
   std::vector<FreeSpaceElement> freeSpace() const override;
   std::map<std::string, double> counters() const override;
-  /// The map (tests).
-  GridMap& mutableMap() { return map_; }
 
  private:
+  friend struct GridExplorerTestSeam;  // hand-built maps in tests (grid_test_seam.h)
   enum class Phase { kTakeoff, kLookAround, kStar, kGlobal, kTransit, kHold };
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
   std::optional<PathCommand> startStar(const VehicleState& s);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/baseline/grid_explorer.h"
+#include "core/baseline/grid_test_seam.h"
 
 namespace msb {
 namespace {
@@ -62,7 +63,7 @@ TEST(GridExplorer, GoalsStayInTheSquareAndTheBox) {
 TEST(GridExplorer, TakesOffThenPlansAroundMappedObstacles) {
   GridExplorer e(traversableUnknown(), context());
   // A wall west of the start (the explorer's goals will be all around).
-  GridMap& map = e.mutableMap();
+  GridMap& map = GridExplorerTestSeam::map(e);
   for (double x = -20.25; x < 10; x += 0.5)
     for (double z = 0.25; z < 7; z += 0.5)
       map.mutableTree().updateNode(octomap::point3d(float(x), 6.25f, float(z)), true);
@@ -106,9 +107,9 @@ TEST(GridExplorer, AnObstacleOnThePathAheadStopsTheVehicle) {
   // An obstacle point appears 2 m ahead on the path: the next step stops.
   const Vec3 dir = (cmd->waypoints.front().position_m - Vec3(4, 0, 2)).normalized();
   const Vec3 obstacle = Vec3(4, 0, 2) + 2.0 * dir;
-  e.mutableMap().mutableTree().updateNode(
+  GridExplorerTestSeam::map(e).mutableTree().updateNode(
       octomap::point3d(float(obstacle.x()), float(obstacle.y()), float(obstacle.z())), true);
-  e.mutableMap().mutableTree().updateInnerOccupancy();
+  GridExplorerTestSeam::map(e).mutableTree().updateInnerOccupancy();
   const auto stop = e.plan(at(Vec3(4, 0, 2), 1.2, false));
   ASSERT_TRUE(stop);
   ASSERT_EQ(stop->waypoints.size(), 1u);

@@ -3,6 +3,7 @@
 // them away), the largest connected component, and the explorer's first moves.
 #include <gtest/gtest.h>
 
+#include "core/baseline/grid_test_seam.h"
 #include "core/baseline/star_discovery_explorer.h"
 
 namespace msb {
@@ -119,7 +120,7 @@ TEST(StarDiscovery, TakesOffLooksAroundThenFliesAStarSideways) {
   ExplorerContext ctx;
   ctx.exploration_box = box(Vec3(-15, -15, 0), Vec3(15, 15, 6));
   StarDiscoveryExplorer ex(cfg, ctx);
-  fill(ex.mutableMap(), Vec3(-12, -12, -1), Vec3(12, 12, 7));
+  fill(GridExplorerTestSeam::map(ex), Vec3(-12, -12, -1), Vec3(12, 12, 7));
   VehicleState s;
   s.path_finished = true;
   // Take-off: climb, then forward.
