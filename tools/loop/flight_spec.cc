@@ -24,6 +24,7 @@ void PerceptionConfig::validate(ConfigChecker& c) const {
 
 void FlightSpec::validate(ConfigChecker& c) const {
   c.require(!world_path.empty() || !world_name.empty(), "world", "is required");
+  c.require(isValidUtf8(world_path) && isValidUtf8(world_name), "world", "the path is not valid UTF-8");
   c.require(world_path.empty() || std::filesystem::is_regular_file(world_path), "world",
             "file not found: " + world_path);
   c.inRange("duration_s", duration_s, 0.01, 36000.0);

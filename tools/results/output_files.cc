@@ -63,6 +63,7 @@ void checkOutputFile(const fs::path& file, bool overwrite, const std::string& fl
                      const std::function<bool(const std::string&)>& ours) {
   const std::string name = "--" + flag + " " + file.string();
   if (file.empty() || !fs::absolute(file).has_filename()) throw UsageError(name + ": expected a file name");
+  if (!isValidUtf8(file.string())) throw UsageError(name + ": the path is not valid UTF-8");
   if (existsNoFollow(file)) {
     if (!fs::is_regular_file(fs::symlink_status(file))) throw UsageError(name + ": exists and is not a regular file");
     if (!overwrite) throw UsageError(name + ": exists (use --overwrite to replace it)");

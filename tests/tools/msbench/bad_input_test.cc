@@ -453,6 +453,14 @@ TEST(BadInput, NamesAndPathsMustBeUtf8BeforeAnythingRuns) {
   t.write("ok\xff.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
   t.expectRefused("run " + t.p("ok\xff.yaml") + " --out " + t.p("o"), {"not valid UTF-8"});
   t.expectRefused("run " + t.p("n.yaml") + " --out " + t.p("o\xfe"), {"--out", "not valid UTF-8"});
+  // The --record path and a world file's path too (accepted before, written into the log header
+  // and metrics.json).
+  t.write("r.yaml", "base: " + kSrc + "/scenarios/missions/test_world_short.yaml\n");
+  t.expectRefused("run " + t.p("r.yaml") + " --record " + t.p("rec\xfe.log") + " --out " + t.p("o"),
+                  {"--record", "not valid UTF-8"});
+  fs::copy_file(t.d / "w.xml", t.d / "w\xfe.xml");
+  t.write("fw.yaml", "world: \"w\xfe.xml\"\nduration_s: 1\ntrajectory: {waypoints: [[0, 0, 1]]}\n");
+  t.expectRefused("fly " + t.p("fw.yaml") + " --out " + t.p("o"), {"world", "not valid UTF-8"});
 }
 
 TEST(BadInput, AWorldNeedsCollisionGeometry) {
