@@ -25,6 +25,10 @@ std::string readFile(const std::string& path) {
   if (!fs::exists(path, ec)) throw ConfigError("world", path + ": world file not found");
   if (!fs::is_regular_file(path, ec))
     throw ConfigError("world", path + ": not a regular file (a world is an MJCF file)");
+  // The largest generated world's MJCF is a few MB (meshes are separate files).
+  constexpr std::uintmax_t kMaxBytes = std::uintmax_t(64) << 20;
+  if (fs::file_size(path, ec) > kMaxBytes)
+    throw ConfigError("world", path + ": larger than 64 MiB, not a world file msbench can load");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError("world", path + ": cannot open world file");
   std::ostringstream ss;

@@ -62,8 +62,7 @@ fs::path baseOf(const YAML::Node& node, const fs::path& file, const fs::path& di
 
 // The scenario file and its `base:` chain, read iteratively (at most kMaxBaseChain files, no
 // file twice), merged from the last base outwards: each file's keys override its base's.
-YAML::Node loadChain(const fs::path& file, std::vector<fs::path>& chain) {
-  std::vector<YAML::Node> nodes;
+YAML::Node loadChain(const fs::path& file, std::vector<fs::path>& chain, std::vector<YAML::Node>& nodes) {
   fs::path next = file;
   while (true) {
     const fs::path abs = fs::weakly_canonical(fs::absolute(next));
@@ -83,6 +82,28 @@ YAML::Node loadChain(const fs::path& file, std::vector<fs::path>& chain) {
   YAML::Node merged = nodes.back();
   for (size_t k = nodes.size() - 1; k-- > 0;) merged = merge(merged, nodes[k]);
   return merged;
+}
+
+// True if `node` gives the dotted key path `key` ("a.b[2].c": the list index and what follows
+// it belong to the list's key).
+bool givesKey(YAML::Node node, const std::string& key) {
+  std::istringstream parts(key.substr(0, key.find('[')));
+  for (std::string k; std::getline(parts, k, '.');) {
+    if (!node.IsMap() || !node[k]) return false;
+    node = node[k];
+  }
+  return true;
+}
+
+// The file of the chain a configuration issue belongs to: the nearest file to the scenario that
+// gives its key (a base's key is reported against the base, naming the scenario it serves).
+std::string issueLabel(const ConfigError& e, const std::vector<fs::path>& chain, const std::vector<YAML::Node>& nodes,
+                       const std::string& label) {
+  if (e.issues().empty()) return label;
+  for (size_t k = 0; k < nodes.size() && k < chain.size(); ++k)
+    if (givesKey(nodes[k], e.issues().front().key))
+      return k == 0 ? label : chain[k].string() + " (a base of " + label + ")";
+  return label;
 }
 
 // Applies "a.b.c=value" to the tree.
@@ -163,9 +184,9 @@ void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
   r.finish();
 }
 
-YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::string>& sets,
-                            std::vector<fs::path>& chain) {
-  YAML::Node tree = loadChain(path, chain);
+YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::string>& sets, std::vector<fs::path>& chain,
+                            std::vector<YAML::Node>& nodes) {
+  YAML::Node tree = loadChain(path, chain, nodes);
   for (const auto& kv : sets) applySet(tree, kv);
   return tree;
 }
@@ -174,12 +195,20 @@ YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::stri
 
 ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string>& sets) {
   std::vector<fs::path> chain;
-  const YAML::Node tree = loadScenarioTree(path, sets, chain);
+  std::vector<YAML::Node> nodes;
+  const YAML::Node tree = loadScenarioTree(path, sets, chain, nodes);
   const fs::path dir = fs::absolute(path).parent_path();
   const std::string label = sets.empty() ? path : path + " (with --set overrides)";
-  // The defaults are ScenarioSpec's own (missionFlightDefaults()); the file overrides them.
-  ScenarioSpec spec =
-      parseConfigNode<ScenarioSpec>(label, tree, [&](MapReader& r, ScenarioSpec& s) { readScenario(r, dir, s); });
+  // The defaults are ScenarioSpec's own (missionFlightDefaults()); the file overrides them. A
+  // key's error names the file of the chain that gave the key.
+  ScenarioSpec spec = parseConfigNode<ScenarioSpec>(label, tree, [&](MapReader& r, ScenarioSpec& s) {
+    try {
+      readScenario(r, dir, s);
+      checkValid(s);
+    } catch (const ConfigError& e) {
+      throw FileConfigError(issueLabel(e, chain, nodes, label) + ": " + e.what());
+    }
+  });
   if (spec.name.empty()) spec.name = fs::path(path).stem().string();
   for (const auto& f : chain) spec.input_files.push_back(f.string());
   // A Python method's directory as an absolute path: config.yaml, written elsewhere, replays it.

@@ -11,6 +11,7 @@
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/interrupt.h"
+#include "tools/results/output_files.h"
 #include "tools/sweep/sweep_runner.h"
 
 namespace msb {
@@ -37,7 +38,7 @@ int runSweepCommand(int argc, char** argv) {
   }
   if (args.get("out").empty()) throw UsageError("--out DIR is required (except with --list)");
   if (args.has("emit-slurm")) {
-    std::fputs(prepareSlurmSweep(plan, fs::absolute(args.get("out")), fs::canonical("/proc/self/exe").string(),
+    std::fputs(prepareSlurmSweep(plan, outputPathOf(args.get("out")), fs::canonical("/proc/self/exe").string(),
                                  args.has("accept-changes"))
                    .c_str(),
                stdout);
@@ -68,7 +69,7 @@ int runSweepCommand(int argc, char** argv) {
       throw FileConfigError(plan.file + ": run " + r.id + ": " + e.what());
     }
   }
-  const fs::path dir = args.get("out");
+  const fs::path dir = outputPathOf(args.get("out"));  // where the checks look is where it writes
   const SweepOutcome outcome = runSweep(plan, dir, options, [] { return interruptRequested(); });
   if (outcome.interrupted) throwIfInterrupted();  // exit 130/143
   if (options.task) {

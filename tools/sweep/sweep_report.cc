@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include "tools/config/method_table.h"
+#include "tools/config/strict_number.h"
 #include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
 
@@ -16,11 +18,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// coverage.csv rows by column name (older files without box_share read it as 0).
+// coverage.csv rows by column name (older files without box_share read it as 0). Strict: a
+// header with t_s, every row as many numbers as the header has names; else InputFileError
+// naming the file and the line.
 std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
   std::vector<CoverageSample> out;
-  if (!fs::exists(file)) return out;
+  if (!fs::exists(fs::symlink_status(file))) return out;
   std::istringstream in(readInputFile(file));
+  auto bad = [&](size_t line, const std::string& why) {
+    return InputFileError(file.string() + ": line " + std::to_string(line) + ": " + why);
+  };
   std::string line;
   if (!std::getline(in, line)) return out;
   std::vector<std::string> names;
@@ -28,29 +35,27 @@ std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
     std::istringstream h(line);
     for (std::string n; std::getline(h, n, ',');) names.push_back(n);
   }
-  while (std::getline(in, line)) {
+  if (std::find(names.begin(), names.end(), "t_s") == names.end()) throw bad(1, "not a coverage.csv header (no t_s)");
+  const std::map<std::string, double CoverageSample::*> fields = {
+      {"t_s", &CoverageSample::t_s},
+      {"area_m2", &CoverageSample::area_m2},
+      {"area_box_m2", &CoverageSample::area_box_m2},
+      {"area_true_frame_m2", &CoverageSample::area_gt_m2},
+      {"distance_m", &CoverageSample::distance_m},
+      {"box_share", &CoverageSample::box_share},
+      {"area_verified_m2", &CoverageSample::area_verified_m2}};
+  for (size_t n = 2; std::getline(in, line); ++n) {
     std::istringstream row(line);
     CoverageSample c;
     size_t k = 0;
     for (std::string v; std::getline(row, v, ','); ++k) {
-      if (k >= names.size()) break;
-      const double x = std::strtod(v.c_str(), nullptr);
-      const std::string& n = names[k];
-      if (n == "t_s")
-        c.t_s = x;
-      else if (n == "area_m2")
-        c.area_m2 = x;
-      else if (n == "area_box_m2")
-        c.area_box_m2 = x;
-      else if (n == "area_true_frame_m2")
-        c.area_gt_m2 = x;
-      else if (n == "distance_m")
-        c.distance_m = x;
-      else if (n == "box_share")
-        c.box_share = x;
-      else if (n == "area_verified_m2")
-        c.area_verified_m2 = x;
+      if (k >= names.size()) throw bad(n, "more values than the header has names");
+      double x = 0;
+      std::string why;
+      if (!parseNumber(v, &x, &why)) throw bad(n, "column '" + names[k] + "': " + why);
+      if (const auto f = fields.find(names[k]); f != fields.end()) c.*(f->second) = x;
     }
+    if (k != names.size()) throw bad(n, "fewer values than the header has names");
     out.push_back(c);
   }
   return out;
@@ -226,13 +231,20 @@ SweepResults loadSweepResults(const fs::path& dir) {
       // A complete run whose metrics.json is missing, truncated or incomplete is a failed run.
       MissionRecordRead read = readMissionRecord(rd / "metrics.json");
       if (read.record) {
+        try {
+          run.coverage = readCoverageCsv(rd / "coverage.csv");
+        } catch (const InputFileError& e) {
+          read.record.reset(), read.problem = e.what();
+        }
+      }
+      if (read.record) {
         run.metrics = read.record->metrics;
         run.record = std::move(read.record);
-        run.coverage = readCoverageCsv(rd / "coverage.csv");
       } else {
         run.status = "failed";
         run.failure.emplace();
         run.failure->problem = read.problem;
+        std::fprintf(stderr, "report: run %s counts as failed: %s\n", run.id.c_str(), read.problem.c_str());
       }
     }
     r.runs.push_back(std::move(run));

@@ -189,6 +189,9 @@ void checkSweepInputs(const SweepPlan& plan, const fs::path& dir) {
 // The directory: new or empty, or one msbench wrote as a sweep (resume: of the same file and
 // build; --accept-changes mixes). Anything else is refused before a file is written.
 void prepareSweepDir(const SweepPlan& plan, const fs::path& dir, const SweepRunOptions& options) {
+  // A symlink is never followed (as for every output): the user names the directory itself.
+  if (fs::is_symlink(dir))
+    throw UsageError("--out " + dir.string() + ": is a symbolic link; give the directory it leads to");
   if (fs::exists(fs::symlink_status(dir)) && !fs::is_directory(dir))
     throw UsageError("--out " + dir.string() + ": exists and is not a directory");
   checkSweepInputs(plan, dir);

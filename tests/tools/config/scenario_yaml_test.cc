@@ -143,6 +143,41 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
               {"position_drift_fraction", "scaled by frontend.drift_scale"});
 }
 
+// A key's error names the file of the base chain that gave the key (before: always the
+// scenario file, so an error in a base pointed at a file without that key).
+TEST(ScenarioYaml, AnErrorInABaseNamesTheBase) {
+  const fs::path d = tempDir();
+  write(d / "base.yaml", std::string(kBase) + "exploration_bo: {min: [0, 0, 0]}\n");
+  write(d / "mid.yaml", "base: base.yaml\nduration_s: -4\n");
+  write(d / "top.yaml", "base: mid.yaml\nseed: 2\n");
+  try {
+    loadScenario((d / "top.yaml").string());
+    FAIL() << "expected an error";
+  } catch (const FileConfigError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("base.yaml (a base of " + (d / "top.yaml").string() + "): key 'exploration_bo'"),
+              std::string::npos)
+        << msg;
+  }
+  write(d / "base.yaml", kBase);
+  try {
+    loadScenario((d / "top.yaml").string());
+    FAIL() << "expected an error";
+  } catch (const FileConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("mid.yaml (a base of"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("duration_s"), std::string::npos) << e.what();
+  }
+  // The scenario's own key, and a key the scenario overrides, name the scenario.
+  write(d / "top.yaml", "base: mid.yaml\nduration_s: -3\n");
+  try {
+    loadScenario((d / "top.yaml").string());
+    FAIL() << "expected an error";
+  } catch (const FileConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).find("a base of"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind((d / "top.yaml").string() + ": key 'duration_s'", 0), 0u) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace msb
 
