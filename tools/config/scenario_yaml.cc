@@ -51,9 +51,13 @@ YAML::Node loadChainFile(const fs::path& file, const fs::path& dir) {
 // The file a node's `base:` names, checked (a regular file that exists).
 fs::path baseOf(const YAML::Node& node, const fs::path& file, const fs::path& dir) {
   if (!node["base"].IsScalar()) throw FileConfigError(file.string() + ": key 'base': expected a file path");
+  if (node["base"].Scalar().find('\0') != std::string::npos)
+    throw FileConfigError(file.string() + ": key 'base': the file name contains a NUL character");
   const fs::path base = dir / node["base"].Scalar();
   std::error_code ec;
   const auto st = fs::status(base, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    throw FileConfigError(file.string() + ": key 'base': " + base.string() + ": " + ec.message());
   if (!fs::exists(st)) throw FileConfigError(file.string() + ": key 'base': file not found: " + base.string());
   if (!fs::is_regular_file(st))
     throw FileConfigError(file.string() + ": key 'base': not a regular file: " + base.string());
@@ -84,16 +88,20 @@ YAML::Node loadChain(const fs::path& file, std::vector<fs::path>& chain, std::ve
   return merged;
 }
 
-// True if `node` gives the dotted key path `key` ("a.b[2].c": the list index and what follows
-// it belong to the list's key).
-bool givesKey(YAML::Node node, const std::string& key) {
-  std::istringstream parts(key.substr(0, key.find('[')));
-  for (std::string k; std::getline(parts, k, '.');) {
-    if (!node.IsMap() || !node[k]) return false;
-    node = node[k];
-  }
-  return true;
+// The node at the dotted key path `key` of `node` ("a.b[2].c": the list index and what follows it
+// belong to the list's key), or an undefined node. Read through const nodes and initialised
+// copies: assigning to a yaml-cpp handle would edit the tree.
+YAML::Node nodeAt(const YAML::Node& node, const std::string& key) {
+  const std::string path = key.substr(0, key.find('['));
+  const size_t dot = path.find('.');
+  if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+  const YAML::Node child = node[path.substr(0, dot)];
+  if (!child || dot == std::string::npos) return child;
+  return nodeAt(child, path.substr(dot + 1));
 }
+
+/// True if `node` gives the dotted key path `key`.
+bool givesKey(const YAML::Node& node, const std::string& key) { return nodeAt(node, key).IsDefined(); }
 
 // The file of the chain a configuration issue belongs to: the nearest file to the scenario that
 // gives its key (a base's key is reported against the base, naming the scenario it serves).
@@ -145,6 +153,28 @@ void applySet(YAML::Node& root, const std::string& kv) {
   nodes.back()[keys.back()] = value;
 }
 
+// `--set S.preset=NAME` over a file whose section S sets its own values: those would silently
+// override the preset the user asked for; refused unless each is also given by --set.
+void checkPresetSet(const YAML::Node& files, const std::string& kv, const std::vector<std::string>& sets,
+                    const std::string& path) {
+  const std::string key = kv.substr(0, kv.find('='));
+  const std::string suffix = ".preset";
+  if (key.size() <= suffix.size() || key.compare(key.size() - suffix.size(), suffix.size(), suffix) != 0) return;
+  const std::string section = key.substr(0, key.size() - suffix.size());
+  const YAML::Node node = nodeAt(files, section);
+  if (!node.IsMap()) return;
+  std::string kept;
+  for (const auto& field : node) {
+    const std::string name = field.first.Scalar();
+    const bool by_set = std::any_of(sets.begin(), sets.end(),
+                                    [&](const std::string& s) { return s.rfind(section + "." + name + "=", 0) == 0; });
+    if (name != "preset" && !by_set) kept += (kept.empty() ? "" : ", ") + section + "." + name;
+  }
+  if (!kept.empty())
+    throw UsageError("--set " + key + ": " + path + " also sets " + kept +
+                     ", which would override the preset's values; give them with --set too, or remove them");
+}
+
 template <class Keys>
 void missionKeys(Keys r, MissionSettings& m) {
   r.field("map_rate_hz", m.map_rate_hz);
@@ -187,6 +217,7 @@ void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
 YAML::Node loadScenarioTree(const std::string& path, const std::vector<std::string>& sets, std::vector<fs::path>& chain,
                             std::vector<YAML::Node>& nodes) {
   YAML::Node tree = loadChain(path, chain, nodes);
+  for (const auto& kv : sets) checkPresetSet(tree, kv, sets, path);
   for (const auto& kv : sets) applySet(tree, kv);
   return tree;
 }

@@ -87,18 +87,29 @@ cv::Mat replayTopDown(const PerceptionLog& log, const SphereMap& map) {
   return img;
 }
 
-// Ground truth for the safety check when the log's world is a generated world (else none).
-std::optional<WorldTruth> logTruth(const PerceptionLog& log) {
+// Ground truth for the safety check when the log's world is a generated world; else none and
+// the reason, said in summary.json and on stdout (never silently).
+struct LogTruth {
   std::optional<WorldTruth> truth;
-  if (log.header.contains("world")) {
-    try {
-      const ResolvedWorld w = resolveWorld(log.header["world"].get<std::string>());
-      if (w.built) truth.emplace(w.built->generated.shapes);
-    } catch (const std::exception&) {
-      // not a known generated world: no safety statistics
-    }
+  std::string missing;  ///< why there is none ("" with truth)
+};
+LogTruth logTruth(const PerceptionLog& log) {
+  LogTruth t;
+  if (!log.header.contains("world")) {
+    t.missing = "the log's header names no world";
+    return t;
   }
-  return truth;
+  const std::string world = log.header["world"].get<std::string>();
+  try {
+    const ResolvedWorld w = resolveWorld(world);
+    if (w.built)
+      t.truth.emplace(w.built->generated.shapes);
+    else
+      t.missing = "world '" + world + "' is an MJCF file, not a generated world with ground truth";
+  } catch (const std::exception& e) {
+    t.missing = "world '" + world + "' cannot be resolved here: " + e.what();
+  }
+  return t;
 }
 
 // Corridor coverage: share of the flown camera positions (every 10th frame) inside the map's
@@ -214,7 +225,8 @@ int runMapReplayCommand(int argc, char** argv) {
   StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kMapReplay);
   SphereMap map(cfg, cameraFromHeader(args.get("LOG"), log.header), seed);
   // Ground truth for the safety check when the log's world is a generated world.
-  const std::optional<WorldTruth> truth = logTruth(log);
+  const LogTruth lt = logTruth(log);
+  const std::optional<WorldTruth>& truth = lt.truth;
   const Replay r = replay(log, map, rate_hz, truth ? &*truth : nullptr);
 
   writeFileAtomic(out.staging() / "map_stats.csv", mapStatsCsv(r));
@@ -254,6 +266,10 @@ int runMapReplayCommand(int argc, char** argv) {
     summary["obstacle_truth"] = obstacleTruthJson(r);
     printMapSafety(r);
     printObstacleTruth(r);
+  } else {
+    summary["map_safety"] = nullptr;
+    summary["map_safety_missing"] = lt.missing;
+    std::printf("map-replay: no map safety statistics: %s\n", lt.missing.c_str());
   }
   writeFileAtomic(out.staging() / "summary.json", summary.dump(2) + "\n");
   out.commit();

@@ -128,6 +128,11 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
               {"method.planner.viewpoints.min_value"});
   expectError("base: base.yaml\nmission: {map_rate_hz: -1}\n", {"mission.map_rate_hz"});
   expectError("base: nowhere.yaml\n", {"bad.yaml", "key 'base'", "file not found"});
+  // Before: "file not found: .../b" (the name cut at the NUL).
+  expectError("base: \"b\\0ase.yaml\"\n", {"bad.yaml", "key 'base'", "NUL character"});
+  // Before: the file's own frontend.mistrack_share silently overrode the preset asked for.
+  expectError("base: base.yaml\nfrontend: {preset: clean, mistrack_share: 0.2}\n",
+              {"--set frontend.preset", "also sets frontend.mistrack_share", "override"}, {"frontend.preset=severe"});
   expectError("base: bad.yaml\n", {"circular"});
   expectError("world: missing.xml\n", {"bad.yaml", "world", "file not found"});
   expectError("base: base.yaml\nexploration_box: {min: [0, 0, 0]}\n", {"exploration_box.max", "required"});
@@ -141,6 +146,25 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
   expectError("base: base.yaml\nfrontend: {blur_px: 2}\n", {"frontend.blur_px", "unknown key"});
   expectError("base: base.yaml\nfrontend: {drift_scale: 15}\nvio_drift: {position_drift_fraction: 0.1}\n",
               {"position_drift_fraction", "scaled by frontend.drift_scale"});
+}
+
+// A preset given by --set over a file's own values is fine when --set gives those values too; a
+// base that is a symlink loop says so (before: "file not found").
+TEST(ScenarioYaml, PresetSetsAndSymlinkLoops) {
+  const fs::path d = tempDir();
+  write(d / "base.yaml", kBase);
+  write(d / "s.yaml", "base: base.yaml\nfrontend: {preset: clean, mistrack_share: 0.2}\n");
+  EXPECT_NO_THROW(loadScenario((d / "s.yaml").string(), {"frontend.preset=severe", "frontend.mistrack_share=0.1"}));
+  fs::remove(d / "l1.yaml"), fs::remove(d / "l2.yaml");
+  fs::create_symlink(d / "l2.yaml", d / "l1.yaml");
+  fs::create_symlink(d / "l1.yaml", d / "l2.yaml");
+  write(d / "loop.yaml", "base: l1.yaml\n");
+  try {
+    loadScenario((d / "loop.yaml").string());
+    FAIL() << "expected an error";
+  } catch (const FileConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("symbolic links"), std::string::npos) << e.what();
+  }
 }
 
 // A key's error names the file of the base chain that gave the key (before: always the

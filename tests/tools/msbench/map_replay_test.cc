@@ -89,6 +89,11 @@ TEST(PerceptionLog, RoundTripAndMapReplayIsDeterministic) {
                            "' > /dev/null")
                               .c_str()),
               0);
+  // The log's world "synthetic" is no world here: no safety statistics, and the summary says why
+  // (before: nothing said).
+  const std::string summary = readBytes(d / "r1" / "summary.json");
+  EXPECT_NE(summary.find("\"map_safety\": null"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("world 'synthetic' cannot be resolved here"), std::string::npos) << summary;
   const std::string ply = readBytes(d / "r1" / "map.ply");
   EXPECT_GT(ply.size(), 1000u);
   EXPECT_EQ(ply, readBytes(d / "r2" / "map.ply"));
