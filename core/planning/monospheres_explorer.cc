@@ -79,6 +79,19 @@ MonoSpheresConfig withSharedMinRadius(MonoSpheresConfig c) {
   c.planner.safety.r_min_m = c.map.r_min_m;
   return c;
 }
+// The graph repair's parameters from the planner's keys.
+GraphRepairConfig graphRepairConfig(const MonoSpheresConfig& c) {
+  const MonoSpheresPlannerConfig& p = c.planner;
+  return {p.safety,
+          p.link_gap_m,
+          p.link_trail_radius_m,
+          p.link_trail_max_m,
+          p.trail_spacing_m,
+          p.link_tests_per_pair,
+          p.check_clearance_m,
+          p.blocked_edge_timeout_s,
+          p.no_progress_timeout_s};
+}
 }  // namespace
 
 MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const FisheyeCamera& camera,
@@ -88,6 +101,7 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
       map_(config.map, camera, context.seed),
       clearance_(map_, ClearanceConfig{config_.planner.check_ahead_m, config_.planner.check_clearance_m,
                                        config_.planner.allow_moving_away, config_.planner.escape_margin_m}),
+      repair_(map_, graphRepairConfig(config_)),
       viewpoints_(config.planner.viewpoints, context.seed),
       takeoff_(context.start, config.planner) {}
 
@@ -167,18 +181,13 @@ void MonoSpheresExplorer::failGoal(double t_s, MonoSpheresCounter reason) {
 std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   const auto& pc = config_.planner;
   const Vec3 p = s.T_W_B.translation();
-  if (trail_.empty() || (p - trail_.back()).norm() >= pc.trail_spacing_m) trail_.push_back(p);
+  repair_.beginStep(p, s.t_s);
   // 1. Where the vehicle is in the graph (on a link: its far sphere); links between the parts
   //    of the graph; costs to everything reachable.
-  std::erase_if(blocked_edges_, [&](const auto& e) { return s.t_s >= e.second; });
   auto start = containingSphere(map_, p, pc.start_max_outside_m, pc.safety.r_min_m);
-  if (!start && goal_ && s.t_s < transit_until_s_ && map_.spheres().count(transit_sphere_)) {
-    start = transit_sphere_;
-    transit_until_s_ = std::max(transit_until_s_, last_progress_s_ + pc.no_progress_timeout_s);
-  }
+  if (!start && goal_) start = repair_.transitStart(s.t_s, last_progress_s_);
   if (!start) return returnToFreeSpace(s);
-  links_ = linkParts();
-  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, passable(), &links_);
+  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, repair_.passable(), &repair_.relink());
   std::vector<uint64_t>& reachable = reachable_;
   reachable.clear();
   reachable.reserve(field.cost.size());
@@ -196,10 +205,6 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   if (!goal_) return withoutGoal(s, field, reachable);
   // 6. Fly the route to the goal.
   return followGoal(s, *start);
-}
-
-EdgeFilter MonoSpheresExplorer::passable() const {
-  return [this](uint64_t a, uint64_t b) { return !blocked_edges_.count({std::min(a, b), std::max(a, b)}); };
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleState& s) {
@@ -224,92 +229,6 @@ std::optional<PathCommand> MonoSpheresExplorer::returnToFreeSpace(const VehicleS
   }
   ++counters_[MonoSpheresCounter::kReturnsRefused];
   return command(s, {{s.reference.position_m, std::nullopt}});
-}
-
-bool MonoSpheresExplorer::keepsClearance(const Vec3& a, const Vec3& b) const {
-  return everySample(a, b, 0.3,
-                     [&](const Vec3& x) { return !map_.anyObstacleNear(x, config_.planner.check_clearance_m); });
-}
-
-bool MonoSpheresExplorer::nearTrail(const Vec3& x, size_t from, size_t to) const {
-  const double r2 = config_.planner.link_trail_radius_m * config_.planner.link_trail_radius_m;
-  for (size_t k = from; k <= to && k < trail_.size(); ++k)
-    if ((trail_[k] - x).squaredNorm() <= r2) return true;
-  return false;
-}
-
-SphereLinks MonoSpheresExplorer::linkParts() const {
-  const auto& pc = config_.planner;
-  const auto part = sphereGraphParts(map_, pc.safety, passable());
-  SphereLinks links;
-  std::set<uint64_t> labels;
-  for (const auto& [id, label] : part) labels.insert(label);
-  if (labels.size() < 2 || pc.link_tests_per_pair == 0) return links;
-  // Candidates per pair of parts: (centre distance, sphere a, sphere b, trail range or none).
-  struct Candidate {
-    double d;
-    uint64_t a, b;
-    size_t from, to;  // trail indices (from > to: a gap link, no trail)
-    bool operator<(const Candidate& o) const { return std::tie(d, a, b, from) < std::tie(o.d, o.a, o.b, o.from); }
-  };
-  std::map<std::pair<uint64_t, uint64_t>, std::vector<Candidate>> candidates;
-  auto pairKey = [&](uint64_t a, uint64_t b) {
-    return std::make_pair(std::min(part.at(a), part.at(b)), std::max(part.at(a), part.at(b)));
-  };
-  // (a) Narrow gaps between spheres of different parts. Every pair of parts has a part other
-  // than the largest in it, so only the spheres outside the largest part are scanned (usually a
-  // few fragments beside one big part); pairs found from both ends are merged below.
-  std::map<uint64_t, size_t> part_size;
-  for (const auto& [id, label] : part) ++part_size[label];
-  uint64_t largest = 0;
-  for (const auto& [label, n] : part_size)
-    if (!largest || n > part_size.at(largest)) largest = label;
-  for (const auto& [a, label] : part) {
-    if (label == largest) continue;
-    const Sphere& sa = map_.spheres().at(a);
-    for (uint64_t b : map_.spheresNear(sa.centre, sa.radius + pc.link_gap_m)) {
-      if (!part.count(b) || part.at(b) == label) continue;
-      candidates[pairKey(a, b)].push_back(
-          {(map_.spheres().at(b).centre - sa.centre).norm(), std::min(a, b), std::max(a, b), 1, 0});
-    }
-  }
-  // (b) Where the vehicle's trail leaves one part and enters another.
-  std::optional<std::pair<size_t, uint64_t>> last;  // (trail index, containing sphere)
-  for (size_t k = 0; k < trail_.size(); ++k) {
-    const auto in = containingSphere(map_, trail_[k], 0.0, pc.safety.r_min_m);
-    if (!in || !part.count(*in)) continue;
-    if (last && part.at(last->second) != part.at(*in) &&
-        double(k - last->first) * pc.trail_spacing_m <= pc.link_trail_max_m) {
-      const uint64_t a = std::min(last->second, *in), b = std::max(last->second, *in);
-      candidates[pairKey(a, b)].push_back(
-          {(map_.spheres().at(b).centre - map_.spheres().at(a).centre).norm(), a, b, last->first, k});
-    }
-    last = {k, *in};
-  }
-  // The shortest acceptable candidate of each pair becomes a link.
-  for (auto& [key, list] : candidates) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(
-                   list.begin(), list.end(),
-                   [](const Candidate& x, const Candidate& y) { return x.a == y.a && x.b == y.b && x.from == y.from; }),
-               list.end());
-    int tests = 0;
-    for (const Candidate& c : list) {
-      if (tests++ >= pc.link_tests_per_pair) break;
-      const Vec3 &ca = map_.spheres().at(c.a).centre, &cb = map_.spheres().at(c.b).centre;
-      if (!keepsClearance(ca, cb)) continue;
-      // A trail link: every sample outside the spheres lies near the trail.
-      if (c.from <= c.to && !everySample(ca, cb, 0.5, [&](const Vec3& x) {
-            return !map_.spheresNear(x, 0.0).empty() || nearTrail(x, c.from, c.to);
-          }))
-        continue;
-      links[c.a].push_back(c.b);
-      links[c.b].push_back(c.a);
-      break;
-    }
-  }
-  for (auto& [id, list] : links) std::sort(list.begin(), list.end());
-  return links;
 }
 
 void MonoSpheresExplorer::updateViewpoints(const VehicleState& s, const std::vector<uint64_t>& reachable) {
@@ -421,13 +340,13 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
   std::optional<SpherePath> spath;
   for (int attempt = 0; attempt < pc.max_route_repairs; ++attempt) {
-    spath = findSpherePath(map_, start, v.sphere, pc.safety, passable(), &links_);
+    spath = findSpherePath(map_, start, v.sphere, pc.safety, repair_.passable(), &repair_.links());
     if (!spath) break;
     bool clear = true;
     for (size_t k = 1; k < spath->spheres.size() && clear; ++k) {
       const uint64_t a = spath->spheres[k - 1], b = spath->spheres[k];
       if (clearance_.segmentClear(map_.spheres().at(a).centre, map_.spheres().at(b).centre, p)) continue;
-      blocked_edges_[{std::min(a, b), std::max(a, b)}] = s.t_s + pc.blocked_edge_timeout_s;
+      repair_.blockEdge(a, b, s.t_s);
       ++counters_[MonoSpheresCounter::kEdgesBlocked];
       clear = false;
     }
@@ -438,15 +357,8 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
     failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedUnreachable);
     return command(s, {{s.reference.position_m, std::nullopt}});  // hold; choose again next step
   }
-  // A route over a link: remember its far sphere, to start from while crossing the gap.
-  for (size_t k = 1; k < spath->spheres.size(); ++k) {
-    const uint64_t a = spath->spheres[k - 1], b = spath->spheres[k];
-    if (map_.neighbours(a).count(b)) continue;
-    if (transit_sphere_ != b || s.t_s >= transit_until_s_) ++counters_[MonoSpheresCounter::kLinksUsed];
-    transit_sphere_ = b;
-    transit_until_s_ = s.t_s + pc.no_progress_timeout_s;
-    break;
-  }
+  // A route over a link: its far sphere is where the search starts while crossing the gap.
+  if (repair_.noteRoute(*spath, s.t_s)) ++counters_[MonoSpheresCounter::kLinksUsed];
   const std::vector<Vec3> route = routeTo(s.reference.position_m, *spath, v.position);
   const double remaining = pathLength(route);
   if (remaining < best_remaining_m_ - 0.5) best_remaining_m_ = remaining, last_progress_s_ = s.t_s;
@@ -524,7 +436,7 @@ std::map<std::string, double> MonoSpheresExplorer::counters() const {
   c["candidates_low_value"] = double(r.low_value);
   c["candidates_dominated"] = double(r.dominated);
   c["links"] = 0;
-  for (const auto& [id, list] : links_) c["links"] += 0.5 * double(list.size());
+  for (const auto& [id, list] : repair_.links()) c["links"] += 0.5 * double(list.size());
   // Frontiers in the shell of a sphere the vehicle could reach at the last planning step.
   double reachable_frontiers = 0;
   for (const auto& [id, f] : map_.frontiers())

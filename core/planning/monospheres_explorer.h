@@ -17,15 +17,8 @@
 //      (then stop and re-plan; if the vehicle itself is inside that 1 m, it first backs away
 //      from the points to escape_margin_m beyond it) or FFF first needs a turn in place
 //      towards the route.
-// Parts of the graph joined by links: spheres shrink and vanish as drifted or new points arrive,
-// so a tunnel the vehicle flew through can lose its spheres and cut the graph in parts, leaving
-// frontiers in other parts out of reach. Each step, parts are linked by straight segments between
-// sphere centres that keep check_clearance_m from every obstacle point and either (a) span a
-// gap of at most link_gap_m between the two spheres' surfaces, or (b) follow the vehicle's own
-// estimated path (every sample outside the spheres within link_trail_radius_m of the trail
-// between the two spheres, at most link_trail_max_m of trail): space it has flown through. A
-// link costs like an edge into the narrowest admissible sphere. While crossing a link outside
-// every sphere, the search starts at the link's far sphere.
+// Parts of the graph joined by links, edges blocked near obstacle points and the link being
+// crossed: SphereGraphRepair (sphere_graph_repair.h). Clearance safety: ClearanceGuard.
 // Without a goal while cut off in a small pocket of the graph, or for 5 s without any goal, the
 // vehicle bridges straight to the nearest sphere outside its part of the graph within
 // bridge_range_m. A bridge may cross space without spheres (that is its purpose) but no sample
@@ -47,6 +40,7 @@
 #include "core/map/sphere_map.h"
 #include "core/planning/clearance_guard.h"
 #include "core/planning/path_shaping.h"
+#include "core/planning/sphere_graph_repair.h"
 #include "core/planning/sphere_graph_search.h"
 #include "core/planning/viewpoint_set.h"
 
@@ -199,11 +193,7 @@ class MonoSpheresExplorer : public Explorer {
 
   // One exploration step, in the order of the file comment; each step below is one part of it.
   std::optional<PathCommand> explore(const VehicleState& s);
-  EdgeFilter passable() const;                                          // graph edges not blocked
   std::optional<PathCommand> returnToFreeSpace(const VehicleState& s);  // outside every sphere
-  SphereLinks linkParts() const;                                        // links between graph parts
-  bool keepsClearance(const Vec3& a, const Vec3& b) const;              // no sample near a point
-  bool nearTrail(const Vec3& x, size_t from, size_t to) const;          // within reach of the trail
   void updateViewpoints(const VehicleState& s, const std::vector<uint64_t>& reachable);
   void checkActiveGoal(const VehicleState& s, const SphereCostField& field);  // reached / failed
   void takeNewGoal(const VehicleState& s, const SphereCostField& field);
@@ -221,6 +211,7 @@ class MonoSpheresExplorer : public Explorer {
   ExplorerContext context_;
   SphereMap map_;
   ClearanceGuard clearance_;  // clearance safety over map_'s obstacle points
+  SphereGraphRepair repair_;  // links between graph parts, blocked edges, the trail
   ViewpointSet viewpoints_;
   TakeoffSequence takeoff_;
   ViewpointChooser chooser_;
@@ -229,12 +220,7 @@ class MonoSpheresExplorer : public Explorer {
   int local_misses_ = 0, blocked_steps_ = 0;
   double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9, no_goal_since_s_ = -1.0;
   std::vector<Vec3> last_path_;
-  std::vector<Vec3> trail_;          // estimated vehicle positions, trail_spacing_m apart
-  SphereLinks links_;                // this step's links between graph parts
   std::vector<uint64_t> reachable_;  // this step's reachable spheres (ascending)
-  uint64_t transit_sphere_ = 0;      // far end of the link being crossed
-  double transit_until_s_ = -1.0;
-  std::map<std::pair<uint64_t, uint64_t>, double> blocked_edges_;  // (low id, high id) → until
   Counters<MonoSpheresCounter> counters_{kMonoSpheresCounterNames};
 };
 
