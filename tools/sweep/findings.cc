@@ -342,6 +342,31 @@ std::string csvField(const std::string& s) {
   return q + "\"";
 }
 
+// The rows with verified A in place of the paper's A; none unless some row has it, and a row
+// whose runs do not all have it has no A (its findings are n/a).
+std::optional<std::vector<ReportRow>> onVerifiedArea(const std::vector<ReportRow>& rows) {
+  std::vector<ReportRow> out = rows;
+  bool any = false;
+  for (ReportRow& r : out) {
+    const bool all = r.verified_area_m2.count > 0 && r.verified_area_m2.count == r.area_m2.count;
+    any = any || all;
+    r.area_m2 = all ? r.verified_area_m2 : MeanOf{};
+  }
+  if (!any) return std::nullopt;
+  return out;
+}
+
+// True if some finding was evaluated on verified A (not only "n/a").
+bool hasVerified(const std::vector<FindingResult>& findings) {
+  return std::any_of(findings.begin(), findings.end(),
+                     [](const FindingResult& r) { return !r.verified_status.empty() && r.verified_status != "n/a"; });
+}
+
+bool isAreaFinding(const Finding& f) {
+  return f.check == FindingCheck::kRatioAtLeast || f.check == FindingCheck::kRatioAtMost ||
+         f.check == FindingCheck::kOrder;
+}
+
 }  // namespace
 
 std::vector<FindingResult> evaluateFindings(const SweepResults& results, const std::vector<ReportRow>& rows,
@@ -360,6 +385,14 @@ std::vector<FindingResult> evaluateFindings(const SweepResults& results, const s
     r.measured = "—";
     r.note = "not a Table I sweep (docs/sweeps.md, \"Reports\")";
     out.push_back(r);
+  }
+  // The area findings once more on verified A (comparability stays with the paper's A).
+  const auto verified = table_one ? onVerifiedArea(rows) : std::nullopt;
+  for (size_t i = 0; verified && i < out.size(); ++i) {
+    if (!isAreaFinding(table[i])) continue;
+    const FindingResult v = evaluate(table[i], results, *verified);
+    out[i].verified_status = v.status;
+    out[i].verified_measured = v.measured;
   }
   return out;
 }
@@ -383,19 +416,37 @@ std::string findingsMarkdown(const std::vector<FindingResult>& findings) {
        "fails when it lies on the other side, and is undecided when it straddles it (with the seeds per row that would "
        "decide it at the observed spread); a claim that an event never happens holds when none happened, fails when "
        "Fisher's exact test separates the count from the paper's (p < 0.05), and is undecided otherwise "
-       "(docs/sweeps.md, \"Intervals and verdicts\").\n\n"
-    << "| | finding | measured [95 % CI] | paper | seeds per row to decide | note |\n| --- | --- | --- | --- | --- | "
-       "--- |\n";
-  for (const auto& r : findings)
+       "(docs/sweeps.md, \"Intervals and verdicts\").\n\n";
+  // With verified coverage: the area findings on verified A beside (the verdicts above are on the
+  // paper's A, for comparability).
+  const bool verified = hasVerified(findings);
+  if (verified)
+    o << "The column \"on verified A\" repeats each area finding with verified A (docs/metrics.md) in place of "
+         "the paper's A: \"same\" when the verdict agrees.\n\n";
+  o << "| | finding | measured [95 % CI] | paper | seeds per row to decide | note |"
+    << (verified ? " on verified A |" : "") << "\n| --- | --- | --- | --- | --- | --- |" << (verified ? " --- |" : "")
+    << "\n";
+  for (const auto& r : findings) {
     o << "| " << mark(r.status) << " " << r.status << " | " << r.finding->claim << " | " << r.measured << " | "
       << (r.paper.empty() ? "—" : r.paper) << " | "
       << (r.seeds_to_decide ? "≈ " + std::to_string(*r.seeds_to_decide) : std::string("—")) << " | "
-      << (r.note.empty() ? "—" : r.note) << " |\n";
+      << (r.note.empty() ? "—" : r.note) << " |";
+    if (verified)
+      o << " "
+        << (r.verified_status.empty() ? std::string("—")
+            : r.verified_status == r.status
+                ? "same: " + r.verified_measured
+                : "**" + std::string(mark(r.verified_status)) + " " + r.verified_status + "**: " + r.verified_measured)
+        << " |";
+    o << "\n";
+  }
   return o.str();
 }
 
 std::string findingsCsv(const std::vector<FindingResult>& findings) {
-  std::string csv = "id,claim,verdict,measured,estimate,ci_lo,ci_hi,n,threshold,p_value,seeds_to_decide,paper,note\n";
+  const bool verified = hasVerified(findings);
+  std::string csv = "id,claim,verdict,measured,estimate,ci_lo,ci_hi,n,threshold,p_value,seeds_to_decide,paper,note" +
+                    std::string(verified ? ",verified_verdict,verified_measured" : "") + "\n";
   for (const auto& r : findings) {
     const auto& e = r.estimate;
     csv += std::string(r.finding->id) + "," + csvField(r.finding->claim) + "," + r.status + "," + csvField(r.measured) +
@@ -403,7 +454,8 @@ std::string findingsCsv(const std::vector<FindingResult>& findings) {
            "," + std::to_string(r.runs) + "," + number(r.finding->threshold, 2) + "," +
            (r.p_value ? number(*r.p_value, 4) : "") + "," +
            (r.seeds_to_decide ? std::to_string(*r.seeds_to_decide) : "") + "," + csvField(r.paper) + "," +
-           csvField(r.note) + "\n";
+           csvField(r.note) +
+           (verified ? "," + r.verified_status + "," + csvField(r.verified_measured) : std::string()) + "\n";
   }
   return csv;
 }

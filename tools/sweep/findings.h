@@ -54,9 +54,13 @@ struct FindingResult {
   std::optional<int> seeds_to_decide;       ///< undecided ratios: seeds per row that would decide
   int runs = 0;                             ///< runs behind the verdict
   std::string note;                         ///< pairing, saturation
+  /// The same finding on verified A instead of the paper's (area findings of sweeps whose runs
+  /// carry verified coverage; empty otherwise): its verdict and numbers.
+  std::string verified_status, verified_measured;
 };
 
-/// Evaluates every finding of `table` on the sweep's rows and runs.
+/// Evaluates every finding of `table` on the sweep's rows and runs; the area findings also on
+/// verified A when every run of the rows has it.
 std::vector<FindingResult> evaluateFindings(const SweepResults& results, const std::vector<ReportRow>& rows,
                                             const std::vector<Finding>& table = findingsTable());
 
@@ -72,7 +76,7 @@ FindingCounts countFindings(const std::vector<FindingResult>& findings);
 std::string findingsMarkdown(const std::vector<FindingResult>& findings);
 
 /// findings.csv text: id, claim, verdict, measured, estimate, ci_lo, ci_hi, n, threshold, p_value,
-/// seeds_to_decide, paper, note.
+/// seeds_to_decide, paper, note (and verified_verdict, verified_measured when evaluated).
 std::string findingsCsv(const std::vector<FindingResult>& findings);
 
 }  // namespace msb

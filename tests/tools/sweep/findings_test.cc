@@ -37,7 +37,11 @@ FindingResult check(const std::string& id, const std::vector<ReportRun>& runs) {
   s.runs = runs;
   const auto rows = reportRows(s);
   for (const Finding& f : findingsTable())
-    if (f.id == id) return evaluateFindings(s, rows, {f}).front();
+    if (f.id == id) {
+      FindingResult r = evaluateFindings(s, rows, {f}).front();
+      r.finding = &f;  // the table's entry, not the evaluated copy's (gone after this call)
+      return r;
+    }
   ADD_FAILURE() << "no finding " << id;
   return {};
 }
@@ -74,6 +78,32 @@ TEST(Findings, RatioAtLeastHoldsAtTwiceTheGridFailsBelowAndIsUndecidedAcross) {
   EXPECT_EQ(r.measured, "5000 / 2000 = 2.50 [2.50, 2.50] (1 and 1 run)");
   EXPECT_FALSE(r.seeds_to_decide.has_value());
   EXPECT_EQ(check("ms_vs_grid_cave", {madeRun("cave", "monospheres", "", 3000)}).status, "n/a");
+}
+
+// The area findings once more on verified A: a grid that claims free space it never verified
+// fails the ratio on the paper's A and holds it on verified A; without verified A, nothing.
+TEST(Findings, AreaFindingsAreRepeatedOnVerifiedArea) {
+  auto verified = [](ReportRun r, double v) {
+    r.metrics["coverage"]["verified_area_m2"] = v;
+    r.record = missionRecordOf(r.metrics, r.id + "/metrics.json").record;
+    return r;
+  };
+  const std::vector<ReportRun> runs = {verified(madeRun("cave", "monospheres", "", 3000), 3000),
+                                       verified(madeRun("cave", "monospheres", "", 3060), 3060),
+                                       verified(madeRun("cave", "grid_random", "", 2000), 1000),
+                                       verified(madeRun("cave", "grid_random", "", 2040), 1020)};
+  const FindingResult r = check("ms_vs_grid_cave", runs);
+  EXPECT_EQ(r.status, "fails");
+  EXPECT_EQ(r.verified_status, "holds");
+  EXPECT_EQ(r.verified_measured.rfind("3030 / 1010 = 3.00 [", 0), 0u) << r.verified_measured;
+  EXPECT_NE(findingsMarkdown({r}).find("on verified A"), std::string::npos);
+  EXPECT_NE(findingsCsv({r}).find(",holds,\"3030 / 1010"), std::string::npos) << findingsCsv({r});
+  // A collision finding is not about A; runs without verified A leave it out.
+  EXPECT_EQ(check("cave_no_collision", runs).verified_status, "");
+  const FindingResult plain = check(
+      "ms_vs_grid_cave", joined({twoRuns("cave", "monospheres", "", 3000), twoRuns("cave", "grid_random", "", 2000)}));
+  EXPECT_EQ(plain.verified_status, "");
+  EXPECT_EQ(findingsMarkdown({plain}).find("on verified A"), std::string::npos);
 }
 
 TEST(Findings, RatioAtMostHoldsTheNoOvdeAblationBelowAThird) {
