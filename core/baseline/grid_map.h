@@ -105,8 +105,6 @@ class GridMap {
   std::vector<GridLeaf> leaves(bool occupied) const;
   /// The octree (read-only).
   const octomap::OcTree& tree() const { return *tree_; }
-  /// The octree for hand-built maps (tests).
-  octomap::OcTree& mutableTree() { return *tree_; }
   /// The configuration.
   const GridMapConfig& config() const { return config_; }
 
@@ -123,6 +121,8 @@ class GridMap {
   std::optional<double> probabilityOf(uint64_t key) const;
 
  private:
+  friend struct GridMapTestSeam;  // hand-built maps in tests (grid_test_seam.h)
+
   // Records the updates of watched keys of one ray (misses of keys hit in the scan dropped later).
   void noteWatched(const octomap::KeyRay& ray, size_t point, const std::optional<uint64_t>& hit_key);
 

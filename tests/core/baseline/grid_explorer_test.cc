@@ -66,8 +66,8 @@ TEST(GridExplorer, TakesOffThenPlansAroundMappedObstacles) {
   GridMap& map = GridExplorerTestSeam::map(e);
   for (double x = -20.25; x < 10; x += 0.5)
     for (double z = 0.25; z < 7; z += 0.5)
-      map.mutableTree().updateNode(octomap::point3d(float(x), 6.25f, float(z)), true);
-  map.mutableTree().updateInnerOccupancy();
+      GridMapTestSeam::tree(map).updateNode(octomap::point3d(float(x), 6.25f, float(z)), true);
+  GridMapTestSeam::tree(map).updateInnerOccupancy();
   const auto wall = map.leaves(true);
   // Take-off: climb, then forward.
   ASSERT_TRUE(e.plan(at(Vec3(0, 0, 0.05), 0.0, true)));
@@ -107,9 +107,9 @@ TEST(GridExplorer, AnObstacleOnThePathAheadStopsTheVehicle) {
   // An obstacle point appears 2 m ahead on the path: the next step stops.
   const Vec3 dir = (cmd->waypoints.front().position_m - Vec3(4, 0, 2)).normalized();
   const Vec3 obstacle = Vec3(4, 0, 2) + 2.0 * dir;
-  GridExplorerTestSeam::map(e).mutableTree().updateNode(
-      octomap::point3d(float(obstacle.x()), float(obstacle.y()), float(obstacle.z())), true);
-  GridExplorerTestSeam::map(e).mutableTree().updateInnerOccupancy();
+  GridMapTestSeam::tree(GridExplorerTestSeam::map(e))
+      .updateNode(octomap::point3d(float(obstacle.x()), float(obstacle.y()), float(obstacle.z())), true);
+  GridMapTestSeam::tree(GridExplorerTestSeam::map(e)).updateInnerOccupancy();
   const auto stop = e.plan(at(Vec3(4, 0, 2), 1.2, false));
   ASSERT_TRUE(stop);
   ASSERT_EQ(stop->waypoints.size(), 1u);

@@ -174,7 +174,7 @@ TEST(GridMap, CoverageFromFreeLeavesIsExactAlsoAfterPruning) {
   ExplorerContext ctx;
   ctx.exploration_box = {Vec3(-50, -50, 0), Vec3(50, 50, 10)};
   GridExplorer explorer(cfg, ctx);
-  octomap::OcTree& tree = GridExplorerTestSeam::map(explorer).mutableTree();
+  octomap::OcTree& tree = GridMapTestSeam::tree(GridExplorerTestSeam::map(explorer));
   // A 4 m block of free cells aligned to the octree, pruned into one leaf of side 4 m over
   // x, y ∈ [0, 4]: its footprint holds the nodes (0|2.5, 0|2.5).
   for (int i = 0; i < 8; ++i)

@@ -2,6 +2,8 @@
 // reachable cell for an unreachable goal, and escaping from a blocked start.
 #include <gtest/gtest.h>
 
+#include "core/baseline/grid_test_seam.h"
+
 #include <cmath>
 
 #include "core/baseline/grid_path_planner.h"
@@ -23,8 +25,8 @@ GridMap wallMap() {
   GridMap map(GridMapConfig{});
   for (double y = -3.75; y < 4.0; y += 0.5)
     for (double z = 0.25; z < 4.0; z += 0.5)
-      map.mutableTree().updateNode(octomap::point3d(5.25f, float(y), float(z)), true);
-  map.mutableTree().updateInnerOccupancy();
+      GridMapTestSeam::tree(map).updateNode(octomap::point3d(5.25f, float(y), float(z)), true);
+  GridMapTestSeam::tree(map).updateInnerOccupancy();
   return map;
 }
 

@@ -11,7 +11,7 @@ namespace {
 
 // Marks every 0.5 m cell of [lo, hi] free, then the cells of `occupied` boxes occupied.
 void fill(GridMap& map, const Vec3& lo, const Vec3& hi, const std::vector<Aabb>& occupied = {}) {
-  auto& tree = map.mutableTree();
+  auto& tree = GridMapTestSeam::tree(map);
   for (double x = lo.x() + 0.25; x < hi.x(); x += 0.5)
     for (double y = lo.y() + 0.25; y < hi.y(); y += 0.5)
       for (double z = lo.z() + 0.25; z < hi.z(); z += 0.5) {
