@@ -56,7 +56,9 @@ void writeText(const fs::path& p, const std::string& text) { std::ofstream(p, st
 /// a sweep file sw.yaml and its sweep directory sw/, a golden g.json. Outputs: out/<command>.
 const fs::path& kit() {
   static const fs::path k = [] {
-    const fs::path d = msb_test::tempDir("msb_cmdfuzz_", "kit");
+    // One kit per test: ctest runs the tests of this file as parallel processes.
+    const fs::path d =
+        msb_test::tempDir("msb_cmdfuzz_kit_", ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::copy_file(kSrc + "/worlds/test/world.xml", d / "w.xml");
     writeText(d / "f.yaml",
               "world: w.xml\nduration_s: 2\ncamera_stream: {save_every_n: 0}\ntrajectory: {waypoints: [[0, 0, 1]]}\n");
