@@ -148,6 +148,17 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
               {"position_drift_fraction", "scaled by frontend.drift_scale"});
 }
 
+// The message of the FileConfigError loading `path` throws ("" and a test failure if none).
+std::string loadError(const fs::path& path) {
+  try {
+    loadScenario(path.string());
+  } catch (const FileConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected an error loading " << path;
+  return "";
+}
+
 // A preset given by --set over a file's own values is fine when --set gives those values too; a
 // base that is a symlink loop says so (before: "file not found").
 TEST(ScenarioYaml, PresetSetsAndSymlinkLoops) {
@@ -159,47 +170,28 @@ TEST(ScenarioYaml, PresetSetsAndSymlinkLoops) {
   fs::create_symlink(d / "l2.yaml", d / "l1.yaml");
   fs::create_symlink(d / "l1.yaml", d / "l2.yaml");
   write(d / "loop.yaml", "base: l1.yaml\n");
-  try {
-    loadScenario((d / "loop.yaml").string());
-    FAIL() << "expected an error";
-  } catch (const FileConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("symbolic links"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(loadError(d / "loop.yaml").find("symbolic links"), std::string::npos);
 }
 
 // A key's error names the file of the base chain that gave the key (before: always the
 // scenario file, so an error in a base pointed at a file without that key).
 TEST(ScenarioYaml, AnErrorInABaseNamesTheBase) {
   const fs::path d = tempDir();
+  const std::string top = (d / "top.yaml").string();
   write(d / "base.yaml", std::string(kBase) + "exploration_bo: {min: [0, 0, 0]}\n");
   write(d / "mid.yaml", "base: base.yaml\nduration_s: -4\n");
-  write(d / "top.yaml", "base: mid.yaml\nseed: 2\n");
-  try {
-    loadScenario((d / "top.yaml").string());
-    FAIL() << "expected an error";
-  } catch (const FileConfigError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("base.yaml (a base of " + (d / "top.yaml").string() + "): key 'exploration_bo'"),
-              std::string::npos)
-        << msg;
-  }
+  write(top, "base: mid.yaml\nseed: 2\n");
+  std::string msg = loadError(top);
+  EXPECT_NE(msg.find("base.yaml (a base of " + top + "): key 'exploration_bo'"), std::string::npos) << msg;
   write(d / "base.yaml", kBase);
-  try {
-    loadScenario((d / "top.yaml").string());
-    FAIL() << "expected an error";
-  } catch (const FileConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("mid.yaml (a base of"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("duration_s"), std::string::npos) << e.what();
-  }
+  msg = loadError(top);
+  EXPECT_NE(msg.find("mid.yaml (a base of"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("duration_s"), std::string::npos) << msg;
   // The scenario's own key, and a key the scenario overrides, name the scenario.
-  write(d / "top.yaml", "base: mid.yaml\nduration_s: -3\n");
-  try {
-    loadScenario((d / "top.yaml").string());
-    FAIL() << "expected an error";
-  } catch (const FileConfigError& e) {
-    EXPECT_EQ(std::string(e.what()).find("a base of"), std::string::npos) << e.what();
-    EXPECT_EQ(std::string(e.what()).rfind((d / "top.yaml").string() + ": key 'duration_s'", 0), 0u) << e.what();
-  }
+  write(top, "base: mid.yaml\nduration_s: -3\n");
+  msg = loadError(top);
+  EXPECT_EQ(msg.find("a base of"), std::string::npos) << msg;
+  EXPECT_EQ(msg.rfind(top + ": key 'duration_s'", 0), 0u) << msg;
 }
 
 }  // namespace
