@@ -211,7 +211,8 @@ void prepareSweepDir(const SweepPlan& plan, const fs::path& dir, const SweepRunO
     if (old.value("build", "") != sweepBuildId())
       changes.push_back("the msbench build changed (" + old.value("build", "?") + " -> " + sweepBuildId() + ")");
     if (!changes.empty() && !options.accept_changes) {
-      std::string msg = "cannot resume " + dir.string() + ":";
+      std::string msg = "cannot resume " + dir.string() + " (its index " + (dir / "sweep.json").string() + " records";
+      msg += " another sweep file or build):";
       for (const auto& c : changes) msg += " " + c + ";";
       throw UsageError(msg + " use a new --out, or --accept-changes to mix results");
     }
