@@ -92,6 +92,18 @@ GraphRepairConfig graphRepairConfig(const MonoSpheresConfig& c) {
           p.blocked_edge_timeout_s,
           p.no_progress_timeout_s};
 }
+// The goal rule's parameters from the planner's keys.
+GoalChoiceConfig goalChoiceConfig(const MonoSpheresPlannerConfig& p) {
+  return {p.fff,
+          p.fff_turn_rate_rad_per_m,
+          p.local_radius_m,
+          p.local_misses_before_global,
+          p.max_goal_candidates,
+          p.reach_distance_m,
+          p.reach_angle_deg,
+          p.no_progress_timeout_s,
+          p.max_blocked_steps};
+}
 }  // namespace
 
 MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const FisheyeCamera& camera,
@@ -103,6 +115,8 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
                                        config_.planner.allow_moving_away, config_.planner.escape_margin_m}),
       repair_(map_, graphRepairConfig(config_)),
       viewpoints_(config.planner.viewpoints, context.seed),
+      goals_(goalChoiceConfig(config_.planner), viewpoints_, map_,
+             [this](const Vec3& from, const SpherePath& path, const Vec3& goal) { return routeTo(from, path, goal); }),
       takeoff_(context.start, config.planner) {}
 
 MonoSpheresExplorer::~MonoSpheresExplorer() = default;
@@ -134,46 +148,12 @@ std::vector<Vec3> MonoSpheresExplorer::routeTo(const Vec3& from, const SpherePat
   return shortcutPath(pts, [this](const Vec3& a, const Vec3& b) { return segmentFree(a, b); });
 }
 
-std::optional<uint64_t> MonoSpheresExplorer::chooseGoal(const VehicleState& s, const SphereCostField& field) {
-  const auto& pc = config_.planner;
-  const Vec3 p = s.T_W_B.translation();
-  // Candidates by path cost (ties by id).
-  std::vector<std::pair<double, uint64_t>> local, all;
-  for (const auto& [id, v] : viewpoints_.viewpoints()) {
-    const auto it = field.cost.find(v.sphere);
-    if (it == field.cost.end()) continue;
-    all.emplace_back(it->second, id);
-    if ((v.position - p).norm() <= pc.local_radius_m) local.emplace_back(it->second, id);
-  }
-  std::sort(local.begin(), local.end());
-  std::sort(all.begin(), all.end());
-  auto pick = [&](const std::vector<std::pair<double, uint64_t>>& list) -> std::optional<uint64_t> {
-    int tries = 0;
-    for (const auto& [cost, id] : list) {
-      if (tries++ >= pc.max_goal_candidates) break;
-      const Viewpoint& v = viewpoints_.viewpoints().at(id);
-      if (!pc.fff) return id;
-      const auto pts = routeTo(s.reference.position_m, field.pathTo(v.sphere), v.position);
-      if (assignHeadings(pts, v.yaw_rad, true, pc.fff_turn_rate_rad_per_m).feasible) return id;
-    }
-    return std::nullopt;
-  };
-  if (auto id = pick(local)) {
-    local_misses_ = 0;
-    return id;
-  }
-  if (++local_misses_ <= pc.local_misses_before_global) return std::nullopt;
-  if (auto id = pick(all)) {
-    local_misses_ = 0;
-    ++counters_[MonoSpheresCounter::kGoalsGlobal];
-    return id;
-  }
-  return std::nullopt;
+void MonoSpheresExplorer::failGoal(double t_s, MonoSpheresCounter reason) {
+  goals_.fail(t_s);
+  countFailed(reason);
 }
 
-void MonoSpheresExplorer::failGoal(double t_s, MonoSpheresCounter reason) {
-  viewpoints_.markFailed(goal_, t_s);
-  goal_ = 0;
+void MonoSpheresExplorer::countFailed(MonoSpheresCounter reason) {
   ++counters_[MonoSpheresCounter::kGoalsFailed];
   ++counters_[reason];
 }
@@ -185,7 +165,7 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   // 1. Where the vehicle is in the graph (on a link: its far sphere); links between the parts
   //    of the graph; costs to everything reachable.
   auto start = containingSphere(map_, p, pc.start_max_outside_m, pc.safety.r_min_m);
-  if (!start && goal_) start = repair_.transitStart(s.t_s, last_progress_s_);
+  if (!start && goals_.goal()) start = repair_.transitStart(s.t_s, goals_.lastProgress());
   if (!start) return returnToFreeSpace(s);
   const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, repair_.passable(), &repair_.relink());
   std::vector<uint64_t>& reachable = reachable_;
@@ -196,13 +176,13 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   // 2. Viewpoints; 3. the active goal; 4. a new goal.
   updateViewpoints(s, reachable);
   checkActiveGoal(s, field);
-  if (!goal_) takeNewGoal(s, field);
-  if (goal_)
+  if (!goals_.goal()) takeNewGoal(s, field);
+  if (goals_.goal())
     no_goal_since_s_ = -1.0;
   else if (no_goal_since_s_ < 0)
     no_goal_since_s_ = s.t_s;
   // 5. Without a goal: bridge out of the vehicle's part of the graph, or look around.
-  if (!goal_) return withoutGoal(s, field, reachable);
+  if (!goals_.goal()) return withoutGoal(s, field, reachable);
   // 6. Fly the route to the goal.
   return followGoal(s, *start);
 }
@@ -235,66 +215,40 @@ void MonoSpheresExplorer::updateViewpoints(const VehicleState& s, const std::vec
   const auto& pc = config_.planner;
   const Aabb& box = context_.exploration_box;
   // Nothing above the usual value for a while: accept viewpoints that see a few frontiers.
-  const bool relaxed = !goal_ && no_goal_since_s_ >= 0 && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s &&
+  const bool relaxed = !goals_.goal() && no_goal_since_s_ >= 0 && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s &&
                        viewpoints_.viewpoints().empty();
   if (relaxed) ++counters_[MonoSpheresCounter::kRelaxedSteps];
   viewpoints_.update(
-      map_, reachable, s.T_W_B.translation(), yawOf(s.T_W_B.linear()), s.t_s, goal_,
+      map_, reachable, s.T_W_B.translation(), yawOf(s.T_W_B.linear()), s.t_s, goals_.goal(),
       [&box](const Vec3& x) { return box.contains(x); }, relaxed);
 }
 
 void MonoSpheresExplorer::checkActiveGoal(const VehicleState& s, const SphereCostField& field) {
-  // The active goal: gone (VPB), reached, unreachable or without progress.
-  const auto& pc = config_.planner;
-  if (goal_ && !viewpoints_.viewpoints().count(goal_)) goal_ = 0;
-  if (!goal_) return;
-  const Vec3 p = s.T_W_B.translation();
-  const double yaw = yawOf(s.T_W_B.linear());
-  const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
-  if ((v.position - p).norm() <= pc.reach_distance_m &&
-      std::abs(wrapAngle(v.yaw_rad - yaw)) <= pc.reach_angle_deg * kDeg) {
-    viewpoints_.markReached(goal_, map_, p, yaw);
-    goal_ = 0;
-    ++counters_[MonoSpheresCounter::kGoalsReached];
-  } else if (!field.cost.count(v.sphere)) {
-    failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedUnreachable);
-  } else if (s.t_s - last_progress_s_ > pc.no_progress_timeout_s) {
-    failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedNoProgress);
+  // The active goal's end, counted.
+  switch (goals_.checkActive(s, field)) {
+    case GoalEnd::kReached:
+      ++counters_[MonoSpheresCounter::kGoalsReached];
+      break;
+    case GoalEnd::kUnreachable:
+      countFailed(MonoSpheresCounter::kGoalsFailedUnreachable);
+      break;
+    case GoalEnd::kNoProgress:
+      countFailed(MonoSpheresCounter::kGoalsFailedNoProgress);
+      break;
+    case GoalEnd::kBlocked:
+      countFailed(MonoSpheresCounter::kGoalsFailedBlocked);
+      break;
+    case GoalEnd::kNone:
+    case GoalEnd::kGone:
+      break;
   }
-}
-
-std::optional<uint64_t> MonoSpheresExplorer::askChooser(const VehicleState& s, const SphereCostField& field,
-                                                        bool* asked) {
-  // The reachable viewpoints by path cost for the chooser; its answer, checked.
-  *asked = false;
-  if (!chooser_) return std::nullopt;
-  ViewpointRequest q{s.t_s, s.T_W_B.translation(), {}};
-  for (const auto& [id, v] : viewpoints_.viewpoints()) {
-    const auto it = field.cost.find(v.sphere);
-    if (it != field.cost.end()) q.candidates.push_back({id, v.position, v.yaw_rad, it->second, v.value});
-  }
-  std::stable_sort(
-      q.candidates.begin(), q.candidates.end(),
-      [](const ViewpointCandidate& a, const ViewpointCandidate& b) { return a.path_cost_m < b.path_cost_m; });
-  const std::optional<uint64_t> id = chooser_(q);
-  if (!id) return std::nullopt;
-  *asked = true;
-  if (*id != 0 &&
-      std::none_of(q.candidates.begin(), q.candidates.end(), [&](const ViewpointCandidate& c) { return c.id == *id; }))
-    throw std::runtime_error("the viewpoint chooser chose " + std::to_string(*id) + ", not a candidate");
-  return id;
 }
 
 void MonoSpheresExplorer::takeNewGoal(const VehicleState& s, const SphereCostField& field) {
-  bool asked = false;
-  std::optional<uint64_t> g = askChooser(s, field, &asked);
-  if (!asked) g = chooseGoal(s, field);
-  if (!g || *g == 0) return;
-  goal_ = *g;
-  goal_since_s_ = last_progress_s_ = s.t_s;
-  best_remaining_m_ = 1e18;
-  blocked_steps_ = 0;
+  bool global = false;
+  if (!goals_.takeNew(s, field, &global)) return;
   ++counters_[MonoSpheresCounter::kGoalsChosen];
+  if (global) ++counters_[MonoSpheresCounter::kGoalsGlobal];
 }
 
 std::optional<PathCommand> MonoSpheresExplorer::withoutGoal(const VehicleState& s, const SphereCostField& field,
@@ -337,7 +291,7 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   const auto& pc = config_.planner;
   const Vec3 p = s.T_W_B.translation();
   const double yaw = yawOf(s.T_W_B.linear());
-  const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
+  const Viewpoint& v = viewpoints_.viewpoints().at(goals_.goal());
   std::optional<SpherePath> spath;
   for (int attempt = 0; attempt < pc.max_route_repairs; ++attempt) {
     spath = findSpherePath(map_, start, v.sphere, pc.safety, repair_.passable(), &repair_.links());
@@ -361,24 +315,21 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   if (repair_.noteRoute(*spath, s.t_s)) ++counters_[MonoSpheresCounter::kLinksUsed];
   const std::vector<Vec3> route = routeTo(s.reference.position_m, *spath, v.position);
   const double remaining = pathLength(route);
-  if (remaining < best_remaining_m_ - 0.5) best_remaining_m_ = remaining, last_progress_s_ = s.t_s;
+  goals_.noteRemaining(remaining, s.t_s);
   if (clearance_.pathBlocked(route)) {
     // Already inside an obstacle point's clearance (the point appeared after the vehicle got
     // there): every route that starts even slightly towards it is blocked, so holding here
     // would fail goal after goal. Back away from the points instead and re-plan from there.
     if (auto away = clearance_.escape(s.reference.position_m)) {
       ++counters_[MonoSpheresCounter::kClearanceEscapes];
-      blocked_steps_ = 0;
+      goals_.noteUnblocked();
       return command(s, {{*away, std::nullopt}});
     }
     ++counters_[MonoSpheresCounter::kBlockedStops];
-    if (++blocked_steps_ >= pc.max_blocked_steps) {
-      failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedBlocked);
-      blocked_steps_ = 0;
-    }
+    if (goals_.noteBlocked(s.t_s)) countFailed(MonoSpheresCounter::kGoalsFailedBlocked);
     return command(s, {{s.reference.position_m, std::nullopt}});  // stop; re-plan next step
   }
-  blocked_steps_ = 0;
+  goals_.noteUnblocked();
   if (s.t_s - last_send_s_ < pc.replan_period_s) return std::nullopt;
   if (pc.fff && route.size() >= 2) {
     const Vec3 d = route[1] - route[0];
@@ -411,8 +362,8 @@ ExplorerSnapshot MonoSpheresExplorer::snapshot() const {
   ExplorerSnapshot snap = sphereMapSnapshot(map_);
   for (const auto& [id, v] : viewpoints_.viewpoints()) snap.viewpoints.push_back({v.position, v.yaw_rad});
   for (const auto& m : viewpoints_.markers()) snap.visited.push_back({m.position, m.yaw_rad});
-  if (goal_) {
-    const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
+  if (goals_.goal()) {
+    const Viewpoint& v = viewpoints_.viewpoints().at(goals_.goal());
     snap.goal = ExplorerSnapshot::Pose2{v.position, v.yaw_rad};
   }
   snap.path = last_path_;

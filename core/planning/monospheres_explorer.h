@@ -17,8 +17,9 @@
 //      (then stop and re-plan; if the vehicle itself is inside that 1 m, it first backs away
 //      from the points to escape_margin_m beyond it) or FFF first needs a turn in place
 //      towards the route.
-// Parts of the graph joined by links, edges blocked near obstacle points and the link being
-// crossed: SphereGraphRepair (sphere_graph_repair.h). Clearance safety: ClearanceGuard.
+// Goal choice and the goal's end (steps 3–4): GoalChoice (goal_choice.h). Parts of the graph
+// joined by links, edges blocked near obstacle points and the link being crossed:
+// SphereGraphRepair (sphere_graph_repair.h). Clearance safety: ClearanceGuard.
 // Without a goal while cut off in a small pocket of the graph, or for 5 s without any goal, the
 // vehicle bridges straight to the nearest sphere outside its part of the graph within
 // bridge_range_m. A bridge may cross space without spheres (that is its purpose) but no sample
@@ -39,6 +40,7 @@
 #include "core/explorer/takeoff.h"
 #include "core/map/sphere_map.h"
 #include "core/planning/clearance_guard.h"
+#include "core/planning/goal_choice.h"
 #include "core/planning/path_shaping.h"
 #include "core/planning/sphere_graph_repair.h"
 #include "core/planning/sphere_graph_search.h"
@@ -101,28 +103,6 @@ struct MonoSpheresConfig {
 /// Spheres, obstacle points and frontiers of a map as a snapshot (drawing, map.ply, hashing).
 ExplorerSnapshot sphereMapSnapshot(const SphereMap& map);
 
-/// A reachable viewpoint as a goal chooser sees it.
-struct ViewpointCandidate {
-  uint64_t id = 0;
-  Vec3 position = Vec3::Zero();
-  double yaw_rad = 0.0;
-  double path_cost_m = 0.0;  ///< along the sphere graph from the vehicle
-  int value = 0;             ///< frontiers it sees
-};
-
-/// What a viewpoint chooser is asked whenever MonoSpheres takes a new goal (estimate frame).
-struct ViewpointRequest {
-  double t_s = 0.0;
-  Vec3 position = Vec3::Zero();                ///< the vehicle
-  std::vector<ViewpointCandidate> candidates;  ///< reachable viewpoints by path cost (ties by id)
-};
-
-/// A goal chooser replacing MonoSpheres' goal rule (the goal-only helper for Python methods,
-/// docs/python.md): nothing keeps MonoSpheres' own choice, 0 takes no goal this step, another
-/// value is the id of one of the candidates (followed as MonoSpheres follows its goals; FFF's
-/// feasibility check is the chooser's business).
-using ViewpointChooser = std::function<std::optional<uint64_t>(const ViewpointRequest&)>;
-
 /// The counters of this method (metrics.json → counters; Counters<MonoSpheresCounter>).
 enum class MonoSpheresCounter {
   kGoalsChosen,
@@ -184,9 +164,9 @@ class MonoSpheresExplorer : public Explorer {
   /// The viewpoints (tests, tools).
   const ViewpointSet& viewpoints() const { return viewpoints_; }
   /// The active goal's viewpoint id (0 = none).
-  uint64_t goal() const { return goal_; }
+  uint64_t goal() const { return goals_.goal(); }
   /// Goals from `chooser` instead of MonoSpheres' rule (asked whenever a new goal is taken).
-  void setViewpointChooser(ViewpointChooser chooser) { chooser_ = std::move(chooser); }
+  void setViewpointChooser(ViewpointChooser chooser) { goals_.setChooser(std::move(chooser)); }
 
  private:
   friend struct MonoSpheresTestSeam;  // hand-built maps in tests (monospheres_test_seam.h)
@@ -197,15 +177,14 @@ class MonoSpheresExplorer : public Explorer {
   void updateViewpoints(const VehicleState& s, const std::vector<uint64_t>& reachable);
   void checkActiveGoal(const VehicleState& s, const SphereCostField& field);  // reached / failed
   void takeNewGoal(const VehicleState& s, const SphereCostField& field);
+  void failGoal(double t_s, MonoSpheresCounter reason);  // fail now, counted
+  void countFailed(MonoSpheresCounter reason);           // a goal failed for `reason`
   std::optional<PathCommand> withoutGoal(const VehicleState& s, const SphereCostField& field,
                                          const std::vector<uint64_t>& reachable);       // bridge or turn
   std::optional<PathCommand> followGoal(const VehicleState& s, uint64_t start_sphere);  // route, carrot
-  std::optional<uint64_t> chooseGoal(const VehicleState& s, const SphereCostField& field);
-  std::optional<uint64_t> askChooser(const VehicleState& s, const SphereCostField& field, bool* asked);
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
   bool segmentFree(const Vec3& a, const Vec3& b) const;  // inside the sphere union and clear
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
-  void failGoal(double t_s, MonoSpheresCounter reason);
 
   MonoSpheresConfig config_;
   ExplorerContext context_;
@@ -213,11 +192,8 @@ class MonoSpheresExplorer : public Explorer {
   ClearanceGuard clearance_;  // clearance safety over map_'s obstacle points
   SphereGraphRepair repair_;  // links between graph parts, blocked edges, the trail
   ViewpointSet viewpoints_;
+  GoalChoice goals_;  // the active goal and the rule for the next (over viewpoints_)
   TakeoffSequence takeoff_;
-  ViewpointChooser chooser_;
-  uint64_t goal_ = 0;
-  double goal_since_s_ = 0, best_remaining_m_ = 1e18, last_progress_s_ = 0;
-  int local_misses_ = 0, blocked_steps_ = 0;
   double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9, no_goal_since_s_ = -1.0;
   std::vector<Vec3> last_path_;
   std::vector<uint64_t> reachable_;  // this step's reachable spheres (ascending)
