@@ -113,8 +113,10 @@ class GridExplorer : public Explorer {
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
   bool pathBlocked(const Vec3& from) const;
 
-  GridExplorerConfig config_;
-  ExplorerContext context_;
+  // Configuration (fixed for the explorer's life) ...
+  const GridExplorerConfig config_;
+  const ExplorerContext context_;
+  // ... and state: the map, the parts over it, the step's memory.
   GridMap map_;
   GridPathPlanner planner_;
   RngStream goal_rng_;

@@ -137,8 +137,10 @@ class StarDiscoveryExplorer : public Explorer {
   bool pathBlocked(const Vec3& from) const;
   void rebuildPlanner();
 
-  StarDiscoveryConfig config_;
-  ExplorerContext context_;
+  // Configuration (fixed for the explorer's life) ...
+  const StarDiscoveryConfig config_;
+  const ExplorerContext context_;
+  // ... and state: the map, the parts over it, the step's memory.
   GridMap map_;
   GridPathPlanner planner_;
   RngStream candidate_rng_;

@@ -39,17 +39,17 @@ bool OpenAreaDepth::inCentralView(const Pose& T_W_C, const Vec3& p_W) const {
   return std::abs(px.x() - 0.5 * W) <= 0.5 * f * W && std::abs(px.y() - 0.5 * H) <= 0.5 * f * H;
 }
 
-std::vector<Vec3> OpenAreaDepth::update(const Pose& T_W_C) {
+std::vector<Vec3> OpenAreaDepth::update(const Pose& T_W_C, OvdePoseBuffer& poses) const {
   // Pose buffer: add when moved or turned enough since the newest buffered pose.
-  if (poses_.empty()) {
-    poses_.push_back(T_W_C);
+  if (poses.empty()) {
+    poses.push_back(T_W_C);
   } else {
-    const Pose& last = poses_.back();
+    const Pose& last = poses.back();
     const double moved = (T_W_C.translation() - last.translation()).norm();
     const double turned = Eigen::AngleAxisd(last.linear().transpose() * T_W_C.linear()).angle();
     if (moved > config_.min_translation_m || turned > config_.min_rotation_deg * M_PI / 180.0) {
-      poses_.push_back(T_W_C);
-      if (int(poses_.size()) > config_.max_poses) poses_.pop_front();
+      poses.push_back(T_W_C);
+      if (int(poses.size()) > config_.max_poses) poses.pop_front();
     }
   }
   std::vector<Vec3> active;
@@ -59,7 +59,7 @@ std::vector<Vec3> OpenAreaDepth::update(const Pose& T_W_C) {
     // Camera centres that saw X in their central view, continuously back from now.
     std::vector<Vec3> centres = {T_W_C.translation()};
     bool seen_by_all = true;
-    for (auto it = poses_.rbegin(); it != poses_.rend(); ++it) {
+    for (auto it = poses.rbegin(); it != poses.rend(); ++it) {
       if (!inCentralView(*it, X)) {
         seen_by_all = false;
         break;

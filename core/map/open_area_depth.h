@@ -40,26 +40,27 @@ struct OpenAreaDepthConfig {
   void validate(ConfigChecker& c) const;
 };
 
-/// Pose buffer and virtual-point activation.
+/// OVDE's pose buffer, oldest first: the state OVDE keeps between frames (the owner's, e.g. the
+/// sphere map's state; OpenAreaDepth holds only the parameters).
+using OvdePoseBuffer = std::deque<Pose>;
+
+/// Virtual-point activation over a pose buffer.
 class OpenAreaDepth {
  public:
   /// Throws ConfigError.
   OpenAreaDepth(const OpenAreaDepthConfig& config, const FisheyeCamera& camera);
 
-  /// Records the current camera pose (added to the buffer if it moved or turned enough) and
-  /// returns the active virtual points (world frame) for it.
-  std::vector<Vec3> update(const Pose& T_W_C);
+  /// Records the current camera pose in `poses` (added if it moved or turned enough since the
+  /// newest) and returns the active virtual points (world frame) for it.
+  std::vector<Vec3> update(const Pose& T_W_C, OvdePoseBuffer& poses) const;
   /// All virtual points of a pose (active or not), world frame.
   std::vector<Vec3> candidates(const Pose& T_W_C) const;
-  /// Buffered poses, oldest first.
-  const std::deque<Pose>& poses() const { return poses_; }
 
  private:
   bool inCentralView(const Pose& T_W_C, const Vec3& p_W) const;
 
   OpenAreaDepthConfig config_;
   FisheyeCamera camera_;
-  std::deque<Pose> poses_;
 };
 
 }  // namespace msb

@@ -47,7 +47,7 @@ double nearestDistance(const Vec3& c, const std::vector<Vec3>& pts) {
 }  // namespace
 
 SphereMap::SphereMap(const SphereMapConfig& config, const FisheyeCamera& camera, uint64_t seed)
-    : config_(checkValid(config)), camera_(camera), rng_(seed, "map_sampling"), ovde_(config.ovde_params, camera) {}
+    : config_(checkValid(config)), camera_(camera), ovde_(config.ovde_params, camera), seed_(seed), state_(seed) {}
 
 double SphereMap::ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron& pf,
                              const std::vector<Vec3>& constraints) const {
@@ -57,53 +57,53 @@ double SphereMap::ruleRadius(const Vec3& c, double r, const FreeSpacePolyhedron&
 }
 
 uint64_t SphereMap::addSphere(const Vec3& centre, double radius) {
-  const uint64_t id = next_sphere_++;
-  spheres_[id] = {id, centre, radius};
+  const uint64_t id = state_.next_sphere++;
+  state_.spheres[id] = {id, centre, radius};
   markDirty(centre, radius + config_.shell_max_m);
-  auto& adj = adjacency_[id];
-  for (uint64_t j : sphere_grid_.near(centre, radius + config_.r_max_m)) {
-    const Sphere& s = spheres_.at(j);
+  auto& adj = state_.adjacency[id];
+  for (uint64_t j : state_.sphere_grid.near(centre, radius + config_.r_max_m)) {
+    const Sphere& s = state_.spheres.at(j);
     if ((s.centre - centre).norm() < s.radius + radius) {
       adj.insert(j);
-      adjacency_[j].insert(id);
+      state_.adjacency[j].insert(id);
     }
   }
-  sphere_grid_.insert(id, centre);
+  state_.sphere_grid.insert(id, centre);
   return id;
 }
 
 void SphereMap::removeSphere(uint64_t id) {
-  markDirty(spheres_.at(id).centre, spheres_.at(id).radius + config_.shell_max_m);
-  for (uint64_t j : adjacency_.at(id)) adjacency_[j].erase(id);
-  adjacency_.erase(id);
-  sphere_grid_.erase(id, spheres_.at(id).centre);
-  spheres_.erase(id);
+  markDirty(state_.spheres.at(id).centre, state_.spheres.at(id).radius + config_.shell_max_m);
+  for (uint64_t j : state_.adjacency.at(id)) state_.adjacency[j].erase(id);
+  state_.adjacency.erase(id);
+  state_.sphere_grid.erase(id, state_.spheres.at(id).centre);
+  state_.spheres.erase(id);
 }
 
 void SphereMap::setRadius(uint64_t id, double r) {
-  Sphere& s = spheres_.at(id);
+  Sphere& s = state_.spheres.at(id);
   markDirty(s.centre, std::max(s.radius, r) + config_.shell_max_m);
   s.radius = r;
   // Re-link: overlaps may appear or vanish.
-  for (uint64_t j : adjacency_.at(id)) adjacency_[j].erase(id);
-  auto& adj = adjacency_[id];
+  for (uint64_t j : state_.adjacency.at(id)) state_.adjacency[j].erase(id);
+  auto& adj = state_.adjacency[id];
   adj.clear();
-  for (uint64_t j : sphere_grid_.near(s.centre, r + config_.r_max_m)) {
+  for (uint64_t j : state_.sphere_grid.near(s.centre, r + config_.r_max_m)) {
     if (j == id) continue;
-    const Sphere& o = spheres_.at(j);
+    const Sphere& o = state_.spheres.at(j);
     if ((o.centre - s.centre).norm() < o.radius + r) {
       adj.insert(j);
-      adjacency_[j].insert(id);
+      state_.adjacency[j].insert(id);
     }
   }
 }
 
 bool SphereMap::sparsify(uint64_t id) {
-  const Sphere& s = spheres_.at(id);
-  const std::set<uint64_t>& adj = adjacency_.at(id);
+  const Sphere& s = state_.spheres.at(id);
+  const std::set<uint64_t>& adj = state_.adjacency.at(id);
   bool redundant = false;
   for (uint64_t j : adj) {
-    const Sphere& o = spheres_.at(j);
+    const Sphere& o = state_.spheres.at(j);
     redundant = redundant || (o.centre - s.centre).norm() < config_.sparsify_factor * 0.5 * (o.radius + s.radius);
   }
   if (!redundant) return false;
@@ -115,7 +115,7 @@ bool SphereMap::sparsify(uint64_t id) {
     while (!queue.empty() && found < adj.size()) {
       const uint64_t k = queue.front();
       queue.pop_front();
-      for (uint64_t n : adjacency_.at(k)) {
+      for (uint64_t n : state_.adjacency.at(k)) {
         if (n == id || seen.count(n)) continue;
         seen.insert(n);
         queue.push_back(n);
@@ -136,25 +136,26 @@ double SphereMap::frontierObstacleReach() const {
 }
 
 uint64_t SphereMap::addObstacle(const Vec3& p, double d_min) {
-  const uint64_t id = next_obstacle_++;
-  obstacles_[id] = {id, p, d_min, flown_m_};
+  const uint64_t id = state_.next_obstacle++;
+  state_.obstacles[id] = {id, p, d_min, state_.flown_m};
   markDirty(p, frontierObstacleReach());
-  obstacle_grid_.insert(id, p);
+  state_.obstacle_grid.insert(id, p);
   return id;
 }
 
 void SphereMap::eraseObstacle(uint64_t id) {
-  const Vec3 p = obstacles_.at(id).position;
+  const Vec3 p = state_.obstacles.at(id).position;
   markDirty(p, frontierObstacleReach());
-  obstacle_grid_.erase(id, p);
-  obstacles_.erase(id);
+  state_.obstacle_grid.erase(id, p);
+  state_.obstacles.erase(id);
 }
 
 bool SphereMap::insertObstacle(const Vec3& p, double d) {
   const double rho = config_.obstacle_spacing_m;
   std::vector<uint64_t> within;
-  for (uint64_t j : obstacle_grid_.select(p, rho, [&](uint64_t, const Vec3& q) { return (q - p).norm() < rho; })) {
-    if (obstacles_.at(j).d_min <= d) return false;  // an existing point was measured from closer (or as close)
+  for (uint64_t j :
+       state_.obstacle_grid.select(p, rho, [&](uint64_t, const Vec3& q) { return (q - p).norm() < rho; })) {
+    if (state_.obstacles.at(j).d_min <= d) return false;  // an existing point was measured from closer (or as close)
     within.push_back(j);
   }
   for (uint64_t j : within) eraseObstacle(j);  // measured from farther: replaced
@@ -164,36 +165,36 @@ bool SphereMap::insertObstacle(const Vec3& p, double d) {
 
 std::vector<uint64_t> SphereMap::spheresNear(const Vec3& p, double reach) const {
   std::vector<uint64_t> out;
-  for (uint64_t id : sphere_grid_.near(p, reach + config_.r_max_m)) {
-    const Sphere& s = spheres_.at(id);
+  for (uint64_t id : state_.sphere_grid.near(p, reach + config_.r_max_m)) {
+    const Sphere& s = state_.spheres.at(id);
     if ((s.centre - p).norm() <= s.radius + reach) out.push_back(id);
   }
   return out;
 }
 
 std::vector<uint64_t> SphereMap::obstaclesNear(const Vec3& p, double r) const {
-  return obstacle_grid_.select(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
+  return state_.obstacle_grid.select(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
 }
 
 std::vector<uint64_t> SphereMap::frontiersNear(const Vec3& p, double r) const {
-  return frontier_grid_.select(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
+  return state_.frontier_grid.select(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
 }
 
 bool SphereMap::anyObstacleNear(const Vec3& p, double r) const {
-  return obstacle_grid_.anyNear(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
+  return state_.obstacle_grid.anyNear(p, r, [&](uint64_t, const Vec3& q) { return (q - p).norm() <= r; });
 }
 
 bool SphereMap::connected() const {
-  if (spheres_.empty()) return true;
-  std::set<uint64_t> seen = {spheres_.begin()->first};
-  std::deque<uint64_t> queue = {spheres_.begin()->first};
+  if (state_.spheres.empty()) return true;
+  std::set<uint64_t> seen = {state_.spheres.begin()->first};
+  std::deque<uint64_t> queue = {state_.spheres.begin()->first};
   while (!queue.empty()) {
     const uint64_t k = queue.front();
     queue.pop_front();
-    for (uint64_t n : adjacency_.at(k))
+    for (uint64_t n : state_.adjacency.at(k))
       if (seen.insert(n).second) queue.push_back(n);
   }
-  return seen.size() == spheres_.size();
+  return seen.size() == state_.spheres.size();
 }
 
 MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
@@ -208,14 +209,15 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   }
   const SlamPointsFrame& frame = filter ? filtered : frame_in;
   const Vec3 cam = frame.T_W_C.translation();
-  if (last_camera_) flown_m_ += (cam - *last_camera_).norm();
-  last_camera_ = cam;
+  if (state_.last_camera) state_.flown_m += (cam - *state_.last_camera).norm();
+  state_.last_camera = cam;
 
   // 1. Input: points in front of the camera.
   const std::vector<Vec3> input = pointsInView(frame);
   st.input_points = int(input.size());
   // The OVDE pose buffer follows every frame, also those skipped below.
-  const std::vector<Vec3> virtual_candidates = config_.ovde ? ovde_.update(frame.T_W_C) : std::vector<Vec3>{};
+  const std::vector<Vec3> virtual_candidates =
+      config_.ovde ? ovde_.update(frame.T_W_C, state_.ovde_poses) : std::vector<Vec3>{};
   if (st.input_points < config_.min_points) {
     st.skipped = true;
     return st;
@@ -252,7 +254,7 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   st.frontiers_ms = msSince(t0);
   std::vector<uint64_t> alive;
   for (uint64_t id : st.changed_spheres)
-    if (spheres_.count(id)) alive.push_back(id);
+    if (state_.spheres.count(id)) alive.push_back(id);
   std::sort(alive.begin(), alive.end());
   alive.erase(std::unique(alive.begin(), alive.end()), alive.end());
   st.changed_spheres = alive;
@@ -282,10 +284,10 @@ std::vector<Vec3> SphereMap::applyDbof(const SlamPointsFrame& frame, const FreeS
   std::vector<Vec3> constraints;
   constraints.reserve(frame.points.size());
   for (const auto& p : frame.points) constraints.push_back(p.p_W);
-  for (uint64_t id : obstacle_grid_.inBox(real_lo, real_hi)) {
-    const ObstaclePoint& o = obstacles_.at(id);
+  for (uint64_t id : state_.obstacle_grid.inBox(real_lo, real_hi)) {
+    const ObstaclePoint& o = state_.obstacles.at(id);
     if (!real_pf.contains(o.position)) continue;
-    const double d_eff = o.d_min + config_.dbof_age_per_m * (flown_m_ - o.flown_at_m);
+    const double d_eff = o.d_min + config_.dbof_age_per_m * (state_.flown_m - o.flown_at_m);
     if ((o.position - cam).norm() < alpha * d_eff) {
       eraseObstacle(id);
       ++st.deleted_obstacles;
@@ -304,8 +306,8 @@ void SphereMap::updateSpheresNear(const FreeSpacePolyhedron& pf, const std::vect
   // Spheres near P_f (its bounding box inflated by the largest radius) get the rule's radius.
   const auto t0 = Clock::now();
   const auto [lo, hi] = pf.bounds();
-  for (uint64_t id : sphere_grid_.inBox(lo.array() - config_.r_max_m, hi.array() + config_.r_max_m)) {
-    const Sphere& s = spheres_.at(id);
+  for (uint64_t id : state_.sphere_grid.inBox(lo.array() - config_.r_max_m, hi.array() + config_.r_max_m)) {
+    const Sphere& s = state_.spheres.at(id);
     const double r = ruleRadius(s.centre, s.radius, pf, constraints);
     if (r == s.radius) continue;
     ++st.updated_spheres;
@@ -332,8 +334,8 @@ void SphereMap::sampleNewSpheres(const SlamPointsFrame& frame, const FreeSpacePo
   const Vec3 cam = frame.T_W_C.translation();
   const int max_attempts = kSampleAttemptsPerSample * config_.new_sphere_samples;
   for (int attempt = 0; attempt < max_attempts && st.sphere_samples < config_.new_sphere_samples; ++attempt) {
-    const Vec2 px(rng_.uniform(0, camera_.width()), rng_.uniform(0, camera_.height()));
-    const double t_frac = rng_.uniform();
+    const Vec2 px(state_.rng.uniform(0, camera_.width()), state_.rng.uniform(0, camera_.height()));
+    const double t_frac = state_.rng.uniform();
     if (!camera_.pixelInFov(px)) continue;
     const Vec3 dir = frame.T_W_C.linear() * camera_.unproject(px);
     const auto range = pf.surfaceRange(dir);
@@ -353,11 +355,12 @@ void SphereMap::sparsifyTouched(std::vector<uint64_t>& touched, MapUpdateStats& 
   // The updated and new spheres, smallest first (ties by id).
   const auto t0 = Clock::now();
   std::sort(touched.begin(), touched.end(), [&](uint64_t a, uint64_t b) {
-    const double ra = spheres_.count(a) ? spheres_.at(a).radius : 0, rb = spheres_.count(b) ? spheres_.at(b).radius : 0;
+    const double ra = state_.spheres.count(a) ? state_.spheres.at(a).radius : 0,
+                 rb = state_.spheres.count(b) ? state_.spheres.at(b).radius : 0;
     return ra != rb ? ra < rb : a < b;
   });
   for (uint64_t id : touched)
-    if (spheres_.count(id) && sparsify(id)) ++st.sparsified_spheres;
+    if (state_.spheres.count(id) && sparsify(id)) ++st.sparsified_spheres;
   st.graph_ms = msSince(t0);
 }
 

@@ -121,6 +121,28 @@ struct MapUpdateStats {
   double polyhedron_ms = 0, dbof_ms = 0, spheres_ms = 0, sampling_ms = 0, graph_ms = 0, obstacles_ms = 0;
 };
 
+/// Everything a SphereMap changes as frames arrive, apart from its configuration and camera
+/// (as MuJoCo keeps mjData apart from mjModel). A value: copying a SphereMap copies its state,
+/// and SphereMap::reset() replaces it with a fresh one.
+struct SphereMapState {
+  /// An empty map whose sampling stream is seeded from `seed`.
+  explicit SphereMapState(uint64_t seed) : rng(seed, "map_sampling") {}
+
+  RngStream rng;                                     ///< the "map_sampling" stream
+  OvdePoseBuffer ovde_poses;                         ///< OVDE's past camera poses
+  std::map<uint64_t, Sphere> spheres;                ///< by id
+  std::map<uint64_t, std::set<uint64_t>> adjacency;  ///< overlapping spheres, both ways
+  std::map<uint64_t, ObstaclePoint> obstacles;       ///< by id
+  PointGrid sphere_grid{20.0};                       ///< sphere centres
+  PointGrid obstacle_grid{2.0};                      ///< obstacle points
+  std::map<uint64_t, Frontier> frontiers;            ///< by id
+  std::vector<std::pair<Vec3, double>> dirty;        ///< regions changed since the last re-validation
+  PointGrid frontier_grid{8.0};  ///< coarse: frontiers are sparse and queries reach 1.5–13 m (docs/performance.md)
+  uint64_t next_sphere = 1, next_obstacle = 1, next_frontier = 1;  ///< the next ids
+  double flown_m = 0.0;             ///< camera path length over the updates (estimate frame)
+  std::optional<Vec3> last_camera;  ///< the camera position of the last update
+};
+
 /// The sphere map. Spheres and points keep their ids for life (planning may hold them).
 class SphereMap {
  public:
@@ -129,15 +151,19 @@ class SphereMap {
 
   /// Integrates one frame of SLAM points (estimated camera pose + points).
   MapUpdateStats update(const SlamPointsFrame& frame);
+  /// Forgets every frame: the empty map of the constructor (same configuration and seed).
+  void reset() { state_ = SphereMapState(seed_); }
+  /// The map's state (spheres, points, frontiers, their indices, the sampling stream).
+  const SphereMapState& state() const { return state_; }
 
   /// Spheres by id.
-  const std::map<uint64_t, Sphere>& spheres() const { return spheres_; }
+  const std::map<uint64_t, Sphere>& spheres() const { return state_.spheres; }
   /// Obstacle points by id.
-  const std::map<uint64_t, ObstaclePoint>& obstacles() const { return obstacles_; }
+  const std::map<uint64_t, ObstaclePoint>& obstacles() const { return state_.obstacles; }
   /// Neighbours (overlapping spheres) of a sphere, ascending ids.
-  const std::set<uint64_t>& neighbours(uint64_t sphere_id) const { return adjacency_.at(sphere_id); }
+  const std::set<uint64_t>& neighbours(uint64_t sphere_id) const { return state_.adjacency.at(sphere_id); }
   /// Frontiers by id.
-  const std::map<uint64_t, Frontier>& frontiers() const { return frontiers_; }
+  const std::map<uint64_t, Frontier>& frontiers() const { return state_.frontiers; }
   /// Frontier test for a point: returns the normal if valid (ignoring frontier `self`).
   std::optional<Vec3> frontierNormal(const Vec3& x, uint64_t self = 0) const;
   /// Adds a frontier at x if it passes the frontier test; returns its id.
@@ -146,7 +172,7 @@ class SphereMap {
   int revalidateFrontiers();
   /// The id the next new frontier will get (ids only grow: a frontier with a smaller id existed
   /// before this call).
-  uint64_t nextFrontierId() const { return next_frontier_; }
+  uint64_t nextFrontierId() const { return state_.next_frontier; }
   /// True if every sphere can reach every other through overlaps.
   bool connected() const;
   /// Ids (ascending) of spheres whose ball comes within `reach` of p: |c − p| ≤ r + reach.
@@ -185,7 +211,7 @@ class SphereMap {
   void eraseObstacle(uint64_t id);
 
   void removeSphere(uint64_t id);
-  void markDirty(const Vec3& centre, double reach) { dirty_.emplace_back(centre, reach); }
+  void markDirty(const Vec3& centre, double reach) { state_.dirty.emplace_back(centre, reach); }
   int revalidateDirtyFrontiers();
   int revalidate(const std::vector<uint64_t>& ids);  // re-checks ids (ascending), drops failures
   void sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, MapUpdateStats& st);
@@ -201,21 +227,13 @@ class SphereMap {
   void sparsifyTouched(std::vector<uint64_t>& touched, MapUpdateStats& st);     // 8
   void insertFrameObstacles(const SlamPointsFrame& frame, MapUpdateStats& st);  // 9
 
+  // Configuration (fixed for the map's life) ...
   SphereMapConfig config_;
   FisheyeCamera camera_;
-  RngStream rng_;
   OpenAreaDepth ovde_;
-  std::map<uint64_t, Sphere> spheres_;
-  std::map<uint64_t, std::set<uint64_t>> adjacency_;
-  std::map<uint64_t, ObstaclePoint> obstacles_;
-  PointGrid sphere_grid_{20.0};
-  PointGrid obstacle_grid_{2.0};
-  std::map<uint64_t, Frontier> frontiers_;
-  std::vector<std::pair<Vec3, double>> dirty_;  // regions changed since the last re-validation
-  PointGrid frontier_grid_{8.0};  // coarse: frontiers are sparse and queries reach 1.5–13 m (docs/performance.md)
-  uint64_t next_sphere_ = 1, next_obstacle_ = 1, next_frontier_ = 1;
-  double flown_m_ = 0.0;  // camera path length over the updates (estimate frame)
-  std::optional<Vec3> last_camera_;
+  uint64_t seed_;
+  // ... and state.
+  SphereMapState state_;
 };
 
 }  // namespace msb

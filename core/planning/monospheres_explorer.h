@@ -186,8 +186,10 @@ class MonoSpheresExplorer : public Explorer {
   bool segmentFree(const Vec3& a, const Vec3& b) const;  // inside the sphere union and clear
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
 
-  MonoSpheresConfig config_;
-  ExplorerContext context_;
+  // Configuration (fixed for the explorer's life) ...
+  const MonoSpheresConfig config_;
+  const ExplorerContext context_;
+  // ... and state: the map, the parts over it, the step's memory.
   SphereMap map_;
   ClearanceGuard clearance_;  // clearance safety over map_'s obstacle points
   SphereGraphRepair repair_;  // links between graph parts, blocked edges, the trail

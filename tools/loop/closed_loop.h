@@ -205,8 +205,9 @@ class ClosedLoop {
   void completeJob(PerceptionJob& job);
   std::shared_ptr<CameraFrame> freeFrame();
 
-  FlightSpec spec_;
-  LoopSetup setup_;
+  // Configuration (fixed for the loop's life) ...
+  const FlightSpec spec_;
+  const LoopSetup setup_;
   // Components.
   QuadrotorSim sim_;
   FisheyeCamera camera_;

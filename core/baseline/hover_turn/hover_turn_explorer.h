@@ -43,9 +43,11 @@ class HoverTurnExplorer : public Explorer {
  private:
   enum class Phase { kClimb, kTurn, kDescend, kHold };
 
-  HoverTurnConfig config_;
-  Vec3 hover_m_;  ///< the turn's position (start + takeoff altitude)
-  double start_yaw_rad_;
+  // Configuration (fixed for the explorer's life) ...
+  const HoverTurnConfig config_;
+  const Vec3 hover_m_;  ///< the turn's position (start + takeoff altitude)
+  const double start_yaw_rad_;
+  // ... and state.
   Phase phase_ = Phase::kClimb;
   bool sent_ = false;  ///< the current phase's path was sent
   int turn_steps_done_ = 0;

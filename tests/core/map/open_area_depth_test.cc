@@ -11,35 +11,43 @@ Pose camera(double x, double yaw) {
   return poseFromXyzYaw(Vec3(x, 0, 2), yaw) * cam.T_B_C();
 }
 
+// OVDE with a pose buffer of its own, as the sphere map's state holds one.
+struct Ovde {
+  Ovde(const OpenAreaDepthConfig& c, const FisheyeCamera& cam) : ovde(c, cam) {}
+  std::vector<Vec3> update(const Pose& T_W_C) { return ovde.update(T_W_C, poses); }
+  OpenAreaDepth ovde;
+  OvdePoseBuffer poses;
+};
+
 TEST(OpenAreaDepth, ActivatesAfterTranslationWithParallax) {
   const FisheyeCamera cam;
-  OpenAreaDepth ovde(OpenAreaDepthConfig{}, cam);
+  Ovde ovde(OpenAreaDepthConfig{}, cam);
   std::vector<Vec3> active;
   // Sideways flight (camera faces +y, moves along +x), 0.4 m between poses, 2.4 m in total.
   for (int k = 0; k <= 6; ++k) active = ovde.update(camera(0.4 * k, M_PI / 2));
-  EXPECT_EQ(ovde.poses().size(), 7u);
+  EXPECT_EQ(ovde.poses.size(), 7u);
   EXPECT_GE(active.size(), 18u);
   for (const auto& v : active) EXPECT_NEAR((v - camera(2.4, M_PI / 2).translation()).norm(), 15.0, 1e-9);
   // The first pose alone: no parallax, nothing active.
-  OpenAreaDepth fresh(OpenAreaDepthConfig{}, cam);
+  Ovde fresh(OpenAreaDepthConfig{}, cam);
   EXPECT_TRUE(fresh.update(camera(0, M_PI / 2)).empty());
 }
 
 TEST(OpenAreaDepth, PureRotationActivatesNothing) {
   const FisheyeCamera cam;
-  OpenAreaDepth ovde(OpenAreaDepthConfig{}, cam);
+  Ovde ovde(OpenAreaDepthConfig{}, cam);
   for (int k = 0; k < 12; ++k) EXPECT_TRUE(ovde.update(camera(0, k * 50.0 * M_PI / 180)).empty()) << k;
-  EXPECT_GT(ovde.poses().size(), 5u);  // rotations did fill the buffer
+  EXPECT_GT(ovde.poses.size(), 5u);  // rotations did fill the buffer
 }
 
 TEST(OpenAreaDepth, ContinuityBreakDeactivates) {
   const FisheyeCamera cam;
   // Straight run: enough parallax at the end.
-  OpenAreaDepth straight(OpenAreaDepthConfig{}, cam);
+  Ovde straight(OpenAreaDepthConfig{}, cam);
   for (double x : {0.0, 0.4, 0.8, 1.2}) straight.update(camera(x, M_PI / 2));
   EXPECT_FALSE(straight.update(camera(1.3, M_PI / 2)).empty());
   // Same run, but the camera looked away at x = 0.8: continuity back from now ends there.
-  OpenAreaDepth broken(OpenAreaDepthConfig{}, cam);
+  Ovde broken(OpenAreaDepthConfig{}, cam);
   broken.update(camera(0.0, M_PI / 2));
   broken.update(camera(0.4, M_PI / 2));
   broken.update(camera(0.8, -M_PI / 2));  // looking the opposite way
@@ -54,22 +62,22 @@ TEST(OpenAreaDepth, WholeBufferNeedsEveryBufferedPoseToHaveSeenThePoint) {
   recent_cfg.visibility = "recent_run";
   // Looked the other way first, then turned and flew sideways 1.6 m: the recent run back from
   // now has the parallax, but the buffered poses from before the turn never saw these points.
-  auto fly = [&](OpenAreaDepth& ovde) {
+  auto fly = [&](Ovde& ovde) {
     ovde.update(camera(-0.8, -M_PI / 2));
     ovde.update(camera(-0.4, -M_PI / 2));
     std::vector<Vec3> active;
     for (double x : {0.0, 0.4, 0.8, 1.2, 1.6}) active = ovde.update(camera(x, M_PI / 2));
     return active;
   };
-  OpenAreaDepth recent(recent_cfg, cam), whole(paper, cam);
+  Ovde recent(recent_cfg, cam), whole(paper, cam);
   EXPECT_FALSE(fly(recent).empty());
   EXPECT_TRUE(fly(whole).empty());
   // Once the buffer holds only poses that saw them (max_poses 4 here), they activate again.
   paper.max_poses = 4;
-  OpenAreaDepth short_buffer(paper, cam);
+  Ovde short_buffer(paper, cam);
   EXPECT_FALSE(fly(short_buffer).empty());
   // And on a straight run from the start both rules agree.
-  OpenAreaDepth a(recent_cfg, cam), b(OpenAreaDepthConfig{}, cam);
+  Ovde a(recent_cfg, cam), b(OpenAreaDepthConfig{}, cam);
   std::vector<Vec3> ra, rb;
   for (int k = 0; k <= 6; ++k) ra = a.update(camera(0.4 * k, M_PI / 2)), rb = b.update(camera(0.4 * k, M_PI / 2));
   EXPECT_EQ(ra.size(), rb.size());

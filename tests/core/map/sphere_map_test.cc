@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/map/free_space_polyhedron.h"
 
 namespace msb {
@@ -231,6 +233,48 @@ TEST(SphereMap, UpdateCreatesFreeSpheresInsidePfDeterministically) {
   SlamPointsFrame few = f;
   few.points.resize(3);
   EXPECT_TRUE(a.update(few).skipped);
+}
+
+// True if two maps hold the same spheres, obstacle points and frontiers under the same ids.
+bool sameMap(const SphereMap& a, const SphereMap& b) {
+  auto same_spheres = [](const auto& x, const auto& y) { return x.centre == y.centre && x.radius == y.radius; };
+  auto same_points = [](const auto& x, const auto& y) { return x.position == y.position; };
+  return std::equal(
+             a.spheres().begin(), a.spheres().end(), b.spheres().begin(), b.spheres().end(),
+             [&](const auto& x, const auto& y) { return x.first == y.first && same_spheres(x.second, y.second); }) &&
+         std::equal(
+             a.obstacles().begin(), a.obstacles().end(), b.obstacles().begin(), b.obstacles().end(),
+             [&](const auto& x, const auto& y) { return x.first == y.first && same_points(x.second, y.second); }) &&
+         std::equal(
+             a.frontiers().begin(), a.frontiers().end(), b.frontiers().begin(), b.frontiers().end(),
+             [&](const auto& x, const auto& y) { return x.first == y.first && same_points(x.second, y.second); });
+}
+
+TEST(SphereMap, ACopyGoesOnAsTheOriginalAndResetStartsAfresh) {
+  // The state is a value: a copy taken mid-run (spheres, indices, OVDE's poses, the sampling
+  // stream) gives exactly what the original gives for the next frames; reset() is the
+  // constructor's empty map.
+  const FisheyeCamera cam;
+  const SlamPointsFrame first = wallFrame(18, 12, 3);
+  SlamPointsFrame second = wallFrame(16, 14, 4);
+  second.T_W_C.translation() = Vec3(0.6, 0.2, 1.0);
+  SphereMap a(SphereMapConfig{}, cam, 7);
+  a.update(first);
+  SphereMap copy = a;
+  a.update(second);
+  copy.update(second);
+  EXPECT_GT(a.spheres().size(), 10u);
+  EXPECT_TRUE(sameMap(a, copy));
+  EXPECT_EQ(a.state().ovde_poses.size(), copy.state().ovde_poses.size());
+  // The copy is apart: changing it leaves the original.
+  copy.reset();
+  EXPECT_TRUE(copy.spheres().empty() && copy.obstacles().empty() && copy.frontiers().empty());
+  EXPECT_FALSE(a.spheres().empty());
+  // Reset, then the same frames: the map of a fresh one.
+  SphereMap fresh(SphereMapConfig{}, cam, 7);
+  for (SphereMap* m : {&copy, &fresh}) m->update(second), m->update(first);
+  EXPECT_TRUE(sameMap(copy, fresh));
+  EXPECT_FALSE(sameMap(copy, a));
 }
 
 // Two spheres with a frontier between them: in both shells, so it is two-sided (invalid) unless
