@@ -96,7 +96,9 @@ YAML::Node nodeAt(const YAML::Node& node, const std::string& key) {
   const size_t dot = path.find('.');
   if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
   const YAML::Node child = node[path.substr(0, dot)];
-  if (!child || dot == std::string::npos) return child;
+  // A missing key gives yaml-cpp's invalid node, whose type throws: an undefined one instead.
+  if (!child) return YAML::Node(YAML::NodeType::Undefined);
+  if (dot == std::string::npos) return child;
   return nodeAt(child, path.substr(dot + 1));
 }
 

@@ -159,13 +159,16 @@ std::string loadError(const fs::path& path) {
   return "";
 }
 
-// A preset given by --set over a file's own values is fine when --set gives those values too; a
-// base that is a symlink loop says so (before: "file not found").
+// A preset given by --set over a file's own values is fine when --set gives those values too, and
+// over a file without the section; a base that is a symlink loop says so (before: "file not found").
 TEST(ScenarioYaml, PresetSetsAndSymlinkLoops) {
   const fs::path d = tempDir();
   write(d / "base.yaml", kBase);
   write(d / "s.yaml", "base: base.yaml\nfrontend: {preset: clean, mistrack_share: 0.2}\n");
   EXPECT_NO_THROW(loadScenario((d / "s.yaml").string(), {"frontend.preset=severe", "frontend.mistrack_share=0.1"}));
+  // A preset over a file without that section (the conditions sweep's axis; before: "invalid node").
+  const ScenarioSpec noon = loadScenario((d / "s.yaml").string(), {"conditions.preset=noon"});
+  EXPECT_EQ(noon.flight.render.conditions.sun_elevation_deg, 75.0);
   fs::remove(d / "l1.yaml"), fs::remove(d / "l2.yaml");
   fs::create_symlink(d / "l2.yaml", d / "l1.yaml");
   fs::create_symlink(d / "l1.yaml", d / "l2.yaml");

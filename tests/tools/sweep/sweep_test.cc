@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/tools/cli_helpers.h"
+#include "tools/config/scenario_yaml.h"
 #include "tools/config/sweep_plan.h"
 #include "tools/config/yaml_reader.h"
 
@@ -374,6 +375,25 @@ TEST(SweepDirectory, CtrlCStopsTheSweepRecordsTheRunPendingAndStartsNoOther) {
   EXPECT_EQ(r.at("s2")[2], "pending");
   EXPECT_FALSE(fs::exists(out / "logs" / "s2.log"));  // never started
   EXPECT_EQ(readText(d / "log").find("failed ("), std::string::npos) << readText(d / "log");
+}
+
+// Every shipped sweep file expands, and every one of its runs' scenarios loads with its --set
+// values (the sweep command checks this before it starts; a sweep that cannot start is a defect
+// only a run would find: the conditions sweep once could not).
+TEST(Sweep, EveryShippedSweepLoadsEveryRun) {
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(MSB_SOURCE_DIR) / "scenarios/sweeps")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++files;
+    const SweepPlan plan = loadSweepPlan(e.path().string());
+    EXPECT_FALSE(plan.runs.empty()) << e.path();
+    for (const SweepRun& r : plan.runs) {
+      std::vector<std::string> sets;
+      for (const auto& [k, v] : r.sets) sets.push_back(k + "=" + v);
+      EXPECT_NO_THROW(loadScenario(r.scenario, sets)) << e.path() << " run " << r.id;
+    }
+  }
+  EXPECT_GE(files, 8);
 }
 
 }  // namespace
