@@ -18,12 +18,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// coverage.csv rows by column name (older files without box_share read it as 0). Strict: a
-// header with t_s, every row as many numbers as the header has names; else InputFileError
-// naming the file and the line.
+// coverage.csv rows by column name (older files without box_share read it as 0). Strict: the
+// file present (a complete run writes one), a header with t_s, every row as many numbers as the
+// header has names; else InputFileError naming the file and the line.
 std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
   std::vector<CoverageSample> out;
-  if (!fs::exists(fs::symlink_status(file))) return out;
+  if (!fs::exists(fs::symlink_status(file)))
+    throw InputFileError(file.string() + ": missing (every complete run writes one)");
   std::istringstream in(readInputFile(file));
   auto bad = [&](size_t line, const std::string& why) {
     return InputFileError(file.string() + ": line " + std::to_string(line) + ": " + why);

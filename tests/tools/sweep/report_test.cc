@@ -241,6 +241,13 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_status"), 1);
   EXPECT_NE(readText(d / "log_status").find("status collided, golden completed"), std::string::npos);
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + (d / "nothing").string() + "'", d / "log_missing"), 2);
+  // A complete run without its coverage.csv counts as failed in the report, the file named
+  // (before: read as a run without samples).
+  fs::rename(out / "runs" / "full-s1" / "coverage.csv", d / "coverage.csv.away");
+  EXPECT_EQ(run("report '" + out.string() + "'", d / "log_nocov"), 0) << readText(d / "log_nocov");
+  EXPECT_NE(readText(d / "log_nocov").find("run full-s1 counts as failed"), std::string::npos)
+      << readText(d / "log_nocov");
+  EXPECT_NE(readText(d / "log_nocov").find("coverage.csv: missing"), std::string::npos) << readText(d / "log_nocov");
 }
 
 }  // namespace
