@@ -3,6 +3,7 @@
 #include "tools/config/scenario_yaml.h"
 #include "core/baseline/grid_explorer.h"
 #include "core/common/config_check.h"
+#include "tools/config/flight_yaml.h"
 #include "tools/config/method_table.h"
 #include "tools/config/yaml_reader.h"
 
@@ -227,6 +228,31 @@ TEST(ScenarioYaml, TheEffectiveConfigurationReadsBackToItself) {
     EXPECT_TRUE(again.start_from_world);
     EXPECT_EQ(effectiveScenarioYaml(again), text);
   }
+}
+
+// Every shipped scenario, example and flight file loads (sweeps: Sweep.EveryShippedSweepLoadsEveryRun);
+// base.yaml is a base only, and a method file (no world of its own) loads with one.
+TEST(ScenarioYaml, EveryShippedFileLoads) {
+  const fs::path src(MSB_SOURCE_DIR);
+  int n = 0;
+  for (const fs::path& dir : {src / "scenarios/missions", src / "examples"})
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().extension() != ".yaml" || e.path().filename() == "base.yaml") continue;
+      std::ifstream in(e.path());
+      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const bool has_world = text.rfind("world:", 0) == 0 || text.find("\nworld:") != std::string::npos;
+      const std::vector<std::string> sets =
+          has_world ? std::vector<std::string>{} : std::vector<std::string>{"world=urban"};
+      EXPECT_NO_THROW(loadScenario(e.path().string(), sets)) << e.path();
+      ++n;
+    }
+  for (const fs::path& dir : {src / "scenarios/fly", src / "scenarios/vio"})
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().extension() != ".yaml") continue;
+      EXPECT_NO_THROW(loadFlightSpec(e.path().string())) << e.path();
+      ++n;
+    }
+  EXPECT_GE(n, 25);
 }
 
 }  // namespace
