@@ -38,6 +38,13 @@ struct Scene {
 // A straight route: FFF's check sees the travel direction from `from` to the goal.
 std::vector<Vec3> straight(const Vec3& from, const SpherePath&, const Vec3& goal) { return {from, goal}; }
 
+// The rule without FFF's feasibility check (most tests are about the rest).
+GoalChoiceConfig withoutFff() {
+  GoalChoiceConfig c;
+  c.fff = false;
+  return c;
+}
+
 VehicleState at(const Vec3& p, double yaw, double t) {
   VehicleState s;
   s.t_s = t;
@@ -50,8 +57,7 @@ VehicleState at(const Vec3& p, double yaw, double t) {
 TEST(GoalChoice, TakesTheCheapestReachableViewpoint) {
   Scene s;
   ASSERT_GE(s.viewpoints.viewpoints().size(), 2u);
-  GoalChoiceConfig c;
-  c.fff = false;
+  GoalChoiceConfig c = withoutFff();
   GoalChoice goals(c, s.viewpoints, s.map, straight);
   EXPECT_EQ(goals.goal(), 0u);
   bool global = true;
@@ -63,8 +69,7 @@ TEST(GoalChoice, TakesTheCheapestReachableViewpoint) {
 
 TEST(GoalChoice, SearchesBeyondTheLocalRadiusOnlyAfterEnoughMisses) {
   Scene s;
-  GoalChoiceConfig c;
-  c.fff = false;
+  GoalChoiceConfig c = withoutFff();
   c.local_misses_before_global = 3;
   GoalChoice goals(c, s.viewpoints, s.map, straight);
   const VehicleState far = at({0, 40, 2}, 0.0, 1.0);  // every viewpoint beyond 15 m
@@ -99,8 +104,7 @@ TEST(GoalChoice, FffSkipsGoalsWhoseTurnDoesNotFit) {
 
 TEST(GoalChoice, AGoalEndsReachedUnreachableOrWithoutProgress) {
   Scene s;
-  GoalChoiceConfig c;
-  c.fff = false;
+  GoalChoiceConfig c = withoutFff();
   GoalChoice goals(c, s.viewpoints, s.map, straight);
   bool global = false;
   // Reached: removed from the set (VPB leaves a marker).
@@ -129,8 +133,7 @@ TEST(GoalChoice, AGoalEndsReachedUnreachableOrWithoutProgress) {
 
 TEST(GoalChoice, BlockedStepsRunningFailTheGoal) {
   Scene s;
-  GoalChoiceConfig c;
-  c.fff = false;
+  GoalChoiceConfig c = withoutFff();
   c.max_blocked_steps = 3;
   GoalChoice goals(c, s.viewpoints, s.map, straight);
   bool global = false;
@@ -148,8 +151,7 @@ TEST(GoalChoice, BlockedStepsRunningFailTheGoal) {
 
 TEST(GoalChoice, AChooserReplacesTheRule) {
   Scene s;
-  GoalChoiceConfig c;
-  c.fff = false;
+  GoalChoiceConfig c = withoutFff();
   GoalChoice goals(c, s.viewpoints, s.map, straight);
   bool global = false;
   // It sees every reachable viewpoint, cheapest first.
