@@ -56,9 +56,20 @@ TEST(Mission, ShortMissionExploresAndIsDeterministic) {
   for (const char* f : {"config.yaml", "trajectory.csv", "timing.csv", "map.ply", "topdown.png"})
     EXPECT_TRUE(fs::exists(d / "a" / f)) << f;
 
-  // The same mission again: identical hash, map and coverage.
-  ASSERT_EQ(run("run '" + kScenario + "' --duration 40 --quiet --out '" + (d / "b").string() + "'", d / "log_b"), 0);
+  // The same mission again, on one thread: identical hash, map and coverage.
+  ASSERT_EQ(
+      run("run '" + kScenario + "' --duration 40 --quiet --set perception.threads=1 --out '" + (d / "b").string() + "'",
+          d / "log_b"),
+      0);
   const auto m2 = nlohmann::json::parse(readText(d / "b" / "metrics.json"));
+  // Stage times: on two threads the loop thread's "other" leaves out the stages of the second
+  // thread and its "waiting" (it once went negative); on one, every stage is the loop's.
+  const auto& w2 = m["wall_ms_per_sim_second"];
+  ASSERT_TRUE(w2.contains("waiting")) << w2.dump();
+  EXPECT_GE(w2["other"].get<double>(), 0.0) << w2.dump();
+  const auto& w1 = m2["wall_ms_per_sim_second"];
+  EXPECT_FALSE(w1.contains("waiting")) << w1.dump();
+  EXPECT_GE(w1["other"].get<double>(), 0.0) << w1.dump();
   EXPECT_EQ(m["determinism_hash"], m2["determinism_hash"]);
   EXPECT_EQ(readText(d / "a" / "coverage.csv"), readText(d / "b" / "coverage.csv"));
   EXPECT_EQ(readText(d / "a" / "map.ply"), readText(d / "b" / "map.ply"));
