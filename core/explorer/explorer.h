@@ -48,6 +48,11 @@ class MethodOutputError : public std::runtime_error {
 /// An exploration method.
 class Explorer {
  public:
+  Explorer() = default;
+  /// Not copyable: a method's parts may refer to its own map (a copy would point into the
+  /// original); a new explorer from the method table is the reset (docs/architecture.md §3).
+  Explorer(const Explorer&) = delete;
+  Explorer& operator=(const Explorer&) = delete;
   virtual ~Explorer() = default;
   /// Integrates one frame of SLAM points (called at the map-update rate).
   virtual void observe(const SlamPointsFrame& frame) = 0;

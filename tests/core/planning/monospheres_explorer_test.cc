@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <type_traits>
 
 #include "core/map/sphere_map_test_seam.h"
 #include "core/planning/monospheres_explorer.h"
@@ -13,6 +14,11 @@ namespace msb {
 namespace {
 
 constexpr double kStartZ = 0.05;
+
+// Its parts (clearance, graph repair, goal choice) refer to its own map and viewpoints: a copy
+// would point into the original, so there is none; the map itself is a copyable value.
+static_assert(!std::is_copy_constructible_v<MonoSpheresExplorer> && !std::is_copy_assignable_v<MonoSpheresExplorer>);
+static_assert(std::is_copy_constructible_v<SphereMap> && std::is_copy_constructible_v<ViewpointSet>);
 
 // An explorer whose start is the origin (on the ground), heading +x, in a large box.
 struct Fixture {
