@@ -26,6 +26,14 @@ namespace msb {
 /// Wall time per stage, summed over the mission (ms; recorded, never used).
 struct StageTimes {
   double render_ms = 0, tracker_ms = 0, triangulation_ms = 0, map_ms = 0, planning_ms = 0, metric_ms = 0;
+
+  /// Wall time of the loop thread outside the timed stages ("other": physics, controller, IMU,
+  /// VIO, records): on two threads tracker, triangulation, map and planning run beside the loop
+  /// thread, which counts its render, metric and wait (`wait_ms`) instead.
+  double otherMs(double wall_ms, int threads, double wait_ms) const {
+    if (threads > 1) return wall_ms - render_ms - metric_ms - wait_ms;
+    return wall_ms - render_ms - tracker_ms - triangulation_ms - map_ms - planning_ms - metric_ms;
+  }
 };
 
 /// Everything a mission produced.

@@ -53,7 +53,6 @@ int runBenchLoopCommand(int argc, char** argv) {
   const double sim = std::max(f.sim_time_s, 1e-9), frames = std::max<double>(f.frames_rendered, 1);
   const StageTimes& s = r.stages;
   const double total = f.wall_time_s * 1000.0;
-  const double known = s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
   std::printf("bench-loop %s seed %s: %.0f s simulated, %ld frames, %s; wall %.1f s, RTF %.2f, peak RSS %.0f MiB\n",
               spec.name.c_str(), args.get("seed").c_str(), f.sim_time_s, long(f.frames_rendered),
               runStatusName(f.status), f.wall_time_s, f.realTimeFactor(), peakRssMb());
@@ -68,7 +67,7 @@ int runBenchLoopCommand(int argc, char** argv) {
     row("map", s.map_ms);
     row("planning", s.planning_ms);
     row("metric", s.metric_ms);
-    row("other", total - known);
+    row("other", s.otherMs(total, f.threads, f.perception_wait_ms));
   } else {
     // The pipelined loop: the perception stages overlap the loop thread's work.
     std::printf("second thread (perception jobs):\n");
@@ -80,7 +79,7 @@ int runBenchLoopCommand(int argc, char** argv) {
     row("  render", s.render_ms);
     row("  metric", s.metric_ms);
     row("  waiting", f.perception_wait_ms);
-    row("  other", total - s.render_ms - s.metric_ms - f.perception_wait_ms);
+    row("  other", s.otherMs(total, f.threads, f.perception_wait_ms));
   }
   row("total", total);
   std::printf("determinism hash %s (same build and machine: the same flight)\n", hexHash(r.run_hash).c_str());

@@ -101,18 +101,14 @@ nlohmann::json mapAccuracyJson(const MapAccuracy& a) {
           {"falsely_free_element_share", share(a.falselyFreeElementShare())}};
 }
 
-// metrics.json → wall_ms_per_sim_second: wall time per simulated second, by stage; "other" =
-// physics, controller, IMU, VIO, records. On two threads (the pipelined loop) tracker,
-// triangulation, map and planning run beside the loop thread: "other" is then the loop thread's
-// time outside render, metric and "waiting" (for the second thread), as bench-loop splits it.
+// metrics.json → wall_ms_per_sim_second: wall time per simulated second, by stage; "other" as
+// StageTimes::otherMs (on two threads the loop thread's, with its "waiting" for the second
+// thread), as bench-loop splits it.
 nlohmann::json wallPerSimSecondJson(const FlightResult& f, const StageTimes& s) {
   const double sim = std::max(f.sim_time_s, 1e-9);
   nlohmann::json st = stagesJson(s, sim);
-  const double on_loop_thread =
-      f.threads > 1 ? s.render_ms + s.metric_ms + f.perception_wait_ms
-                    : s.render_ms + s.tracker_ms + s.triangulation_ms + s.map_ms + s.planning_ms + s.metric_ms;
   if (f.threads > 1) st["waiting"] = f.perception_wait_ms / sim;
-  st["other"] = (f.wall_time_s * 1000.0 - on_loop_thread) / sim;
+  st["other"] = s.otherMs(f.wall_time_s * 1000.0, f.threads, f.perception_wait_ms) / sim;
   st["total"] = f.wall_time_s * 1000.0 / sim;
   return st;
 }
