@@ -133,6 +133,7 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
   try {
     checkWorldGeometry(world_xml_path);
     checkStartPose(world_xml_path);
+    if (config_.contact_gate) gate_.emplace(m_, d_, body_id_);
   } catch (...) {
     mj_deleteData(d_);
     mj_deleteModel(m_);
@@ -219,7 +220,14 @@ QuadrotorSim::~QuadrotorSim() {
 }
 
 std::optional<CollisionEvent> QuadrotorSim::beginTick() {
+  // Collision detection only where a contact is possible: otherwise MuJoCo runs the step with
+  // contacts disabled, which it treats as a detection that found none.
+  const Vec3 p(d_->qpos[qpos_adr_], d_->qpos[qpos_adr_ + 1], d_->qpos[qpos_adr_ + 2]);
+  const bool detect = !gate_ || gate_->mayTouch(p);
+  if (!detect) m_->opt.disableflags |= mjDSBL_CONTACT;
   mj_step1(m_, d_);
+  if (!detect) m_->opt.disableflags &= ~mjDSBL_CONTACT;
+  ++(detect ? steps_detected_ : steps_skipped_);
   if (!airborne_ && d_->qpos[qpos_adr_ + 2] > start_z_ + config_.takeoff_clearance_m) airborne_ = true;
   auto hit = checkContacts();
   if (hit && !collision_) collision_ = hit;

@@ -16,6 +16,7 @@
 
 #include "core/common/config_check.h"
 #include "core/common/messages.h"
+#include "sim/physics/contact_gate.h"
 #include "sim/physics/quadrotor_model.h"
 
 namespace msb {
@@ -25,6 +26,8 @@ struct PhysicsConfig {
   int physics_hz = 500;               ///< physics rate (one tick = one step)
   QuadrotorConfig vehicle;            ///< vehicle parameters
   double takeoff_clearance_m = 0.15;  ///< ground contact is allowed until first this high
+  bool contact_gate = true;           ///< skip collision detection in steps where no contact is
+                                      ///< possible (ContactGate; the same states and contacts)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -103,6 +106,12 @@ class QuadrotorSim {
   const PhysicsConfig& config() const { return config_; }
   /// Number of geoms in the compiled model.
   int geomCount() const { return m_->ngeom; }
+  /// beginTick() calls so far that ran MuJoCo's collision detection, and that skipped it
+  /// (contact_gate).
+  int64_t stepsDetected() const { return steps_detected_; }
+  int64_t stepsSkipped() const { return steps_skipped_; }
+  /// The contact gate, if configured.
+  const ContactGate* contactGate() const { return gate_ ? &*gate_ : nullptr; }
 
  private:
   std::optional<CollisionEvent> checkContacts() const;
@@ -119,6 +128,8 @@ class QuadrotorSim {
   int qpos_adr_ = 0, qvel_adr_ = 0;
   int accel_adr_ = 0, gyro_adr_ = 0;
   int64_t tick_ = 0;
+  int64_t steps_detected_ = 0, steps_skipped_ = 0;
+  std::optional<ContactGate> gate_;
   bool airborne_ = false;
   double start_z_ = 0.0;
   ImuTruth imu_truth_;

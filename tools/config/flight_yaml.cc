@@ -31,6 +31,7 @@ template <class Keys>
 void physicsKeys(Keys r, PhysicsConfig& p) {
   r.field("physics_hz", p.physics_hz);
   r.field("takeoff_clearance_m", p.takeoff_clearance_m);
+  r.field("contact_gate", p.contact_gate);
   if (r.has("vehicle")) vehicleKeys(r.sub("vehicle"), p.vehicle);
   r.finish();
 }

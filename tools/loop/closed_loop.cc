@@ -331,6 +331,7 @@ const FlightResult& ClosedLoop::finish() {
     if (job->error) std::rethrow_exception(std::exchange(job->error, nullptr));
   finished_ = true;
   result_.ticks = sim_.tick();
+  result_.collision_detection_steps = sim_.stepsDetected();
   result_.sim_time_s = sim_.timeSeconds();
   result_.path_finished = finished_tick_ >= 0;
   result_.tracking_rms_m = err_count_ ? std::sqrt(err_sq_sum_ / double(err_count_)) : 0.0;

@@ -59,6 +59,7 @@ struct FlightResult {
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
   int64_t ticks = 0;
+  int64_t collision_detection_steps = 0;  ///< physics steps that ran MuJoCo's collision detection (contact gate)
   std::vector<TrajectoryRow> trajectory;  ///< at trajectory_rate_hz
   std::vector<ImuSample> imu;             ///< every IMU sample
   int frames_rendered = 0;

@@ -82,6 +82,8 @@ int runBenchLoopCommand(int argc, char** argv) {
     row("  other", s.otherMs(total, f.threads, f.perception_wait_ms));
   }
   row("total", total);
+  std::printf("collision detection in %lld of %lld physics steps (physics.contact_gate)\n",
+              static_cast<long long>(f.collision_detection_steps), static_cast<long long>(f.ticks));
   std::printf("determinism hash %s (same build and machine: the same flight)\n", hexHash(r.run_hash).c_str());
   return kExitOk;
 }

@@ -81,23 +81,31 @@ const RendererSwitch kRendererSwitches[] = {
      " RGBA framebuffer"},
 };
 
-// Physics: a controlled hover at 2 m, controller every step; prints steps/s.
+// Physics: a controlled hover at 2 m, controller every step, with the contact gate on and off;
+// prints steps/s and how many steps ran collision detection.
 void benchPhysics(const std::string& world, long steps) {
   const Vec3 p0(0, 0, 2.0);
-  QuadrotorSim sim(PhysicsConfig{}, world, poseFromXyzYaw(p0, 0.0));
-  const Se3Controller controller(Se3ControllerConfig{}, QuadrotorConfig{});
-  TrajectoryReference ref;
-  ref.position_m = p0;
-  auto t0 = WallClock::now();
-  for (long i = 0; i < steps; ++i) {
-    if (i % 1000 == 0) throwIfInterrupted();  // a timing loop still stops on Ctrl-C
-    sim.beginTick();
-    sim.endTick(controller.compute(sim.groundTruth(), ref));
+  for (const bool gate : {true, false}) {
+    PhysicsConfig pcfg;
+    pcfg.contact_gate = gate;
+    QuadrotorSim sim(pcfg, world, poseFromXyzYaw(p0, 0.0));
+    const Se3Controller controller(Se3ControllerConfig{}, QuadrotorConfig{});
+    TrajectoryReference ref;
+    ref.position_m = p0;
+    auto t0 = WallClock::now();
+    for (long i = 0; i < steps; ++i) {
+      if (i % 1000 == 0) throwIfInterrupted();  // a timing loop still stops on Ctrl-C
+      sim.beginTick();
+      sim.endTick(controller.compute(sim.groundTruth(), ref));
+    }
+    const double phys_s = secondsSince(t0);
+    if (gate) std::printf("world: %s (%d geoms)\n", world.c_str(), sim.geomCount());
+    std::printf(
+        "physics, contact gate %s: %.0f steps/s with controller (%.2f us/step, %.0fx real time at 500 Hz); "
+        "collision detection in %lld of %ld steps\n",
+        gate ? "on " : "off", steps / phys_s, 1e6 * phys_s / steps, steps / phys_s / 500.0,
+        static_cast<long long>(sim.stepsDetected()), steps);
   }
-  const double phys_s = secondsSince(t0);
-  std::printf("world: %s (%d geoms)\n", world.c_str(), sim.geomCount());
-  std::printf("physics: %.0f steps/s with controller (%.2f us/step, %.0fx real time at 500 Hz)\n", steps / phys_s,
-              1e6 * phys_s / steps, steps / phys_s / 500.0);
 }
 
 // The renderer settings the flags ask for.

@@ -25,11 +25,13 @@ struct FlightLog {
   std::vector<Sample> samples;
   std::optional<CollisionEvent> collision;
   bool finished = false;
+  int64_t steps_skipped = 0;  // steps without collision detection (the contact gate)
 };
 
 FlightLog fly(const std::string& world, const std::vector<Waypoint>& path, double max_s,
-              TrajectoryLimits limits = TrajectoryLimits::preset("medium"), double stop_after_finish_s = 1e9) {
-  QuadrotorSim sim(PhysicsConfig{}, world, poseFromXyzYaw(Vec3(0, 0, 0.05), 0.0));
+              TrajectoryLimits limits = TrajectoryLimits::preset("medium"), double stop_after_finish_s = 1e9,
+              const PhysicsConfig& physics = PhysicsConfig{}) {
+  QuadrotorSim sim(physics, world, poseFromXyzYaw(Vec3(0, 0, 0.05), 0.0));
   const Se3Controller ctrl(Se3ControllerConfig{}, QuadrotorConfig{});
   TrajectoryTrackerConfig tcfg;
   tcfg.limits = limits;
@@ -52,6 +54,7 @@ FlightLog fly(const std::string& world, const std::vector<Waypoint>& path, doubl
     if (finished_at >= 0 && gt.t_s > finished_at + stop_after_finish_s) break;
   }
   log.finished = finished_at >= 0;
+  log.steps_skipped = sim.stepsSkipped();
   return log;
 }
 
@@ -157,6 +160,29 @@ TEST(Flight, FlyingIntoAWallEndsWithCollidedAtTheRightTimeAndPlace) {
   EXPECT_LT(last.pos.x() + 0.293, 10.0 + 1e-3);
   EXPECT_NEAR(c.t_s, last.t + 0.002, 1e-9);
   EXPECT_GT(c.t_s, 5.0);
+}
+
+TEST(Collision, TheContactGateChangesNoStateAndNoCollision) {
+  // Into the wall with collision detection in every step and only where the gate allows it:
+  // the same states bit for bit, the same contact at the same tick.
+  TrajectoryLimits slow = TrajectoryLimits::preset("medium");
+  slow.max_speed_mps = 2.0;
+  const std::vector<Waypoint> path = {{Vec3(0, 0, 2), {}}, {Vec3(20, 0, 2), {}}};
+  PhysicsConfig every_step;
+  every_step.contact_gate = false;
+  const FlightLog gated = fly(kWorlds + "wall_ahead.xml", path, 30.0, slow);
+  const FlightLog full = fly(kWorlds + "wall_ahead.xml", path, 30.0, slow, 1e9, every_step);
+  EXPECT_EQ(full.steps_skipped, 0);
+  EXPECT_GT(gated.steps_skipped, int64_t(gated.samples.size()) / 2);  // most of the flight is far from the wall
+  ASSERT_EQ(gated.samples.size(), full.samples.size());
+  for (size_t i = 0; i < full.samples.size(); ++i) {
+    ASSERT_EQ(gated.samples[i].pos, full.samples[i].pos) << "tick " << i;
+    ASSERT_EQ(gated.samples[i].vel, full.samples[i].vel) << "tick " << i;
+  }
+  ASSERT_TRUE(gated.collision && full.collision);
+  EXPECT_EQ(gated.collision->tick, full.collision->tick);
+  EXPECT_EQ(gated.collision->vehicle_geom, full.collision->vehicle_geom);
+  EXPECT_EQ(gated.collision->contact_position_m, full.collision->contact_position_m);
 }
 
 TEST(Collision, StaticWorldGeomsAreNeverTestedAgainstEachOther) {
