@@ -39,6 +39,39 @@ void dropOutsideWindowRange(const std::vector<cv::Point2f>& points, cv::Size win
   }
 }
 
+std::vector<cv::KeyPoint> fastWhereFree(const cv::Mat& img, cv::Rect roi, const cv::Mat& mask, int threshold) {
+  // A corner at p depends on the pixels within 3 of p and on its 8 neighbours' scores (within
+  // 4): a window holding every free pixel's 4-neighbourhood, cut to the roi, finds exactly the
+  // corners the roi has at free pixels (cv::FAST skips 3 px at every window edge, and the
+  // window's edges are the roi's or 4 px from every free pixel). Rows more than 8 apart go into
+  // separate windows, which then do not overlap.
+  constexpr int kReach = 4;
+  std::vector<cv::KeyPoint> out, kps;
+  const int x_end = roi.x + roi.width, y_end = roi.y + roi.height;
+  int first = -1, last = -1, lo = x_end, hi = -1;
+  auto scan = [&] {
+    const cv::Rect window =
+        cv::Rect(lo - kReach, first - kReach, hi - lo + 1 + 2 * kReach, last - first + 1 + 2 * kReach) & roi;
+    cv::FAST(img(window), kps, threshold, true);
+    for (cv::KeyPoint& k : kps) {
+      k.pt.x += float(window.x), k.pt.y += float(window.y);
+      if (mask.at<uint8_t>(int(k.pt.y), int(k.pt.x))) out.push_back(k);
+    }
+  };
+  for (int y = roi.y; y < y_end; ++y) {
+    const uint8_t* row = mask.ptr<uint8_t>(y);
+    int x0 = roi.x, x1 = x_end - 1;
+    while (x0 < x_end && !row[x0]) ++x0;
+    if (x0 == x_end) continue;  // no free pixel in this row
+    while (!row[x1]) --x1;
+    if (first >= 0 && y - last > 2 * kReach) scan(), lo = x_end, hi = -1, first = -1;
+    if (first < 0) first = y;
+    last = y, lo = std::min(lo, x0), hi = std::max(hi, x1);
+  }
+  if (first >= 0) scan();
+  return out;
+}
+
 int trackedFromPrevious(const TrackFrame& f) {
   return int(std::count_if(f.tracks.begin(), f.tracks.end(), [](const Track& t) { return t.age >= 1; }));
 }
@@ -232,12 +265,8 @@ void KltFeatureTracker::detect(const cv::Mat& img, std::vector<Track>& tracks, i
       const int x0 = cx * img.cols / config_.grid_cols, x1 = (cx + 1) * img.cols / config_.grid_cols;
       const int y0 = cy * img.rows / config_.grid_rows, y1 = (cy + 1) * img.rows / config_.grid_rows;
       const cv::Rect roi(x0, y0, x1 - x0, y1 - y0);
-      std::vector<cv::KeyPoint> kps;
-      cv::FAST(img(roi), kps, config_.fast_threshold, true);
-      for (auto& k : kps) {
-        k.pt.x += float(x0), k.pt.y += float(y0);
-        if (mask.at<uint8_t>(int(k.pt.y), int(k.pt.x))) candidates.push_back({k, cy * config_.grid_cols + cx});
-      }
+      for (const cv::KeyPoint& k : fastWhereFree(img, roi, mask, config_.fast_threshold))
+        candidates.push_back({k, cy * config_.grid_cols + cx});
     }
   // Deterministic order: response, then position.
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {

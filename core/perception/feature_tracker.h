@@ -51,6 +51,13 @@ int trackedFromPrevious(const TrackFrame& f);
 void dropOutsideWindowRange(const std::vector<cv::Point2f>& points, cv::Size window, cv::Size image,
                             std::vector<uchar>& status);
 
+/// The FAST corners (OpenCV's, with non-maximum suppression) that cv::FAST finds in `img(roi)`
+/// and that lie where `mask` (CV_8UC1, the image's size) is non-zero, in image coordinates:
+/// the same corners, responses and positions, in another order. Only the rows and columns
+/// within reach of a non-zero mask pixel are scanned (FAST's circle of 3 px and the
+/// suppression's neighbour), in bands of rows, each a window of its own.
+std::vector<cv::KeyPoint> fastWhereFree(const cv::Mat& img, cv::Rect roi, const cv::Mat& mask, int threshold);
+
 /// Tracker settings (OpenVINS-like defaults, docs/architecture.md §6).
 struct FeatureTrackerConfig {
   int max_tracks = 400;  ///< total tracks

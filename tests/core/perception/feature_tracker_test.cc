@@ -1,10 +1,12 @@
 #include "core/perception/feature_tracker.h"
 
 #include <algorithm>
+#include <array>
 
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
@@ -274,6 +276,60 @@ TEST(KltWindowRange, KltWithoutTheErrorOutputGivesTheSameResultOnceTheRangeRuleI
   const long tracked = std::count(with_err_status.begin(), with_err_status.end(), uchar(1));
   EXPECT_GT(tracked, long(p0.size()) / 2);
   EXPECT_LT(tracked, long(p0.size()));
+}
+
+// cv::FAST on the whole window, then the mask: what fastWhereFree must give, sorted.
+std::vector<std::array<float, 3>> fastThenMask(const cv::Mat& img, cv::Rect roi, const cv::Mat& mask, int threshold) {
+  std::vector<cv::KeyPoint> kps;
+  cv::FAST(img(roi), kps, threshold, true);
+  std::vector<std::array<float, 3>> out;
+  for (const cv::KeyPoint& k : kps) {
+    const float x = k.pt.x + float(roi.x), y = k.pt.y + float(roi.y);
+    if (mask.at<uint8_t>(int(y), int(x))) out.push_back({y, x, k.response});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::array<float, 3>> sorted(const std::vector<cv::KeyPoint>& kps) {
+  std::vector<std::array<float, 3>> out;
+  for (const cv::KeyPoint& k : kps) out.push_back({k.pt.y, k.pt.x, k.response});
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(FastWhereFree, FindsExactlyTheCornersFastFindsAtFreePixels) {
+  // Textured images, masks with 20 px holes around random tracks (as the detector's), windows
+  // of the 5 x 3 grid and odd ones at the image's edges; a free row or column here and there.
+  RngStream rng(3, "fast_where_free");
+  const CameraFrame f = texturedFrame(752, 480, 0, 0, 0);
+  const cv::Mat img(480, 752, CV_8UC1, const_cast<uint8_t*>(f.pixels.data()));
+  long corners = 0, masked_out = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    cv::Mat mask(480, 752, CV_8UC1, cv::Scalar(trial % 4 == 0 ? 0 : 255));
+    const int tracks = trial % 4 == 0 ? 0 : int(rng.uniform(50, 700));
+    for (int t = 0; t < tracks; ++t)
+      cv::circle(mask, cv::Point(int(rng.uniform(0, 752)), int(rng.uniform(0, 480))), 20, 0, -1);
+    if (trial % 4 == 0)  // nearly nothing free: isolated pixels, a row, a column
+      for (int k = 0; k < 30; ++k) mask.at<uint8_t>(int(rng.uniform(0, 480)), int(rng.uniform(0, 752))) = 255;
+    if (trial % 4 == 0) mask.row(200).setTo(255), mask.col(400).setTo(255);
+    std::vector<cv::Rect> windows = {cv::Rect(0, 0, 752, 480), cv::Rect(0, 0, 9, 7), cv::Rect(745, 470, 7, 10)};
+    for (int cy = 0; cy < 3; ++cy)
+      for (int cx = 0; cx < 5; ++cx)
+        windows.emplace_back(cx * 752 / 5, cy * 480 / 3, (cx + 1) * 752 / 5 - cx * 752 / 5,
+                             (cy + 1) * 480 / 3 - cy * 480 / 3);
+    for (const cv::Rect& w : windows) {
+      const int threshold = trial % 2 ? 15 : 5;
+      const auto expected = fastThenMask(img, w, mask, threshold);
+      ASSERT_EQ(sorted(fastWhereFree(img, w, mask, threshold)), expected) << "trial " << trial << " window " << w;
+      corners += long(expected.size());
+      std::vector<cv::KeyPoint> all;
+      cv::FAST(img(w), all, threshold, true);
+      masked_out += long(all.size()) - long(expected.size());
+    }
+  }
+  EXPECT_GT(corners, 5000);     // the comparison has corners to compare
+  EXPECT_GT(masked_out, 5000);  // and the mask takes many away
 }
 
 }  // namespace
