@@ -31,40 +31,50 @@ bool posesClose(const Vec3& p, double yaw, const Vec3& q, double qyaw, double di
 }
 
 ViewpointSet::ViewpointSet(const ViewpointConfig& config, uint64_t seed)
-    : config_(checkValid(config)), rng_(seed, "viewpoints") {}
+    : config_(checkValid(config)),
+      rng_(seed, "viewpoints"),
+      cos_half_fov_(std::cos(config_.fov_half_angle_deg * kDeg)) {}
 
-bool ViewpointSet::sees(const Vec3& p, double yaw, const Frontier& f) const {
-  const Vec3 ray = f.position - p;
-  const double d = ray.norm();
-  if (d < 1e-6 || d > config_.frontier_range_m) return false;
-  if (ray.dot(Vec3(std::cos(yaw), std::sin(yaw), 0.0)) < std::cos(config_.fov_half_angle_deg * kDeg) * d)
-    return false;                // outside the useful field of view
-  return f.normal.dot(ray) < 0;  // not from its unknown side
+ViewpointSet::View ViewpointSet::viewOf(const Vec3& p, double yaw) {
+  return {p, Vec3(std::cos(yaw), std::sin(yaw), 0.0)};
 }
 
-std::vector<uint64_t> ViewpointSet::visibleFrontiers(const SphereMap& map, const Vec3& p, double yaw) const {
+bool ViewpointSet::sees(const View& v, const Frontier& f) const {
+  const Vec3 ray = f.position - v.p;
+  const double d = ray.norm();
+  if (d < 1e-6 || d > config_.frontier_range_m) return false;
+  if (ray.dot(v.heading) < cos_half_fov_ * d) return false;  // outside the useful field of view
+  return f.normal.dot(ray) < 0;                              // not from its unknown side
+}
+
+std::vector<uint64_t> ViewpointSet::visibleFrontiers(const SphereMap& map, const View& v) const {
   std::vector<uint64_t> ids;
-  for (uint64_t id : map.frontiersNear(p, config_.frontier_range_m))
-    if (sees(p, yaw, map.frontiers().at(id))) ids.push_back(id);
+  for (uint64_t id : map.frontiersNear(v.p, config_.frontier_range_m))
+    if (sees(v, map.frontiers().at(id))) ids.push_back(id);
   return ids;
+}
+
+void ViewpointSet::addMarker(const VisitedMarker& m) {
+  markers_.push_back(m);
+  marker_views_.push_back(viewOf(m.position, m.yaw_rad));
 }
 
 int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_t min_frontier_id) const {
   // With the view limit: markers close to this pose, whose frontiers do not count here.
-  std::vector<const VisitedMarker*> close;
+  std::vector<const View*> close;
   const int limit = config_.frontier_view_limit;
   if (limit > 0)
-    for (const auto& m : markers_)
-      if (posesClose(p, yaw, m.position, m.yaw_rad, config_.block_distance_m, config_.block_angle_deg * kDeg))
-        close.push_back(&m);
+    for (size_t i = 0; i < markers_.size(); ++i)
+      if (posesClose(p, yaw, markers_[i].position, markers_[i].yaw_rad, config_.block_distance_m,
+                     config_.block_angle_deg * kDeg))
+        close.push_back(&marker_views_[i]);
   int n = 0;
-  for (uint64_t id : visibleFrontiers(map, p, yaw)) {
+  for (uint64_t id : visibleFrontiers(map, viewOf(p, yaw))) {
     if (id < min_frontier_id) continue;  // older than a close visited marker (vpb_new_frontiers)
     if (limit > 0) {
       if (views(map, id) >= limit) continue;  // retired: looked at often enough
       const Frontier& f = map.frontiers().at(id);
-      if (std::any_of(close.begin(), close.end(),
-                      [&](const VisitedMarker* m) { return sees(m->position, m->yaw_rad, f); }))
+      if (std::any_of(close.begin(), close.end(), [&](const View* m) { return sees(*m, f); }))
         continue;  // already looked at from about here
     }
     ++n;
@@ -76,8 +86,7 @@ int ViewpointSet::views(const SphereMap& map, uint64_t id) const {
   if (config_.frontier_view_limit <= 0) return 0;
   const Frontier& f = map.frontiers().at(id);
   ViewCount& c = views_[id];
-  for (; c.checked < markers_.size(); ++c.checked)
-    c.views += sees(markers_[c.checked].position, markers_[c.checked].yaw_rad, f);
+  for (; c.checked < markers_.size(); ++c.checked) c.views += sees(marker_views_[c.checked], f);
   return c.views;
 }
 
@@ -122,7 +131,7 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
       v.value = value(map, v.position, v.yaw_rad);
       keep = v.value >= min_value;
       if (keep && config_.vpb && posesClose(vehicle, vehicle_yaw, v.position, v.yaw_rad, d, a)) {
-        markers_.push_back({vehicle, vehicle_yaw, map.nextFrontierId()});
+        addMarker({vehicle, vehicle_yaw, map.nextFrontierId()});
         ++passed_;
         keep = false;
       }
@@ -152,8 +161,8 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
     const int val = value(map, p, yaw, newer_than);
     if (val < min_value) {
       // Refused because of visits: a newer-than bound, or retired frontiers it would otherwise see.
-      const bool by_visits =
-          newer_than > 0 || (config_.frontier_view_limit > 0 && int(visibleFrontiers(map, p, yaw).size()) >= min_value);
+      const bool by_visits = newer_than > 0 || (config_.frontier_view_limit > 0 &&
+                                                int(visibleFrontiers(map, viewOf(p, yaw)).size()) >= min_value);
       ++(by_visits ? rejected_.visited : val > 0 ? rejected_.low_value : rejected_.no_frontier);
       continue;
     }
@@ -181,7 +190,7 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
 
 void ViewpointSet::markReached(uint64_t id, const SphereMap& map, const Vec3& vehicle, double vehicle_yaw) {
   viewpoints_.erase(id);
-  if (config_.vpb) markers_.push_back({vehicle, vehicle_yaw, map.nextFrontierId()});
+  if (config_.vpb) addMarker({vehicle, vehicle_yaw, map.nextFrontierId()});
 }
 
 void ViewpointSet::markFailed(uint64_t id, double t_s) {

@@ -115,15 +115,24 @@ class ViewpointSet {
   // Why a candidate pose is blocked. With vpb_new_frontiers, markers do not block: they raise
   // *min_frontier_id to the newest close marker's watermark instead.
   Block blocked(const Vec3& p, double yaw, double t_s, uint64_t goal_id, uint64_t* min_frontier_id) const;
-  // True if frontier f passes the value test from pose (p, yaw): in range, in view, facing.
-  bool sees(const Vec3& p, double yaw, const Frontier& f) const;
-  // Ids of the frontiers visible from (p, yaw).
-  std::vector<uint64_t> visibleFrontiers(const SphereMap& map, const Vec3& p, double yaw) const;
+  // A pose as the value test uses it: position and unit heading (cos yaw, sin yaw, 0).
+  struct View {
+    Vec3 p, heading;
+  };
+  static View viewOf(const Vec3& p, double yaw);
+  // True if frontier f passes the value test from the pose: in range, in view, facing.
+  bool sees(const View& v, const Frontier& f) const;
+  // Ids of the frontiers visible from the pose.
+  std::vector<uint64_t> visibleFrontiers(const SphereMap& map, const View& v) const;
+  // Appends a visited marker (and its view).
+  void addMarker(const VisitedMarker& m);
 
   ViewpointConfig config_;
   RngStream rng_;
   std::map<uint64_t, Viewpoint> viewpoints_;
   std::vector<VisitedMarker> markers_;
+  std::vector<View> marker_views_;  // the markers' poses as views, in the same order
+  double cos_half_fov_ = 1.0;       // cos(fov_half_angle_deg)
   // Frontier id → markers it is visible from, counted over markers_[0, checked) (a frontier
   // keeps its position, so each marker is tested once per frontier).
   struct ViewCount {
