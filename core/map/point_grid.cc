@@ -11,8 +11,11 @@ uint64_t PointGrid::key(int64_t x, int64_t y, int64_t z) {
 }
 
 void PointGrid::insert(uint64_t id, const Vec3& p) {
-  cells_[key(cellOf(p.x()), cellOf(p.y()), cellOf(p.z()))].push_back({id, p});
+  const int64_t c[3] = {cellOf(p.x()), cellOf(p.y()), cellOf(p.z())};
+  cells_[key(c[0], c[1], c[2])].push_back({id, p});
   ++size_;
+  for (int k = 0; k < 3; ++k)
+    occupied_.lo[k] = std::min(occupied_.lo[k], c[k]), occupied_.hi[k] = std::max(occupied_.hi[k], c[k]);
 }
 
 void PointGrid::erase(uint64_t id, const Vec3& p) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -31,10 +32,11 @@ class PointGrid {
   /// on order).
   template <class Pred>
   bool anyNear(const Vec3& p, double r, Pred pred) const {
-    const Vec3 lo = p.array() - r, hi = p.array() + r;
-    for (int64_t x = cellOf(lo.x()); x <= cellOf(hi.x()); ++x)
-      for (int64_t y = cellOf(lo.y()); y <= cellOf(hi.y()); ++y)
-        for (int64_t z = cellOf(lo.z()); z <= cellOf(hi.z()); ++z) {
+    CellRange c;
+    if (!cellsOf(p.array() - r, p.array() + r, &c)) return false;
+    for (int64_t x = c.lo[0]; x <= c.hi[0]; ++x)
+      for (int64_t y = c.lo[1]; y <= c.hi[1]; ++y)
+        for (int64_t z = c.lo[2]; z <= c.hi[2]; ++z) {
           const auto it = cells_.find(key(x, y, z));
           if (it == cells_.end()) continue;
           for (const Entry& e : it->second)
@@ -61,11 +63,26 @@ class PointGrid {
     uint64_t id;
     Vec3 position;
   };
+  // An inclusive range of cells per axis.
+  struct CellRange {
+    int64_t lo[3], hi[3];
+  };
+  // The cells of [lo, hi] that can hold entries: cut to the range of cells ever occupied (no
+  // cell outside it has entries, so queries find the same). False if none.
+  bool cellsOf(const Vec3& lo, const Vec3& hi, CellRange* c) const {
+    for (int k = 0; k < 3; ++k) {
+      c->lo[k] = std::max(cellOf(lo[k]), occupied_.lo[k]);
+      c->hi[k] = std::min(cellOf(hi[k]), occupied_.hi[k]);
+      if (c->lo[k] > c->hi[k]) return false;
+    }
+    return true;
+  }
   // Calls f(entry) for every entry whose cell intersects [lo, hi] (in no particular order).
   template <class F>
   void visitBox(const Vec3& lo, const Vec3& hi, F f) const {
-    const int64_t x0 = cellOf(lo.x()), x1 = cellOf(hi.x()), y0 = cellOf(lo.y()), y1 = cellOf(hi.y());
-    const int64_t z0 = cellOf(lo.z()), z1 = cellOf(hi.z());
+    CellRange c;
+    if (!cellsOf(lo, hi, &c)) return;
+    const int64_t x0 = c.lo[0], x1 = c.hi[0], y0 = c.lo[1], y1 = c.hi[1], z0 = c.lo[2], z1 = c.hi[2];
     const long cells = (x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1);
     if (cells > long(cells_.size()) * 4) {
       // Large box: scan the occupied cells instead of the box's cells.
@@ -92,6 +109,8 @@ class PointGrid {
   double cell_;
   std::unordered_map<uint64_t, std::vector<Entry>> cells_;
   size_t size_ = 0;
+  // Every cell ever given an entry lies in this range (empty until the first insert).
+  CellRange occupied_{{INT64_MAX, INT64_MAX, INT64_MAX}, {INT64_MIN, INT64_MIN, INT64_MIN}};
 };
 
 }  // namespace msb
