@@ -68,12 +68,15 @@ int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_
       if (posesClose(p, yaw, markers_[i].position, markers_[i].yaw_rad, config_.block_distance_m,
                      config_.block_angle_deg * kDeg))
         close.push_back(&marker_views_[i]);
+  // The frontiers visible from the pose (each looked up once), then the view limit's tests.
+  const View view = viewOf(p, yaw);
   int n = 0;
-  for (uint64_t id : visibleFrontiers(map, viewOf(p, yaw))) {
+  for (uint64_t id : map.frontiersNear(p, config_.frontier_range_m)) {
+    const Frontier& f = map.frontiers().at(id);
+    if (!sees(view, f)) continue;
     if (id < min_frontier_id) continue;  // older than a close visited marker (vpb_new_frontiers)
     if (limit > 0) {
-      if (views(map, id) >= limit) continue;  // retired: looked at often enough
-      const Frontier& f = map.frontiers().at(id);
+      if (views(f, id) >= limit) continue;  // retired: looked at often enough
       if (std::any_of(close.begin(), close.end(), [&](const View* m) { return sees(*m, f); }))
         continue;  // already looked at from about here
     }
@@ -84,7 +87,10 @@ int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_
 
 int ViewpointSet::views(const SphereMap& map, uint64_t id) const {
   if (config_.frontier_view_limit <= 0) return 0;
-  const Frontier& f = map.frontiers().at(id);
+  return views(map.frontiers().at(id), id);
+}
+
+int ViewpointSet::views(const Frontier& f, uint64_t id) const {
   ViewCount& c = views_[id];
   for (; c.checked < markers_.size(); ++c.checked) c.views += sees(marker_views_[c.checked], f);
   return c.views;

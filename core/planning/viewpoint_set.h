@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <unordered_map>
 #include <vector>
 
 #include "core/common/config_check.h"
@@ -124,6 +125,8 @@ class ViewpointSet {
   bool sees(const View& v, const Frontier& f) const;
   // Ids of the frontiers visible from the pose.
   std::vector<uint64_t> visibleFrontiers(const SphereMap& map, const View& v) const;
+  // views() of frontier f (id `id`), the view limit on.
+  int views(const Frontier& f, uint64_t id) const;
   // Appends a visited marker (and its view).
   void addMarker(const VisitedMarker& m);
 
@@ -139,8 +142,8 @@ class ViewpointSet {
     int views = 0;
     size_t checked = 0;
   };
-  mutable std::map<uint64_t, ViewCount> views_;
-  std::vector<std::pair<Vec3, double>> blacklist_;  // position, until
+  mutable std::unordered_map<uint64_t, ViewCount> views_;  // only looked up and erased from: order never matters
+  std::vector<std::pair<Vec3, double>> blacklist_;         // position, until
   uint64_t next_id_ = 1;
   int passed_ = 0;
   CandidateRejections rejected_;
