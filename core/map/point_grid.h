@@ -55,6 +55,12 @@ class PointGrid {
     std::sort(out.begin(), out.end());
     return out;
   }
+  /// Calls `f(id, position)` for every id whose cell intersects the cube around p of half-size
+  /// r, in no particular order: for uses whose result does not depend on the order (counts).
+  template <class F>
+  void forEachNear(const Vec3& p, double r, F f) const {
+    visitBox(p.array() - r, p.array() + r, [&](const Entry& e) { f(e.id, e.position); });
+  }
   /// Number of ids.
   size_t size() const { return size_; }
 

@@ -181,6 +181,14 @@ class SphereMap {
   std::vector<uint64_t> obstaclesNear(const Vec3& p, double r) const;
   /// Ids (ascending) of frontiers within distance r of p.
   std::vector<uint64_t> frontiersNear(const Vec3& p, double r) const;
+  /// Calls `f(id, frontier)` for every frontier within r of p, in no particular order (for
+  /// results that do not depend on it; frontiersNear() gives them sorted).
+  template <class F>
+  void forEachFrontierNear(const Vec3& p, double r, F f) const {
+    state_.frontier_grid.forEachNear(p, r, [&](uint64_t id, const Vec3& q) {
+      if ((q - p).norm() <= r) f(id, state_.frontiers.at(id));
+    });
+  }
   /// True if some obstacle point lies within distance r of p.
   bool anyObstacleNear(const Vec3& p, double r) const;
   /// The configuration.

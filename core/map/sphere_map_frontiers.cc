@@ -60,10 +60,8 @@ int SphereMap::revalidateFrontiers() {
 int SphereMap::revalidateDirtyFrontiers() {
   // Frontiers near a change, deduplicated and in id order.
   std::vector<uint64_t> ids;
-  for (const auto& [c, reach] : state_.dirty) {
-    const auto near = state_.frontier_grid.near(c, reach);
-    ids.insert(ids.end(), near.begin(), near.end());
-  }
+  for (const auto& [c, reach] : state_.dirty)
+    state_.frontier_grid.forEachNear(c, reach, [&](uint64_t id, const Vec3&) { ids.push_back(id); });
   state_.dirty.clear();
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());

@@ -68,20 +68,20 @@ int ViewpointSet::value(const SphereMap& map, const Vec3& p, double yaw, uint64_
       if (posesClose(p, yaw, markers_[i].position, markers_[i].yaw_rad, config_.block_distance_m,
                      config_.block_angle_deg * kDeg))
         close.push_back(&marker_views_[i]);
-  // The frontiers visible from the pose (each looked up once), then the view limit's tests.
+  // The frontiers visible from the pose, then the view limit's tests (a count: the order in
+  // which frontiers come does not matter, nor the view counts' cache it fills).
   const View view = viewOf(p, yaw);
   int n = 0;
-  for (uint64_t id : map.frontiersNear(p, config_.frontier_range_m)) {
-    const Frontier& f = map.frontiers().at(id);
-    if (!sees(view, f)) continue;
-    if (id < min_frontier_id) continue;  // older than a close visited marker (vpb_new_frontiers)
+  map.forEachFrontierNear(p, config_.frontier_range_m, [&](uint64_t id, const Frontier& f) {
+    if (!sees(view, f)) return;
+    if (id < min_frontier_id) return;  // older than a close visited marker (vpb_new_frontiers)
     if (limit > 0) {
-      if (views(f, id) >= limit) continue;  // retired: looked at often enough
+      if (views(f, id) >= limit) return;  // retired: looked at often enough
       if (std::any_of(close.begin(), close.end(), [&](const View* m) { return sees(*m, f); }))
-        continue;  // already looked at from about here
+        return;  // already looked at from about here
     }
     ++n;
-  }
+  });
   return n;
 }
 
