@@ -202,14 +202,14 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
   out.tick = frame.tick;
   out.t_s = frame.t_s;
   cv::Mat img(frame.height, frame.width, CV_8UC1, const_cast<uint8_t*>(frame.pixels.data()));
+  // Into buffers kept from frame to frame (OpenCV reuses a buffer of the right size).
   if (config_.equalize_histogram) {
-    cv::Mat eq;
-    cv::equalizeHist(img, eq);
-    img = eq;
+    cv::equalizeHist(img, image_);
   } else {
-    img = img.clone();
+    img.copyTo(image_);
   }
-  std::vector<cv::Mat> pyramid;
+  img = image_;
+  std::vector<cv::Mat>& pyramid = spare_pyramid_;
   const cv::Size win(config_.klt_window_px, config_.klt_window_px);
   cv::buildOpticalFlowPyramid(img, pyramid, win, config_.klt_pyramid_levels);
 
@@ -230,7 +230,7 @@ TrackFrame KltFeatureTracker::process(const CameraFrame& frame) {
   std::sort(kept.begin(), kept.end(), [](const Track& a, const Track& b) { return a.id < b.id; });
   out.tracks = kept;
   prev_tracks_ = kept;
-  prev_pyramid_ = std::move(pyramid);
+  std::swap(prev_pyramid_, spare_pyramid_);  // this frame's pyramid is the next one's previous
   return out;
 }
 

@@ -94,6 +94,9 @@ class KltFeatureTracker final : public FeatureSource {
  public:
   /// Builds the tracker; the camera gives the valid-pixel mask. Throws ConfigError.
   KltFeatureTracker(const FeatureTrackerConfig& config, const FisheyeCamera& camera);
+  // Not copyable: a copy would share (cv::Mat) and overwrite the pyramid buffers it reuses.
+  KltFeatureTracker(const KltFeatureTracker&) = delete;
+  KltFeatureTracker& operator=(const KltFeatureTracker&) = delete;
 
   TrackFrame process(const CameraFrame& frame) override;
 
@@ -113,6 +116,8 @@ class KltFeatureTracker final : public FeatureSource {
   FisheyeCamera camera_;
   cv::Mat valid_mask_;  // pixels inside the FoV, away from its border
   std::vector<cv::Mat> prev_pyramid_;
+  std::vector<cv::Mat> spare_pyramid_;  // the pyramid before last, its buffers reused for the next
+  cv::Mat image_;                       // the equalised frame (its buffer reused)
   std::vector<Track> prev_tracks_;
   uint64_t next_id_ = 1;
   std::optional<MistrackModel> mistracks_;  // degradation: none by default
