@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <stdexcept>
 
 namespace msb {
 
@@ -74,9 +75,13 @@ CollisionAudit auditCollision(const CollisionAuditInput& in, const WorldTruth& t
   return a;
 }
 
-void CollisionAuditRecorder::addFrame(const SlamPointsFrame& points, const Pose& T_W_C_true, int64_t tick) {
+void CollisionAuditRecorder::addFrame(const SlamPointsFrame& points, const Pose& T_W_C_true, int64_t pose_tick) {
+  if (pose_tick != points.tick)
+    throw std::logic_error("collision audit: SLAM points of tick " + std::to_string(points.tick) +
+                           " paired with the true camera pose of tick " + std::to_string(pose_tick));
+  // New points are anchored at the frame that made them (their anchor tick is the frame's).
   for (const SlamPoint& p : points.points)
-    if (p.anchor_tick == tick && audited_tracks_.insert(p.track_id).second) {
+    if (p.anchor_tick == points.tick && audited_tracks_.insert(p.track_id).second) {
       const PointTruth pt = evaluatePoint(p, T_W_C_true, truth_, camera_);
       if (!pt.has_surface) continue;
       ++slam_points_by_object_[truth_.shapes()[pt.shape].object];

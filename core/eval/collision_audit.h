@@ -77,9 +77,12 @@ class CollisionAuditRecorder {
  public:
   CollisionAuditRecorder(const WorldTruth& truth, const FisheyeCamera& camera) : truth_(truth), camera_(camera) {}
 
-  /// A perception frame at `tick`: the points anchored in it are attributed to the surface their
-  /// anchor ray meets from the frame's true camera pose.
-  void addFrame(const SlamPointsFrame& points, const Pose& T_W_C_true, int64_t tick);
+  /// A perception frame: the points anchored in it (anchor tick = `points.tick`, the points new
+  /// in that frame) are attributed to the surface their anchor ray meets from the frame's true
+  /// camera pose `T_W_C_true`, which belongs to tick `pose_tick`. The pipelined loop hands the
+  /// points over frames after their own tick: a pose of another tick than `points.tick` is a
+  /// caller's error (std::logic_error).
+  void addFrame(const SlamPointsFrame& points, const Pose& T_W_C_true, int64_t pose_tick);
   /// A metric sample: the free space's first-seen times and the VIO → true correction then.
   void addSample(double t_s, const std::vector<FreeSpaceElement>& free_space, const Pose& true_from_est);
   /// The run-long part of the audit's input for a contact with `world_geom` (object, SLAM-point

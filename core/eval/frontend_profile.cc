@@ -1,6 +1,8 @@
 #include "core/eval/frontend_profile.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace msb {
 
@@ -22,7 +24,10 @@ double quantile(std::vector<double> v, double q) {
 FrontEndProfiler::FrontEndProfiler(const WorldTruth& truth, int every)
     : truth_(truth), every_(std::max(1, every)), errors_(kBands) {}
 
-void FrontEndProfiler::addFrame(const SlamPointsFrame& frame, const Pose& T_W_C_true) {
+void FrontEndProfiler::addFrame(const SlamPointsFrame& frame, const Pose& T_W_C_true, int64_t pose_tick) {
+  if (pose_tick != frame.tick)
+    throw std::logic_error("front-end profile: SLAM points of tick " + std::to_string(frame.tick) +
+                           " paired with the true camera pose of tick " + std::to_string(pose_tick));
   if (frames_++ % every_ != 0) return;
   // Estimate frame -> true frame with this frame's VIO error.
   const Pose true_from_est = T_W_C_true * frame.T_W_C.inverse();

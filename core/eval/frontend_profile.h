@@ -40,8 +40,10 @@ class FrontEndProfiler {
   /// nearly the same, and a nearest-surface query per point is the cost.
   explicit FrontEndProfiler(const WorldTruth& truth, int every = 3);
 
-  /// One published frame of SLAM points and the true camera pose of that frame.
-  void addFrame(const SlamPointsFrame& frame, const Pose& T_W_C_true);
+  /// One published frame of SLAM points and the true camera pose of that frame, which belongs
+  /// to tick `pose_tick`: a pose of another tick than `frame.tick` (the pipelined loop hands
+  /// points over frames after their own tick) is a caller's error (std::logic_error).
+  void addFrame(const SlamPointsFrame& frame, const Pose& T_W_C_true, int64_t pose_tick);
 
   /// The profile so far.
   FrontEndProfile result() const;

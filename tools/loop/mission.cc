@@ -74,10 +74,12 @@ const TickRecord& Mission::step() {
   if (t.points) {
     true_from_est_ = t.perceived->T_W_C * t.points->T_W_C.inverse();
     coverage_.setTrueFromEstimate(true_from_est_);
-    // The collision audit's record: the object each new SLAM point lies on (its anchor ray from
-    // the true camera pose of this frame, where new points are anchored).
-    if (frontend_) frontend_->addFrame(*t.points, t.perceived->T_W_C);
-    if (audit_) audit_->addFrame(*t.points, t.perceived->T_W_C, t.tick);
+    // The truth side of the points: each with the true camera pose of the frame they were
+    // computed from (`perceived`, latency_frames before this tick; docs/architecture.md,
+    // "Which tick a record carries"). The collision audit records the object each new SLAM
+    // point lies on (its anchor ray from that pose, where new points are anchored).
+    if (frontend_) frontend_->addFrame(*t.points, t.perceived->T_W_C, t.perceived->tick);
+    if (audit_) audit_->addFrame(*t.points, t.perceived->T_W_C, t.perceived->tick);
   }
   if (!t.completed) return t;
   // Coverage sample after this tick's map update.

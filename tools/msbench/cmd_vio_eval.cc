@@ -146,7 +146,7 @@ int runVioEvalCommand(int argc, char** argv) {
   auto evaluate = [&](const PerceptionSample& s) {
     if (recorder) recorder->write(s.points, s.frame.T_W_C);
     addSample(st, s, truth, camera, gt_camera);
-    if (profiler) profiler->addFrame(s.points, s.frame.T_W_C);
+    if (profiler) profiler->addFrame(s.points, s.frame.T_W_C, s.frame.tick);
     if (annotate_every > 0 && (st.frames - 1) % annotate_every == 0) {
       char name[64];
       std::snprintf(name, sizeof(name), "frame_%06d_t%07.2f.png", st.frames - 1, s.frame.t_s);

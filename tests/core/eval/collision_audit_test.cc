@@ -120,5 +120,57 @@ TEST(CollisionAudit, FreeSpaceCarvedWhereItWasFreeAndMovedOntoTheObjectByDriftIs
   EXPECT_EQ(b.cause, "seen-but-freed");
 }
 
+// A camera at (0, 0, 2) looking along +x at the wall, and a SLAM point of its frame whose anchor
+// pixel is the image centre (its ray meets the wall's part "wall_0_burned" at x = 4.5).
+struct WallView {
+  FisheyeCamera camera;
+  Pose T_W_C = Pose::Identity();
+  SlamPoint point(uint64_t id, int64_t anchor_tick) const {
+    SlamPoint p;
+    p.track_id = id;
+    p.anchor_pixel = Vec2(camera.cx(), camera.cy());
+    p.anchor_tick = anchor_tick;
+    return p;
+  }
+  WallView() {
+    T_W_C.linear() = Eigen::Quaterniond::FromTwoVectors(camera.unproject(Vec2(camera.cx(), camera.cy())), Vec3::UnitX())
+                         .toRotationMatrix();
+    T_W_C.translation() = Vec3(0, 0, 2);
+  }
+};
+
+TEST(CollisionAuditRecorder, CountsThePointsNewInAFrameOnThePartTheirAnchorRayMeets) {
+  const WorldTruth truth = wallWorld();
+  const WallView v;
+  CollisionAuditRecorder rec(truth, v.camera);
+  // Frame of tick 30: point 1 is new (anchored at 30), point 2 was anchored at tick 10.
+  SlamPointsFrame f;
+  f.tick = 30;
+  f.points = {v.point(1, 30), v.point(2, 10)};
+  rec.addFrame(f, v.T_W_C, 30);
+  CollisionAuditInput in = rec.input("wall_0_burned");
+  EXPECT_EQ(in.object, "wall_0");
+  EXPECT_EQ(in.slam_points_on_part, 1);
+  EXPECT_EQ(in.slam_points_on_object, 1);
+  // The same track again in a later frame is not counted twice.
+  f.tick = 33;
+  f.points = {v.point(1, 30), v.point(3, 33)};
+  rec.addFrame(f, v.T_W_C, 33);
+  EXPECT_EQ(rec.input("wall_0_burned").slam_points_on_part, 2);
+}
+
+TEST(CollisionAuditRecorder, RefusesAPoseOfAnotherFrame) {
+  // The pipelined loop hands frame 30's points over at tick 130: paired with the pose of tick
+  // 130, every new point would be missed (every collision "unseen"). Refused, nothing counted.
+  const WorldTruth truth = wallWorld();
+  const WallView v;
+  CollisionAuditRecorder rec(truth, v.camera);
+  SlamPointsFrame f;
+  f.tick = 30;
+  f.points = {v.point(1, 30)};
+  EXPECT_THROW(rec.addFrame(f, v.T_W_C, 130), std::logic_error);
+  EXPECT_EQ(rec.input("wall_0_burned").slam_points_on_part, 0);
+}
+
 }  // namespace
 }  // namespace msb

@@ -42,10 +42,10 @@ TEST(FrontEndProfile, ErrorsByDepthBandWrongPointsAndMovedTracks) {
   profiler.addFrame(
       frame(camera_true.translation() + off,
             {point(1, Vec3(2, 0, 0) + off), point(2, Vec3(3, 0, 3) + off), point(3, Vec3(8, 0, 0) + off)}),
-      camera_true);
+      camera_true, 0);
   profiler.addFrame(
       frame(camera_true.translation() + off, {point(1, Vec3(2, 0.5, 0) + off), point(3, Vec3(8, 0, 0) + off)}),
-      camera_true);
+      camera_true, 0);
   const FrontEndProfile p = profiler.result();
   ASSERT_EQ(p.bands.size(), 4u);
   EXPECT_EQ(p.points, 5);
@@ -67,8 +67,20 @@ TEST(FrontEndProfile, ErrorsByDepthBandWrongPointsAndMovedTracks) {
 TEST(FrontEndProfile, EvaluatesOneFrameInEvery) {
   const WorldTruth truth = groundOnly();
   FrontEndProfiler profiler(truth, /*every=*/3);
-  for (int k = 0; k < 7; ++k) profiler.addFrame(frame(Vec3(0, 0, 1.5), {point(1, Vec3(2, 0, 0))}), Pose::Identity());
+  for (int k = 0; k < 7; ++k) profiler.addFrame(frame(Vec3(0, 0, 1.5), {point(1, Vec3(2, 0, 0))}), Pose::Identity(), 0);
   EXPECT_EQ(profiler.result().points, 3);  // frames 0, 3 and 6
+}
+
+TEST(FrontEndProfile, RefusesAPoseOfAnotherFrame) {
+  // Points of tick 10 with the true pose of tick 40 (the pipelined loop's current frame): refused.
+  const WorldTruth truth = groundOnly();
+  FrontEndProfiler profiler(truth, /*every=*/1);
+  SlamPointsFrame f = frame(Vec3(0, 0, 1.5), {point(1, Vec3(2, 0, 0))});
+  f.tick = 10;
+  EXPECT_THROW(profiler.addFrame(f, Pose::Identity(), 40), std::logic_error);
+  EXPECT_EQ(profiler.result().points, 0);
+  profiler.addFrame(f, Pose::Identity(), 10);
+  EXPECT_EQ(profiler.result().points, 1);
 }
 
 }  // namespace

@@ -3,9 +3,11 @@
 // scenarios write nothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -37,9 +39,18 @@ std::vector<std::pair<double, double>> coverage(const fs::path& csv) {
   return rows;
 }
 
+// (t, A) of each progress line ("run NAME: t = T / D s, RTF R, A = A m², ...").
+std::vector<std::pair<double, double>> progressLines(const std::string& log) {
+  std::vector<std::pair<double, double>> out;
+  const std::regex line(R"(: t = ([0-9]+) / [0-9]+ s, RTF [0-9.]+, A = ([0-9]+) m²)");
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), line); it != std::sregex_iterator(); ++it)
+    out.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+  return out;
+}
+
 TEST(Mission, ShortMissionExploresAndIsDeterministic) {
   const fs::path d = tempDir("short");
-  ASSERT_EQ(run("run '" + kScenario + "' --duration 40 --quiet --out '" + (d / "a").string() + "'", d / "log_a"), 0)
+  ASSERT_EQ(run("run '" + kScenario + "' --duration 40 --out '" + (d / "a").string() + "'", d / "log_a"), 0)
       << readText(d / "log_a");
   const auto m = nlohmann::json::parse(readText(d / "a" / "metrics.json"));
   EXPECT_EQ(m["status"], "completed") << m.dump(2);
@@ -55,6 +66,11 @@ TEST(Mission, ShortMissionExploresAndIsDeterministic) {
   EXPECT_GE(m["coverage"]["area_box_m2"].get<double>(), 500.0);
   for (const char* f : {"config.yaml", "trajectory.csv", "timing.csv", "map.ply", "topdown.png"})
     EXPECT_TRUE(fs::exists(d / "a" / f)) << f;
+  // Progress lines under the mission defaults (perception 3 frames late, two threads): each
+  // line's A is the coverage sample of its own second, not one of an earlier frame.
+  const std::vector<std::pair<double, double>> progress = progressLines(readText(d / "log_a"));
+  ASSERT_EQ(progress.size(), 3u) << readText(d / "log_a");  // t = 10, 20, 30 s
+  for (const auto& [t, area] : progress) EXPECT_EQ(area, std::nearbyint(rows[size_t(t)].second)) << "t = " << t;
 
   // The same mission again, on one thread: identical hash, map and coverage.
   ASSERT_EQ(
