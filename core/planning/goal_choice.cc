@@ -22,8 +22,9 @@ GoalEnd GoalChoice::checkActive(const VehicleState& s, const SphereCostField& fi
   const Vec3 p = s.T_W_B.translation();
   const double yaw = yawOf(s.T_W_B.linear());
   const Viewpoint& v = viewpoints_.viewpoints().at(goal_);
+  const double heading_diff = wrapAngle(v.yaw_rad - yaw);
   if ((v.position - p).norm() <= config_.reach_distance_m &&
-      std::abs(wrapAngle(v.yaw_rad - yaw)) <= config_.reach_angle_deg * kDeg) {
+      (config_.heading_check_signed ? heading_diff : std::abs(heading_diff)) <= config_.reach_angle_deg * kDeg) {
     viewpoints_.markReached(goal_, map_, p, yaw);
     goal_ = 0;
     return GoalEnd::kReached;

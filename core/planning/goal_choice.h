@@ -36,6 +36,9 @@ struct GoalChoiceConfig {
   double reach_angle_deg = 90.0;           ///< ... and this heading difference
   double no_progress_timeout_s = 10.0;     ///< goal failed without 0.5 m progress for this long
   int max_blocked_steps = 5;               ///< consecutive blocked steps fail the goal
+  /// The published heading test (method.reference_code.heading_check_signed): the difference
+  /// goal − current, wrapped to [−π, π), passes when below reach_angle_deg, without abs().
+  bool heading_check_signed = false;
 };
 
 /// A reachable viewpoint as a goal chooser sees it.

@@ -74,9 +74,12 @@ void MonoSpheresConfig::validate(ConfigChecker& c) const {
 }
 
 namespace {
-// The planner's search uses the map's minimum radius: one quantity, one key.
-MonoSpheresConfig withSharedMinRadius(MonoSpheresConfig c) {
+// The planner's search uses the map's minimum radius: one quantity, one key. The published
+// code's switches reach the parts they change.
+MonoSpheresConfig withSharedKeys(MonoSpheresConfig c) {
   c.planner.safety.r_min_m = c.map.r_min_m;
+  c.planner.safety.inverted = c.reference_code.safety_cost_inverted;
+  c.planner.viewpoints.sample_anywhere = c.reference_code.viewpoints_anywhere;
   return c;
 }
 // The graph repair's parameters from the planner's keys.
@@ -93,7 +96,7 @@ GraphRepairConfig graphRepairConfig(const MonoSpheresConfig& c) {
           p.no_progress_timeout_s};
 }
 // The goal rule's parameters from the planner's keys.
-GoalChoiceConfig goalChoiceConfig(const MonoSpheresPlannerConfig& p) {
+GoalChoiceConfig goalChoiceConfig(const MonoSpheresPlannerConfig& p, const ReferenceCodeConfig& rc) {
   return {p.fff,
           p.fff_turn_rate_rad_per_m,
           p.local_radius_m,
@@ -102,20 +105,21 @@ GoalChoiceConfig goalChoiceConfig(const MonoSpheresPlannerConfig& p) {
           p.reach_distance_m,
           p.reach_angle_deg,
           p.no_progress_timeout_s,
-          p.max_blocked_steps};
+          p.max_blocked_steps,
+          rc.heading_check_signed};
 }
 }  // namespace
 
 MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const FisheyeCamera& camera,
                                          const ExplorerContext& context)
-    : config_(withSharedMinRadius(checkValid(config))),
+    : config_(withSharedKeys(checkValid(config))),
       context_(context),
       map_(config.map, camera, context.seed),
       clearance_(map_, ClearanceConfig{config_.planner.check_ahead_m, config_.planner.check_clearance_m,
                                        config_.planner.allow_moving_away, config_.planner.escape_margin_m}),
       repair_(map_, graphRepairConfig(config_)),
-      viewpoints_(config.planner.viewpoints, context.seed),
-      goals_(goalChoiceConfig(config_.planner), viewpoints_, map_,
+      viewpoints_(config_.planner.viewpoints, context.seed),
+      goals_(goalChoiceConfig(config_.planner, config_.reference_code), viewpoints_, map_,
              [this](const Vec3& from, const SpherePath& path, const Vec3& goal) { return routeTo(from, path, goal); }),
       takeoff_(context.start, config.planner) {}
 
@@ -330,7 +334,7 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
     return command(s, {{s.reference.position_m, std::nullopt}});  // stop; re-plan next step
   }
   goals_.noteUnblocked();
-  if (s.t_s - last_send_s_ < pc.replan_period_s) return std::nullopt;
+  if (!resendDue(s.t_s)) return std::nullopt;
   if (pc.fff && route.size() >= 2) {
     const Vec3 d = route[1] - route[0];
     const double dir = std::atan2(d.y(), d.x());
@@ -338,7 +342,15 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
       return command(s, {{s.reference.position_m, dir}});  // face the route before flying it
   }
   const HeadingPlan hp = assignHeadings(route, v.yaw_rad, pc.fff, pc.fff_turn_rate_rad_per_m, 1.0, s.reference.yaw_rad);
+  last_route_send_s_ = s.t_s;
   return command(s, cutAt(route.front(), hp.waypoints, pc.carrot_distance_m));
+}
+
+bool MonoSpheresExplorer::resendDue(double t_s) const {
+  // The intended re-send every replan period; the published code's (LNM roadmap_following_iter):
+  // a path only when none was sent or kPublishedResendS have passed since the last one.
+  if (!config_.reference_code.path_resend_8s) return t_s - last_send_s_ >= config_.planner.replan_period_s;
+  return t_s - last_route_send_s_ >= kPublishedResendS;
 }
 
 std::vector<FreeSpaceElement> MonoSpheresExplorer::freeSpace() const {

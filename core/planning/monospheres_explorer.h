@@ -38,6 +38,7 @@
 #include "core/explorer/counters.h"
 #include "core/explorer/explorer.h"
 #include "core/explorer/takeoff.h"
+#include "core/map/reference_code.h"
 #include "core/map/sphere_map.h"
 #include "core/planning/clearance_guard.h"
 #include "core/planning/goal_choice.h"
@@ -88,16 +89,22 @@ struct MonoSpheresPlannerConfig : TakeoffConfig, PathCheckConfig {  // take-off 
   void validate(ConfigChecker& c) const;
 };
 
+/// The published code's path re-send period (LNM mrs_path_failing_time), s.
+inline constexpr double kPublishedResendS = 8.0;
+
 /// Mapper + planner configuration of the method.
 struct MonoSpheresConfig {
   SphereMapConfig map;
   MonoSpheresPlannerConfig planner;
+  ReferenceCodeConfig reference_code;  ///< the published code's defects (all off: the intended method)
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
   /// The paper's four ablation switches (OVDE, DBOF, FFF, VPB) by name, for reports.
   std::map<std::string, bool> switches() const {
     return {{"ovde", map.ovde}, {"dbof", map.dbof}, {"fff", planner.fff}, {"vpb", planner.viewpoints.vpb}};
   }
+  /// The published code's switches by name, for the run's record.
+  std::map<std::string, bool> referenceCode() const { return reference_code.values(); }
 };
 
 /// Spheres, obstacle points and frontiers of a map as a snapshot (drawing, map.ply, hashing).
@@ -184,6 +191,7 @@ class MonoSpheresExplorer : public Explorer {
   std::optional<PathCommand> followGoal(const VehicleState& s, uint64_t start_sphere);  // route, carrot
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
   bool segmentFree(const Vec3& a, const Vec3& b) const;  // inside the sphere union and clear
+  bool resendDue(double t_s) const;                      // the route's path may be (re-)sent now
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
 
   // Configuration (fixed for the explorer's life) ...
@@ -197,6 +205,7 @@ class MonoSpheresExplorer : public Explorer {
   GoalChoice goals_;  // the active goal and the rule for the next (over viewpoints_)
   TakeoffSequence takeoff_;
   double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9, no_goal_since_s_ = -1.0;
+  double last_route_send_s_ = -1e9;  // the last path to the carrot (the published 8 s timer)
   std::vector<Vec3> last_path_;
   std::vector<uint64_t> reachable_;  // this step's reachable spheres (ascending)
   Counters<MonoSpheresCounter> counters_{kMonoSpheresCounterNames};

@@ -15,6 +15,7 @@ void SafetyCostConfig::validate(ConfigChecker& c) const {
 
 double narrownessPenalty(double r, const SafetyCostConfig& cfg) {
   const double x = std::clamp((r - cfg.r_min_m) / (cfg.r_safe_m - cfg.r_min_m), 0.0, 1.0);
+  if (cfg.inverted) return r > cfg.r_safe_m ? 0.0 : x * x;  // LNM compute_safety_cost
   return (1.0 - x) * (1.0 - x);
 }
 

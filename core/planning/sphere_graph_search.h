@@ -24,6 +24,9 @@ struct SafetyCostConfig {
   /// explorer sets it to the map's r_min_m (one quantity, one key: method.map.r_min_m).
   double r_min_m = 1.4;
   double r_safe_m = 8.0;  ///< radius from which there is no penalty
+  /// The published code's cost (method.reference_code.safety_cost_inverted; not a key of its
+  /// own): u(r) = ((max(r, r_min) − r_min)/(r_safe − r_min))², 0 above r_safe.
+  bool inverted = false;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -38,6 +38,10 @@ struct ViewpointConfig {
   double block_angle_deg = 60.0;       ///< VPB / blocking heading difference
   double blacklist_radius_m = 2.0;     ///< failed goals block new viewpoints this close ...
   double blacklist_duration_s = 60.0;  ///< ... for this long
+  /// The published code's sampling (method.reference_code.viewpoints_anywhere; not a key of its
+  /// own): candidate k is the map's sphere number i, i drawn below the count of reachable
+  /// spheres — the oldest spheres, reachable or not.
+  bool sample_anywhere = false;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

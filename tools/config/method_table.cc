@@ -124,9 +124,40 @@ void validateMethod(const Config& c) {
   if (!checker.issues().empty()) throw ConfigError(checker.issues());
 }
 
-// MonoSpheres: switches, mapper and planner keys.
+// The published code's defects (docs/deviations.md, "The published code as switches"):
+//   reference_code: published            every modelled defect on (`intended`: none)
+//   reference_code: {path_resend_8s: true, ...}        the switches named
+//   reference_code: {published: true, heading_check_signed: false}
+// In a map `published: true` turns every switch on first; switches named beside it then set
+// their own value. Written back as the full map of switches.
+template <class Keys>
+void referenceCodeKeys(Keys& m, ReferenceCodeConfig& c) {
+  if constexpr (Keys::kReading) {
+    if (!m.has("reference_code")) return;
+    const YAML::Node n = m.raw("reference_code");
+    const std::string key = m.keyName("reference_code");
+    if (n.IsScalar()) {
+      if (n.Scalar() != "published" && n.Scalar() != "intended")
+        throw ConfigError(key, "expected published, intended or a map of switches, got '" + n.Scalar() + "'");
+      c = n.Scalar() == "published" ? ReferenceCodeConfig::published() : ReferenceCodeConfig{};
+      return;
+    }
+    MapReader r(n, key + ".");
+    bool all = false;
+    r.field("published", all);
+    if (all) c = ReferenceCodeConfig::published();
+    for (const auto& [name, member] : ReferenceCodeConfig::switches()) r.field(name, c.*member);
+    r.finish();
+  } else {
+    auto w = m.sub("reference_code");
+    for (const auto& [name, member] : ReferenceCodeConfig::switches()) w.field(name, c.*member);
+  }
+}
+
+// MonoSpheres: switches, the published code's switches, mapper and planner keys.
 template <class Keys>
 void monoSpheresKeys(Keys& m, MonoSpheresConfig& c) {
+  referenceCodeKeys(m, c.reference_code);
   if (m.has("switches")) {
     auto w = m.sub("switches");
     w.field("ovde", c.map.ovde);

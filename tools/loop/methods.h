@@ -25,6 +25,9 @@ struct MethodChoice {
   std::string type;                      ///< as in `method.type`
   std::any config;                       ///< the method's config struct (e.g. MonoSpheresConfig)
   std::map<std::string, bool> switches;  ///< the method's on/off switches (ablations), for reports
+  /// The published code's defects the method runs with (MonoSpheres' method.reference_code;
+  /// empty for methods without them), for the record and report labels.
+  std::map<std::string, bool> reference_code;
   /// Creates the explorer for a mission.
   std::function<std::unique_ptr<Explorer>(const FisheyeCamera&, const ExplorerContext&)> make;
   /// Why the method that flew cannot be rebuilt from the scenario ("" = it can): an in-process
@@ -45,6 +48,7 @@ MethodChoice methodChoice(std::string type, const Config& config) {
   m.type = std::move(type);
   m.config = c;
   if constexpr (requires { c.switches(); }) m.switches = c.switches();
+  if constexpr (requires { c.referenceCode(); }) m.reference_code = c.referenceCode();
   m.make = [c](const FisheyeCamera& camera, const ExplorerContext& context) -> std::unique_ptr<Explorer> {
     if constexpr (std::is_constructible_v<ExplorerT, const Config&, const FisheyeCamera&, const ExplorerContext&>)
       return std::make_unique<ExplorerT>(c, camera, context);

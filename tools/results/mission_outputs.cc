@@ -124,6 +124,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
   j["method"] = spec.method.type;
   j["switches"] = spec.method.switches;
+  if (!spec.method.reference_code.empty()) j["reference_code"] = spec.method.reference_code;
   // What flew, as config.yaml records it: a Python method's entry, a goal chooser, replayability.
   if (spec.method.type == kPythonMethodType)
     j["method_entry"] = std::any_cast<const PythonMethodConfig&>(spec.method.config).entry;

@@ -129,6 +129,17 @@ std::string reportMethodName(const nlohmann::json& m) {
   if (m.contains("switches") && m["switches"].is_object())
     for (const auto& [k, v] : m["switches"].items())
       if (v.is_boolean() && !v.get<bool>()) name += " -" + k;
+  // The published code's defects that are on: "+published" when all are, else each by name.
+  if (m.contains("reference_code") && m["reference_code"].is_object()) {
+    std::string on;
+    bool all = true;
+    for (const auto& [k, v] : m["reference_code"].items()) {
+      const bool set = v.is_boolean() && v.get<bool>();
+      all = all && set;
+      if (set) on += " +" + k;
+    }
+    name += all && !on.empty() ? " +published" : on;
+  }
   return name;
 }
 

@@ -177,5 +177,24 @@ TEST(GoalChoice, AChooserReplacesTheRule) {
   EXPECT_THROW(wrong.takeNew(at({0, 0, 2}, 0.0, 1.0), s.field, &global), std::runtime_error);
 }
 
+TEST(GoalChoice, ThePublishedHeadingTestPassesLargeNegativeDifferences) {
+  // method.reference_code.heading_check_signed (LNM roadmap_following_iter: hdif(goal −
+  // current) > π/2 fails, no abs()): at the goal turned 150° to its left (goal − current =
+  // −150°) the goal counts as reached; turned 150° to its right (+150°) it does not.
+  for (const bool signed_check : {false, true}) {
+    Scene s;
+    GoalChoiceConfig c = withoutFff();
+    c.heading_check_signed = signed_check;
+    GoalChoice goals(c, s.viewpoints, s.map, straight);
+    bool global = false;
+    ASSERT_TRUE(goals.takeNew(at({0, 0, 2}, 0.0, 0.0), s.field, &global));
+    const Viewpoint v = s.viewpoints.viewpoints().at(goals.goal());
+    const double right = v.yaw_rad - 150.0 * M_PI / 180.0, left = v.yaw_rad + 150.0 * M_PI / 180.0;
+    EXPECT_EQ(goals.checkActive(at(v.position, right, 1.0), s.field), GoalEnd::kNone);
+    EXPECT_EQ(goals.checkActive(at(v.position, left, 2.0), s.field), signed_check ? GoalEnd::kReached : GoalEnd::kNone)
+        << "signed " << signed_check;
+  }
+}
+
 }  // namespace
 }  // namespace msb

@@ -376,5 +376,33 @@ TEST(MonoSpheresExplorer, PartsOfTheGraphAreLinkedAlongTheFlownPath) {
   // Without the trail (never flown), the same gap is not linked: see the test above.
 }
 
+TEST(MonoSpheresExplorer, ThePublishedCodeResendsThePathOnlyEvery8Seconds) {
+  // method.reference_code.path_resend_8s (LNM roadmap_following_iter): a path cut 4 m ahead,
+  // sent at 1 s and flown to its end by 3 s, is not replaced before 9 s; the intended method
+  // sends the next one at once.
+  for (const bool published : {false, true}) {
+    MonoSpheresConfig c;
+    c.planner.carrot_distance_m = 4.0;
+    c.reference_code.path_resend_8s = published;
+    Fixture f(c);
+    f.corridorWithFrontiers();
+    f.skipTakeoff();
+    const auto first = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    ASSERT_TRUE(first);
+    ASSERT_NE(f.explorer.goal(), 0u);
+    const Vec3 end = first->waypoints.back().position_m;
+    ASSERT_NEAR((end - Vec3(0, 0, 2)).norm(), 4.0, 1e-6);
+    std::vector<double> sent;
+    for (double t = 3.0; t < 10.0; t += 0.2)
+      if (f.explorer.plan(Fixture::at(end, 0.0, t))) sent.push_back(t);
+    ASSERT_FALSE(sent.empty()) << "published " << published;
+    if (published)
+      EXPECT_NEAR(sent.front(), 9.0, 1e-9);
+    else
+      EXPECT_NEAR(sent.front(), 3.0, 1e-9);
+    EXPECT_NE(f.explorer.goal(), 0u);  // the same goal throughout
+  }
+}
+
 }  // namespace
 }  // namespace msb

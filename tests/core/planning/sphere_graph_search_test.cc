@@ -100,5 +100,29 @@ TEST(SphereGraphSearch, UnreachableAndContainingSphere) {
   EXPECT_FALSE(containingSphere(map, {0.5, 0, 0}, 1.5, 3.5));  // spheres below the minimum radius are skipped
 }
 
+TEST(SafetyCost, ThePublishedCodesCostRisesWithTheRadius) {
+  // method.reference_code.safety_cost_inverted (LNM compute_safety_cost): ((r − r_min)/(r_safe −
+  // r_min))², radii below r_min taken as r_min, nothing above r_safe.
+  SafetyCostConfig cfg;
+  cfg.r_min_m = 1.6;
+  cfg.inverted = true;
+  EXPECT_DOUBLE_EQ(narrownessPenalty(1.6, cfg), 0.0);
+  EXPECT_DOUBLE_EQ(narrownessPenalty(1.0, cfg), 0.0);
+  EXPECT_NEAR(narrownessPenalty(4.8, cfg), 0.25, 1e-12);
+  EXPECT_DOUBLE_EQ(narrownessPenalty(8.0, cfg), 1.0);
+  EXPECT_DOUBLE_EQ(narrownessPenalty(8.01, cfg), 0.0);
+  EXPECT_DOUBLE_EQ(edgeCost(1.0, 8.0, cfg), 51.0);  // the widest spheres below r_safe: ×51
+}
+
+TEST(SphereGraphSearch, UnderThePublishedCostTheRouteTakesTheNarrowChain) {
+  // The detour's 7.5 m spheres cost ×43.7 under the inverted cost; the 1.7 m chain ×1.1.
+  TwoRoutes t;
+  SafetyCostConfig inverted;
+  inverted.inverted = true;
+  const auto p = findSpherePath(t.map, t.s, t.g, inverted);
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->spheres, (std::vector<uint64_t>{t.s, t.n1, t.n2, t.n3, t.g}));
+}
+
 }  // namespace
 }  // namespace msb

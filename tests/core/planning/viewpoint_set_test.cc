@@ -247,5 +247,25 @@ TEST(ViewpointSet, RelaxedValueAcceptsFewFrontiers) {
   for (const auto& [id, v] : vs.viewpoints()) EXPECT_GE(v.value, 2);
 }
 
+TEST(ViewpointSet, ThePublishedSamplingTakesTheOldestSpheresReachableOrNot) {
+  // method.reference_code.viewpoints_anywhere (LNM tryAddingGoalsNearby: an index drawn below
+  // the count of reachable nodes, used on the whole map): with one reachable sphere (the newest,
+  // facing the frontiers) every candidate lands on the oldest sphere, far from the frontiers.
+  Scene s;
+  SphereMap& map = s.map;
+  const uint64_t oldest = s.sphere;  // at the origin, 3 m: the only one before the far one
+  const uint64_t far = SphereMapTestSeam::addSphere(map, {-40, 0, 2}, 3.0);
+  ASSERT_LT(oldest, far);
+  for (const bool anywhere : {false, true}) {
+    ViewpointConfig c;
+    c.sample_anywhere = anywhere;
+    ViewpointSet vs(c, 3);
+    // Only the far sphere is reachable: its candidates see nothing (beyond 10 m), the oldest's do.
+    vs.update(map, {far}, {100, 100, 2}, 0.0, 0.0, 0, nullptr);
+    EXPECT_EQ(vs.viewpoints().empty(), !anywhere) << "anywhere " << anywhere;
+    for (const auto& [id, v] : vs.viewpoints()) EXPECT_EQ(v.sphere, oldest);
+  }
+}
+
 }  // namespace
 }  // namespace msb

@@ -105,10 +105,12 @@ TEST(ConfigFields, TheMethodSectionsWriteEveryField) {
   EXPECT_EQ(keysAt(m, "method.map") + 2, fieldCount<SphereMapConfig>());
   // The planner: its section plus fff (under method.switches), its take-off and path-check keys
   // counted as one base each; viewpoints plus vpb (a switch); safety plus r_min_m, which is
-  // method.map.r_min_m.
+  // method.map.r_min_m; each plus the published-code switch it takes from method.reference_code.
   EXPECT_EQ(keysAt(m, "method.planner") + 1 - 2 - 2 + 2, fieldCount<MonoSpheresPlannerConfig>());
-  EXPECT_EQ(keysAt(m, "method.planner.viewpoints") + 1, fieldCount<ViewpointConfig>());
-  EXPECT_EQ(keysAt(m, "method.planner.safety") + 1, fieldCount<SafetyCostConfig>());
+  EXPECT_EQ(keysAt(m, "method.planner.viewpoints") + 1 + 1, fieldCount<ViewpointConfig>());
+  EXPECT_EQ(keysAt(m, "method.planner.safety") + 1 + 1, fieldCount<SafetyCostConfig>());
+  EXPECT_EQ(keysAt(m, "method.reference_code"), fieldCount<ReferenceCodeConfig>());
+  EXPECT_EQ(keysAt(m, "method.reference_code"), ReferenceCodeConfig::switches().size());
 }
 
 }  // namespace

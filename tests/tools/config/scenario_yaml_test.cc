@@ -115,6 +115,15 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
   expectError("base: base.yaml\nmethod: {map: {ovde: false}}\n", {"method.map.ovde", "unknown key"});
   expectError("base: base.yaml\nmethod: {switches: {fff: maybe}}\n", {"method.switches.fff", "true or false"});
   expectError("base: base.yaml\nswitches: {fff: false}\n", {"'switches'", "unknown key"});
+  // The published code's switches: names, values, the scalar form, MonoSpheres only.
+  expectError("base: base.yaml\nmethod: {reference_code: {pinhole: true}}\n",
+              {"bad.yaml", "method.reference_code.pinhole", "unknown key"});
+  expectError("base: base.yaml\nmethod: {reference_code: {path_resend_8s: 8}}\n",
+              {"bad.yaml", "method.reference_code.path_resend_8s", "true or false"});
+  expectError("base: base.yaml\nmethod: {reference_code: paper}\n",
+              {"bad.yaml", "method.reference_code", "published, intended or a map"});
+  expectError("world: world.xml\nmethod: {type: grid_random, reference_code: published}\n",
+              {"bad.yaml", "method.reference_code", "unknown key"});
   // Keys of one method are unknown keys for another.
   expectError("world: world.xml\nmethod: {type: grid_random, switches: {vpb: false}}\n",
               {"method.switches", "unknown key"});
@@ -147,6 +156,35 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
   expectError("base: base.yaml\nfrontend: {blur_px: 2}\n", {"frontend.blur_px", "unknown key"});
   expectError("base: base.yaml\nfrontend: {drift_scale: 15}\nvio_drift: {position_drift_fraction: 0.1}\n",
               {"position_drift_fraction", "scaled by frontend.drift_scale"});
+}
+
+TEST(ScenarioYaml, ThePublishedCodeSwitches) {
+  // method.reference_code: `published` turns every switch on; in a map, `published: true` first,
+  // then the switches named beside it; each switch alone; recorded for the run and read back.
+  const fs::path d = tempDir();
+  write(d / "base.yaml", kBase);
+  write(d / "published.yaml", "base: base.yaml\nmethod: {reference_code: published}\n");
+  const ScenarioSpec p = loadScenario((d / "published.yaml").string());
+  EXPECT_TRUE(mono(p).reference_code.path_resend_8s);
+  EXPECT_TRUE(mono(p).reference_code.safety_cost_inverted);
+  for (const auto& [name, on] : p.method.reference_code) EXPECT_TRUE(on) << name;
+  EXPECT_EQ(p.method.reference_code.size(), ReferenceCodeConfig::switches().size());
+  write(d / "minus.yaml",
+        "base: base.yaml\nmethod: {reference_code: {published: true, heading_check_signed: false}}\n");
+  const ScenarioSpec m = loadScenario((d / "minus.yaml").string());
+  EXPECT_FALSE(mono(m).reference_code.heading_check_signed);
+  EXPECT_TRUE(mono(m).reference_code.viewpoints_anywhere);
+  const ScenarioSpec one = loadScenario((d / "base.yaml").string(), {"method.reference_code.path_resend_8s=true"});
+  EXPECT_TRUE(mono(one).reference_code.path_resend_8s);
+  EXPECT_FALSE(mono(one).reference_code.viewpoints_anywhere);
+  const ScenarioSpec set = loadScenario((d / "base.yaml").string(), {"method.reference_code=published"});
+  EXPECT_TRUE(mono(set).reference_code.any());
+  // The intended method by default; the effective configuration writes every switch.
+  const ScenarioSpec none = loadScenario((d / "base.yaml").string());
+  EXPECT_FALSE(mono(none).reference_code.any());
+  const std::string text = effectiveScenarioYaml(m);
+  EXPECT_NE(text.find("heading_check_signed: false"), std::string::npos) << text;
+  EXPECT_NE(text.find("path_resend_8s: true"), std::string::npos) << text;
 }
 
 // The message of the FileConfigError loading `path` throws ("" and a test failure if none).

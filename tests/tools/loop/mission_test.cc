@@ -108,8 +108,9 @@ Flown flyIntoWall(const std::vector<std::string>& sets) {
   out.target_part = truth.shapes()[target->hit.shape].name;
   const Vec3 d(std::cos(target->yaw), std::sin(target->yaw), 0);
   // In the estimate frame, which starts at the true start pose: the wall's drift is small at 30 s.
-  Mission mission(spec, world.box, &truth,
-                  std::make_unique<KamikazeExplorer>(hover, target->yaw, hover + (target->hit.distance_m + 3) * d, 25.0));
+  Mission mission(
+      spec, world.box, &truth,
+      std::make_unique<KamikazeExplorer>(hover, target->yaw, hover + (target->hit.distance_m + 3) * d, 25.0));
 
   // The same checks fed here: with each frame's points paired with the pose of their own frame,
   // and (to show the checks can tell) with the latest rendered frame's.
@@ -134,8 +135,8 @@ Flown flyIntoWall(const std::vector<std::string>& sets) {
     if (t.points) {
       ++out.records_with_points;
       const CameraFrame& own_frame = rendered.at(t.points->tick);
-      out.records_paired_right += t.perceived->tick == t.points->tick &&
-                                  t.perceived->T_W_C.matrix() == own_frame.T_W_C.matrix();
+      out.records_paired_right +=
+          t.perceived->tick == t.points->tick && t.perceived->T_W_C.matrix() == own_frame.T_W_C.matrix();
       own.addFrame(*t.points, own_frame.T_W_C, own_frame.tick);
       audit_own.addFrame(*t.points, own_frame.T_W_C, own_frame.tick);
       SlamPointsFrame as_latest = *t.points;  // relabelled: what a reader of the wrong frame sees

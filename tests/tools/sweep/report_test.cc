@@ -106,6 +106,20 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   EXPECT_EQ(paperRowNamed("urban", "monospheres -ovde -dbof"), nullptr);
 }
 
+TEST(SweepReport, ThePublishedCodesSwitchesNameTheRowAndKeepThePapersRow) {
+  // "+published" when every switch is on, "+name" for each one on, nothing for the intended
+  // method; the paper's row is the same (the switches model how its runs were made).
+  nlohmann::json m = {{"method", "monospheres"},
+                      {"switches", {{"ovde", true}, {"dbof", false}}},
+                      {"reference_code", {{"path_resend_8s", true}, {"safety_cost_inverted", true}}}};
+  EXPECT_EQ(reportMethodName(m), "monospheres -dbof +published");
+  m["reference_code"]["safety_cost_inverted"] = false;
+  EXPECT_EQ(reportMethodName(m), "monospheres -dbof +path_resend_8s");
+  m["reference_code"]["path_resend_8s"] = false;
+  EXPECT_EQ(reportMethodName(m), "monospheres -dbof");
+  EXPECT_EQ(paperRowNamed("urban", "monospheres -dbof +published")->mean_area_m2, 2308.0);
+}
+
 TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
   // A custom sweep: a row that is no Table I row (a method of the user's), and 40-second runs
   // of MonoSpheres beside it — no collision in four runs, which must not "hold" the paper's
