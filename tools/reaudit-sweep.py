@@ -10,8 +10,9 @@ hashes are compared with the published ones, and only when all three are equal i
 metrics.json's `collision.audit` block replaced, as text, by the block the new run wrote (the rest
 of the record stays byte for byte as published). A run whose hashes differ is left as it was and
 reported. Prints a table (run, object, part, cause before → after, SLAM points on the part, nearest
-map point) and writes it, with the binary's revision, to DEST/reaudit.csv. Exit 1 if any run
-differed or failed. Needs msbench in build/bin (or MSBENCH).
+map point) and writes it, with the binary's revision, to DEST/reaudit.csv. A binary built from
+uncommitted changes is refused (--allow-dirty to accept it). Exit 1 if any run differed, failed
+or was refused. Needs msbench in build/bin (or MSBENCH).
 """
 import argparse
 import concurrent.futures
@@ -57,7 +58,7 @@ def row_of(run_id, old, new, status):
     }
 
 
-def reaudit(msbench, run_dir, work, dry_run):
+def reaudit(msbench, run_dir, work, dry_run, allow_dirty):
     path = run_dir / "metrics.json"
     text = path.read_text()
     old = json.loads(text)
@@ -65,6 +66,9 @@ def reaudit(msbench, run_dir, work, dry_run):
     if error:
         return row_of(run_dir.name, old, None, "failed: " + error)
     new = json.loads(new_text)
+    revision = new["versions"]["git_revision"]
+    if revision.endswith("-dirty") and not allow_dirty:
+        return row_of(run_dir.name, old, None, f"refused: the binary was built from uncommitted changes ({revision})")
     differ = [h for h in HASHES if new.get(h) != old.get(h)]
     if differ or new.get("collision") is None:
         return row_of(run_dir.name, old, None, "differ: " + ", ".join(differ or ["no collision"]))
@@ -86,6 +90,8 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", type=pathlib.Path, default=None, help="where the runs go (default: a temp dir)")
     ap.add_argument("--dry-run", action="store_true", help="run and compare, change nothing")
+    ap.add_argument("--allow-dirty", action="store_true",
+                    help="accept a binary built from uncommitted changes (refused by default: the audit names its build)")
     args = ap.parse_args()
     msbench = os.environ.get("MSBENCH", str(HERE.parent / "build" / "bin" / "msbench"))
     if not os.access(msbench, os.X_OK):
@@ -96,7 +102,7 @@ def main():
     work.mkdir(parents=True, exist_ok=True)
     print(f"{args.dest}: {len(runs)} collided runs, re-run in {work}", file=sys.stderr)
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        rows = list(pool.map(lambda d: reaudit(msbench, d, work, args.dry_run), runs))
+        rows = list(pool.map(lambda d: reaudit(msbench, d, work, args.dry_run, args.allow_dirty), runs))
     revision = sorted({r.get("revision", "?") for r in rows})
     for r in rows:
         r.pop("revision", None)
