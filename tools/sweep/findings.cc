@@ -105,9 +105,18 @@ std::string withInterval(const Estimate& e, int digits = 2) {
   return number(e.value, digits) + " [" + number(e.ci.lo, digits) + ", " + number(e.ci.hi, digits) + "]";
 }
 
+// The row of `method` ("monospheres -dbof"), whatever published-code switches it runs with
+// ("+published": a table made under the published code answers the same findings).
 const ReportRow* findRow(const std::vector<ReportRow>& rows, const std::string& world, const std::string& method) {
+  auto base = [](const std::string& name) {
+    std::istringstream words(name);
+    std::string out, w;
+    while (words >> w)
+      if (w[0] != '+') out += (out.empty() ? "" : " ") + w;
+    return out;
+  };
   for (const ReportRow& r : rows)
-    if (r.world == world && r.method == method && r.area_m2.count > 0) return &r;
+    if (r.world == world && base(r.method) == method && r.area_m2.count > 0) return &r;
   return nullptr;
 }
 

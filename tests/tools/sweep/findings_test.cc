@@ -80,6 +80,20 @@ TEST(Findings, RatioAtLeastHoldsAtTwiceTheGridFailsBelowAndIsUndecidedAcross) {
   EXPECT_EQ(check("ms_vs_grid_cave", {madeRun("cave", "monospheres", "", 3000)}).status, "n/a");
 }
 
+TEST(Findings, ATableUnderThePublishedCodeAnswersTheSameFindings) {
+  // Rows named "monospheres +published" (method.reference_code) are the paper's MonoSpheres rows.
+  std::vector<ReportRun> runs =
+      joined({twoRuns("cave", "monospheres", "", 5000), twoRuns("cave", "grid_random", "", 2000)});
+  for (ReportRun& r : runs)
+    if (r.metrics["method"] == "monospheres") {
+      r.metrics["reference_code"] = {{"path_resend_8s", true}, {"safety_cost_inverted", true}};
+      r.record = missionRecordOf(r.metrics, r.id + "/metrics.json").record;
+    }
+  const FindingResult r = check("ms_vs_grid_cave", runs);
+  EXPECT_EQ(r.status, "holds");
+  EXPECT_EQ(r.measured.rfind("5050 / 2020 = 2.50 [", 0), 0u) << r.measured;
+}
+
 // The area findings once more on verified A: a grid that claims free space it never verified
 // fails the ratio on the paper's A and holds it on verified A; without verified A, nothing.
 TEST(Findings, AreaFindingsAreRepeatedOnVerifiedArea) {
