@@ -24,6 +24,11 @@ struct ReferenceCodeConfig {
   /// The heading test of "goal reached" lacks abs(): any heading difference below +90° passes,
   /// however far negative.
   bool heading_check_signed = false;
+  /// New spheres' sample rays are back-projected with the pinhole K over the whole image, as the
+  /// published mapper does (SBM ~569-631, 812-813): they reach ±58.8° × ±46.5° about the optical
+  /// axis only, while the free-space polyhedron spans the fisheye's ±90°. (The same pinhole K in
+  /// DBOF's triangulation test, OVDE and viewpoint visibility is not modelled yet.)
+  bool pinhole_rays = false;
   /// The 300 viewpoint samples take sphere number k of the whole map for k drawn below the count
   /// of reachable spheres: the oldest spheres, reachable or not, whatever the search radius.
   bool viewpoints_anywhere = false;
@@ -35,11 +40,12 @@ struct ReferenceCodeConfig {
     return c;
   }
   /// The switches by name with their member, in documentation order.
-  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 4>& switches() {
-    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 4> kSwitches = {{
+  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 5>& switches() {
+    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 5> kSwitches = {{
         {"path_resend_8s", &ReferenceCodeConfig::path_resend_8s},
         {"safety_cost_inverted", &ReferenceCodeConfig::safety_cost_inverted},
         {"heading_check_signed", &ReferenceCodeConfig::heading_check_signed},
+        {"pinhole_rays", &ReferenceCodeConfig::pinhole_rays},
         {"viewpoints_anywhere", &ReferenceCodeConfig::viewpoints_anywhere},
     }};
     return kSwitches;

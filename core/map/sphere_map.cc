@@ -323,6 +323,11 @@ void SphereMap::updateSpheresNear(const FreeSpacePolyhedron& pf, const std::vect
   st.spheres_ms = msSince(t0);
 }
 
+Vec3 SphereMap::pinholeRay(const Vec2& px) const {
+  // The published mapper's back-projection: K⁻¹ (u, v, 1), normalised.
+  return Vec3((px.x() - camera_.cx()) / camera_.fx(), (px.y() - camera_.cy()) / camera_.fy(), 1.0).normalized();
+}
+
 void SphereMap::sampleNewSpheres(const SlamPointsFrame& frame, const FreeSpacePolyhedron& pf,
                                  const std::vector<Vec3>& constraints, std::vector<uint64_t>& touched,
                                  MapUpdateStats& st) {
@@ -336,8 +341,8 @@ void SphereMap::sampleNewSpheres(const SlamPointsFrame& frame, const FreeSpacePo
   for (int attempt = 0; attempt < max_attempts && st.sphere_samples < config_.new_sphere_samples; ++attempt) {
     const Vec2 px(state_.rng.uniform(0, camera_.width()), state_.rng.uniform(0, camera_.height()));
     const double t_frac = state_.rng.uniform();
-    if (!camera_.pixelInFov(px)) continue;
-    const Vec3 dir = frame.T_W_C.linear() * camera_.unproject(px);
+    if (!config_.pinhole_sample_rays && !camera_.pixelInFov(px)) continue;
+    const Vec3 dir = frame.T_W_C.linear() * (config_.pinhole_sample_rays ? pinholeRay(px) : camera_.unproject(px));
     const auto range = pf.surfaceRange(dir);
     if (!range) continue;
     ++st.sphere_samples;

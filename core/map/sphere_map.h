@@ -56,7 +56,10 @@ struct SphereMapConfig {
   bool ovde = true;                 ///< open-area virtual depth
   OpenAreaDepthConfig ovde_params;  ///< its parameters
   bool dbof = true;                 ///< distance-based obstacle filtering
-  double dbof_alpha = 1.1;          ///< deletion factor α
+  /// New spheres' sample rays through the pinhole K (method.reference_code.pinhole_rays; not a
+  /// key of its own): the published code's ±58.8° × ±46.5° instead of the fisheye's ±90°.
+  bool pinhole_sample_rays = false;
+  double dbof_alpha = 1.1;       ///< deletion factor α
   double dbof_age_per_m = 0.0;   ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
   double r_max_m = 10.0;         ///< sphere radius cap
   double r_min_m = 1.4;          ///< spheres below are deleted / not created (paper: 1.6; docs/deviations.md)
@@ -232,6 +235,7 @@ class SphereMap {
                          std::vector<uint64_t>& touched, MapUpdateStats& st);
   void sampleNewSpheres(const SlamPointsFrame& frame, const FreeSpacePolyhedron& pf,  // 7
                         const std::vector<Vec3>& constraints, std::vector<uint64_t>& touched, MapUpdateStats& st);
+  Vec3 pinholeRay(const Vec2& px) const;  // the published code's back-projection (camera frame)
   void sparsifyTouched(std::vector<uint64_t>& touched, MapUpdateStats& st);     // 8
   void insertFrameObstacles(const SlamPointsFrame& frame, MapUpdateStats& st);  // 9
 

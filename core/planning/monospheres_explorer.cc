@@ -80,6 +80,7 @@ MonoSpheresConfig withSharedKeys(MonoSpheresConfig c) {
   c.planner.safety.r_min_m = c.map.r_min_m;
   c.planner.safety.inverted = c.reference_code.safety_cost_inverted;
   c.planner.viewpoints.sample_anywhere = c.reference_code.viewpoints_anywhere;
+  c.map.pinhole_sample_rays = c.reference_code.pinhole_rays;
   return c;
 }
 // The graph repair's parameters from the planner's keys.
@@ -114,7 +115,7 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
                                          const ExplorerContext& context)
     : config_(withSharedKeys(checkValid(config))),
       context_(context),
-      map_(config.map, camera, context.seed),
+      map_(config_.map, camera, context.seed),
       clearance_(map_, ClearanceConfig{config_.planner.check_ahead_m, config_.planner.check_clearance_m,
                                        config_.planner.allow_moving_away, config_.planner.escape_margin_m}),
       repair_(map_, graphRepairConfig(config_)),

@@ -354,6 +354,30 @@ TEST(SphereMapRules, SamplingDrawsTheConfiguredNumberOfSamplesInsidePf) {
   }
 }
 
+TEST(SphereMapRules, ThePublishedPinholeRaysSampleOnlyTheCentralFrustum) {
+  // method.reference_code.pinhole_rays: a wall 12 m ahead filling 80° about the axis; the
+  // published code's rays (K⁻¹ over the 752 × 480 image, fx 227.4) reach atan(376/227.4) = 58.8°
+  // horizontally and atan(240/227.4) = 46.5° vertically; the fisheye's reach beyond.
+  for (const bool pinhole : {false, true}) {
+    SphereMapConfig c;
+    c.pinhole_sample_rays = pinhole;
+    SphereMap map(c, FisheyeCamera{}, 5);
+    const MapUpdateStats st = map.update(coneFrame(80.0, 12.0));
+    ASSERT_GT(st.new_spheres, 10) << "pinhole " << pinhole;
+    double widest_x = 0, widest_y = 0;
+    for (const auto& [id, s] : map.spheres()) {
+      widest_x = std::max(widest_x, std::atan2(std::abs(s.centre.x()), s.centre.z()) * 180.0 / M_PI);
+      widest_y = std::max(widest_y, std::atan2(std::abs(s.centre.y()), s.centre.z()) * 180.0 / M_PI);
+    }
+    if (pinhole) {
+      EXPECT_LE(widest_x, 58.8 + 0.05);
+      EXPECT_LE(widest_y, 46.5 + 0.05);
+    } else {
+      EXPECT_GT(widest_x, 62.0);
+    }
+  }
+}
+
 TEST(SphereMapRules, ASidePointLimitsSpheres) {
   // A sphere from an earlier view beside the camera; this frame sees a wall 12 m ahead and a
   // point 85° off-axis (outside the 80° cone P_f is built from) or behind the camera, inside

@@ -102,7 +102,8 @@ TEST(ConfigFields, TheMethodSectionsWriteEveryField) {
   const YAML::Node m = effectiveOf("monospheres");
   EXPECT_EQ(keysAt(m, "method.map.ovde_params"), fieldCount<OpenAreaDepthConfig>());
   // The mapper: its section plus the two switches written under method.switches (ovde, dbof).
-  EXPECT_EQ(keysAt(m, "method.map") + 2, fieldCount<SphereMapConfig>());
+  // and pinhole_sample_rays, which method.reference_code.pinhole_rays sets.
+  EXPECT_EQ(keysAt(m, "method.map") + 2 + 1, fieldCount<SphereMapConfig>());
   // The planner: its section plus fff (under method.switches), its take-off and path-check keys
   // counted as one base each; viewpoints plus vpb (a switch); safety plus r_min_m, which is
   // method.map.r_min_m; each plus the published-code switch it takes from method.reference_code.
