@@ -238,6 +238,14 @@ TEST(BadInput, MeaninglessValuesThatLoadAreRefused) {
   t.expectRefused(run_s + "--set 'exploration_box={min: [-10, -10, -8], max: [10, 10, -1]}'",
                   {"s.yaml", "exploration_box", "not above the ground plane 'ground'"});
   t.expectRefused(run_s + "--set camera.width_px=100000", {"camera.width_px", "must be in [16, 4096]"});
+  // The published code's switches (method.reference_code): names, values, MonoSpheres only.
+  t.expectRefused(run_s + "--set method.reference_code.pinhole=true", {"method.reference_code.pinhole", "unknown key"});
+  t.expectRefused(run_s + "--set method.reference_code.path_resend_8s=8",
+                  {"method.reference_code.path_resend_8s", "true or false"});
+  t.expectRefused(run_s + "--set method.reference_code=paper", {"method.reference_code", "published, intended"});
+  t.write("g.yaml", "base: " + kSrc + "/scenarios/missions/grid_random.yaml\nworld: w.xml\nduration_s: 2\n");
+  t.expectRefused("run " + t.p("g.yaml") + " --out " + t.p("o") + " --set method.reference_code=published",
+                  {"method.reference_code", "unknown key"});
   // Waypoints mean nothing to a mission: refused, not ignored.
   t.expectRefused(run_s + "--set 'trajectory.waypoints=[[0, 0, 1]]'", {"trajectory.waypoints", "msbench fly"});
   // --set: the key's syntax, and a missing value.
