@@ -13,6 +13,10 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/tools/cli_helpers.h"
+#include "tools/config/scenario_yaml.h"
+#include "tools/config/world_registry.h"
+#include "tools/loop/mission.h"
+#include "tools/results/perception_log.h"
 
 namespace {
 
@@ -90,6 +94,43 @@ TEST(Mission, ShortMissionExploresAndIsDeterministic) {
   EXPECT_EQ(readText(d / "a" / "coverage.csv"), readText(d / "b" / "coverage.csv"));
   EXPECT_EQ(readText(d / "a" / "map.ply"), readText(d / "b" / "map.ply"));
   EXPECT_EQ(readText(d / "a" / "trajectory.csv"), readText(d / "b" / "trajectory.csv"));
+}
+
+TEST(Mission, ThePerceptionLogPairsEachFrameWithItsOwnTruePose) {
+  // `run --record` under the mission defaults (perception 3 frames late, two threads): each
+  // logged frame carries the true camera pose of the frame its points came from (what vio-eval
+  // and the replays take as the SLAM points' truth), not that of the frame rendered when they
+  // were used. The same mission stepped here gives both.
+  const fs::path d = tempDir("record");
+  ASSERT_EQ(run("run '" + kScenario + "' --duration 20 --quiet --record '" + (d / "log").string() + "' --out '" +
+                    (d / "r").string() + "'",
+                d / "out"),
+            0)
+      << readText(d / "out");
+  const msb::PerceptionLog log = msb::PerceptionLog::read((d / "log").string());
+  msb::ScenarioSpec spec = msb::loadScenario(kScenario, {"duration_s=20"});
+  ASSERT_EQ(spec.flight.perception.latency_frames, 3);
+  const msb::MissionWorld world = msb::prepareMissionWorld(kScenario, spec);
+  msb::Mission mission(spec, world.box, nullptr);
+  std::vector<std::pair<int64_t, msb::Pose>> own, rendered_then;
+  std::map<int64_t, msb::Pose> rendered;
+  while (mission.running()) {
+    const msb::TickRecord& t = mission.step();
+    if (t.frame) rendered[t.frame->tick] = t.frame->T_W_C;
+    if (t.points)
+      own.emplace_back(t.perceived->tick, t.perceived->T_W_C), rendered_then.emplace_back(t.tick, rendered.at(t.tick));
+  }
+  ASSERT_EQ(log.frames.size(), own.size());
+  ASSERT_GT(own.size(), 250u);
+  size_t moved = 0;
+  for (size_t k = 0; k < own.size(); ++k) {
+    EXPECT_EQ(log.frames[k].points.tick, own[k].first) << "frame " << k;
+    // Stored as translation and quaternion: the rotation to rounding.
+    EXPECT_EQ(log.frames[k].T_W_C_truth.translation(), own[k].second.translation()) << "frame " << k;
+    EXPECT_TRUE(log.frames[k].T_W_C_truth.matrix().isApprox(own[k].second.matrix(), 1e-12)) << "frame " << k;
+    moved += !log.frames[k].T_W_C_truth.matrix().isApprox(rendered_then[k].second.matrix(), 1e-6);
+  }
+  EXPECT_GT(moved, own.size() / 2);  // the frame rendered when the points were used is elsewhere
 }
 
 TEST(Mission, ShortGridMissionExploresAndIsDeterministic) {
