@@ -132,6 +132,13 @@ struct WallView {
     p.anchor_tick = anchor_tick;
     return p;
   }
+  // A frame of tick `tick` with `points`.
+  static SlamPointsFrame frame(int64_t tick, std::vector<SlamPoint> points) {
+    SlamPointsFrame f;
+    f.tick = tick;
+    f.points = std::move(points);
+    return f;
+  }
   WallView() {
     T_W_C.linear() = Eigen::Quaterniond::FromTwoVectors(camera.unproject(Vec2(camera.cx(), camera.cy())), Vec3::UnitX())
                          .toRotationMatrix();
@@ -144,18 +151,13 @@ TEST(CollisionAuditRecorder, CountsThePointsNewInAFrameOnThePartTheirAnchorRayMe
   const WallView v;
   CollisionAuditRecorder rec(truth, v.camera);
   // Frame of tick 30: point 1 is new (anchored at 30), point 2 was anchored at tick 10.
-  SlamPointsFrame f;
-  f.tick = 30;
-  f.points = {v.point(1, 30), v.point(2, 10)};
-  rec.addFrame(f, v.T_W_C, 30);
+  rec.addFrame(WallView::frame(30, {v.point(1, 30), v.point(2, 10)}), v.T_W_C, 30);
   CollisionAuditInput in = rec.input("wall_0_burned");
   EXPECT_EQ(in.object, "wall_0");
   EXPECT_EQ(in.slam_points_on_part, 1);
   EXPECT_EQ(in.slam_points_on_object, 1);
   // The same track again in a later frame is not counted twice.
-  f.tick = 33;
-  f.points = {v.point(1, 30), v.point(3, 33)};
-  rec.addFrame(f, v.T_W_C, 33);
+  rec.addFrame(WallView::frame(33, {v.point(1, 30), v.point(3, 33)}), v.T_W_C, 33);
   EXPECT_EQ(rec.input("wall_0_burned").slam_points_on_part, 2);
 }
 
@@ -165,10 +167,7 @@ TEST(CollisionAuditRecorder, RefusesAPoseOfAnotherFrame) {
   const WorldTruth truth = wallWorld();
   const WallView v;
   CollisionAuditRecorder rec(truth, v.camera);
-  SlamPointsFrame f;
-  f.tick = 30;
-  f.points = {v.point(1, 30)};
-  EXPECT_THROW(rec.addFrame(f, v.T_W_C, 130), std::logic_error);
+  EXPECT_THROW(rec.addFrame(WallView::frame(30, {v.point(1, 30)}), v.T_W_C, 130), std::logic_error);
   EXPECT_EQ(rec.input("wall_0_burned").slam_points_on_part, 0);
 }
 
