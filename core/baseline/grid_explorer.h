@@ -49,6 +49,9 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
+  /// The OctoMap leaf size: the authors' evaluation rule for OctoMap maps (BUG-11) scores the
+  /// grid baseline's free cells beside msbench's squares (coverage.area_published_rule_m2).
+  double octreeResolutionM() const { return map.resolution_m; }
 };
 
 /// What a goal chooser is asked at every goal check (estimate frame).

@@ -1,6 +1,8 @@
 #include "core/eval/mission_coverage.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/common/rng.h"
 
@@ -74,6 +76,20 @@ size_t MissionCoverage::trueFrameExploredExplorableColumns() const {
   return n;
 }
 
+void MissionCoverage::enablePublishedOctomapRule(double resolution_m) {
+  if (!(resolution_m > 0)) throw std::invalid_argument("MissionCoverage: the OctoMap resolution must be positive");
+  published_rule_.emplace(columns_.cellM());
+  published_rule_resolution_m_ = resolution_m;
+}
+
+double MissionCoverage::publishedRuleRadius(double half_side_m) const {
+  // EVAL: sidelen = OCTOMAP_CELLSIZE (0.5) · (len(markers) − index), index = the cell's tree
+  // depth, len(markers) = tree depth + 1: 0.5 · (k + 1) for a cell 2^k leaves wide, passed to
+  // mark_sphere_explored as a radius.
+  const double k = std::max(0.0, std::round(std::log2(2.0 * half_side_m / published_rule_resolution_m_)));
+  return 0.5 * (k + 1.0);
+}
+
 void MissionCoverage::sample(double t_s, double distance_m, const std::vector<FreeSpaceElement>& free_space) {
   // True-frame columns: each element keeps the correction of the moment it was first seen; an
   // element is placed (and its columns marked) when new or changed, and verified until settled.
@@ -91,6 +107,8 @@ void MissionCoverage::sample(double t_s, double distance_m, const std::vector<Fr
       const double key[6] = {double(d.id), e.centre.x(), e.centre.y(), e.centre.z(), e.radius, e.yaw_rad};
       e.key = fnv1a64(key, sizeof(key), uint64_t(d.footprint));
       columns_gt_.markPlaced(e);
+      if (published_rule_ && d.footprint == FreeSpaceElement::Footprint::kSquare)
+        published_rule_->markDisk(d.centre.head<2>(), publishedRuleRadius(d.radius));
       st.settled = false;
     }
     if (verified_ && !st.settled) st.settled = verified_->markElement(st.placed);

@@ -56,6 +56,13 @@ class MissionCoverage {
   const ColumnCoverage& trueFrameColumns() const { return columns_gt_; }
   /// Turns on the verified coverage (worlds with ground truth; the camera gives the rays).
   void enableVerification(const WorldTruth& truth, const FisheyeCamera& camera, const VerifiedCoverageConfig& config);
+  /// Also scores OctoMap free cells (square elements of leaf size `resolution_m` · 2^k) by the
+  /// authors' evaluation rule (EVAL process_explored_volume_octomap_gridmarking, BUG-11): a
+  /// cell of depth index k from the leaves counts as a disk of radius 0.5·(k + 1) m about its
+  /// centre (the marker array's side-length formula used as a radius), VIO frame, unbounded.
+  void enablePublishedOctomapRule(double resolution_m);
+  /// The columns of the published rule (null unless enabled).
+  const ColumnCoverage* publishedRuleColumns() const { return published_rule_ ? &*published_rule_ : nullptr; }
   /// The camera's true pose at this sample (verified coverage: what the camera saw).
   void look(const Pose& T_W_C_true);
   /// Records a sample at t_s: places the current free-space elements in the true frame (each
@@ -78,9 +85,13 @@ class MissionCoverage {
   size_t trueFrameExploredExplorableColumns() const;
 
  private:
+  double publishedRuleRadius(double half_side_m) const;  // a cell's disk radius under EVAL's rule
+
   Aabb box_;
   std::set<ColumnIndex> box_explorable_;
   ColumnCoverage columns_, columns_gt_;
+  std::optional<ColumnCoverage> published_rule_;
+  double published_rule_resolution_m_ = 0.0;
   // What the metric knows of each free-space element id (looked up only, never iterated): the
   // estimate → truth correction of its first sight, its geometry as last seen, its placement in
   // the true frame, and whether verification has nothing left to decide for it. An element seen

@@ -26,12 +26,24 @@ struct ReferenceCodeConfig {
   bool heading_check_signed = false;
   /// New spheres' sample rays are back-projected with the pinhole K over the whole image, as the
   /// published mapper does (SBM ~569-631, 812-813): they reach ±58.8° × ±46.5° about the optical
-  /// axis only, while the free-space polyhedron spans the fisheye's ±90°. (The same pinhole K in
-  /// DBOF's triangulation test, OVDE and viewpoint visibility is not modelled yet.)
+  /// axis only, while the free-space polyhedron spans the fisheye's ±90°. The viewpoints' frontier
+  /// visibility uses the same K (LNM getViewpointFrontierValue, CS getVisiblePoints): a frontier
+  /// counts only inside the pinhole frustum. (DBOF's and OVDE's uses of K are not modelled yet.)
   bool pinhole_rays = false;
   /// The 300 viewpoint samples take sphere number k of the whole map for k drawn below the count
   /// of reachable spheres: the oldest spheres, reachable or not, whatever the search radius.
   bool viewpoints_anywhere = false;
+  /// A failed path search keeps its goal for another try while the mission has failed at most
+  /// three searches in all; the published counter is never reset, so from the fourth failure on
+  /// every failed search fails its goal at once (LNM 185-186, 1505-1512).
+  bool failure_counter_never_reset = false;
+  /// The mapper's pruning test indexes the worked spheres with a stale loop index (SBM 750-756):
+  /// when the last worked sphere ends below r_min, the update neither re-links the worked
+  /// spheres nor prunes those below r_min or redundant ones; edges stay as they were.
+  bool worked_mask_scalar = false;
+  /// An update in which no new sphere passes returns early (SBM 800-804, 869-873): the frame's
+  /// points are not inserted as obstacle points and no frontier candidates are drawn from it.
+  bool early_return_stale = false;
 
   /// Every switch on: the published code as far as msbench models it.
   static ReferenceCodeConfig published() {
@@ -40,13 +52,16 @@ struct ReferenceCodeConfig {
     return c;
   }
   /// The switches by name with their member, in documentation order.
-  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 5>& switches() {
-    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 5> kSwitches = {{
+  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 8>& switches() {
+    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 8> kSwitches = {{
         {"path_resend_8s", &ReferenceCodeConfig::path_resend_8s},
         {"safety_cost_inverted", &ReferenceCodeConfig::safety_cost_inverted},
         {"heading_check_signed", &ReferenceCodeConfig::heading_check_signed},
         {"pinhole_rays", &ReferenceCodeConfig::pinhole_rays},
         {"viewpoints_anywhere", &ReferenceCodeConfig::viewpoints_anywhere},
+        {"failure_counter_never_reset", &ReferenceCodeConfig::failure_counter_never_reset},
+        {"worked_mask_scalar", &ReferenceCodeConfig::worked_mask_scalar},
+        {"early_return_stale", &ReferenceCodeConfig::early_return_stale},
     }};
     return kSwitches;
   }

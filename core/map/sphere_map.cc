@@ -84,7 +84,13 @@ void SphereMap::setRadius(uint64_t id, double r) {
   Sphere& s = state_.spheres.at(id);
   markDirty(s.centre, std::max(s.radius, r) + config_.shell_max_m);
   s.radius = r;
-  // Re-link: overlaps may appear or vanish.
+  relink(id);
+}
+
+void SphereMap::relink(uint64_t id) {
+  // Overlaps may have appeared or vanished.
+  const Sphere& s = state_.spheres.at(id);
+  const double r = s.radius;
   for (uint64_t j : state_.adjacency.at(id)) state_.adjacency[j].erase(id);
   auto& adj = state_.adjacency[id];
   adj.clear();
@@ -245,12 +251,15 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   updateSpheresNear(pf, constraints, touched, st);
   sampleNewSpheres(frame, pf, constraints, touched, st);
   sparsifyTouched(touched, st);
-  insertFrameObstacles(frame, st);
+  // The published early return (SBM 800-804, 869-873): without a new sphere the update ends
+  // before the obstacle points and the frontier candidates.
+  st.returned_early = config_.published_early_return && st.new_spheres == 0;
+  if (!st.returned_early) insertFrameObstacles(frame, st);
 
   // 10. Frontiers: re-validate the old ones against the new map, then sample new ones.
   t0 = Clock::now();
   st.dropped_frontiers = revalidateDirtyFrontiers();
-  sampleFrontiers(pf, cam, st);
+  if (!st.returned_early) sampleFrontiers(pf, cam, st);
   st.frontiers_ms = msSince(t0);
   std::vector<uint64_t> alive;
   for (uint64_t id : st.changed_spheres)
@@ -303,24 +312,62 @@ std::vector<Vec3> SphereMap::applyDbof(const SlamPointsFrame& frame, const FreeS
 
 void SphereMap::updateSpheresNear(const FreeSpacePolyhedron& pf, const std::vector<Vec3>& constraints,
                                   std::vector<uint64_t>& touched, MapUpdateStats& st) {
-  // Spheres near P_f (its bounding box inflated by the largest radius) get the rule's radius.
+  // Spheres near P_f (its bounding box inflated by the largest radius: the worked set) get the
+  // rule's radius.
   const auto t0 = Clock::now();
   const auto [lo, hi] = pf.bounds();
-  for (uint64_t id : state_.sphere_grid.inBox(lo.array() - config_.r_max_m, hi.array() + config_.r_max_m)) {
-    const Sphere& s = state_.spheres.at(id);
-    const double r = ruleRadius(s.centre, s.radius, pf, constraints);
-    if (r == s.radius) continue;
+  const std::vector<uint64_t> worked =
+      state_.sphere_grid.inBox(lo.array() - config_.r_max_m, hi.array() + config_.r_max_m);
+  std::vector<double> radii;
+  radii.reserve(worked.size());
+  for (uint64_t id : worked)
+    radii.push_back(ruleRadius(state_.spheres.at(id).centre, state_.spheres.at(id).radius, pf, constraints));
+  if (config_.published_worked_mask && publishedStaleGraph(worked, radii, st)) {
+    st.spheres_ms = msSince(t0);
+    return;
+  }
+  for (size_t k = 0; k < worked.size(); ++k) {
+    const uint64_t id = worked[k];
+    const double r = radii[k], old = state_.spheres.at(id).radius;
+    if (r == old) {
+      // The published code re-links and prunes every worked sphere (edges or spheres it left
+      // stale before are put right here); the intended map never leaves them stale.
+      if (!config_.published_worked_mask) continue;
+      if (old < config_.r_min_m)
+        removeSphere(id), ++st.deleted_spheres;
+      else
+        relink(id);
+      continue;
+    }
     ++st.updated_spheres;
     if (r < config_.r_min_m) {
       removeSphere(id);
       ++st.deleted_spheres;
     } else {
-      if (r > s.radius) st.changed_spheres.push_back(id);
+      if (r > old) st.changed_spheres.push_back(id);
       setRadius(id, r);
       touched.push_back(id);
     }
   }
   st.spheres_ms = msSince(t0);
+}
+
+bool SphereMap::publishedStaleGraph(const std::vector<uint64_t>& worked, const std::vector<double>& radii,
+                                    MapUpdateStats& st) {
+  // SBM 750-756 tests `radii[worked[i]] < min_radius` with i left at the last index of the
+  // radius loop: a scalar. True: every worked sphere is taken for "too small" and then dropped
+  // from the set, so neither updateConnections nor removeSpheresIfRedundant sees any of them.
+  if (worked.empty() || radii.back() >= config_.r_min_m) return false;
+  for (size_t k = 0; k < worked.size(); ++k) {
+    Sphere& s = state_.spheres.at(worked[k]);
+    if (radii[k] == s.radius) continue;
+    ++st.updated_spheres;
+    markDirty(s.centre, std::max(s.radius, radii[k]) + config_.shell_max_m);
+    if (radii[k] > s.radius) st.changed_spheres.push_back(s.id);
+    s.radius = radii[k];  // the edges stay as they were
+  }
+  st.graph_stale = true;
+  return true;
 }
 
 Vec3 SphereMap::pinholeRay(const Vec2& px) const {

@@ -59,6 +59,13 @@ struct SphereMapConfig {
   /// New spheres' sample rays through the pinhole K (method.reference_code.pinhole_rays; not a
   /// key of its own): the published code's ±58.8° × ±46.5° instead of the fisheye's ±90°.
   bool pinhole_sample_rays = false;
+  /// The published pruning test (method.reference_code.worked_mask_scalar; not a key of its
+  /// own): when the youngest sphere of an update's worked set ends below r_min, the worked
+  /// spheres keep their edges and no sphere of the set is pruned.
+  bool published_worked_mask = false;
+  /// The published early return (method.reference_code.early_return_stale; not a key of its
+  /// own): an update without a new sphere inserts no obstacle points and draws no frontiers.
+  bool published_early_return = false;
   double dbof_alpha = 1.1;       ///< deletion factor α
   double dbof_age_per_m = 0.0;   ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
   double r_max_m = 10.0;         ///< sphere radius cap
@@ -111,6 +118,8 @@ struct Frontier {
 /// Counts and stage times of one update (times are recorded, never used).
 struct MapUpdateStats {
   bool skipped = false;
+  bool graph_stale = false;     ///< published_worked_mask fired: edges and pruning left as they were
+  bool returned_early = false;  ///< published_early_return fired: no obstacle points, no frontiers
   int input_points = 0;
   int virtual_points = 0;  ///< active OVDE points added to P_f
   int deleted_obstacles = 0, protected_obstacles = 0;
@@ -227,6 +236,10 @@ class SphereMap {
   int revalidate(const std::vector<uint64_t>& ids);  // re-checks ids (ascending), drops failures
   void sampleFrontiers(const FreeSpacePolyhedron& pf, const Vec3& cam, MapUpdateStats& st);
   void setRadius(uint64_t id, double r);
+  void relink(uint64_t id);  // recomputes a sphere's edges from the current radii
+  // The published worked-set rule (published_worked_mask): radii set, edges and pruning left
+  // alone when the youngest worked sphere ends below r_min; true if it fired.
+  bool publishedStaleGraph(const std::vector<uint64_t>& worked, const std::vector<double>& radii, MapUpdateStats& st);
   // The steps of update() (numbered as there).
   std::vector<Vec3> pointsInView(const SlamPointsFrame& frame) const;                            // 1
   std::vector<Vec3> applyDbof(const SlamPointsFrame& frame, const FreeSpacePolyhedron& real_pf,  // 5

@@ -76,11 +76,17 @@ void MonoSpheresConfig::validate(ConfigChecker& c) const {
 namespace {
 // The planner's search uses the map's minimum radius: one quantity, one key. The published
 // code's switches reach the parts they change.
-MonoSpheresConfig withSharedKeys(MonoSpheresConfig c) {
+MonoSpheresConfig withSharedKeys(MonoSpheresConfig c, const FisheyeCamera& camera) {
   c.planner.safety.r_min_m = c.map.r_min_m;
-  c.planner.safety.inverted = c.reference_code.safety_cost_inverted;
-  c.planner.viewpoints.sample_anywhere = c.reference_code.viewpoints_anywhere;
-  c.map.pinhole_sample_rays = c.reference_code.pinhole_rays;
+  const ReferenceCodeConfig& rc = c.reference_code;
+  c.planner.safety.inverted = rc.safety_cost_inverted;
+  c.planner.viewpoints.sample_anywhere = rc.viewpoints_anywhere;
+  c.map.pinhole_sample_rays = rc.pinhole_rays;
+  if (rc.pinhole_rays)
+    c.planner.viewpoints.pinhole_view = {true, camera.cx() / camera.fx(), (camera.width() - camera.cx()) / camera.fx(),
+                                         camera.cy() / camera.fy(), (camera.height() - camera.cy()) / camera.fy()};
+  c.map.published_worked_mask = rc.worked_mask_scalar;
+  c.map.published_early_return = rc.early_return_stale;
   return c;
 }
 // The graph repair's parameters from the planner's keys.
@@ -113,7 +119,7 @@ GoalChoiceConfig goalChoiceConfig(const MonoSpheresPlannerConfig& p, const Refer
 
 MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const FisheyeCamera& camera,
                                          const ExplorerContext& context)
-    : config_(withSharedKeys(checkValid(config))),
+    : config_(withSharedKeys(checkValid(config), camera)),
       context_(context),
       map_(config_.map, camera, context.seed),
       clearance_(map_, ClearanceConfig{config_.planner.check_ahead_m, config_.planner.check_clearance_m,
@@ -126,7 +132,11 @@ MonoSpheresExplorer::MonoSpheresExplorer(const MonoSpheresConfig& config, const 
 
 MonoSpheresExplorer::~MonoSpheresExplorer() = default;
 
-void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) { map_.update(frame); }
+void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) {
+  const MapUpdateStats st = map_.update(frame);
+  if (st.graph_stale) ++counters_[MonoSpheresCounter::kMapUpdatesGraphStale];
+  if (st.returned_early) ++counters_[MonoSpheresCounter::kMapUpdatesReturnedEarly];
+}
 
 PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
   last_send_s_ = s.t_s;
@@ -311,6 +321,11 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
     }
     if (clear) break;
     spath.reset();
+  }
+  if (!spath && config_.reference_code.failure_counter_never_reset && ++failed_searches_ <= kPublishedSearchTries) {
+    // The published code keeps the goal and sends nothing; the next step searches again.
+    ++counters_[MonoSpheresCounter::kSearchRetries];
+    return std::nullopt;
   }
   if (!spath) {
     failGoal(s.t_s, MonoSpheresCounter::kGoalsFailedUnreachable);

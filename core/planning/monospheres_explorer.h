@@ -91,6 +91,9 @@ struct MonoSpheresPlannerConfig : TakeoffConfig, PathCheckConfig {  // take-off 
 
 /// The published code's path re-send period (LNM mrs_path_failing_time), s.
 inline constexpr double kPublishedResendS = 8.0;
+/// Failed path searches the published code tolerates in a whole mission before a failed search
+/// fails its goal (LNM max_goal_vp_pathfinding_times).
+inline constexpr int kPublishedSearchTries = 3;
 
 /// Mapper + planner configuration of the method.
 struct MonoSpheresConfig {
@@ -130,6 +133,9 @@ enum class MonoSpheresCounter {
   kLinksUsed,
   kClearanceEscapes,
   kReachableSpheres,
+  kSearchRetries,
+  kMapUpdatesGraphStale,
+  kMapUpdatesReturnedEarly,
   kCount
 };
 /// The JSON names of MonoSpheresCounter, in its order.
@@ -151,7 +157,10 @@ inline constexpr std::array<const char*, size_t(MonoSpheresCounter::kCount)> kMo
     "relaxed_steps",
     "links_used",
     "clearance_escapes",
-    "reachable_spheres"};
+    "reachable_spheres",
+    "search_retries",
+    "map_updates_graph_stale",
+    "map_updates_returned_early"};
 
 /// The MonoSpheres explorer.
 class MonoSpheresExplorer : public Explorer {
@@ -206,6 +215,7 @@ class MonoSpheresExplorer : public Explorer {
   TakeoffSequence takeoff_;
   double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9, no_goal_since_s_ = -1.0;
   double last_route_send_s_ = -1e9;  // the last path to the carrot (the published 8 s timer)
+  int failed_searches_ = 0;          // the published mission-wide count (never reset)
   std::vector<Vec3> last_path_;
   std::vector<uint64_t> reachable_;  // this step's reachable spheres (ascending)
   Counters<MonoSpheresCounter> counters_{kMonoSpheresCounterNames};

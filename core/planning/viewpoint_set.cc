@@ -43,8 +43,22 @@ bool ViewpointSet::sees(const View& v, const Frontier& f) const {
   const Vec3 ray = f.position - v.p;
   const double d = ray.norm();
   if (d < 1e-6 || d > config_.frontier_range_m) return false;
-  if (ray.dot(v.heading) < cos_half_fov_ * d) return false;  // outside the useful field of view
-  return f.normal.dot(ray) < 0;                              // not from its unknown side
+  if (config_.pinhole_view.on) {
+    if (!inPinholeFrustum(v, ray)) return false;
+  } else if (ray.dot(v.heading) < cos_half_fov_ * d) {
+    return false;  // outside the useful field of view
+  }
+  return f.normal.dot(ray) < 0;  // not from its unknown side
+}
+
+bool ViewpointSet::inPinholeFrustum(const View& v, const Vec3& ray) const {
+  // The published getVisiblePoints: in front of the level camera and projected by K strictly
+  // inside the image (camera x to the right of the heading, y down).
+  const double z = ray.dot(v.heading);
+  if (z <= 0) return false;
+  const double x = (ray.x() * v.heading.y() - ray.y() * v.heading.x()) / z, y = -ray.z() / z;
+  const PinholeFrustum& f = config_.pinhole_view;
+  return x > -f.left && x < f.right && y > -f.up && y < f.down;
 }
 
 std::vector<uint64_t> ViewpointSet::visibleFrontiers(const SphereMap& map, const View& v) const {

@@ -18,6 +18,12 @@
 
 namespace msb {
 
+/// The image of a level pinhole camera as tangents of its half-angles about the optical axis.
+struct PinholeFrustum {
+  bool on = false;
+  double left = 0, right = 0, up = 0, down = 0;  ///< cx/fx, (w − cx)/fx, cy/fy, (h − cy)/fy
+};
+
 /// Viewpoint sampling, value and blocking parameters.
 struct ViewpointConfig {
   int candidates = 300;              ///< samples per planning step
@@ -42,6 +48,10 @@ struct ViewpointConfig {
   /// own): candidate k is the map's sphere number i, i drawn below the count of reachable
   /// spheres — the oldest spheres, reachable or not.
   bool sample_anywhere = false;
+  /// The published code's visibility (method.reference_code.pinhole_rays; not a key of its own):
+  /// a frontier counts only where the pinhole K projects it inside the image. Off: the cone of
+  /// fov_half_angle_deg.
+  PinholeFrustum pinhole_view;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -127,6 +137,8 @@ class ViewpointSet {
   static View viewOf(const Vec3& p, double yaw);
   // True if frontier f passes the value test from the pose: in range, in view, facing.
   bool sees(const View& v, const Frontier& f) const;
+  // True if `ray` (from the view's position) falls inside the published pinhole frustum.
+  bool inPinholeFrustum(const View& v, const Vec3& ray) const;
   // Ids of the frontiers visible from the pose.
   std::vector<uint64_t> visibleFrontiers(const SphereMap& map, const View& v) const;
   // views() of frontier f (id `id`), the view limit on.

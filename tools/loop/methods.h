@@ -28,6 +28,9 @@ struct MethodChoice {
   /// The published code's defects the method runs with (MonoSpheres' method.reference_code;
   /// empty for methods without them), for the record and report labels.
   std::map<std::string, bool> reference_code;
+  /// > 0: the method's free space is OctoMap cells of this leaf size, which the authors'
+  /// evaluation rule (BUG-11) also scores (coverage.area_published_rule_m2); 0: not applicable.
+  double octree_resolution_m = 0.0;
   /// Creates the explorer for a mission.
   std::function<std::unique_ptr<Explorer>(const FisheyeCamera&, const ExplorerContext&)> make;
   /// Why the method that flew cannot be rebuilt from the scenario ("" = it can): an in-process
@@ -49,6 +52,7 @@ MethodChoice methodChoice(std::string type, const Config& config) {
   m.config = c;
   if constexpr (requires { c.switches(); }) m.switches = c.switches();
   if constexpr (requires { c.referenceCode(); }) m.reference_code = c.referenceCode();
+  if constexpr (requires { c.octreeResolutionM(); }) m.octree_resolution_m = c.octreeResolutionM();
   m.make = [c](const FisheyeCamera& camera, const ExplorerContext& context) -> std::unique_ptr<Explorer> {
     if constexpr (std::is_constructible_v<ExplorerT, const Config&, const FisheyeCamera&, const ExplorerContext&>)
       return std::make_unique<ExplorerT>(c, camera, context);

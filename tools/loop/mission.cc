@@ -38,6 +38,7 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
       metric_schedule_(spec.flight.physics.physics_hz, spec.mission.metric_rate_hz, "mission.metric_rate_hz"),
       truth_(truth) {
   if (truth_) frontend_.emplace(*truth_);
+  if (spec_.method.octree_resolution_m > 0) coverage_.enablePublishedOctomapRule(spec_.method.octree_resolution_m);
   LoopSetup setup;
   setup.explorer = explorer_.get();
   setup.truth = truth;
@@ -115,6 +116,7 @@ MissionResult Mission::finish() {
   r.coverage = coverage_.samples();
   r.columns = coverage_.columns();
   r.columns_gt = coverage_.trueFrameColumns();
+  if (const ColumnCoverage* p = coverage_.publishedRuleColumns()) r.columns_published_rule = *p;
   if (const VerifiedCoverage* v = coverage_.verified()) {
     r.columns_verified = v->verified();
     r.seen_columns = v->seen().size();

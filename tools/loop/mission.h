@@ -44,10 +44,12 @@ struct MissionResult {
   ColumnCoverage columns;                          ///< explored columns (VIO frame)
   ColumnCoverage columns_gt;                       ///< explored columns (true frame)
   std::optional<ColumnCoverage> columns_verified;  ///< verified columns (worlds with ground truth)
-  size_t seen_columns = 0;                         ///< columns the camera saw (verified coverage's (c))
-  int box_verified_explorable_columns = 0;         ///< verified columns among the box's explorable ones
-  ExplorerSnapshot final_map;                      ///< the map at the end
-  std::map<std::string, double> counters;          ///< the method's counters at the end
+  /// Columns by the authors' evaluation rule for OctoMap maps (grid baseline only; BUG-11).
+  std::optional<ColumnCoverage> columns_published_rule;
+  size_t seen_columns = 0;                  ///< columns the camera saw (verified coverage's (c))
+  int box_verified_explorable_columns = 0;  ///< verified columns among the box's explorable ones
+  ExplorerSnapshot final_map;               ///< the map at the end
+  std::map<std::string, double> counters;   ///< the method's counters at the end
   StageTimes stages;
   std::vector<std::pair<double, StageTimes>> stage_timeline;  ///< cumulative, every 10 simulated s
   std::vector<double> map_update_ms;                          ///< wall time of every map update (recorded only)

@@ -45,6 +45,9 @@ nlohmann::json coverageJson(const MissionResult& r) {
       {"longest_no_gain_s", r.longest_no_gain.lengthS()},
       {"longest_no_gain_from_s", r.longest_no_gain.start_s},
       {"area_true_frame_m2", r.columns_gt.areaM2()},
+      // The authors' evaluation rule for OctoMap maps (grid baseline; BUG-11, docs/metrics.md).
+      {"area_published_rule_m2",
+       r.columns_published_rule ? nlohmann::json(r.columns_published_rule->areaM2()) : nlohmann::json(nullptr)},
       // Verified coverage (docs/metrics.md): covered, truly free and seen; null without ground truth.
       {"verified_area_m2", r.columns_verified ? nlohmann::json(r.columns_verified->areaM2()) : nlohmann::json(nullptr)},
       {"verified_box_share", r.columns_verified && r.box_explorable_columns

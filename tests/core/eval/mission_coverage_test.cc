@@ -63,5 +63,29 @@ TEST(MissionCoverage, LongestIntervalWithoutGain) {
   EXPECT_DOUBLE_EQ(longestIntervalWithoutGain({}).lengthS(), 0.0);
 }
 
+TEST(MissionCoverage, ThePublishedOctomapRuleScoresACellAsADiskOfItsDepthIndex) {
+  // EVAL (process_explored_volume_octomap_gridmarking, BUG-11): a free cell 2^k leaves wide
+  // (leaf 0.5 m) counts as a disk of radius 0.5·(k + 1) about its centre. A leaf 0.3 m from a
+  // node: disk r 0.5 takes the node, msbench's square (half side 0.25) does not. A cell of
+  // 8 m (k = 4): disk r 2.5 about (5, 5) takes 5 nodes, the square [1, 9]² takes 9.
+  const Aabb box{Vec3(-10, -10, 0), Vec3(20, 20, 5)};
+  const std::vector<FreeSpaceElement> cells = {{1, Vec3(0.3, 0, 1), 0.25, FreeSpaceElement::Footprint::kSquare},
+                                               {2, Vec3(5, 5, 1), 4.0, FreeSpaceElement::Footprint::kSquare}};
+  MissionCoverage cov(box, {});
+  EXPECT_EQ(cov.publishedRuleColumns(), nullptr);
+  cov.enablePublishedOctomapRule(0.5);
+  cov.columns().markFreeSpace(cells);
+  cov.sample(1.0, 0.0, cells);
+  ASSERT_NE(cov.publishedRuleColumns(), nullptr);
+  const auto& rule = cov.publishedRuleColumns()->columns();
+  EXPECT_EQ(rule.size(), 6u);
+  EXPECT_TRUE(rule.count({0, 0}));
+  EXPECT_EQ(cov.columns().count(), 9u);
+  EXPECT_FALSE(cov.columns().columns().count({0, 0}));
+  // Cumulative, and disks (spheres) are not OctoMap cells: they add nothing to the rule.
+  cov.sample(2.0, 0.0, {{3, Vec3(20, 20, 1), 5.0}});
+  EXPECT_EQ(cov.publishedRuleColumns()->count(), 6u);
+}
+
 }  // namespace
 }  // namespace msb

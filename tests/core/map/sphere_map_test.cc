@@ -418,5 +418,76 @@ TEST(SphereMapRules, PointsTooUncertainInDepthCanBeLeftOut) {
   }
 }
 
+// A frame whose wall lies 12 m ahead, with extra points behind the camera.
+SlamPointsFrame wallWith(const std::vector<Vec3>& extra) {
+  SlamPointsFrame f = wallFrame(18, 12, 3);
+  uint64_t id = 900;
+  for (const Vec3& x : extra) {
+    SlamPoint p;
+    p.track_id = id++;
+    p.p_W = x;
+    f.points.push_back(p);
+  }
+  return f;
+}
+
+TEST(SphereMapRules, ThePublishedWorkedMaskLeavesEdgesAndSmallSpheresWhenTheLastWorkedSphereShrinks) {
+  // method.reference_code.worked_mask_scalar (SBM 750-756). Behind the camera (outside P_f, so
+  // only points change them): a and b overlap (3.5 m apart, r 2); a point shrinks a to 1.45 m,
+  // so they no longer do. c, the youngest sphere of the update's worked set, is shrunk to 1 m
+  // (below r_min 1.4) by another point, or not when that point is absent.
+  for (const bool published : {false, true}) {
+    for (const bool c_shrinks : {false, true}) {
+      SphereMapConfig cfg;
+      cfg.published_worked_mask = published;
+      SphereMap map(cfg, FisheyeCamera{}, 2);
+      const uint64_t a = SphereMapTestSeam::addSphere(map, {-3.5, 0, -3}, 2.0);
+      const uint64_t b = SphereMapTestSeam::addSphere(map, {0, 0, -3}, 2.0);
+      const uint64_t c = SphereMapTestSeam::addSphere(map, {6, 0, -3}, 2.0);
+      ASSERT_TRUE(map.neighbours(a).count(b));
+      std::vector<Vec3> extra = {{-4.95, 0, -3}};
+      if (c_shrinks) extra.push_back({7, 0, -3});
+      const MapUpdateStats st = map.update(wallWith(extra));
+      ASSERT_NEAR(map.spheres().at(a).radius, 1.45, 1e-9);
+      const bool fires = published && c_shrinks;
+      EXPECT_EQ(st.graph_stale, fires) << published << c_shrinks;
+      // Fired: the a–b edge stays though the spheres no longer overlap, and c stays below
+      // r_min; otherwise the edge is gone and c is pruned.
+      EXPECT_EQ(map.neighbours(a).count(b) == 1, fires) << published << c_shrinks;
+      EXPECT_EQ(map.spheres().count(c) == 1, !c_shrinks || fires) << published << c_shrinks;
+      if (fires) {
+        EXPECT_NEAR(map.spheres().at(c).radius, 1.0, 1e-9);
+      }
+    }
+  }
+}
+
+TEST(SphereMapRules, ThePublishedEarlyReturnInsertsNoPointsWhenNoNewSpherePasses) {
+  // method.reference_code.early_return_stale (SBM 800-804, 869-873): a wall 1 m ahead leaves
+  // no room for a sphere of r_min; the published update returns before the obstacle points and
+  // the frontier candidates, after DBOF has deleted an old point seen again from closer.
+  for (const bool published : {false, true}) {
+    SphereMapConfig cfg;
+    cfg.published_early_return = published;
+    SphereMap map(cfg, FisheyeCamera{}, 2);
+    const uint64_t old = SphereMapTestSeam::addObstacle(map, {0, 0, 0.8}, 5.0);
+    const MapUpdateStats st = map.update(wallFrame(1.0, 1.0, 3));
+    ASSERT_FALSE(st.skipped);
+    ASSERT_EQ(st.new_spheres, 0);
+    EXPECT_FALSE(map.obstacles().count(old)) << published;  // DBOF ran in both
+    EXPECT_EQ(st.returned_early, published);
+    EXPECT_EQ(st.inserted_obstacles == 0, published);
+    EXPECT_EQ(map.obstacles().empty(), published);
+  }
+  // An update that adds a sphere goes on to the end either way.
+  SphereMapConfig cfg;
+  cfg.published_early_return = true;
+  SphereMap map(cfg, FisheyeCamera{}, 2);
+  const MapUpdateStats st = map.update(wallFrame(18, 12, 3));
+  EXPECT_GT(st.new_spheres, 0);
+  EXPECT_FALSE(st.returned_early);
+  EXPECT_GT(st.inserted_obstacles, 0);
+}
+
 }  // namespace
 }  // namespace msb

@@ -404,5 +404,44 @@ TEST(MonoSpheresExplorer, ThePublishedCodeResendsThePathOnlyEvery8Seconds) {
   }
 }
 
+TEST(MonoSpheresExplorer, ThePublishedCodeToleratesThreeFailedSearchesInAWholeMission) {
+  // method.reference_code.failure_counter_never_reset (LNM 185-186, 1505-1512): an obstacle
+  // point on the corridor's only first edge blocks every route; the edge is passable again at
+  // each step (a short block), so every step's search fails. The published code keeps the goal
+  // for the mission's first three failed searches and sends nothing; from the fourth on each
+  // failed search fails its goal at once, as the intended method's first does.
+  for (const bool published : {false, true}) {
+    MonoSpheresConfig c;
+    c.planner.blocked_edge_timeout_s = 0.1;
+    c.reference_code.failure_counter_never_reset = published;
+    Fixture f(c);
+    f.corridorWithFrontiers();
+    SphereMapTestSeam::addObstacle(MonoSpheresTestSeam::map(f.explorer), {2, 0, 2}, 2.0);
+    f.skipTakeoff();
+    uint64_t first = 0;
+    for (int k = 0; k < 4; ++k) {
+      const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0 + 0.2 * k));
+      if (k == 0) first = f.explorer.goal() ? f.explorer.goal() : first;
+      if (!published) {
+        EXPECT_EQ(f.counter("goals_failed_unreachable"), 1.0) << "step " << k;  // at its first failure
+        EXPECT_EQ(f.counter("search_retries"), 0.0);
+        break;
+      }
+      EXPECT_EQ(f.counter("search_retries"), double(std::min(k + 1, 3))) << "step " << k;
+      EXPECT_EQ(f.counter("goals_failed_unreachable"), k < 3 ? 0.0 : 1.0) << "step " << k;
+      if (k < 3) {
+        EXPECT_FALSE(cmd) << "step " << k;  // nothing sent
+        EXPECT_EQ(f.explorer.goal(), first) << "step " << k;
+        ASSERT_NE(first, 0u);
+      }
+    }
+    if (!published) continue;
+    // The counter is never reset: the next goal fails at its first failed search.
+    f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 2.0));
+    EXPECT_EQ(f.counter("search_retries"), 3.0);
+    EXPECT_EQ(f.counter("goals_failed_unreachable"), 2.0);
+  }
+}
+
 }  // namespace
 }  // namespace msb

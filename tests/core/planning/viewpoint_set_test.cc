@@ -267,5 +267,33 @@ TEST(ViewpointSet, ThePublishedSamplingTakesTheOldestSpheresReachableOrNot) {
   }
 }
 
+TEST(ViewpointSet, ThePublishedPinholeVisibilityCountsOnlyFrontiersInsideTheImage) {
+  // method.reference_code.pinhole_rays (LNM getViewpointFrontierValue, CS getVisiblePoints):
+  // frontiers project through the pinhole K (fx 227.4, 752 × 480) and count only inside the
+  // image, ±58.8° horizontally and ±46.5° vertically; the intended cone is ±60° all round.
+  SphereMap map{SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1};
+  const Vec3 c(0, 0, 2);
+  SphereMapTestSeam::addSphere(map, c, 3.0);
+  const auto dir = [](double az_deg, double el_deg) {
+    const double az = az_deg * kDeg, el = el_deg * kDeg;
+    return Vec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+  };
+  // Inside both: straight ahead, 55° to the left. Inside the cone only: 59.5° to the right,
+  // 50° below.
+  for (const Vec3& d : {dir(0, 0), dir(55, 0), dir(-59.5, 0), dir(0, -50)})
+    ASSERT_TRUE(map.tryAddFrontier(c + 4.5 * d)) << d.transpose();
+  const FisheyeCamera cam(FisheyeCameraConfig{});
+  ViewpointConfig pinhole;
+  pinhole.pinhole_view = {true, cam.cx() / cam.fx(), (cam.width() - cam.cx()) / cam.fx(), cam.cy() / cam.fy(),
+                          (cam.height() - cam.cy()) / cam.fy()};
+  ASSERT_NEAR(std::atan(pinhole.pinhole_view.right) / kDeg, 58.8, 0.05);
+  ASSERT_NEAR(std::atan(pinhole.pinhole_view.down) / kDeg, 46.5, 0.05);
+  EXPECT_EQ(ViewpointSet(ViewpointConfig{}, 1).value(map, c, 0.0), 4);
+  EXPECT_EQ(ViewpointSet(pinhole, 1).value(map, c, 0.0), 2);
+  // Turned 90° to the left, the frontier 55° left lies 35° right of the axis: inside both.
+  EXPECT_EQ(ViewpointSet(pinhole, 1).value(map, c, M_PI / 2), 1);
+  EXPECT_EQ(ViewpointSet(ViewpointConfig{}, 1).value(map, c, M_PI / 2), 1);
+}
+
 }  // namespace
 }  // namespace msb

@@ -102,13 +102,15 @@ TEST(ConfigFields, TheMethodSectionsWriteEveryField) {
   const YAML::Node m = effectiveOf("monospheres");
   EXPECT_EQ(keysAt(m, "method.map.ovde_params"), fieldCount<OpenAreaDepthConfig>());
   // The mapper: its section plus the two switches written under method.switches (ovde, dbof).
-  // and pinhole_sample_rays, which method.reference_code.pinhole_rays sets.
-  EXPECT_EQ(keysAt(m, "method.map") + 2 + 1, fieldCount<SphereMapConfig>());
+  // and the three that method.reference_code sets (pinhole_rays, worked_mask_scalar,
+  // early_return_stale).
+  EXPECT_EQ(keysAt(m, "method.map") + 2 + 3, fieldCount<SphereMapConfig>());
   // The planner: its section plus fff (under method.switches), its take-off and path-check keys
   // counted as one base each; viewpoints plus vpb (a switch); safety plus r_min_m, which is
   // method.map.r_min_m; each plus the published-code switch it takes from method.reference_code.
   EXPECT_EQ(keysAt(m, "method.planner") + 1 - 2 - 2 + 2, fieldCount<MonoSpheresPlannerConfig>());
-  EXPECT_EQ(keysAt(m, "method.planner.viewpoints") + 1 + 1, fieldCount<ViewpointConfig>());
+  EXPECT_EQ(keysAt(m, "method.planner.viewpoints") + 1 + 2 /* viewpoints_anywhere, pinhole_rays */,
+            fieldCount<ViewpointConfig>());
   EXPECT_EQ(keysAt(m, "method.planner.safety") + 1 + 1, fieldCount<SafetyCostConfig>());
   EXPECT_EQ(keysAt(m, "method.reference_code"), fieldCount<ReferenceCodeConfig>());
   EXPECT_EQ(keysAt(m, "method.reference_code"), ReferenceCodeConfig::switches().size());

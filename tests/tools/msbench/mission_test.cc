@@ -146,6 +146,10 @@ TEST(Mission, ShortGridMissionExploresAndIsDeterministic) {
   EXPECT_GE(m["distance_flown_m"].get<double>(), 10.0);
   EXPECT_GE(m["coverage"]["area_box_m2"].get<double>(), 300.0);
   EXPECT_GT(m["map_update_ms"]["updates"].get<double>(), 100.0);
+  // The authors' evaluation rule for OctoMap maps, beside msbench's squares (BUG-11; the rule
+  // itself: MissionCoverage.ThePublishedOctomapRuleScoresACellAsADiskOfItsDepthIndex).
+  ASSERT_TRUE(m["coverage"]["area_published_rule_m2"].is_number()) << m["coverage"].dump(2);
+  EXPECT_GT(m["coverage"]["area_published_rule_m2"].get<double>(), 0.0);
   const auto rows = coverage(d / "a" / "coverage.csv");
   ASSERT_EQ(rows.size(), 31u);
   for (size_t i = 1; i < rows.size(); ++i) EXPECT_GE(rows[i].second, rows[i - 1].second);
