@@ -22,17 +22,6 @@
 
 namespace msb {
 
-/// Limits on a method's free space (docs/metrics.md, "Limits"): more elements than this in one
-/// sample, a radius above kMaxElementRadiusM, or a centre farther than kMaxElementOffsetM outside
-/// the exploration box ends the run as an error. They bound the metric's work per sample.
-inline constexpr size_t kMaxFreeSpaceElements = 5'000'000;
-inline constexpr double kMaxElementRadiusM = 250.0;
-inline constexpr double kMaxElementOffsetM = 1000.0;
-
-/// What is wrong with the free space (NaN, negative or too large radius, centre not finite or
-/// too far from `box`, too many elements), naming the element; nullopt when it is within limits.
-std::optional<std::string> freeSpaceProblem(const std::vector<FreeSpaceElement>& free_space, const Aabb& box);
-
 /// Explorable columns of `box` in the metric's node convention: the nodes (cell·i, cell·j)
 /// inside the box whose cell of side `cell_m` is not fully occupied.
 std::set<ColumnIndex> boxExplorableNodes(const WorldTruth& truth, const Aabb& box, double cell_m);

@@ -4,6 +4,7 @@
 
 #include "core/common/rng.h"
 #include "core/common/wall_time.h"
+#include "core/explorer/output_limits.h"
 #include "core/geometry/world_truth.h"
 #include "core/perception/oracle_features.h"
 #include "sim/render/fisheye_renderer.h"
@@ -236,16 +237,9 @@ void ClosedLoop::updateMap() {
 
 void ClosedLoop::checkWaypoints(const PathCommand& cmd, const VehicleState& vs) const {
   for (size_t i = 0; i < cmd.waypoints.size(); ++i) {
-    const Waypoint& w = cmd.waypoints[i];
-    std::string why;
-    if (!w.position_m.allFinite() || (w.heading_rad && !std::isfinite(*w.heading_rad)))
-      why = "is not finite";
-    else if ((w.position_m - spec_.start_position_m).norm() > kMaxWaypointDistanceM)
-      why = "lies " + std::to_string((w.position_m - spec_.start_position_m).norm()) +
-            " m from the start (the limit is " + std::to_string(int(kMaxWaypointDistanceM)) + " m)";
-    if (!why.empty())
+    if (const auto why = waypointProblem(cmd.waypoints[i], spec_.start_position_m))
       throw MethodOutputError("plan() at t = " + std::to_string(vs.t_s) + " s (tick " + std::to_string(vs.tick) +
-                              "): waypoint " + std::to_string(i) + " " + why);
+                              "): waypoint " + std::to_string(i) + " " + *why);
   }
 }
 

@@ -113,9 +113,6 @@ struct TickRecord {
 };
 
 /// One run of the closed loop (see file comment).
-/// The farthest a method's waypoint may lie from the start (docs/metrics.md, "Limits").
-inline constexpr double kMaxWaypointDistanceM = 1000.0;
-
 class ClosedLoop {
  public:
   /// Builds every component from its validated config (loads the world). Throws ConfigError
@@ -171,7 +168,7 @@ class ClosedLoop {
   void updateMap();
   void planPath();
   // Throws MethodOutputError for a waypoint that is not finite or lies beyond
-  // kMaxWaypointDistanceM of the start.
+  // kMaxWaypointDistanceM of the start (core/explorer/output_limits.h).
   void checkWaypoints(const PathCommand& cmd, const VehicleState& vs) const;
   void trackAndControl();
   void recordTick();

@@ -5,6 +5,7 @@
 
 #include "core/common/wall_time.h"
 #include "core/eval/slam_point_truth.h"
+#include "core/explorer/output_limits.h"
 
 namespace msb {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/common/rng.h"
-#include "core/eval/mission_coverage.h"
+#include "core/explorer/output_limits.h"
 
 namespace msb {
 namespace binding {

@@ -145,27 +145,5 @@ TEST(MissionCoverage, TrueFrameSquaresTurnWithTheCorrection) {
   EXPECT_EQ(cov.trueFrameColumns().count(), 1u);
 }
 
-TEST(FreeSpaceLimits, NamesTheBadElement) {
-  const Aabb box{Vec3(0, 0, 0), Vec3(10, 10, 5)};
-  FreeSpaceElement ok;
-  ok.radius = 2.0;
-  EXPECT_FALSE(freeSpaceProblem({ok}, box));
-  FreeSpaceElement nan = ok;
-  nan.centre.x() = std::nan("");
-  EXPECT_NE(freeSpaceProblem({ok, nan}, box)->find("element 1"), std::string::npos);
-  FreeSpaceElement huge = ok;
-  huge.radius = 1e9;
-  EXPECT_NE(freeSpaceProblem({huge}, box)->find("radius"), std::string::npos);
-  FreeSpaceElement negative = ok;
-  negative.radius = -1;
-  EXPECT_TRUE(freeSpaceProblem({negative}, box));
-  FreeSpaceElement far = ok;
-  far.centre = Vec3(1e300, 0, 0);
-  EXPECT_NE(freeSpaceProblem({far}, box)->find("outside the exploration box"), std::string::npos);
-  FreeSpaceElement inf = ok;
-  inf.radius = INFINITY;
-  EXPECT_TRUE(freeSpaceProblem({inf}, box));
-}
-
 }  // namespace
 }  // namespace msb
