@@ -31,7 +31,7 @@
 //      inserted, deleted or replaced) are re-validated. Validity depends on the spheres whose
 //      shell may hold the frontier (within r + shell_max_m) and on obstacle points up to
 //      frontierObstacleReach() away (the gap and the line-of-sight segments); every change to
-//      either marks that neighbourhood. revalidateFrontiers() re-checks all.
+//      either marks that neighbourhood.
 #pragma once
 
 #include <cstdint>
@@ -178,10 +178,6 @@ class SphereMap {
   const std::map<uint64_t, Frontier>& frontiers() const { return state_.frontiers; }
   /// Frontier test for a point: returns the normal if valid (ignoring frontier `self`).
   std::optional<Vec3> frontierNormal(const Vec3& x, uint64_t self = 0) const;
-  /// Adds a frontier at x if it passes the frontier test; returns its id.
-  std::optional<uint64_t> tryAddFrontier(const Vec3& x);
-  /// Drops frontiers that are no longer valid; returns how many.
-  int revalidateFrontiers();
   /// The id the next new frontier will get (ids only grow: a frontier with a smaller id existed
   /// before this call).
   uint64_t nextFrontierId() const { return state_.next_frontier; }
@@ -211,12 +207,16 @@ class SphereMap {
 
   /// How far from a frontier an obstacle point can change its validity (see step 10).
   double frontierObstacleReach() const;
-  /// Re-validates the frontiers near everything changed since the last update (step 10 does
-  /// this itself; tests and tools editing the map by hand call it); returns how many dropped.
-  int revalidateChangedFrontiers() { return revalidateDirtyFrontiers(); }
 
  private:
   friend struct SphereMapTestSeam;  // hand-built maps in tests (sphere_map_test_seam.h)
+  /// Adds a frontier at x if it passes the frontier test; returns its id (step 10; the seam).
+  std::optional<uint64_t> tryAddFrontier(const Vec3& x);
+  /// Drops frontiers that are no longer valid; returns how many (the seam).
+  int revalidateFrontiers();
+  /// Re-validates the frontiers near everything changed since the last update (step 10 does
+  /// this itself; tests editing the map by hand call it through the seam); returns how many dropped.
+  int revalidateChangedFrontiers() { return revalidateDirtyFrontiers(); }
   /// Adds a sphere directly (the test seam); returns its id. Links it into the graph.
   uint64_t addSphere(const Vec3& centre, double radius);
   /// Adds an obstacle point directly with its measurement distance; returns its id.

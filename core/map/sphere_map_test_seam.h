@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "core/map/sphere_map.h"
 
@@ -22,6 +23,12 @@ struct SphereMapTestSeam {
   }
   /// Removes an obstacle point (as DBOF does).
   static void eraseObstacle(SphereMap& m, uint64_t id) { m.eraseObstacle(id); }
+  /// Adds a frontier at x if it passes the frontier test; returns its id.
+  static std::optional<uint64_t> tryAddFrontier(SphereMap& m, const Vec3& x) { return m.tryAddFrontier(x); }
+  /// Drops every frontier that is no longer valid; returns how many.
+  static int revalidateFrontiers(SphereMap& m) { return m.revalidateFrontiers(); }
+  /// Re-validates the frontiers near what changed since the last update; returns how many dropped.
+  static int revalidateChangedFrontiers(SphereMap& m) { return m.revalidateChangedFrontiers(); }
 };
 
 }  // namespace msb

@@ -164,9 +164,9 @@ TEST(SphereMapRules, FrontierShellSpacingObstacleGapOneSidednessAndSkyNormal) {
   EXPECT_FALSE(map.frontierNormal({0, 0, 3}));
   EXPECT_TRUE(map.frontierNormal({0, 0, -3}));
   // Spacing between frontiers.
-  ASSERT_TRUE(map.tryAddFrontier({0, 3, 0}));
-  EXPECT_FALSE(map.tryAddFrontier({0.5, 3, 0}));
-  EXPECT_TRUE(map.tryAddFrontier({0, -3, 0}));
+  ASSERT_TRUE(SphereMapTestSeam::tryAddFrontier(map, {0, 3, 0}));
+  EXPECT_FALSE(SphereMapTestSeam::tryAddFrontier(map, {0.5, 3, 0}));
+  EXPECT_TRUE(SphereMapTestSeam::tryAddFrontier(map, {0, -3, 0}));
   // Gap to obstacle points.
   SphereMapTestSeam::addObstacle(map, {3.5, 0, 0}, 5.0);
   EXPECT_FALSE(map.frontierNormal({3, 0, 0}));
@@ -178,7 +178,7 @@ TEST(SphereMapRules, FrontierShellSpacingObstacleGapOneSidednessAndSkyNormal) {
   // Re-validation drops frontiers that new free space has swallowed.
   EXPECT_EQ(map.frontiers().size(), 2u);
   SphereMapTestSeam::addSphere(map, {0, 3.5, 0}, 1.8);
-  EXPECT_EQ(map.revalidateFrontiers(), 1);
+  EXPECT_EQ(SphereMapTestSeam::revalidateFrontiers(map), 1);
   EXPECT_EQ(map.frontiers().size(), 1u);
 }
 
@@ -293,39 +293,39 @@ TEST(SphereMapRules, AFrontierIsDroppedWhenThePointThatMadeItValidIsDeleted) {
   EXPECT_FALSE(f.map.frontierNormal(f.x));  // sees both spheres: two-sided
   // A point 1.7 m away on the line of sight to B (outside the 1.5 m gap) makes it one-sided.
   const uint64_t blocker = SphereMapTestSeam::addObstacle(f.map, {5.2, 0.15, 0}, 8.0);
-  const auto id = f.map.tryAddFrontier(f.x);
+  const auto id = SphereMapTestSeam::tryAddFrontier(f.map, f.x);
   ASSERT_TRUE(id);
-  f.map.revalidateChangedFrontiers();
+  SphereMapTestSeam::revalidateChangedFrontiers(f.map);
   ASSERT_TRUE(f.map.frontiers().count(*id));
   // Deleted (as DBOF deletes): the frontier is re-checked and dropped.
   SphereMapTestSeam::eraseObstacle(f.map, blocker);
-  EXPECT_EQ(f.map.revalidateChangedFrontiers(), 1);
+  EXPECT_EQ(SphereMapTestSeam::revalidateChangedFrontiers(f.map), 1);
   EXPECT_FALSE(f.map.frontiers().count(*id));
 }
 
 TEST(SphereMapRules, AFrontierIsDroppedWhenThePointThatMadeItValidIsReplaced) {
   BlockedSight f;
   SphereMapTestSeam::addObstacle(f.map, {5.2, 0.15, 0}, 8.0);
-  const auto id = f.map.tryAddFrontier(f.x);
+  const auto id = SphereMapTestSeam::tryAddFrontier(f.map, f.x);
   ASSERT_TRUE(id);
-  f.map.revalidateChangedFrontiers();
+  SphereMapTestSeam::revalidateChangedFrontiers(f.map);
   // Measured again from closer, 0.25 m to the side (step 9 replaces it): off the line of sight.
   ASSERT_TRUE(SphereMapTestSeam::insertObstacle(f.map, {5.2, 0.40, 0}, 4.0));
   EXPECT_EQ(f.map.obstacles().size(), 1u);
-  EXPECT_EQ(f.map.revalidateChangedFrontiers(), 1);
+  EXPECT_EQ(SphereMapTestSeam::revalidateChangedFrontiers(f.map), 1);
   EXPECT_FALSE(f.map.frontiers().count(*id));
 }
 
 TEST(SphereMapRules, AFrontierIsDroppedWhenAPointAppearsOnItsLineOfSight) {
   SphereMap map(SphereMapConfig{}, FisheyeCamera{}, 1);
   SphereMapTestSeam::addSphere(map, {0, 0, 0}, 2.0);
-  const auto id = map.tryAddFrontier({4.7, 0, 0});  // in the outer shell, facing the sphere
+  const auto id = SphereMapTestSeam::tryAddFrontier(map, {4.7, 0, 0});  // in the outer shell, facing the sphere
   ASSERT_TRUE(id);
-  map.revalidateChangedFrontiers();
+  SphereMapTestSeam::revalidateChangedFrontiers(map);
   // A point 2.5 m away, between the frontier and its only sphere: behind a wall now.
   SphereMapTestSeam::addObstacle(map, {2.2, 0, 0}, 6.0);
   EXPECT_GT(map.frontierObstacleReach(), 2.5);
-  EXPECT_EQ(map.revalidateChangedFrontiers(), 1);
+  EXPECT_EQ(SphereMapTestSeam::revalidateChangedFrontiers(map), 1);
   EXPECT_FALSE(map.frontiers().count(*id));
 }
 

@@ -23,7 +23,7 @@ struct Scene {
   Scene() {
     for (double y = 0; y <= 8; y += 2) spheres.push_back(SphereMapTestSeam::addSphere(map, {0, y, 2}, 3.0));
     for (double y = -4; y <= 12; y += 1.6)
-      for (double z = -1; z <= 5; z += 1.6) map.tryAddFrontier({4.5, y, z});
+      for (double z = -1; z <= 5; z += 1.6) SphereMapTestSeam::tryAddFrontier(map, {4.5, y, z});
     field = sphereCostsFrom(map, spheres.front(), SafetyCostConfig{});
     viewpoints.update(map, spheres, {100, 100, 2}, 0.0, 0.0, 0, [](const Vec3&) { return true; });
   }

@@ -56,7 +56,7 @@ struct Fixture {
     SphereMap& m = MonoSpheresTestSeam::map(explorer);
     for (double x : {0.0, 4.0, 8.0, 12.0}) chain.push_back(SphereMapTestSeam::addSphere(m, {x, 0, 2}, 3.0));
     for (double y = -4; y <= 4; y += 1.6)
-      for (double z = -1; z <= 5; z += 1.6) frontiers += bool(m.tryAddFrontier({16.5, y, z}));
+      for (double z = -1; z <= 5; z += 1.6) frontiers += bool(SphereMapTestSeam::tryAddFrontier(m, {16.5, y, z}));
   }
   double counter(const std::string& k) const { return explorer.counters().at(k); }
 
@@ -327,7 +327,7 @@ struct TwoParts : Fixture {
   void addFrontiers() {
     for (double y = -4; y <= 4; y += 1.6)
       for (double z = -1; z <= 5; z += 1.6)
-        frontiers += bool(MonoSpheresTestSeam::map(explorer).tryAddFrontier({x0 + 8.5, y, z}));
+        frontiers += bool(SphereMapTestSeam::tryAddFrontier(MonoSpheresTestSeam::map(explorer), {x0 + 8.5, y, z}));
   }
   double x0 = 0;
 };

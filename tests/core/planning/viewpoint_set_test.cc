@@ -18,7 +18,7 @@ struct Scene {
   Scene() {
     sphere = SphereMapTestSeam::addSphere(map, {0, 0, 2}, 3.0);
     for (double y = -4; y <= 4; y += 1.6)
-      for (double z = -1; z <= 5; z += 1.6) frontiers += bool(map.tryAddFrontier({4.5, y, z}));
+      for (double z = -1; z <= 5; z += 1.6) frontiers += bool(SphereMapTestSeam::tryAddFrontier(map, {4.5, y, z}));
   }
 };
 
@@ -73,7 +73,7 @@ TEST(ViewpointSet, WithNewFrontierBlockingMarkersLetNewerFrontiersThrough) {
     const uint64_t sphere = SphereMapTestSeam::addSphere(map, {0, 0, 2}, 3.0);
     int old_count = 0, new_count = 0;
     for (double y : {-2.4, -0.8})
-      for (double z : {0.4, 2.0, 3.6}) old_count += bool(map.tryAddFrontier({4.2, y, z}));
+      for (double z : {0.4, 2.0, 3.6}) old_count += bool(SphereMapTestSeam::tryAddFrontier(map, {4.2, y, z}));
     ViewpointConfig cfg;
     cfg.min_value = 4;
     ASSERT_GE(old_count, cfg.min_value);
@@ -97,7 +97,7 @@ TEST(ViewpointSet, WithNewFrontierBlockingMarkersLetNewerFrontiersThrough) {
     for (int k = 0; k < 3; ++k) vs.update(map, {sphere}, {100, 100, 2}, 0.0, 2.0 + k, 0, all);
     EXPECT_EQ(nearMarker(), 0) << new_frontiers;
     for (double y : {0.8, 2.4})
-      for (double z : {0.4, 2.0, 3.6}) new_count += bool(map.tryAddFrontier({4.2, y, z}));
+      for (double z : {0.4, 2.0, 3.6}) new_count += bool(SphereMapTestSeam::tryAddFrontier(map, {4.2, y, z}));
     ASSERT_GE(new_count, cfg.min_value);
     for (int k = 0; k < 3; ++k) vs.update(map, {sphere}, {100, 100, 2}, 0.0, 5.0 + k, 0, all);
     EXPECT_EQ(nearMarker() > 0, new_frontiers) << new_frontiers;
@@ -172,18 +172,18 @@ TEST(ViewpointSet, WithAFrontierViewLimitFrontiersRetireAfterThatManyLooks) {
   ASSERT_NE(old_id, 0u);
   const Vec3 at = s.map.frontiers().at(old_id).position;
   const uint64_t rock = SphereMapTestSeam::addObstacle(s.map, at + Vec3(0.5, 0, 0), 5.0);
-  s.map.revalidateChangedFrontiers();
+  SphereMapTestSeam::revalidateChangedFrontiers(s.map);
   ASSERT_FALSE(s.map.frontiers().count(old_id));
   SphereMapTestSeam::eraseObstacle(s.map, rock);
-  s.map.revalidateChangedFrontiers();
-  const auto new_id = s.map.tryAddFrontier(at);
+  SphereMapTestSeam::revalidateChangedFrontiers(s.map);
+  const auto new_id = SphereMapTestSeam::tryAddFrontier(s.map, at);
   ASSERT_TRUE(new_id.has_value());
   EXPECT_GT(*new_id, old_id);
   EXPECT_GE(vs.views(s.map, *new_id), 2);
   // New frontiers behind the sphere (normals +x): viewpoints facing them appear.
   int behind = 0;
   for (double y = -4; y <= 4; y += 1.6)
-    for (double z = -1; z <= 5; z += 1.6) behind += bool(s.map.tryAddFrontier({-4.5, y, z}));
+    for (double z = -1; z <= 5; z += 1.6) behind += bool(SphereMapTestSeam::tryAddFrontier(s.map, {-4.5, y, z}));
   ASSERT_GE(behind, 7);
   bool facing_back = false;
   for (int k = 0; k < 5; ++k) vs.update(s.map, {s.sphere}, far, 0.0, 30.0 + k, 0, all);
@@ -239,7 +239,7 @@ TEST(ViewpointSet, RelaxedValueAcceptsFewFrontiers) {
   SphereMap map{SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1};
   const uint64_t sphere = SphereMapTestSeam::addSphere(map, {0, 0, 2}, 3.0);
   int n = 0;
-  for (double y : {-1.6, 0.0, 1.6}) n += bool(map.tryAddFrontier({4.5, y, 2.0}));
+  for (double y : {-1.6, 0.0, 1.6}) n += bool(SphereMapTestSeam::tryAddFrontier(map, {4.5, y, 2.0}));
   ASSERT_EQ(n, 3);
   ViewpointSet vs(ViewpointConfig{}, 5);
   EXPECT_EQ(vs.update(map, {sphere}, {100, 100, 2}, 0.0, 0.0, 0, nullptr), 0);
@@ -281,7 +281,7 @@ TEST(ViewpointSet, ThePublishedPinholeVisibilityCountsOnlyFrontiersInsideTheImag
   // Inside both: straight ahead, 55° to the left. Inside the cone only: 59.5° to the right,
   // 50° below.
   for (const Vec3& d : {dir(0, 0), dir(55, 0), dir(-59.5, 0), dir(0, -50)})
-    ASSERT_TRUE(map.tryAddFrontier(c + 4.5 * d)) << d.transpose();
+    ASSERT_TRUE(SphereMapTestSeam::tryAddFrontier(map, c + 4.5 * d)) << d.transpose();
   const FisheyeCamera cam(FisheyeCameraConfig{});
   ViewpointConfig pinhole;
   pinhole.pinhole_view = {true, cam.cx() / cam.fx(), (cam.width() - cam.cx()) / cam.fx(), cam.cy() / cam.fy(),
