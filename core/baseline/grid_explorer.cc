@@ -156,11 +156,11 @@ std::vector<FreeSpaceElement> GridExplorer::freeSpace() const { return freeLeave
 ExplorerSnapshot GridExplorer::snapshot() const { return gridSnapshot(map_, goal_, last_path_); }
 
 std::map<std::string, double> GridExplorer::counters() const {
-  auto c = counters_.toMap();
+  Counters<GridCounter> c = counters_;
   const auto& tree = map_.tree();
-  c["leaves"] = double(tree.getNumLeafNodes());
-  c["map_memory_mb"] = double(tree.memoryUsage()) / (1024.0 * 1024.0);
-  return c;
+  c[GridCounter::kLeaves] = double(tree.getNumLeafNodes());
+  c[GridCounter::kMapMemoryMb] = double(tree.memoryUsage()) / (1024.0 * 1024.0);
+  return c.toMap();
 }
 
 }  // namespace msb

@@ -79,12 +79,14 @@ enum class GridCounter {
   kPathsFailed,
   kBlockedStops,
   kMapPoints,
+  kLeaves,       // the octree's leaves when asked (set by counters())
+  kMapMemoryMb,  // the octree's memory when asked (set by counters())
   kCount
 };
 /// The JSON names of GridCounter, in its order.
 inline constexpr std::array<const char*, size_t(GridCounter::kCount)> kGridCounterNames = {
-    "goals_chosen",          "goals_reached", "goals_timed_out", "goals_idle", "paths_sent",
-    "paths_to_closest_cell", "paths_failed",  "blocked_stops",   "map_points"};
+    "goals_chosen", "goals_reached", "goals_timed_out", "goals_idle", "paths_sent",   "paths_to_closest_cell",
+    "paths_failed", "blocked_stops", "map_points",      "leaves",     "map_memory_mb"};
 
 /// The grid explorer.
 class GridExplorer : public Explorer {

@@ -322,10 +322,10 @@ ExplorerSnapshot StarDiscoveryExplorer::snapshot() const {
 }
 
 std::map<std::string, double> StarDiscoveryExplorer::counters() const {
-  auto c = counters_.toMap();
-  c["leaves"] = double(map_.tree().getNumLeafNodes());
-  c["origins"] = double(origins_.size());
-  return c;
+  Counters<StarDiscoveryCounter> c = counters_;
+  c[StarDiscoveryCounter::kLeaves] = double(map_.tree().getNumLeafNodes());
+  c[StarDiscoveryCounter::kOrigins] = double(origins_.size());
+  return c.toMap();
 }
 
 }  // namespace msb

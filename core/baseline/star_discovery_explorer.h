@@ -109,13 +109,16 @@ enum class StarDiscoveryCounter {
   kBlockedStops,
   kPathsSent,
   kMapPoints,
+  kLeaves,   // the octree's leaves when asked (set by counters())
+  kOrigins,  // star origins so far (set by counters())
   kCount
 };
 /// The JSON names of StarDiscoveryCounter, in its order.
 inline constexpr std::array<const char*, size_t(StarDiscoveryCounter::kCount)> kStarDiscoveryCounterNames = {
     "stars",         "star_rays",         "global_steps",     "fallback_steps",
     "holds",         "interesting_cells", "transits_reached", "transits_failed",
-    "blocked_stops", "paths_sent",        "map_points"};
+    "blocked_stops", "paths_sent",        "map_points",       "leaves",
+    "origins"};
 
 /// The star discovery explorer.
 class StarDiscoveryExplorer : public Explorer {

@@ -399,33 +399,31 @@ ExplorerSnapshot MonoSpheresExplorer::snapshot() const {
 }
 
 std::map<std::string, double> MonoSpheresExplorer::counters() const {
-  auto c = counters_.toMap();
-  c["spheres"] = double(map_.spheres().size());
-  c["obstacle_points"] = double(map_.obstacles().size());
-  c["frontiers"] = double(map_.frontiers().size());
-  c["viewpoints"] = double(viewpoints_.viewpoints().size());
-  c["visited_markers"] = double(viewpoints_.markers().size());
-  c["viewpoints_passed"] = double(viewpoints_.passedCount());
-  c["frontiers_retired"] = double(viewpoints_.retiredFrontiers(map_));
+  using C = MonoSpheresCounter;
+  Counters<C> c = counters_;
+  c[C::kSpheres] = double(map_.spheres().size());
+  c[C::kObstaclePoints] = double(map_.obstacles().size());
+  c[C::kFrontiers] = double(map_.frontiers().size());
+  c[C::kViewpoints] = double(viewpoints_.viewpoints().size());
+  c[C::kVisitedMarkers] = double(viewpoints_.markers().size());
+  c[C::kViewpointsPassed] = double(viewpoints_.passedCount());
+  c[C::kFrontiersRetired] = double(viewpoints_.retiredFrontiers(map_));
   const CandidateRejections& r = viewpoints_.rejections();
-  c["candidates_outside_box"] = double(r.outside);
-  c["candidates_visited"] = double(r.visited);
-  c["candidates_blocked"] = double(r.blocked);
-  c["candidates_no_frontier"] = double(r.no_frontier);
-  c["candidates_low_value"] = double(r.low_value);
-  c["candidates_dominated"] = double(r.dominated);
-  c["links"] = 0;
-  for (const auto& [id, list] : repair_.links()) c["links"] += 0.5 * double(list.size());
+  c[C::kCandidatesOutsideBox] = double(r.outside);
+  c[C::kCandidatesVisited] = double(r.visited);
+  c[C::kCandidatesBlocked] = double(r.blocked);
+  c[C::kCandidatesNoFrontier] = double(r.no_frontier);
+  c[C::kCandidatesLowValue] = double(r.low_value);
+  c[C::kCandidatesDominated] = double(r.dominated);
+  for (const auto& [id, list] : repair_.links()) c[C::kLinks] += 0.5 * double(list.size());
   // Frontiers in the shell of a sphere the vehicle could reach at the last planning step.
-  double reachable_frontiers = 0;
   for (const auto& [id, f] : map_.frontiers())
     for (uint64_t sp : map_.spheresNear(f.position, config_.map.shell_max_m))
       if (std::binary_search(reachable_.begin(), reachable_.end(), sp)) {
-        ++reachable_frontiers;
+        ++c[C::kFrontiersReachable];
         break;
       }
-  c["frontiers_reachable"] = reachable_frontiers;
-  return c;
+  return c.toMap();
 }
 
 }  // namespace msb

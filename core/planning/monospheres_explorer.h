@@ -136,6 +136,22 @@ enum class MonoSpheresCounter {
   kSearchRetries,
   kMapUpdatesGraphStale,
   kMapUpdatesReturnedEarly,
+  // The state of the map and the viewpoint set at the time of asking (set by counters()).
+  kSpheres,
+  kObstaclePoints,
+  kFrontiers,
+  kViewpoints,
+  kVisitedMarkers,
+  kViewpointsPassed,
+  kFrontiersRetired,
+  kCandidatesOutsideBox,
+  kCandidatesVisited,
+  kCandidatesBlocked,
+  kCandidatesNoFrontier,
+  kCandidatesLowValue,
+  kCandidatesDominated,
+  kLinks,
+  kFrontiersReachable,
   kCount
 };
 /// The JSON names of MonoSpheresCounter, in its order.
@@ -160,7 +176,22 @@ inline constexpr std::array<const char*, size_t(MonoSpheresCounter::kCount)> kMo
     "reachable_spheres",
     "search_retries",
     "map_updates_graph_stale",
-    "map_updates_returned_early"};
+    "map_updates_returned_early",
+    "spheres",
+    "obstacle_points",
+    "frontiers",
+    "viewpoints",
+    "visited_markers",
+    "viewpoints_passed",
+    "frontiers_retired",
+    "candidates_outside_box",
+    "candidates_visited",
+    "candidates_blocked",
+    "candidates_no_frontier",
+    "candidates_low_value",
+    "candidates_dominated",
+    "links",
+    "frontiers_reachable"};
 
 /// The MonoSpheres explorer.
 class MonoSpheresExplorer : public Explorer {

@@ -103,6 +103,17 @@ TEST(Architecture, MethodsCannotSeeGroundTruthOrTheMetric) {
   EXPECT_GE(cmake_files, 3);  // planning, baseline, baseline/hover_turn
 }
 
+TEST(Architecture, MethodCountersAreTypedNotStrings) {
+  // A method's counters are named once beside their enumerator (core/explorer/counters.h): a
+  // counter written by a string key (`c["name"] = …`) would be a misspelling waiting to happen.
+  const std::regex string_key(R"(\[\s*"[A-Za-z_]+"\s*\]\s*(\+|-)?=)");
+  EXPECT_TRUE(std::regex_search("  c[\"spheres\"] = double(n);", string_key));
+  EXPECT_TRUE(std::regex_search("c[\"links\"] += 0.5;", string_key));
+  EXPECT_FALSE(std::regex_search("c[C::kSpheres] = double(n);", string_key));
+  for (const char* folder : kMethodFolders)
+    for (const auto& hit : matchingLines(fs::path(MSB_SOURCE_DIR) / folder, string_key)) ADD_FAILURE() << hit;
+}
+
 TEST(Architecture, TheExampleMethodUsesTheInterfaceAlone) {
   const fs::path dir = fs::path(MSB_SOURCE_DIR) / "core" / "baseline" / "hover_turn";
   const std::regex other(R"(^\s*#\s*include\s*"(?!core/(common|explorer|baseline/hover_turn)/))");

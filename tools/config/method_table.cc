@@ -294,6 +294,17 @@ MethodEntry methodEntry(const char* type, const char* summary, KeysFn keys, std:
     Config c = std::any_cast<const Config&>(config);
     keys(w, c);
   };
+  // An outside goal chooser for the explorers that take one (a compile-time check on the
+  // explorer type): the grid its goals, MonoSpheres its viewpoints. `x` is an explorer this
+  // entry made, so the cast is exact.
+  if constexpr (requires(ExplorerT & x, GoalChooser g) { x.setGoalChooser(g); })
+    e.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
+      static_cast<ExplorerT&>(x).setGoalChooser(c.goals);
+    };
+  if constexpr (requires(ExplorerT & x, ViewpointChooser v) { x.setViewpointChooser(v); })
+    e.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
+      static_cast<ExplorerT&>(x).setViewpointChooser(c.viewpoints);
+    };
   return e;
 }
 
@@ -301,28 +312,9 @@ MethodEntry methodEntry(const char* type, const char* summary, KeysFn keys, std:
 
 void readSphereMapKeys(MapReader& r, SphereMapConfig& c) { sphereMapKeys(r, c); }
 
-namespace {
-
-// The methods that take an outside goal chooser: the grid its goals, MonoSpheres its viewpoints.
-std::vector<MethodEntry> withGoalChooserHooks(std::vector<MethodEntry> table) {
-  for (MethodEntry& e : table) {
-    if (std::string(e.type) == "grid_random")
-      e.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
-        dynamic_cast<GridExplorer&>(x).setGoalChooser(c.goals);
-      };
-    if (std::string(e.type) == kMonoSpheresType)
-      e.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
-        dynamic_cast<MonoSpheresExplorer&>(x).setViewpointChooser(c.viewpoints);
-      };
-  }
-  return table;
-}
-
-}  // namespace
-
 const std::vector<MethodEntry>& methodTable() {
   // One entry per method: explorer and config types, `method.type`, summary, keys, Table I rows.
-  static const std::vector<MethodEntry> table = withGoalChooserHooks({
+  static const std::vector<MethodEntry> table = {
       // MonoSpheres paper, Table I: the full method in the four worlds and its urban ablations.
       methodEntry<MonoSpheresExplorer, MonoSpheresConfig>(
           kMonoSpheresType, "MonoSpheres: sphere map, frontier viewpoints, sphere-graph A* (the paper's method)",
@@ -355,7 +347,7 @@ const std::vector<MethodEntry>& methodTable() {
       methodEntry<PythonMethodStub, PythonMethodConfig>(
           kPythonMethodType, "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)",
           [](auto& k, PythonMethodConfig& c) { pythonMethodKeys(k, c); }, {}),
-  });
+  };
   return table;
 }
 

@@ -31,6 +31,8 @@ struct MethodChoice {
   /// > 0: the method's free space is OctoMap cells of this leaf size, which the authors'
   /// evaluation rule (BUG-11) also scores (coverage.area_published_rule_m2); 0: not applicable.
   double octree_resolution_m = 0.0;
+  /// True if the explorer takes an outside goal chooser (a goal or viewpoint chooser hook).
+  bool takes_goal_chooser = false;
   /// Creates the explorer for a mission.
   std::function<std::unique_ptr<Explorer>(const FisheyeCamera&, const ExplorerContext&)> make;
   /// Why the method that flew cannot be rebuilt from the scenario ("" = it can): an in-process
@@ -53,6 +55,8 @@ MethodChoice methodChoice(std::string type, const Config& config) {
   if constexpr (requires { c.switches(); }) m.switches = c.switches();
   if constexpr (requires { c.referenceCode(); }) m.reference_code = c.referenceCode();
   if constexpr (requires { c.octreeResolutionM(); }) m.octree_resolution_m = c.octreeResolutionM();
+  m.takes_goal_chooser = requires(ExplorerT & x) { x.setGoalChooser({}); }
+  || requires(ExplorerT & x) { x.setViewpointChooser({}); };
   m.make = [c](const FisheyeCamera& camera, const ExplorerContext& context) -> std::unique_ptr<Explorer> {
     if constexpr (std::is_constructible_v<ExplorerT, const Config&, const FisheyeCamera&, const ExplorerContext&>)
       return std::make_unique<ExplorerT>(c, camera, context);

@@ -41,8 +41,9 @@ void ScenarioSpec::validate(ConfigChecker& c) const {
   c.nested("mission", mission);
   if (goals) {
     c.nested("goals", *goals);
-    c.require(method.type == "grid_random" || method.type == "monospheres", "goals",
-              "a goal chooser drives method.type grid_random or monospheres, not '" + method.type + "'");
+    c.require(
+        method.takes_goal_chooser, "goals",
+        "method.type '" + method.type + "' takes no goal chooser (its explorer has no goal or viewpoint chooser hook)");
   }
 }
 

@@ -59,7 +59,10 @@ ExplorerSnapshot HoverTurnExplorer::snapshot() const {
 }
 
 std::map<std::string, double> HoverTurnExplorer::counters() const {
-  return {{"turn_steps", double(turn_steps_done_)}, {"points_seen", double(points_seen_)}};
+  Counters<HoverTurnCounter> c(kHoverTurnCounterNames);
+  c[HoverTurnCounter::kTurnSteps] = double(turn_steps_done_);
+  c[HoverTurnCounter::kPointsSeen] = double(points_seen_);
+  return c.toMap();
 }
 
 }  // namespace msb

@@ -7,12 +7,14 @@
 // the paper; a smoke test of the Explorer interface.
 #pragma once
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/common/config_check.h"
+#include "core/explorer/counters.h"
 #include "core/explorer/explorer.h"
 
 namespace msb {
@@ -28,6 +30,12 @@ struct HoverTurnConfig {
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
+
+/// The example method's counters (metrics.json → counters), each named once beside its enumerator.
+enum class HoverTurnCounter { kTurnSteps, kPointsSeen, kCount };
+/// The JSON names of HoverTurnCounter, in its order.
+inline constexpr std::array<const char*, size_t(HoverTurnCounter::kCount)> kHoverTurnCounterNames = {"turn_steps",
+                                                                                                     "points_seen"};
 
 /// Take off, turn once, descend; one free-space sphere around the hover point.
 class HoverTurnExplorer : public Explorer {

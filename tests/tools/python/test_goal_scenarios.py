@@ -67,9 +67,14 @@ def test_a_bad_goals_section_is_a_configuration_error(tmp_path):
     bad.write_text(text.replace("east_goals:eastward", "east_goals:nowhere"))
     r = subprocess.run([MSBENCH_BIN, "run", str(bad), "--out", str(tmp_path / "r")], capture_output=True, text=True)
     assert r.returncode == 2 and "goals.entry" in r.stderr and not (tmp_path / "r").exists(), r.stderr
-    bad.write_text(text + "method: {type: python, entry: 'x:y'}\n")
-    r = subprocess.run([MSBENCH_BIN, "run", str(bad), "--out", str(tmp_path / "r")], capture_output=True, text=True)
-    assert r.returncode == 2 and "goals" in r.stderr, r.stderr
+    # Methods whose explorer has no chooser hook refuse one (the method says so, not a list of names).
+    base = os.path.join(SOURCE_DIR, "scenarios/missions/base.yaml")
+    goals = "goals: {entry: 'east_goals:eastward', path: choosers, params: {step_m: 6.0}}\n"
+    for method in ["{type: python, entry: 'x:y'}", "{type: hover_turn}", "{type: star_discovery}"]:
+        bad.write_text(f"base: {base}\nworld: urban\nduration_s: 12\nmethod: {method}\n" + goals)
+        r = subprocess.run([MSBENCH_BIN, "run", str(bad), "--out", str(tmp_path / "r")], capture_output=True, text=True)
+        assert r.returncode == 2 and "takes no goal chooser" in r.stderr, (method, r.stderr)
+        assert not (tmp_path / "r").exists()
 
 
 def test_an_importable_in_process_chooser_is_recorded_as_a_goals_section_and_replays(tmp_path):
