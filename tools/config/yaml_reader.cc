@@ -4,11 +4,17 @@
 
 namespace msb {
 
-void rejectDuplicateKeys(const YAML::Node& node, const std::string& label, const std::string& prefix) {
+namespace {
+
+// rejectDuplicateKeys' walk; `visited` counts the nodes met so far (an alias at every use).
+void rejectDuplicates(const YAML::Node& node, const std::string& label, const std::string& prefix, size_t& visited) {
+  if (++visited > kMaxYamlNodes)
+    throw FileConfigError(label + ": expands to more than " + std::to_string(kMaxYamlNodes) +
+                          " YAML nodes (aliases counted at every use); refused as too large");
   if (node.IsSequence()) {
     size_t i = 0;
     for (const YAML::Node& element : node)
-      rejectDuplicateKeys(element, label, prefix + "[" + std::to_string(i++) + "]");
+      rejectDuplicates(element, label, prefix + "[" + std::to_string(i++) + "]", visited);
     return;
   }
   if (!node.IsMap()) return;
@@ -21,8 +27,15 @@ void rejectDuplicateKeys(const YAML::Node& node, const std::string& label, const
     if (!fresh)
       throw FileConfigError(label + ": key '" + path + "': given twice (lines " + std::to_string(it->second) + " and " +
                             std::to_string(line) + ")");
-    rejectDuplicateKeys(kv.second, label, path);
+    rejectDuplicates(kv.second, label, path, visited);
   }
+}
+
+}  // namespace
+
+void rejectDuplicateKeys(const YAML::Node& node, const std::string& label, const std::string& prefix) {
+  size_t visited = 0;
+  rejectDuplicates(node, label, prefix, visited);
 }
 
 YAML::Node loadYamlFile(const std::string& path) {
@@ -31,6 +44,9 @@ YAML::Node loadYamlFile(const std::string& path) {
   if (!fs::exists(path, ec)) throw FileConfigError(path + ": file not found");
   if (fs::is_directory(path, ec)) throw FileConfigError(path + ": is a directory, not a YAML file");
   if (!fs::is_regular_file(path, ec)) throw FileConfigError(path + ": not a regular file (a YAML file is expected)");
+  if (const auto bytes = fs::file_size(path, ec); !ec && bytes > kMaxYamlFileBytes)
+    throw FileConfigError(path + ": " + std::to_string(bytes) + " bytes, larger than a YAML input may be (" +
+                          std::to_string(kMaxYamlFileBytes) + ")");
   YAML::Node node;
   try {
     node = YAML::LoadFile(path);

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <set>
 #include <stdexcept>
@@ -178,12 +179,20 @@ class MapReader {
   std::set<std::string> used_;
 };
 
+/// The largest YAML input msbench reads (a scenario, base, flight, sweep or world spec).
+inline constexpr std::uintmax_t kMaxYamlFileBytes = 8u << 20;
+/// The most nodes a YAML input may expand to, aliases counted at every use: a bound on every
+/// later traversal, so that an alias bomb (a few KB that expand to 10^10 nodes) is refused at
+/// once instead of hanging every reader.
+inline constexpr size_t kMaxYamlNodes = 1'000'000;
+
 /// Throws FileConfigError (naming `label` and both lines) if a map anywhere in `node` holds
-/// the same key twice (YAML forbids it; yaml-cpp keeps both and lookups would pick one).
+/// the same key twice (YAML forbids it; yaml-cpp keeps both and lookups would pick one), or if
+/// `node` expands to more than kMaxYamlNodes nodes. Every loaded YAML input passes here first.
 void rejectDuplicateKeys(const YAML::Node& node, const std::string& label, const std::string& prefix = "");
 
-/// Loads a YAML file; a missing file, a syntax error or a duplicate key throws FileConfigError
-/// naming the file.
+/// Loads a YAML file; a missing file, one larger than kMaxYamlFileBytes, a syntax error, a
+/// duplicate key or an expansion beyond kMaxYamlNodes throws FileConfigError naming the file.
 YAML::Node loadYamlFile(const std::string& path);
 
 /// Converts an already loaded tree (errors are reported against `label`, usually the file).
