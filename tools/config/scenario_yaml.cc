@@ -83,7 +83,9 @@ YAML::Node loadChain(const fs::path& file, std::vector<fs::path>& chain, std::ve
     next = baseOf(nodes.back(), next, abs.parent_path());
     nodes.back().remove("base");
   }
-  YAML::Node merged = nodes.back();
+  // A copy: yaml-cpp nodes are handles, and the overrides merged (or --set) into the tree must
+  // not edit the last base's own node, which issueLabel reads to find who gave a key.
+  YAML::Node merged = YAML::Clone(nodes.back());
   for (size_t k = nodes.size() - 1; k-- > 0;) merged = merge(merged, nodes[k]);
   return merged;
 }
@@ -108,8 +110,16 @@ bool givesKey(const YAML::Node& node, const std::string& key) { return nodeAt(no
 // The file of the chain a configuration issue belongs to: the nearest file to the scenario that
 // gives its key (a base's key is reported against the base, naming the scenario it serves).
 std::string issueLabel(const ConfigError& e, const std::vector<fs::path>& chain, const std::vector<YAML::Node>& nodes,
-                       const std::string& label) {
+                       const std::vector<std::string>& sets, const std::string& path, const std::string& label) {
   if (e.issues().empty()) return label;
+  // A value from the command line (--set, --seed) or a sweep's `set:` is named as such: no file
+  // of the chain holds it. The last --set of a key is the one that counts.
+  const std::string& key = e.issues().front().key;
+  for (auto it = sets.rbegin(); it != sets.rend(); ++it) {
+    const std::string set_key = it->substr(0, it->find('='));
+    if (key == set_key || key.rfind(set_key + ".", 0) == 0 || key.rfind(set_key + "[", 0) == 0)
+      return path + " (with --set " + set_key + ")";
+  }
   for (size_t k = 0; k < nodes.size() && k < chain.size(); ++k)
     if (givesKey(nodes[k], e.issues().front().key))
       return k == 0 ? label : chain[k].string() + " (a base of " + label + ")";
@@ -239,7 +249,7 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
       readScenario(r, dir, s);
       checkValid(s);
     } catch (const ConfigError& e) {
-      throw FileConfigError(issueLabel(e, chain, nodes, label) + ": " + e.what());
+      throw FileConfigError(issueLabel(e, chain, nodes, sets, path, label) + ": " + e.what());
     }
   });
   if (spec.name.empty()) spec.name = fs::path(path).stem().string();

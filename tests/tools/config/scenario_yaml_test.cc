@@ -236,6 +236,36 @@ TEST(ScenarioYaml, AnErrorInABaseNamesTheBase) {
   EXPECT_EQ(msg.rfind(top + ": key 'duration_s'", 0), 0u) << msg;
 }
 
+// A bad value given on the command line (--set, --seed, a sweep's `set:`) is named as the
+// --set it came from, not as the base whose node the merged tree once shared (before: the
+// last base, "base.yaml (a base of …)", which does not hold the value).
+TEST(ScenarioYaml, AnErrorInASetValueNamesTheSet) {
+  const fs::path d = tempDir();
+  const std::string top = (d / "top.yaml").string();
+  write(d / "base.yaml", kBase);
+  write(top, "base: base.yaml\nseed: 2\n");
+  for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
+           {"duration_s=-5", "duration_s"}, {"seed=-1", "seed"}, {"method.map.r_max_m=-2", "method.map.r_max_m"}}) {
+    std::string msg;
+    try {
+      loadScenario(top, {set});
+      ADD_FAILURE() << "expected an error for --set " << set;
+    } catch (const FileConfigError& e) {
+      msg = e.what();
+    }
+    EXPECT_EQ(msg.find("a base of"), std::string::npos) << msg;
+    EXPECT_EQ(msg.rfind(top + " (with --set " + key + "): key '" + key + "'", 0), 0u) << msg;
+  }
+  // A key the files give is still named by its file when another key is --set.
+  write(d / "base.yaml", std::string(kBase) + "exploration_bo: {min: [0, 0, 0]}\n");
+  try {
+    loadScenario(top, {"duration_s=10"});
+    ADD_FAILURE() << "expected an error";
+  } catch (const FileConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("base.yaml (a base of"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace msb
 
