@@ -26,6 +26,8 @@ std::string quoted(std::string_view text, const char* reason) {
 bool parseNumber(std::string_view text, double* out, std::string* why) {
   const std::string s(trim(text));
   if (s.empty()) return *why = "empty, expected a number", false;
+  // Decimal only: strtod would also take hexadecimal ("0x1p3").
+  if (s.find_first_of("xX") != std::string::npos) return *why = quoted(s, "is not a decimal number"), false;
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (end == s.c_str() || *end != '\0') return *why = quoted(s, "is not a number"), false;

@@ -68,6 +68,18 @@ MissionRecordRead missionRecordOf(const nlohmann::json& m, const std::filesystem
       return problem("coverage.box_share", "expected a number in [0, 1] or null");
     rec.box_share = b->get<double>();
   }
+  // Every other area and share a report reads: absent, null, or in range (a corrupt figure makes
+  // the run count as failed instead of being averaged).
+  for (const char* key :
+       {"area_box_m2", "area_true_frame_m2", "verified_area_m2", "seen_area_m2", "area_published_rule_m2"})
+    if (const nlohmann::json* v = at(m["coverage"], key); v && !v->is_null())
+      if (!v->is_number() || !(v->get<double>() >= 0.0 && v->get<double>() <= kMaxAreaM2))
+        return problem(std::string("coverage.") + key,
+                       "expected a number in [0, " + std::to_string(int(kMaxAreaM2)) + "] m² or null");
+  for (const char* key : {"verified_box_share", "box_share_true_frame"})
+    if (const nlohmann::json* v = at(m["coverage"], key); v && !v->is_null())
+      if (!v->is_number() || !(v->get<double>() >= 0.0 && v->get<double>() <= 1.0))
+        return problem(std::string("coverage.") + key, "expected a number in [0, 1] or null");
   rec.sim_time_s = m["sim_time_s"].get<double>();
   rec.determinism_hash = m["determinism_hash"].get<std::string>();
   if (!isHex16(rec.determinism_hash)) return problem("determinism_hash", "expected 16 hexadecimal digits");

@@ -54,6 +54,10 @@ std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
       double x = 0;
       std::string why;
       if (!parseNumber(v, &x, &why)) throw bad(n, "column '" + names[k] + "': " + why);
+      // Times, areas and distances are never negative; a share is at most 1.
+      if (x < 0 || (names[k] == "box_share" && x > 1) ||
+          (names[k] != "t_s" && names[k] != "box_share" && x > kMaxAreaM2))
+        throw bad(n, "column '" + names[k] + "': " + v + " is out of range");
       if (const auto f = fields.find(names[k]); f != fields.end()) c.*(f->second) = x;
     }
     if (k != names.size()) throw bad(n, "fewer values than the header has names");

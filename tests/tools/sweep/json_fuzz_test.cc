@@ -105,6 +105,23 @@ TEST(JsonRanges, AMetricsFileClaimingAnAbsurdAreaOrAKeyTwiceIsRefused) {
   EXPECT_NE(readMissionRecord(p).problem.find("'coverage.area_m2'"), std::string::npos);
   std::ofstream(p) << text.substr(0, text.size() - 1) + R"(, "coverage": {"area_m2": 99999}})";
   EXPECT_NE(readMissionRecord(p).problem.find("key 'coverage' appears twice"), std::string::npos);
+  // Every other area and share a report reads is range-checked too (before: a verified area of
+  // -5 or 1e300 was averaged as is).
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{{"verified_area_m2", "-5"},
+                                                                                   {"verified_area_m2", "1e300"},
+                                                                                   {"area_box_m2", "-1"},
+                                                                                   {"area_published_rule_m2", "2e7"},
+                                                                                   {"verified_box_share", "1.5"},
+                                                                                   {"box_share_true_frame", "-0.1"}}) {
+    std::string bad = text;
+    bad.replace(bad.find("\"longest_no_gain_s\""), 0, "\"" + key + "\": " + value + ", ");
+    std::ofstream(p) << bad;
+    EXPECT_NE(readMissionRecord(p).problem.find("'coverage." + key + "'"), std::string::npos) << key << " " << value;
+  }
+  std::string ok = text;
+  ok.replace(ok.find("\"longest_no_gain_s\""), 0, R"("verified_area_m2": 1500, "seen_area_m2": null, )");
+  std::ofstream(p) << ok;
+  EXPECT_TRUE(readMissionRecord(p).record) << readMissionRecord(p).problem;
 }
 
 }  // namespace

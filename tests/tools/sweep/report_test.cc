@@ -262,6 +262,21 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   EXPECT_NE(readText(d / "log_nocov").find("run full-s1 counts as failed"), std::string::npos)
       << readText(d / "log_nocov");
   EXPECT_NE(readText(d / "log_nocov").find("coverage.csv: missing"), std::string::npos) << readText(d / "log_nocov");
+  // A coverage.csv with a hexadecimal, a negative area or a share above 1 is corrupt: the run
+  // counts as failed, the file, line and column named (before: read and averaged as is).
+  fs::rename(d / "coverage.csv.away", out / "runs" / "full-s1" / "coverage.csv");
+  const std::string csv = readText(out / "runs" / "full-s1" / "coverage.csv");
+  const std::string header = csv.substr(0, csv.find('\n') + 1);
+  ASSERT_EQ(header, "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share,area_verified_m2\n");
+  for (const auto& [row, column] : std::vector<std::pair<std::string, std::string>>{
+           {"0x1p3,0,0,0,0,0,0", "t_s"}, {"1,-5,0,0,0,0,0", "area_m2"}, {"1,5,0,0,0,1.5,0", "box_share"}}) {
+    std::ofstream(out / "runs" / "full-s1" / "coverage.csv") << header << row << "\n";
+    EXPECT_EQ(run("report '" + out.string() + "'", d / "log_badcov"), 0) << readText(d / "log_badcov");
+    const std::string log = readText(d / "log_badcov");
+    EXPECT_NE(log.find("run full-s1 counts as failed"), std::string::npos) << row << "\n" << log;
+    EXPECT_NE(log.find("coverage.csv: line 2: column '" + column + "'"), std::string::npos) << row << "\n" << log;
+  }
+  std::ofstream(out / "runs" / "full-s1" / "coverage.csv") << csv;
 }
 
 }  // namespace
