@@ -44,6 +44,16 @@ struct ReferenceCodeConfig {
   /// An update in which no new sphere passes returns early (SBM 800-804, 869-873): the frame's
   /// points are not inserted as obstacle points and no frontier candidates are drawn from it.
   bool early_return_stale = false;
+  /// The slow planning (goal choice and path) runs only after at least two map updates since
+  /// its last run (OVX planning_loop_iter 317-339); the stop check below runs at every planning
+  /// tick all the same.
+  bool planning_gate_two_updates = false;
+  /// The published stop (LNM quick_replanning_iter 985-1027, stop_following_roadmap_and_stop):
+  /// at every planning tick the path ahead (up to 5 m, ignoring its first 1.5 m) is checked for
+  /// a point within 1 m of an obstacle point; if so the vehicle is hard-stopped with a one-point
+  /// path, which restarts the 8 s re-send timer, and the goal is dropped (not failed, not
+  /// blacklisted). msbench's own blocked-route hold is not used.
+  bool hardstop_drops_goal = false;
 
   /// Every switch on: the published code as far as msbench models it.
   static ReferenceCodeConfig published() {
@@ -52,8 +62,8 @@ struct ReferenceCodeConfig {
     return c;
   }
   /// The switches by name with their member, in documentation order.
-  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 8>& switches() {
-    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 8> kSwitches = {{
+  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 10>& switches() {
+    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 10> kSwitches = {{
         {"path_resend_8s", &ReferenceCodeConfig::path_resend_8s},
         {"safety_cost_inverted", &ReferenceCodeConfig::safety_cost_inverted},
         {"heading_check_signed", &ReferenceCodeConfig::heading_check_signed},
@@ -62,6 +72,8 @@ struct ReferenceCodeConfig {
         {"failure_counter_never_reset", &ReferenceCodeConfig::failure_counter_never_reset},
         {"worked_mask_scalar", &ReferenceCodeConfig::worked_mask_scalar},
         {"early_return_stale", &ReferenceCodeConfig::early_return_stale},
+        {"planning_gate_two_updates", &ReferenceCodeConfig::planning_gate_two_updates},
+        {"hardstop_drops_goal", &ReferenceCodeConfig::hardstop_drops_goal},
     }};
     return kSwitches;
   }

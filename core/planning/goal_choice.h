@@ -89,6 +89,8 @@ class GoalChoice {
   bool takeNew(const VehicleState& s, const SphereCostField& field, bool* global);
   /// Fails the active goal now (blacklists its viewpoint).
   void fail(double t_s);
+  /// Drops the active goal without failing it (its viewpoint stays a candidate).
+  void drop() { goal_ = 0; }
   /// The route to the goal is `remaining_m` long at t_s: progress is 0.5 m shorter than the best.
   void noteRemaining(double remaining_m, double t_s);
   /// A blocked step (the route's start too close to an obstacle point); true if that failed the goal.

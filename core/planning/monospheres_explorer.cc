@@ -136,6 +136,7 @@ void MonoSpheresExplorer::observe(const SlamPointsFrame& frame) {
   const MapUpdateStats st = map_.update(frame);
   if (st.graph_stale) ++counters_[MonoSpheresCounter::kMapUpdatesGraphStale];
   if (st.returned_early) ++counters_[MonoSpheresCounter::kMapUpdatesReturnedEarly];
+  ++map_updates_since_plan_;
 }
 
 PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Waypoint> w) {
@@ -145,7 +146,57 @@ PathCommand MonoSpheresExplorer::command(const VehicleState& s, std::vector<Wayp
 
 std::optional<PathCommand> MonoSpheresExplorer::plan(const VehicleState& s) {
   return takeOffThenExplore(
-      takeoff_, s, [&](std::vector<Waypoint> w) { return command(s, std::move(w)); }, [&] { return explore(s); });
+      takeoff_, s, [&](std::vector<Waypoint> w) { return command(s, std::move(w)); }, [&] { return publishedStep(s); });
+}
+
+std::optional<PathCommand> MonoSpheresExplorer::publishedStep(const VehicleState& s) {
+  // The published planning tick (OVX planning_loop_iter): the stop check first, then the slow
+  // planning, gated on two map updates since its last run. Both off: the intended step.
+  const ReferenceCodeConfig& rc = config_.reference_code;
+  if (rc.hardstop_drops_goal)
+    if (auto stop = publishedHardStop(s)) return stop;
+  if (rc.planning_gate_two_updates) {
+    if (map_updates_since_plan_ < 2) {
+      ++counters_[MonoSpheresCounter::kPlanningStepsGated];
+      return std::nullopt;
+    }
+    map_updates_since_plan_ = 0;
+  }
+  return explore(s);
+}
+
+std::optional<PathCommand> MonoSpheresExplorer::publishedHardStop(const VehicleState& s) {
+  // The path still ahead: the last path sent, from the point of it nearest to the vehicle on.
+  // (The published code checks the MPC's predicted trajectory; the tracker flies this path.)
+  if (!goals_.goal() || last_path_.size() < 2) return std::nullopt;
+  const Vec3 p = s.T_W_B.translation();
+  size_t seg = 0;
+  double best = 1e18, best_t = 0;
+  for (size_t i = 0; i + 1 < last_path_.size(); ++i) {
+    const Vec3 a = last_path_[i], d = last_path_[i + 1] - a;
+    const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    if (const double e = (a + t * d - p).norm(); e < best) best = e, seg = i, best_t = t;
+  }
+  // Samples 0.25 m apart: unsafe if within the trigger distance of an obstacle point, beyond the
+  // clearing distance and within the reach from the vehicle.
+  Vec3 a = last_path_[seg] + best_t * (last_path_[seg + 1] - last_path_[seg]);
+  for (size_t i = seg + 1; i < last_path_.size(); ++i) {
+    const Vec3 b = last_path_[i];
+    const double len = (b - a).norm();
+    for (double t = 0.25; t <= len; t += 0.25) {
+      const Vec3 x = a + t / len * (b - a);
+      const double from_vehicle = (x - p).norm();
+      if (from_vehicle > kPublishedStopReachM) return std::nullopt;
+      if (from_vehicle > kPublishedStopClearingM && map_.anyObstacleNear(x, kPublishedStopTriggerM)) {
+        ++counters_[MonoSpheresCounter::kHardStops];
+        goals_.drop();
+        last_route_send_s_ = s.t_s;  // the one-point path restarts the published re-send timer
+        return command(s, {{s.reference.position_m, std::nullopt}});
+      }
+    }
+    a = b;
+  }
+  return std::nullopt;
 }
 
 bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
@@ -336,7 +387,8 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   const std::vector<Vec3> route = routeTo(s.reference.position_m, *spath, v.position);
   const double remaining = pathLength(route);
   goals_.noteRemaining(remaining, s.t_s);
-  if (clearance_.pathBlocked(route)) {
+  // The published code has no blocked-route hold: its stop is publishedHardStop.
+  if (!config_.reference_code.hardstop_drops_goal && clearance_.pathBlocked(route)) {
     // Already inside an obstacle point's clearance (the point appeared after the vehicle got
     // there): every route that starts even slightly towards it is blocked, so holding here
     // would fail goal after goal. Back away from the points instead and re-plan from there.

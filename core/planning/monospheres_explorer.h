@@ -94,6 +94,13 @@ inline constexpr double kPublishedResendS = 8.0;
 /// Failed path searches the published code tolerates in a whole mission before a failed search
 /// fails its goal (LNM max_goal_vp_pathfinding_times).
 inline constexpr int kPublishedSearchTries = 3;
+/// The published stop (LNM quick_replanning_iter, local_nav in mrs_sim.yaml): points of the path
+/// ahead closer than this to the vehicle are not checked (clearing_dist), m ...
+inline constexpr double kPublishedStopClearingM = 1.5;
+/// ... a checked point this close to an obstacle point is unsafe (safety_replanning_trigger_odist), m ...
+inline constexpr double kPublishedStopTriggerM = 1.0;
+/// ... and an unsafe point farther than this from the vehicle does not stop it yet (mindist), m.
+inline constexpr double kPublishedStopReachM = 5.0;
 
 /// Mapper + planner configuration of the method.
 struct MonoSpheresConfig {
@@ -136,6 +143,8 @@ enum class MonoSpheresCounter {
   kSearchRetries,
   kMapUpdatesGraphStale,
   kMapUpdatesReturnedEarly,
+  kPlanningStepsGated,
+  kHardStops,
   // The state of the map and the viewpoint set at the time of asking (set by counters()).
   kSpheres,
   kObstaclePoints,
@@ -177,6 +186,8 @@ inline constexpr std::array<const char*, size_t(MonoSpheresCounter::kCount)> kMo
     "search_retries",
     "map_updates_graph_stale",
     "map_updates_returned_early",
+    "planning_steps_gated",
+    "hard_stops",
     "spheres",
     "obstacle_points",
     "frontiers",
@@ -230,8 +241,10 @@ class MonoSpheresExplorer : public Explorer {
                                          const std::vector<uint64_t>& reachable);       // bridge or turn
   std::optional<PathCommand> followGoal(const VehicleState& s, uint64_t start_sphere);  // route, carrot
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
-  bool segmentFree(const Vec3& a, const Vec3& b) const;  // inside the sphere union and clear
-  bool resendDue(double t_s) const;                      // the route's path may be (re-)sent now
+  bool segmentFree(const Vec3& a, const Vec3& b) const;                 // inside the sphere union and clear
+  bool resendDue(double t_s) const;                                     // the route's path may be (re-)sent now
+  std::optional<PathCommand> publishedStep(const VehicleState& s);      // gate and stop, then explore
+  std::optional<PathCommand> publishedHardStop(const VehicleState& s);  // the published stop check
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
 
   // Configuration (fixed for the explorer's life) ...
@@ -247,6 +260,7 @@ class MonoSpheresExplorer : public Explorer {
   double last_send_s_ = -1e9, last_idle_turn_s_ = -1e9, no_goal_since_s_ = -1.0;
   double last_route_send_s_ = -1e9;  // the last path to the carrot (the published 8 s timer)
   int failed_searches_ = 0;          // the published mission-wide count (never reset)
+  int map_updates_since_plan_ = 0;   // the published planning gate's count
   std::vector<Vec3> last_path_;
   std::vector<uint64_t> reachable_;  // this step's reachable spheres (ascending)
   Counters<MonoSpheresCounter> counters_{kMonoSpheresCounterNames};

@@ -443,5 +443,66 @@ TEST(MonoSpheresExplorer, ThePublishedCodeToleratesThreeFailedSearchesInAWholeMi
   }
 }
 
+TEST(MonoSpheresExplorer, ThePublishedPlanningGateWaitsForTwoMapUpdates) {
+  // method.reference_code.planning_gate_two_updates (OVX planning_loop_iter 317-339): the slow
+  // planning runs only after two map updates since its last run. One (empty) frame per
+  // planning tick: the goal is taken at the second tick, not the first.
+  for (const bool published : {false, true}) {
+    MonoSpheresConfig c;
+    c.reference_code.planning_gate_two_updates = published;
+    Fixture f(c);
+    f.corridorWithFrontiers();
+    f.skipTakeoff();
+    SlamPointsFrame empty;
+    f.explorer.observe(empty);
+    f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    EXPECT_EQ(f.explorer.goal() != 0u, !published) << "published " << published;
+    EXPECT_EQ(f.counter("planning_steps_gated"), published ? 1.0 : 0.0);
+    f.explorer.observe(empty);
+    f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.2));
+    EXPECT_NE(f.explorer.goal(), 0u) << "published " << published;
+    EXPECT_EQ(f.counter("planning_steps_gated"), published ? 1.0 : 0.0);
+  }
+}
+
+TEST(MonoSpheresExplorer, ThePublishedStopDropsTheGoalAndRestartsTheResendTimer) {
+  // method.reference_code.hardstop_drops_goal (LNM quick_replanning_iter): a path is sent along
+  // the corridor; an obstacle point then appears 3 m ahead, within 1 m of the path. The
+  // published stop holds the vehicle with a one-point path and drops the goal without failing
+  // it; with the 8 s re-send, the next route path waits 8 s from the stop (the point deleted
+  // meanwhile, so the route is clear). A point 0.2 m ahead (the path within 1 m of it lies in
+  // its first 1.5 m) or 7 m ahead (beyond 5 m) does not stop it.
+  for (const double ahead : {3.0, 0.2, 7.0}) {
+    MonoSpheresConfig c;
+    c.reference_code.hardstop_drops_goal = true;
+    c.reference_code.path_resend_8s = true;
+    Fixture f(c);
+    f.corridorWithFrontiers();
+    f.skipTakeoff();
+    const auto first = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    ASSERT_TRUE(first);
+    ASSERT_NE(f.explorer.goal(), 0u);
+    const uint64_t point = SphereMapTestSeam::addObstacle(MonoSpheresTestSeam::map(f.explorer), {ahead, 0.5, 2}, 3.0);
+    const auto stop = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.2, false));
+    if (ahead != 3.0) {
+      EXPECT_EQ(f.counter("hard_stops"), 0.0) << ahead;
+      continue;
+    }
+    ASSERT_TRUE(stop);
+    EXPECT_EQ(f.counter("hard_stops"), 1.0);
+    ASSERT_EQ(stop->waypoints.size(), 1u);
+    EXPECT_TRUE(stop->waypoints[0].position_m.isApprox(Vec3(0, 0, 2)));
+    EXPECT_EQ(f.explorer.goal(), 0u);
+    EXPECT_EQ(f.counter("goals_failed"), 0.0);
+    SphereMapTestSeam::eraseObstacle(MonoSpheresTestSeam::map(f.explorer), point);
+    // A new goal is taken at once, but no route path is sent before 8 s after the stop.
+    std::vector<double> sent;
+    for (double t = 1.4; t < 10.0; t += 0.2)
+      if (f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, t))) sent.push_back(t);
+    ASSERT_FALSE(sent.empty());
+    EXPECT_GE(sent.front(), 1.2 + 8.0 - 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace msb
