@@ -473,10 +473,17 @@ std::string saturationSection(const std::vector<ReportRow>& rows) {
        "and the paper's mean / max A cannot be compared with it. Compare such rows by the time to 50 % and 90 % of "
        "the box (95 % intervals over the runs that got there, k/n).\n\n"
        "| world | method | saturated runs | t50 (s) | t90 (s) |\n| --- | --- | --- | --- | --- |\n";
+  // Rows of one world that share a method name (variants of one method, e.g. a Python method's
+  // parameters) are told apart by their variant labels.
+  const auto name = [&](const ReportRow& r) {
+    const auto same = std::count_if(rows.begin(), rows.end(),
+                                    [&](const ReportRow& q) { return q.world == r.world && q.method == r.method; });
+    return same > 1 ? r.method + " [" + rowName(r) + "]" : r.method;
+  };
   for (const std::string& w : worlds)
     for (const ReportRow& r : rows)
       if (r.world == w)
-        o << "| " << w << " | " << r.method << (isSaturated(r) ? " (saturated)" : "") << " | " << r.saturated << "/"
+        o << "| " << w << " | " << name(r) << (isSaturated(r) ? " (saturated)" : "") << " | " << r.saturated << "/"
           << r.complete << " | " << intervalCell(r.t50_s, r.complete, 0) << " | "
           << intervalCell(r.t90_s, r.complete, 0) << " |\n";
   return o.str();

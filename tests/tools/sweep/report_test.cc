@@ -319,5 +319,31 @@ TEST(SweepReport, ACollisionsAuditIsOneLineOfTheRunsTable) {
       << md;
 }
 
+TEST(SweepReport, TheSaturationTableNamesEachVariantOfOneMethod) {
+  // Two variants of one method (a Python method with two parameter sets) that both fill the
+  // box: each row names its variant (before: "python (saturated)" twice).
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  for (const char* variant : {"slow", "fast"}) {
+    ReportRun r;
+    r.id = std::string("urban-") + variant + "-s1";
+    r.labels = {{"world", "urban"}, {"method", variant}};
+    r.status = "complete";
+    r.metrics = {{"status", "completed"},
+                 {"world", "urban"},
+                 {"method", "python"},
+                 {"sim_time_s", 100.0},
+                 {"determinism_hash", "0123456789abcdef"},
+                 {"coverage", {{"area_m2", 5000.0}, {"box_share", 0.97}}}};
+    r.record = missionRecordOf(r.metrics, "m.json").record;
+    ASSERT_TRUE(r.record.has_value());
+    s.runs.push_back(r);
+  }
+  const std::string md = reportMarkdown(s, reportRows(s));
+  EXPECT_NE(md.find("| urban | python [slow] (saturated) | 1/1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| urban | python [fast] (saturated) | 1/1 |"), std::string::npos) << md;
+}
+
 }  // namespace
 }  // namespace msb
