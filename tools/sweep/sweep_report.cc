@@ -194,6 +194,10 @@ std::string rowName(const ReportRow& row) {
   return name.empty() ? row.method : name;
 }
 
+// Flags of the verified section: verified / claimed below this, falsely free volume above that.
+constexpr double kFlagVerifiedShare = 0.75;
+constexpr double kFlagFalselyFree = 0.3;
+
 bool isSaturated(const ReportRow& row) { return row.complete > 0 && 2 * row.saturated > row.complete; }
 
 stats::Estimate estimateOf(const MeanOf& m) { return stats::bootstrapMean(m.values); }
@@ -397,14 +401,26 @@ std::string tableOneSection(const SweepResults& results, const std::vector<Repor
 // Verified coverage and map accuracy per row (runs that recorded them).
 std::string verifiedSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
   std::ostringstream body;
+  bool flagged = false;
   for (const ReportRow& r : rows) {
     if (r.verified_area_m2.count == 0 && r.falsely_free_volume.count == 0) continue;
+    // A row that earns much less than it claims, or declares much of its free space inside
+    // obstacles, is flagged where its figure stands.
+    const bool low = r.verified_share.count > 0 && r.verified_share.mean < kFlagVerifiedShare;
+    const bool false_free = r.falsely_free_volume.count > 0 && r.falsely_free_volume.mean > kFlagFalselyFree;
+    flagged = flagged || low || false_free;
     body << labelCells(r) << " " << intervalCell(r.area_m2, r.complete, 0) << " | "
          << intervalCell(r.verified_area_m2, r.complete, 0) << " | " << intervalCell(r.verified_share, r.complete, 2)
-         << " | " << intervalCell(r.falsely_free_volume, r.complete, 3) << " | "
-         << intervalCell(r.falsely_free_elements, r.complete, 3) << " |\n";
+         << (low ? " ⚠" : "") << " | " << intervalCell(r.falsely_free_volume, r.complete, 3) << (false_free ? " ⚠" : "")
+         << " | " << intervalCell(r.falsely_free_elements, r.complete, 3) << " |\n";
   }
   if (body.str().empty()) return "";
+  if (flagged)
+    body << "\n⚠: verified / claimed below " << fixed(kFlagVerifiedShare, 2)
+         << " (the row claims columns it did not earn: not seen, or not truly free), or a falsely free volume "
+            "above "
+         << fixed(kFlagFalselyFree, 2)
+         << " (much of its declared free space lies inside obstacles). Rank such rows by verified A, not A.\n";
   return "\n## Verified coverage and map accuracy\n\nA is the method's own claim (the paper's metric: a column "
          "counts when a free-space element covers its node). Verified A counts a column only when the element, "
          "placed in the true frame, is truly free in that column and the camera saw the column (docs/metrics.md, "

@@ -4,6 +4,8 @@
 // the same machine, and the band mode for results from another machine.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -151,7 +153,9 @@ TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
   // Paired rows by the sweep's variant names; verified A beside the claim.
   EXPECT_NE(md.find("| urban | ms / mine |"), std::string::npos) << md;
   EXPECT_NE(md.find("## Verified coverage and map accuracy"), std::string::npos) << md;
-  EXPECT_NE(md.find("| urban | mine | 300 [300, 300] | 120 [120, 120] | 0.40 [0.40, 0.40] |"), std::string::npos) << md;
+  // (Verified / claimed 0.40 is below 0.75: flagged.)
+  EXPECT_NE(md.find("| urban | mine | 300 [300, 300] | 120 [120, 120] | 0.40 [0.40, 0.40] ⚠ |"), std::string::npos)
+      << md;
   // Every finding is n/a: nothing holds, fails or is undecided.
   const FindingCounts c = countFindings(evaluateFindings(s, rows));
   EXPECT_EQ(c.holds + c.fails + c.undecided, 0);
@@ -343,6 +347,41 @@ TEST(SweepReport, TheSaturationTableNamesEachVariantOfOneMethod) {
   const std::string md = reportMarkdown(s, reportRows(s));
   EXPECT_NE(md.find("| urban | python [slow] (saturated) | 1/1 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| urban | python [fast] (saturated) | 1/1 |"), std::string::npos) << md;
+}
+
+TEST(SweepReport, TheVerifiedSectionFlagsARowThatClaimsWhatItDidNotEarn) {
+  // One honest row and one that claims 12 times what it earned, half of its free space inside
+  // obstacles: only the second is flagged, each figure where it stands, with the flag explained.
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  for (const auto& [variant, verified, falsely_free] :
+       std::vector<std::tuple<std::string, double, double>>{{"honest", 4900.0, 0.01}, {"cheat", 400.0, 0.5}}) {
+    ReportRun r;
+    r.id = "urban-" + variant + "-s1";
+    r.labels = {{"world", "urban"}, {"method", variant}};
+    r.status = "complete";
+    r.metrics = {{"status", "completed"},
+                 {"world", "urban"},
+                 {"method", "python"},
+                 {"sim_time_s", 100.0},
+                 {"determinism_hash", "0123456789abcdef"},
+                 {"coverage", {{"area_m2", 5000.0}, {"box_share", 0.5}, {"verified_area_m2", verified}}},
+                 {"map_accuracy", {{"falsely_free_volume_share", falsely_free}, {"falsely_free_element_share", 0.1}}}};
+    r.record = missionRecordOf(r.metrics, "m.json").record;
+    ASSERT_TRUE(r.record.has_value());
+    s.runs.push_back(r);
+  }
+  const std::string md = reportMarkdown(s, reportRows(s));
+  const auto line = [&](const std::string& start) {
+    const size_t at = md.find(start, md.find("## Verified coverage"));
+    return at == std::string::npos ? std::string() : md.substr(at, md.find('\n', at) - at);
+  };
+  EXPECT_EQ(line("| urban | honest |").find("⚠"), std::string::npos) << md;
+  const std::string cheat = line("| urban | cheat |");
+  EXPECT_NE(cheat.find("0.08 [0.08, 0.08] ⚠"), std::string::npos) << cheat;
+  EXPECT_NE(cheat.find("0.500 [0.500, 0.500] ⚠"), std::string::npos) << cheat;
+  EXPECT_NE(md.find("⚠: verified / claimed below 0.75"), std::string::npos) << md;
 }
 
 }  // namespace
