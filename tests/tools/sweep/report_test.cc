@@ -323,6 +323,25 @@ TEST(SweepReport, ACollisionsAuditIsOneLineOfTheRunsTable) {
       << md;
 }
 
+// A complete urban run of a Python method, variant `variant` (its axis label), seed 1, with
+// `coverage` and, if given, `map_accuracy` in its record.
+ReportRun pythonRun(const std::string& variant, const nlohmann::json& coverage,
+                    const nlohmann::json& map_accuracy = nullptr) {
+  ReportRun r;
+  r.id = "urban-" + variant + "-s1";
+  r.labels = {{"world", "urban"}, {"method", variant}};
+  r.status = "complete";
+  r.metrics = {{"status", "completed"},
+               {"world", "urban"},
+               {"method", "python"},
+               {"sim_time_s", 100.0},
+               {"determinism_hash", "0123456789abcdef"},
+               {"coverage", coverage}};
+  if (!map_accuracy.is_null()) r.metrics["map_accuracy"] = map_accuracy;
+  r.record = missionRecordOf(r.metrics, "m.json").record;
+  return r;
+}
+
 TEST(SweepReport, TheSaturationTableNamesEachVariantOfOneMethod) {
   // Two variants of one method (a Python method with two parameter sets) that both fill the
   // box: each row names its variant (before: "python (saturated)" twice).
@@ -330,19 +349,8 @@ TEST(SweepReport, TheSaturationTableNamesEachVariantOfOneMethod) {
   s.dir = "/nowhere";
   s.axes = {"world", "method"};
   for (const char* variant : {"slow", "fast"}) {
-    ReportRun r;
-    r.id = std::string("urban-") + variant + "-s1";
-    r.labels = {{"world", "urban"}, {"method", variant}};
-    r.status = "complete";
-    r.metrics = {{"status", "completed"},
-                 {"world", "urban"},
-                 {"method", "python"},
-                 {"sim_time_s", 100.0},
-                 {"determinism_hash", "0123456789abcdef"},
-                 {"coverage", {{"area_m2", 5000.0}, {"box_share", 0.97}}}};
-    r.record = missionRecordOf(r.metrics, "m.json").record;
-    ASSERT_TRUE(r.record.has_value());
-    s.runs.push_back(r);
+    s.runs.push_back(pythonRun(variant, {{"area_m2", 5000.0}, {"box_share", 0.97}}));
+    ASSERT_TRUE(s.runs.back().record.has_value());
   }
   const std::string md = reportMarkdown(s, reportRows(s));
   EXPECT_NE(md.find("| urban | python [slow] (saturated) | 1/1 |"), std::string::npos) << md;
@@ -357,20 +365,9 @@ TEST(SweepReport, TheVerifiedSectionFlagsARowThatClaimsWhatItDidNotEarn) {
   s.axes = {"world", "method"};
   for (const auto& [variant, verified, falsely_free] :
        std::vector<std::tuple<std::string, double, double>>{{"honest", 4900.0, 0.01}, {"cheat", 400.0, 0.5}}) {
-    ReportRun r;
-    r.id = "urban-" + variant + "-s1";
-    r.labels = {{"world", "urban"}, {"method", variant}};
-    r.status = "complete";
-    r.metrics = {{"status", "completed"},
-                 {"world", "urban"},
-                 {"method", "python"},
-                 {"sim_time_s", 100.0},
-                 {"determinism_hash", "0123456789abcdef"},
-                 {"coverage", {{"area_m2", 5000.0}, {"box_share", 0.5}, {"verified_area_m2", verified}}},
-                 {"map_accuracy", {{"falsely_free_volume_share", falsely_free}, {"falsely_free_element_share", 0.1}}}};
-    r.record = missionRecordOf(r.metrics, "m.json").record;
-    ASSERT_TRUE(r.record.has_value());
-    s.runs.push_back(r);
+    s.runs.push_back(pythonRun(variant, {{"area_m2", 5000.0}, {"box_share", 0.5}, {"verified_area_m2", verified}},
+                               {{"falsely_free_volume_share", falsely_free}, {"falsely_free_element_share", 0.1}}));
+    ASSERT_TRUE(s.runs.back().record.has_value());
   }
   const std::string md = reportMarkdown(s, reportRows(s));
   const auto line = [&](const std::string& start) {
