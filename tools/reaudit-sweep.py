@@ -8,7 +8,7 @@ DEST/runs/ that ended in a collision is run again from its effective configurati
 (`msbench run runs/ID/config.yaml`) with the binary built here, its determinism, trajectory and map
 hashes are compared with the published ones, and only when all three are equal is the published
 metrics.json's `collision.audit` block replaced, as text, by the block the new run wrote (the rest
-of the record stays byte for byte as published). A run whose hashes differ is left as it was and
+of the record stays byte for byte as published, but for its seal `record_digest`, which is removed). A run whose hashes differ is left as it was and
 reported. Prints a table (run, object, part, cause before → after, SLAM points on the part, nearest
 map point) and writes it, with the binary's revision, to DEST/reaudit.csv. A binary built from
 uncommitted changes is refused (--allow-dirty to accept it). Exit 1 if any run differed, failed
@@ -20,6 +20,7 @@ import csv
 import json
 import os
 import pathlib
+import re
 import subprocess
 import sys
 
@@ -76,7 +77,11 @@ def reaudit(msbench, run_dir, work, dry_run, allow_dirty):
     ns, ne = audit_block(new_text)
     if not dry_run:
         tmp = path.with_suffix(".json.tmp")
-        tmp.write_text(text[:s] + new_text[ns:ne] + text[e:])
+        edited = text[:s] + new_text[ns:ne] + text[e:]
+        # A sealed record (record_digest) is no longer as msbench wrote it: the seal goes, and
+        # the record reads as one from before the seal (its hashes were checked equal above).
+        edited = re.sub(r'\n\s*"record_digest": "[^"]*",', "", edited)
+        tmp.write_text(edited)
         json.loads(tmp.read_text())  # still one JSON document
         os.replace(tmp, path)
     row = row_of(run_dir.name, old, new, "equal")

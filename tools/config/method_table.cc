@@ -252,6 +252,7 @@ template <class Keys>
 void pythonMethodKeys(Keys& m, PythonMethodConfig& c) {
   m.field("entry", c.entry);
   m.field("path", c.path);
+  m.field("call_budget_s", c.call_budget_s);
   if constexpr (Keys::kReading) {
     if (m.has("params")) c.params_yaml = m.flowMap("params", "the method's own keys");
   } else {

@@ -41,6 +41,9 @@ struct MethodChoice {
   std::string not_replayable;
   /// The in-process goal chooser that chose the goals ("module:qualname"; "" = the method's own).
   std::string goal_chooser;
+  /// Where a method msbench did not compile ran: "own process, Landlock ABI 7", "in-process
+  /// (unconfined)", ... ("" = compiled into msbench: reviewed source, trusted).
+  std::string confinement;
 };
 
 /// The MethodChoice of `ExplorerT` with `config` (validated here; throws ConfigError). The
@@ -76,6 +79,7 @@ struct PythonMethodConfig {
   std::string entry;               ///< "package.module:factory"
   std::string path;                ///< a directory put first on sys.path (relative: to the scenario file)
   std::string params_yaml = "{}";  ///< the method's own keys (a YAML map), the factory's keyword arguments
+  double call_budget_s = 60.0;     ///< wall-clock seconds each call of its process may take (a method only)
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const {
@@ -83,6 +87,7 @@ struct PythonMethodConfig {
     c.require(colon != std::string::npos && colon > 0 && colon + 1 < entry.size() &&
                   entry.find(':', colon + 1) == std::string::npos,
               "entry", "must be \"package.module:factory\", got '" + entry + "'");
+    c.require(call_budget_s >= 0.1 && call_budget_s <= 86400.0, "call_budget_s", "must be in [0.1, 86400] s");
   }
 };
 

@@ -39,13 +39,21 @@ const char* runStatusName(RunStatus s) {
       return "diverged";
     case RunStatus::kError:
       return "error";
+    case RunStatus::kMethodTimeout:
+      return "method_timeout";
+    case RunStatus::kMethodExited:
+      return "method_exited";
   }
   return "?";
 }
 
+bool isErrorStatus(RunStatus s) {
+  return s == RunStatus::kError || s == RunStatus::kMethodTimeout || s == RunStatus::kMethodExited;
+}
+
 std::optional<RunStatus> parseRunStatus(const std::string& word) {
-  for (RunStatus s :
-       {RunStatus::kCompleted, RunStatus::kCollided, RunStatus::kVioLost, RunStatus::kDiverged, RunStatus::kError})
+  for (RunStatus s : {RunStatus::kCompleted, RunStatus::kCollided, RunStatus::kVioLost, RunStatus::kDiverged,
+                      RunStatus::kError, RunStatus::kMethodTimeout, RunStatus::kMethodExited})
     if (word == runStatusName(s)) return s;
   return std::nullopt;
 }

@@ -29,12 +29,17 @@ uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows);
 
 /// How a run ended.
 enum class RunStatus {
-  kCompleted,  ///< ran its duration
-  kCollided,   ///< a real contact ended it
-  kVioLost,    ///< the VIO lost track
-  kDiverged,   ///< the vehicle left the world or its state became invalid
-  kError,      ///< an exception ended it (the message is in metrics.json)
+  kCompleted,      ///< ran its duration
+  kCollided,       ///< a real contact ended it
+  kVioLost,        ///< the VIO lost track
+  kDiverged,       ///< the vehicle left the world or its state became invalid
+  kError,          ///< an exception ended it (the message is in metrics.json)
+  kMethodTimeout,  ///< a method in its own process did not answer a call within its budget
+  kMethodExited,   ///< a method's own process ended (exit, signal, a limit) during the run
 };
+
+/// True for the statuses of a run that ended in an error (its record is not a result).
+bool isErrorStatus(RunStatus s);
 
 /// The word of a status in metrics.json and on the console.
 const char* runStatusName(RunStatus s);

@@ -23,6 +23,7 @@
 #include "core/explorer/explorer.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/loop/closed_loop.h"
+#include "tools/loop/records.h"
 #include "tools/loop/scenario_spec.h"
 
 namespace py = pybind11;
@@ -108,6 +109,14 @@ std::string pythonErrorText(py::error_already_set& e);
 class MethodError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// A method in its own process that stopped answering (`kMethodTimeout`) or whose process ended
+/// (`kMethodExited`): the run ends with that status (msbench.MethodTimeout, msbench.MethodExited).
+class MethodProcessError : public MethodError {
+ public:
+  MethodProcessError(RunStatus s, const std::string& what) : MethodError(what), status(s) {}
+  RunStatus status;
 };
 
 /// An interrupt is never a method error: a KeyboardInterrupt raised inside a Python method's or

@@ -72,9 +72,13 @@ class PyMission {
     const bool from_scenario = method.is_none();
     if (method.is_none() && scenario_.spec.method.type == kPythonMethodType) {
       const auto& c = std::any_cast<const PythonMethodConfig&>(scenario_.spec.method.config);
-      method = py::module_::import("msbench.methods")
-                   .attr("factory_of")(c.entry, c.path, yamlToPython(YAML::Load(c.params_yaml)), scenario_.file);
-      noteEntryModule(c.entry, "the method's module");
+      const py::module_ methods = py::module_::import("msbench.methods");
+      method = methods.attr("factory_of")(c.entry, c.path, yamlToPython(YAML::Load(c.params_yaml)), scenario_.file,
+                                          c.call_budget_s);
+      // The module's file, found without importing it: the method runs in its own process only.
+      const py::object file =
+          methods.attr("module_file")(c.entry, methods.attr("method_dir")(c.path, scenario_.file, "method"));
+      if (!file.is_none()) moduleInputs_.push_back({"the method's module", file.cast<std::string>()});
     }
     if (method.is_none()) {
       mission_ = buildNamingFile(scenario_.file,
@@ -90,7 +94,12 @@ class PyMission {
     pc.start_yaw_rad = yawOf(ctx.start.linear());
     pc.seed = ctx.seed;
     pc.start_pose = readOnly(poseArray(ctx.start));
-    std::unique_ptr<Explorer> explorer = makePythonExplorer(method(pc));
+    py::object instance = method(pc);
+    // Where the method ran: its own confined process (a scenario's method), or this process.
+    scenario_.spec.method.confinement = py::hasattr(instance, "msbench_confinement")
+                                            ? instance.attr("msbench_confinement").cast<std::string>()
+                                            : std::string("in-process (unconfined)");
+    std::unique_ptr<Explorer> explorer = makePythonExplorer(std::move(instance));
     mission_ = buildNamingFile(scenario_.file, [&] {
       return std::make_unique<Mission>(scenario_.spec, world_->box, truth, std::move(explorer));
     });
@@ -177,7 +186,7 @@ class PyMission {
                                    scenario_.spec.method.not_replayable));
     if (error_) {
       writeErroredMissionOutputs(out.staging(), scenario_.spec, *mission_, *error_, last_tick_,
-                                 world_->truth ? &*world_->truth : nullptr);
+                                 world_->truth ? &*world_->truth : nullptr, error_status_);
     } else {
       writeMissionOutputs(out.staging(), scenario_.spec, finished(), world_->truth ? &*world_->truth : nullptr);
     }
@@ -188,7 +197,7 @@ class PyMission {
   // The run's status word: running, error, or the loop's (completed, collided, ...).
   std::string status() {
     if (interrupted_) return "interrupted";
-    if (error_) return runStatusName(RunStatus::kError);
+    if (error_) return runStatusName(error_status_);
     if (mission_->running()) return "running";
     return runStatusName(finished().flight.status);
   }
@@ -205,6 +214,10 @@ class PyMission {
       // Only a KeyboardInterrupt reaches here as a Python error (method errors are MethodError).
       interrupted_ = true;
       throw;
+    } catch (const MethodProcessError& e) {
+      error_ = e.what();
+      error_status_ = e.status;
+      throw;
     } catch (const std::exception& e) {
       error_ = e.what();
       throw;
@@ -215,6 +228,7 @@ class PyMission {
   void buildWithGoalChooser(py::object method, py::object goals, const WorldTruth* truth, bool record) {
     if (!method.is_none()) throw py::value_error("Mission: give a method or goals, not both");
     if (record) recordInProcess(scenario_, goals, /*goal_chooser=*/true);
+    scenario_.spec.method.confinement = "in-process goal chooser (unconfined)";
     std::unique_ptr<Explorer> explorer = scenario_.spec.method.make(FisheyeCamera(scenario_.spec.flight.camera),
                                                                     explorerContext(scenario_.spec, world_->box));
     attachGoalChooser(*explorer, scenario_.spec.method.type, std::move(goals), scenario_.file);
@@ -312,8 +326,9 @@ class PyMission {
   std::unique_ptr<MissionWorld> world_;  // the truth the mission points into: never moves
   std::unique_ptr<Mission> mission_;
   std::optional<MissionResult> result_;
-  std::optional<std::string> error_;  // the run ended with an error (a Python method raised)
-  bool interrupted_ = false;          // a KeyboardInterrupt ended it: nothing to write
+  std::optional<std::string> error_;            // the run ended with an error (a Python method raised)
+  RunStatus error_status_ = RunStatus::kError;  // or its process failed (method_timeout, method_exited)
+  bool interrupted_ = false;                    // a KeyboardInterrupt ended it: nothing to write
   int64_t last_tick_ = 0;
   double last_t_s_ = 0.0;
 };

@@ -3,6 +3,7 @@
 // path. Scenario.load is loadScenario; Mission is the tools/loop Mission; write() writes the files
 // `msbench run` writes (tools/results). The GIL is released while C++ steps the loop; Ctrl-C is
 // checked between simulated seconds. Each bound area is its own file (binding.h).
+#include "tools/config/world_registry.h"
 #include "tools/python/binding.h"
 
 PYBIND11_MODULE(_msbench, m) {
@@ -12,4 +13,5 @@ PYBIND11_MODULE(_msbench, m) {
   msb::binding::bindMethodTypes(m);
   msb::binding::bindMission(m);
   m.attr("__version__") = MSB_VERSION;
+  m.attr("worlds_dir") = msb::worldsDir();  // what a confined method may not read (msbench.confined)
 }

@@ -29,6 +29,18 @@ void rethrowIfInterrupt(py::error_already_set& e) {
 }
 
 namespace {
+py::handle method_timeout_type, method_exited_type;  // set by bindErrors
+
+// The Python errors of a method's own process (msbench.confined) as the run's status.
+void rethrowIfProcessError(py::error_already_set& e) {
+  if (method_timeout_type && e.matches(method_timeout_type))
+    throw MethodProcessError(RunStatus::kMethodTimeout, py::str(e.value()).cast<std::string>());
+  if (method_exited_type && e.matches(method_exited_type))
+    throw MethodProcessError(RunStatus::kMethodExited, py::str(e.value()).cast<std::string>());
+}
+}  // namespace
+
+namespace {
 
 // A waypoint from Python: (x, y, z) or (x, y, z, heading_rad); heading None = face travel.
 Waypoint waypointFrom(const py::handle& h) {
@@ -188,6 +200,7 @@ class PyExplorer final : public Explorer {
       f();
     } catch (py::error_already_set& e) {
       rethrowIfInterrupt(e);
+      rethrowIfProcessError(e);
       throw MethodError("the Python method raised:\n" + pythonErrorText(e));
     } catch (const py::cast_error& e) {
       throw MethodError(std::string("the Python method returned a value of the wrong type: ") + e.what());
@@ -224,9 +237,16 @@ void bindErrors(py::module_& m) {
   });
 
   static py::exception<MethodError> method_error(m, "MethodError", PyExc_RuntimeError);
+  // A method in its own process that stopped answering, or whose process ended (msbench.confined).
+  static py::exception<MethodProcessError> timeout(m, "MethodTimeout", method_error.ptr());
+  static py::exception<MethodProcessError> exited(m, "MethodExited", method_error.ptr());
+  method_timeout_type = timeout;
+  method_exited_type = exited;
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const MethodProcessError& e) {
+      (e.status == RunStatus::kMethodTimeout ? timeout : exited)(e.what());
     } catch (const MethodError& e) {
       method_error(e.what());
     } catch (const MethodOutputError& e) {

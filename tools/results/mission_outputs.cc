@@ -11,6 +11,7 @@
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
+#include "tools/results/run_record.h"
 
 namespace msb {
 
@@ -133,6 +134,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
     j["method_entry"] = std::any_cast<const PythonMethodConfig&>(spec.method.config).entry;
   if (!spec.method.goal_chooser.empty()) j["goal_chooser"] = spec.method.goal_chooser;
   j["replayable"] = spec.method.not_replayable.empty();
+  j["method_confinement"] = spec.method.confinement.empty() ? "compiled into msbench" : spec.method.confinement;
   j["duration_s"] = spec.flight.duration_s;
   j["sim_time_s"] = f.sim_time_s;
   j["coverage"] = coverageJson(r);
@@ -484,8 +486,10 @@ std::string configYamlText(const std::string& scenario_file, bool with_overrides
 
 nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, const MissionResult& r,
                                    const WorldTruth* truth) {
-  const nlohmann::json metrics = missionMetrics(spec, r, truth);
-  writeFileAtomic(dir / "coverage.csv", coverageCsv(r.coverage));
+  nlohmann::json metrics = missionMetrics(spec, r, truth);
+  const std::string coverage_csv = coverageCsv(r.coverage);
+  metrics["record_digest"] = recordDigest(metrics, coverage_csv);  // the seal report and regress check
+  writeFileAtomic(dir / "coverage.csv", coverage_csv);
   writeFileAtomic(dir / "trajectory.csv", trajectoryCsv(r.flight.trajectory));
   writeFileAtomic(dir / "timing.csv", timingCsv(r));
   if (spec.mission.write_map_ply) writeFileAtomic(dir / "map.ply", mapPly(r.final_map));
@@ -495,17 +499,19 @@ nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const Scena
 }
 
 nlohmann::json writeErroredMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, Mission& mission,
-                                          const std::string& what, int64_t error_tick, const WorldTruth* truth) {
+                                          const std::string& what, int64_t error_tick, const WorldTruth* truth,
+                                          RunStatus status) {
   nlohmann::json m;
   try {
     MissionResult r = mission.finish();
-    r.flight.status = RunStatus::kError;
+    r.flight.status = status;
     m = writeMissionOutputs(dir, spec, r, truth);
+    m.erase("record_digest");  // an error record is no result: nothing to seal
     m["error"] = what;
     if (error_tick < 0) error_tick = r.flight.ticks;
   } catch (const std::exception& again) {
     // The method fails again when asked for its map: the record alone, as before.
-    m = errorMetrics(spec, what);
+    m = errorMetrics(spec, what, status);
     m["finish_error"] = again.what();
   }
   m["error_tick"] = error_tick;
@@ -523,9 +529,9 @@ std::vector<NamedPath> missionInputs(const std::string& scenario_file, const Sce
   return in;
 }
 
-nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what) {
+nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what, RunStatus status) {
   return {{"name", spec.name},
-          {"status", runStatusName(RunStatus::kError)},
+          {"status", runStatusName(status)},
           {"error", what},
           {"seed", spec.flight.seed},
           {"versions", versionInfo()}};

@@ -52,14 +52,16 @@ nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const Scena
 std::vector<NamedPath> missionInputs(const std::string& scenario_file, const ScenarioSpec& spec,
                                      const std::vector<NamedPath>& extra = {});
 
-/// metrics.json of a run that ended in an error (status `error`, the message, seed, versions).
-nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what);
+/// metrics.json of a run that ended in an error (its status, the message, seed, versions).
+nlohmann::json errorMetrics(const ScenarioSpec& spec, const std::string& what, RunStatus status = RunStatus::kError);
 
 /// Writes what a run that ended in an error (`what`, at `error_tick`) flew up to it: the files of
 /// writeMissionOutputs from `mission` finished where it stopped, with status `error`, the message
 /// and the tick in metrics.json (`error_tick` < 0: the last tick flown). If the mission cannot be finished (its method
-/// fails again), only errorMetrics. Returns metrics.json's content.
+/// fails again), only errorMetrics. `status`: error, or how a method's own process failed
+/// (method_timeout, method_exited). Returns metrics.json's content.
 nlohmann::json writeErroredMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, Mission& mission,
-                                          const std::string& what, int64_t error_tick, const WorldTruth* truth);
+                                          const std::string& what, int64_t error_tick, const WorldTruth* truth,
+                                          RunStatus status = RunStatus::kError);
 
 }  // namespace msb

@@ -1,8 +1,10 @@
 #include "tools/results/run_record.h"
 
+#include "core/common/rng.h"
 #include "tools/results/input_files.h"
 
 #include <cctype>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -49,7 +51,8 @@ MissionRecordRead missionRecordOf(const nlohmann::json& m, const std::filesystem
                    {"coverage", &nlohmann::json::is_object, "an object"},
                    {"coverage.area_m2", &nlohmann::json::is_number, "a number"}};
   const nlohmann::json* status = at(m, "status");
-  if (status && status->is_string() && *status == runStatusName(RunStatus::kError))
+  const auto status_word = status && status->is_string() ? parseRunStatus(status->get<std::string>()) : std::nullopt;
+  if (status_word && isErrorStatus(*status_word))
     return {std::nullopt, where + "the run ended in an error: " + m.value("error", std::string("(no message)"))};
   for (const auto& r : kRequired) {
     const nlohmann::json* v = at(m, r.key);
@@ -93,6 +96,16 @@ MissionRecordRead missionRecordOf(const nlohmann::json& m, const std::filesystem
   return {std::move(rec), ""};
 }
 
+std::string recordDigest(const nlohmann::json& metrics, const std::string& coverage_csv) {
+  nlohmann::json content = metrics;
+  content.erase("record_digest");
+  const std::string text = content.dump() + "\n" + coverage_csv;
+  char hex[32];
+  std::snprintf(hex, sizeof(hex), "fnv1a64:%016llx",
+                static_cast<unsigned long long>(fnv1a64(text.data(), text.size())));
+  return hex;
+}
+
 MissionRecordRead readMissionRecord(const std::filesystem::path& file) {
   nlohmann::json m;
   try {
@@ -100,7 +113,25 @@ MissionRecordRead readMissionRecord(const std::filesystem::path& file) {
   } catch (const InputFileError& e) {
     return {std::nullopt, e.what()};
   }
-  return missionRecordOf(m, file);
+  MissionRecordRead read = missionRecordOf(m, file);
+  // The seal: the record and its coverage.csv as msbench wrote them (records from before the
+  // seal carry none and are read as before).
+  if (read.record && m.contains("record_digest")) {
+    const std::filesystem::path csv = file.parent_path() / "coverage.csv";
+    std::string text;
+    std::error_code ec;
+    if (!std::filesystem::exists(std::filesystem::symlink_status(csv, ec)))
+      return {std::nullopt, csv.string() + ": missing (every complete run writes one)"};
+    try {
+      text = readInputFile(csv);
+    } catch (const InputFileError& e) {
+      return {std::nullopt, e.what()};
+    }
+    if (!m["record_digest"].is_string() || m["record_digest"].get<std::string>() != recordDigest(m, text))
+      return {std::nullopt, file.string() + ": key 'record_digest': the record or " + csv.string() +
+                                " changed after msbench wrote them (tampered or edited): the run is not counted"};
+  }
+  return read;
 }
 
 }  // namespace msb

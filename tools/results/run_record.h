@@ -40,7 +40,14 @@ struct MissionRecordRead {
 /// Checks and converts a parsed metrics.json.
 MissionRecordRead missionRecordOf(const nlohmann::json& metrics, const std::filesystem::path& file);
 
-/// Reads and checks a metrics.json file (missing, unreadable or not JSON: a problem).
+/// Reads and checks a metrics.json file (missing, unreadable or not JSON: a problem). A record
+/// that carries `record_digest` must match its own content and its coverage.csv beside it; a
+/// changed figure is a problem ("changed after msbench wrote it"), so the run is not counted.
 MissionRecordRead readMissionRecord(const std::filesystem::path& file);
+
+/// The digest msbench seals a run's record with: FNV-1a 64 over metrics.json's content without
+/// `record_digest` (compact, sorted keys) and coverage.csv's bytes, as "fnv1a64:<16 hex>". It
+/// detects an edit, not a forger who recomputes it (a method cannot: docs/python.md).
+std::string recordDigest(const nlohmann::json& metrics, const std::string& coverage_csv);
 
 }  // namespace msb

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/tools/cli_helpers.h"
+#include "tools/results/run_record.h"
 #include "tools/sweep/findings.h"
 #include "tools/sweep/regression.h"
 #include "tools/sweep/sweep_report.h"
@@ -171,10 +172,13 @@ TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
   EXPECT_FALSE(isTableOneSweep(s));
 }
 
-// Rewrites one run's metrics.json with a change.
+// Rewrites one run's metrics.json with a change, sealed again as msbench would have written it
+// (these tests are about what regress and report do with such a record, not about the seal:
+// Sweep.ARecordChangedAfterMsbenchWroteItIsNotCounted).
 void editMetrics(const fs::path& run_dir, const std::function<void(nlohmann::json&)>& edit) {
   auto m = nlohmann::json::parse(readText(run_dir / "metrics.json"));
   edit(m);
+  if (m.contains("record_digest")) m["record_digest"] = recordDigest(m, readText(run_dir / "coverage.csv"));
   std::ofstream(run_dir / "metrics.json") << m.dump(2);
 }
 
@@ -274,13 +278,15 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   ASSERT_EQ(header, "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share,area_verified_m2\n");
   for (const auto& [row, column] : std::vector<std::pair<std::string, std::string>>{
            {"0x1p3,0,0,0,0,0,0", "t_s"}, {"1,-5,0,0,0,0,0", "area_m2"}, {"1,5,0,0,0,1.5,0", "box_share"}}) {
-    std::ofstream(out / "runs" / "full-s1" / "coverage.csv") << header << row << "\n";
+    { std::ofstream(out / "runs" / "full-s1" / "coverage.csv") << header << row << "\n"; }
+    editMetrics(out / "runs" / "full-s1", [](nlohmann::json&) {});  // sealed with this coverage.csv
     EXPECT_EQ(run("report '" + out.string() + "'", d / "log_badcov"), 0) << readText(d / "log_badcov");
     const std::string log = readText(d / "log_badcov");
     EXPECT_NE(log.find("run full-s1 counts as failed"), std::string::npos) << row << "\n" << log;
     EXPECT_NE(log.find("coverage.csv: line 2: column '" + column + "'"), std::string::npos) << row << "\n" << log;
   }
-  std::ofstream(out / "runs" / "full-s1" / "coverage.csv") << csv;
+  { std::ofstream(out / "runs" / "full-s1" / "coverage.csv") << csv; }
+  editMetrics(out / "runs" / "full-s1", [](nlohmann::json&) {});
 }
 
 }  // namespace

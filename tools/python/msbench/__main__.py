@@ -5,7 +5,7 @@ import argparse
 import signal
 import sys
 
-from . import ConfigError, MethodError, Mission, Scenario
+from . import ConfigError, MethodError, Mission, Scenario, confined
 
 
 class _Signalled(KeyboardInterrupt):
@@ -46,13 +46,17 @@ def run(argv):
         return 2
     try:
         mission.run(progress=not a.quiet)
+        mission.result()  # the method's last answers (its final map) before its process goes
     except MethodError as e:
         out = mission.write(a.out, overwrite=a.overwrite)
+        confined.close_all()
         print(f"msbench run: error: {e} (recorded in {out})", file=sys.stderr)
         return 1
     except KeyboardInterrupt as e:
+        confined.close_all()
         print("msbench run: interrupted; nothing written", file=sys.stderr)
         return 128 + getattr(e, "signum", signal.SIGINT)
+    confined.close_all()  # the record is written after the method's process is gone
     out = mission.write(a.out, overwrite=a.overwrite)
     print(summary_line(mission.result(), out))
     return 0
@@ -81,6 +85,7 @@ def main():
         return 2
     for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT):
         signal.signal(sig, _raise_signalled)
+    confined.watch_signals()  # a wait for the method ends at a signal on any thread
     try:
         return run(sys.argv[2:])
     except KeyboardInterrupt as e:  # before the run started (set-up)

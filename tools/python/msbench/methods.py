@@ -61,19 +61,38 @@ def chooser_of(entry, path, params, scenario_file):
     return chooser
 
 
-def factory_of(entry, path, params, scenario_file):
-    """The factory(context) of a scenario's Python method, its params bound. Import failures and
-    a missing callable raise ConfigError naming the key."""
-    factory = _import_entry(entry, path, scenario_file, "method")
-    params = dict(params or {})
+def factory_of(entry, path, params, scenario_file, call_budget_s=60.0):
+    """The factory(context) of a scenario's Python method, its params bound: the method runs in
+    its own confined process (msbench.confined), imported there and nowhere else. A bad path or
+    entry raises ConfigError naming the key."""
+    from . import confined
+    full = method_dir(path, scenario_file, "method")
+    check_importable(entry, scenario_file, "method")
+    return confined.factory(entry, full, dict(params or {}), call_budget_s, scenario_file)
 
-    def build(context):
-        try:
-            return factory(context, **params)
-        except TypeError as e:
-            raise ConfigError(f"{scenario_file}: key 'method.params': {e}") from e
 
-    return build
+def method_dir(path, scenario_file, key):
+    """A scenario's `key`.path as an absolute, real directory ("" when not given)."""
+    if not path:
+        return ""
+    full = path if os.path.isabs(path) else os.path.join(os.path.dirname(os.path.abspath(scenario_file)), path)
+    if not os.path.isdir(full):
+        raise ConfigError(f"{scenario_file}: key '{key}.path': not a directory: {full}")
+    return os.path.realpath(full)
+
+
+def module_file(entry, path):
+    """The file of the module `entry` names, found without importing it (nothing of the method
+    runs in msbench's process), or None."""
+    from importlib.machinery import PathFinder
+    search = [path] if path else None
+    spec = None
+    for part in entry.partition(":")[0].split("."):
+        spec = PathFinder.find_spec(part, search)
+        if spec is None:
+            return None
+        search = list(spec.submodule_search_locations or [])
+    return os.path.abspath(spec.origin) if spec and spec.origin else None
 
 
 def record_of(factory):

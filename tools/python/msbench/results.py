@@ -37,13 +37,17 @@ def load_run(run_dir):
     return frame
 
 
+# runs.csv's figures (verified_* since the runs.csv of 2026-11-28; absent in older sweeps).
+_NUMERIC_COLUMNS = ("area_m2", "box_share", "sim_time_s", "wall_time_s", "verified_area_m2", "verified_box_share")
+
+
 def load_sweep(sweep_dir):
     """A sweep directory's runs.csv: one row per run (failed and pending ones included, their
     metrics NaN), the axis labels as columns, hashes and ids as strings."""
     path = os.path.join(sweep_dir, "runs.csv")
     frame = pd.read_csv(path, dtype=_STRING_COLUMNS, keep_default_na=False, na_values={
-        c: [""] for c in ("area_m2", "box_share", "sim_time_s", "wall_time_s")})
-    for col in ("area_m2", "box_share", "sim_time_s", "wall_time_s"):
+        c: [""] for c in _NUMERIC_COLUMNS})
+    for col in _NUMERIC_COLUMNS:
         if col in frame:
             frame[col] = pd.to_numeric(frame[col], errors="coerce")
     for col in ("id", "determinism_hash", "status", "run_status"):
@@ -59,8 +63,8 @@ def load_coverage(path):
     if os.path.exists(os.path.join(path, "coverage.csv")):
         return pd.read_csv(os.path.join(path, "coverage.csv"))
     runs = load_sweep(path)
-    labels = [c for c in runs.columns if c not in ("status", "run_status", "area_m2", "box_share", "sim_time_s",
-                                                   "wall_time_s", "determinism_hash", "exit_code", "signal", "dir")]
+    labels = [c for c in runs.columns if c not in _NUMERIC_COLUMNS + ("status", "run_status", "determinism_hash",
+                                                                       "exit_code", "signal", "dir")]
     parts = []
     for _, run in runs.iterrows():
         csv = os.path.join(run["dir"], "coverage.csv")

@@ -1,0 +1,181 @@
+"""A scenario's Python method runs in its own confined process (msbench.confined): the same run as
+in-process, no read of msbench's truth or package, no write outside its scratch directory, named
+statuses for a method that hangs, dies or floods its output, signals that still stop msbench, and
+answers of the wrong type named by where they sit."""
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+import msbench
+from conftest import FAST, MSBENCH_BIN, SOURCE_DIR
+
+sys.path.insert(0, os.path.join(SOURCE_DIR, "examples/python"))
+import hover_turn  # noqa: E402
+
+CPP = os.path.join(SOURCE_DIR, "examples/hover_turn.yaml")
+PY = os.path.join(SOURCE_DIR, "examples/hover_turn_python.yaml")
+
+# A method that stays on the ground: the body of plan() is the test's.
+TEMPLATE = """
+import os, sys, time
+class M:
+    def __init__(self, context, **params):
+        self.context, self.params, self.found = context, params, {{}}
+{init}
+    def observe(self, frame):
+        pass
+    def plan(self, vehicle):
+{plan}
+        return None
+    def free_space(self):
+{free}
+        return []
+    def counters(self):
+        return self.found
+"""
+
+
+def scenario(tmp_path, init="        pass", plan="        pass", free="        pass", budget=None, params=None):
+    """A scenario whose Python method is TEMPLATE filled in, in its own directory."""
+    d = tmp_path / "method"
+    d.mkdir()
+    (d / "m.py").write_text(TEMPLATE.format(init=init, plan=plan, free=free))
+    text = f"base: {CPP}\nmethod:\n  type: python\n  entry: \"m:M\"\n  path: {d}\n"
+    if budget is not None:
+        text += f"  call_budget_s: {budget}\n"
+    text += f"  params: {json.dumps(params or {})}\n"
+    (tmp_path / "s.yaml").write_text(text)
+    return str(tmp_path / "s.yaml")
+
+
+def run(file, out, duration=3, extra=()):
+    sets = sum([["--set", s] for s in FAST + [f"duration_s={duration}"] + list(extra)], [])
+    return subprocess.run([MSBENCH_BIN, "run", file, "--quiet", "--out", str(out)] + sets, capture_output=True,
+                          text=True, timeout=300)
+
+
+def metrics(out):
+    return json.loads((out / "metrics.json").read_text())
+
+
+def test_the_twin_in_its_own_process_gives_the_cpp_methods_hash_and_says_where_it_ran(tmp_path):
+    cpp = msbench.Mission(msbench.Scenario.load(CPP, set=FAST))
+    cpp.run(progress=False)
+    py = msbench.Mission(msbench.Scenario.load(PY, set=FAST))  # the scenario's method: its own process
+    py.run(progress=False)
+    assert py.hash == cpp.hash
+    conf = py.result()["method_confinement"]
+    assert conf.startswith("own process, Landlock ABI"), conf
+    assert cpp.result()["method_confinement"] == "compiled into msbench"
+    inproc = msbench.Mission(msbench.Scenario.load(CPP, set=FAST), method=hover_turn.factory)
+    inproc.run(progress=False)
+    assert inproc.hash == cpp.hash and inproc.result()["method_confinement"] == "in-process (unconfined)"
+
+
+def test_a_confined_method_cannot_read_the_truth_or_msbench_nor_write_outside_its_scratch(tmp_path):
+    probes = {
+        "worlds": msbench._msbench.worlds_dir,
+        "package": os.path.dirname(msbench.__file__),
+        "binary": MSBENCH_BIN,
+        "scenario": str(tmp_path / "s.yaml"),
+    }
+    init = textwrap.indent(textwrap.dedent(f"""
+        for name, p in {probes!r}.items():
+            try:
+                os.listdir(p) if os.path.isdir(p) else open(p, 'rb').read(1)
+                self.found['read_' + name] = 1
+            except PermissionError:
+                self.found['read_' + name] = 0
+        for name, p in (('out', {str(tmp_path / 'planted')!r}), ('scratch', 'mine.txt')):
+            try:
+                open(p, 'w').write('x')
+                self.found['write_' + name] = 1
+            except PermissionError:
+                self.found['write_' + name] = 0
+        try:
+            import msbench
+            self.found['import_msbench'] = 1
+        except ImportError:
+            self.found['import_msbench'] = 0
+        try:
+            os.kill(os.getppid(), 0)
+            self.found['signal_msbench'] = 1
+        except PermissionError:
+            self.found['signal_msbench'] = 0
+    """), " " * 8)
+    out = tmp_path / "run"
+    r = run(scenario(tmp_path, init=init), out)
+    assert r.returncode == 0, r.stderr
+    c = metrics(out)["counters"]
+    print(c)
+    assert c["read_worlds"] == c["read_package"] == c["read_binary"] == c["read_scenario"] == 0
+    assert c["write_out"] == 0 and c["write_scratch"] == 1
+    assert c["import_msbench"] == 0 and c["signal_msbench"] == 0
+    assert not (tmp_path / "planted").exists()
+
+
+def test_a_method_that_hangs_ends_the_run_as_method_timeout_within_its_budget(tmp_path):
+    out = tmp_path / "run"
+    t0 = time.monotonic()
+    r = run(scenario(tmp_path, plan="        time.sleep(3600)", budget=2), out)
+    wall = time.monotonic() - t0
+    assert r.returncode == 1, r.stderr
+    m = metrics(out)
+    assert m["status"] == "method_timeout" and "within 2 s" in m["error"]
+    assert wall < 60, wall
+    # A sweep's reader takes it as a run that ended in an error, not as a result.
+    assert "method_timeout" in r.stderr or "did not answer" in r.stderr
+
+
+@pytest.mark.parametrize("plan, why", [("        os._exit(3)", "exit code 3"),
+                                       ("        os.kill(os.getpid(), 9)", "SIGKILL"),
+                                       ("        while True: print('x' * 4096)", "SIGXFSZ")])
+def test_a_method_whose_process_ends_ends_the_run_as_method_exited(tmp_path, plan, why):
+    out = tmp_path / "run"
+    r = run(scenario(tmp_path, plan=plan), out)
+    assert r.returncode == 1, r.stderr
+    m = metrics(out)
+    assert m["status"] == "method_exited" and why in m["error"], m["error"]
+
+
+@pytest.mark.parametrize("threads", [[], ["perception.latency_frames=1", "perception.threads=2"]])
+def test_sigterm_stops_msbench_while_its_method_hangs(tmp_path, threads):
+    # Also when the method's call comes from the pipelined loop's second thread.
+    file = scenario(tmp_path, plan="        time.sleep(3600)", budget=3600)
+    sets = sum([["--set", s] for s in FAST + ["duration_s=5"] + threads], [])
+    p = subprocess.Popen([MSBENCH_BIN, "run", file, "--quiet", "--out", str(tmp_path / "run")] + sets,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(6)  # the loop is waiting for plan()
+    p.send_signal(signal.SIGTERM)
+    _, err = p.communicate(timeout=30)
+    assert p.returncode == 128 + signal.SIGTERM, err
+    assert "interrupted" in err and not (tmp_path / "run").exists()
+
+
+def test_an_answer_of_the_wrong_type_names_where_it_sits(tmp_path):
+    out = tmp_path / "run"
+    r = run(scenario(tmp_path, free="        return [(1, 0.0, object(), 1.0, 2.0)]"), out)
+    assert r.returncode == 1, r.stderr
+    m = metrics(out)
+    assert m["status"] == "error" and "free_space()[0][2] is a object" in m["error"], m["error"]
+
+
+def test_a_confined_methods_random_streams_are_msbenchs(tmp_path):
+    init = "        self.found['draw'] = context.rng('goals').uniform_range(0.0, 10.0)"
+    out = tmp_path / "run"
+    r = run(scenario(tmp_path, init=init), out, extra=["seed=5"])
+    assert r.returncode == 0, r.stderr
+    assert metrics(out)["counters"]["draw"] == msbench.RngStream(5, "goals").uniform_range(0.0, 10.0)
+
+
+def test_a_method_path_that_holds_msbench_is_refused(tmp_path):
+    (tmp_path / "s.yaml").write_text(f"base: {CPP}\nmethod:\n  type: python\n  entry: \"m:M\"\n  path: {SOURCE_DIR}\n"
+                                     "  params: {}\n")
+    r = run(str(tmp_path / "s.yaml"), tmp_path / "run")
+    assert r.returncode == 2 and "key 'method.path'" in r.stderr and "its own directory" in r.stderr, r.stderr

@@ -1,0 +1,277 @@
+"""A scenario's Python method in its own, confined process (docs/python.md, "A method in its own
+process"): msbench starts `_method_host.py`, which confines itself with Linux Landlock and imports
+the method; the mission talks to it through the method's calls only, each within a wall-clock
+budget. A method that hangs, deadlocks or exits ends the run with status `method_timeout` or
+`method_exited`; Ctrl-C and SIGTERM still end msbench at once."""
+import json
+import os
+import pickle
+import select
+import shutil
+import signal
+import site
+import struct
+import subprocess
+import sys
+import sysconfig
+import tempfile
+import time
+import weakref
+
+from ._msbench import ConfigError, MethodExited, MethodTimeout, RngStream, worlds_dir
+
+_HOST = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_method_host.py")
+_MAX_ANSWER_BYTES = 1 << 29  # 512 MiB: the element limit's worst case is far below
+_FILE_LIMIT_BYTES = 64 << 20  # each file the method writes (its output log included)
+_LOG_TAIL_LINES = 40
+
+_signal_fd = None  # the read end of the runner's signal wakeup pipe (msbench run), if any
+_workers = weakref.WeakSet()
+
+
+class Interrupted(KeyboardInterrupt):
+    """A signal that arrived while msbench waited for the method on the loop's second thread."""
+
+    def __init__(self, signum):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+def watch_signals():
+    """Lets a wait for the method end at a signal on any thread (the runner's main calls this)."""
+    global _signal_fd
+    r, w = os.pipe()
+    os.set_blocking(w, False)
+    signal.set_wakeup_fd(w, warn_on_full_buffer=False)
+    _signal_fd = r
+
+
+def close_all():
+    """Ends every method process (the record is written after they are gone)."""
+    for w in list(_workers):
+        w.close()
+
+
+def _excluded():
+    """What a method may never read: msbench's Python package, its worlds and its binaries."""
+    out = [os.path.dirname(os.path.abspath(__file__)), os.path.realpath(worlds_dir)]
+    for exe in (shutil.which("msbench"), os.environ.get("MSBENCH_BIN")):
+        if exe:
+            out.append(os.path.realpath(exe))
+    return [os.path.realpath(p) for p in out]
+
+
+def _allowed_reads(method_dir):
+    """(read+execute, read-only) trees: the Python installation, its libraries, /etc, the method."""
+    read_exec = ["/usr", "/lib", "/lib64", "/bin", sys.prefix, sys.base_prefix, sys.exec_prefix]
+    # The installation's own directories only (not sys.path: it holds the working directory).
+    read_only = [sysconfig.get_paths()[k] for k in ("stdlib", "platstdlib", "purelib", "platlib")]
+    read_only += site.getsitepackages() + [site.getusersitepackages()]
+    read_only += ["/etc", "/sys/devices/system/cpu"] + ([method_dir] if method_dir else [])
+
+    def real(paths):
+        return sorted({os.path.realpath(p) for p in paths if os.path.exists(p)})
+
+    return real(read_exec), real(read_only)
+
+
+class _Worker:
+    """One method process and its pipes."""
+
+    def __init__(self, entry, method_dir, params, context, budget_s, scenario_file):
+        self.budget_s, self.entry = budget_s, entry
+        self.scratch = tempfile.mkdtemp(prefix="msbench-method-")
+        self.log_path = os.path.join(self.scratch, "method.log")
+        self.rngs = {}
+        self.seed = context["seed"]
+        self.failure = None  # the timeout or exit that ended the process, if one did
+        to_host_r, self.to_host = os.pipe()
+        self.from_host, from_host_w = os.pipe()
+        env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "MSBENCH_BIN")}
+        env["TMPDIR"] = self.scratch
+        with open(self.log_path, "wb") as log:
+            self.proc = subprocess.Popen([sys.executable, "-E", "-P", _HOST, str(to_host_r), str(from_host_w)],
+                                         stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
+                                         pass_fds=(to_host_r, from_host_w), env=env, cwd=self.scratch,
+                                         start_new_session=True)
+        os.close(to_host_r)
+        os.close(from_host_w)
+        _workers.add(self)
+        self._finalizer = weakref.finalize(self, _Worker._kill, self.proc, self.scratch,
+                                           [self.to_host, self.from_host])
+        read_exec, read_only = _allowed_reads(method_dir)
+        excluded = _excluded()
+        if method_dir and any(e == method_dir or e.startswith(method_dir.rstrip("/") + "/") for e in excluded):
+            self.close()
+            raise ConfigError(f"{scenario_file}: key 'method.path': {method_dir} holds msbench itself (its package, "
+                              "worlds or binary), which a method may not read: give the method its own directory")
+        self._send({"entry": entry, "path": method_dir, "params": params, "context": context,
+                                    "read_exec": read_exec, "read_only": read_only, "scratch": self.scratch,
+                                    "excluded": excluded, "confine": True, "file_limit_bytes": _FILE_LIMIT_BYTES})
+        first = self._answer("the factory", 4 * budget_s)
+        if "config" in first:
+            self.close()
+            raise ConfigError(f"{scenario_file}: key 'method.entry': {first['config']}")
+        if "params" in first:
+            self.close()
+            raise ConfigError(f"{scenario_file}: key 'method.params': {first['params']}")
+        if "error" in first:
+            self.close()
+            raise ConfigError(f"{scenario_file}: the method's factory raised:\n{first['error']}")
+        self.ready = first["ready"]
+
+    # --- the pipes -------------------------------------------------------------------------------
+
+    def _send(self, message):
+        data = pickle.dumps(message, protocol=5)
+        data = struct.pack("<Q", len(data)) + data
+        try:
+            while data:
+                data = data[os.write(self.to_host, data):]
+        except (BrokenPipeError, OSError):
+            pass  # the process is gone: the answer's wait says how
+
+    def _read(self, n, deadline, what):
+        chunks = []
+        while n:
+            wait = deadline - time.monotonic()
+            if wait <= 0:
+                raise self._fail(MethodTimeout, f"the method did not answer {what} within {self.budget_s:g} s "
+                                 "(method.call_budget_s); its process was stopped")
+            fds = [self.from_host] + ([_signal_fd] if _signal_fd is not None else [])
+            ready, _, _ = select.select(fds, [], [], min(wait, 1.0))
+            if _signal_fd is not None and _signal_fd in ready:
+                sig = os.read(_signal_fd, 1)
+                if sig and sig[0] in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT):
+                    self.close()
+                    raise Interrupted(sig[0])
+            if self.from_host not in ready:
+                continue
+            b = os.read(self.from_host, min(n, 1 << 20))
+            if not b:
+                raise self._fail(MethodExited, f"the method's process ended during {what} ({self._how()})")
+            chunks.append(b)
+            n -= len(b)
+        return b"".join(chunks)
+
+    def _answer(self, what, budget_s=None):
+        """The host's next answer, serving the method's random draws meanwhile."""
+        deadline = time.monotonic() + (budget_s or self.budget_s)
+        while True:
+            (n,) = struct.unpack("<Q", self._read(8, deadline, what))
+            if n > _MAX_ANSWER_BYTES:
+                raise self._fail(MethodExited, f"the method answered {what} with {n} bytes (the limit is "
+                                 f"{_MAX_ANSWER_BYTES >> 20} MiB); its process was stopped")
+            answer = json.loads(self._read(n, deadline, what))
+            if "rng_open" in answer:
+                handle, name = answer["rng_open"]
+                self.rngs[handle] = RngStream(self.seed, name)
+                self._send(True)
+            elif "rng" in answer:
+                handle, op, args = answer["rng"]
+                self._send(getattr(self.rngs[handle], op)(*args))
+            else:
+                return answer
+
+    def call(self, op, arg=None):
+        if self.failure is not None:
+            raise type(self.failure)(str(self.failure))  # the first failure names the run's end
+        if self.proc is None:
+            raise MethodExited(f"the method's process is gone ({op}() asked after the run ended)")
+        self._send((op, arg))
+        answer = self._answer(f"{op}()")
+        if "error" in answer:
+            raise RuntimeError("the method raised in its own process:\n" + answer["error"])
+        return answer["ok"]
+
+    # --- the end ---------------------------------------------------------------------------------
+
+    def _fail(self, kind, message):
+        """Stops the process for good; the failure (with the method's last output) that every
+        later call raises again, so the first one names the run's end."""
+        self.failure = kind(message + self._log_tail())
+        self.close(show_output=False)
+        return self.failure
+
+    def _how(self):
+        try:
+            code = self.proc.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            return "its pipe closed"
+        if code < 0:
+            name = signal.Signals(-code).name
+            why = ", a file it wrote passed the limit" if -code == signal.SIGXFSZ else ""
+            return f"killed by {name}{why}"
+        return f"exit code {code}"
+
+    def _log_tail(self):
+        try:
+            with open(self.log_path, "rb") as f:
+                f.seek(0, os.SEEK_END)
+                f.seek(max(0, f.tell() - 8192))
+                lines = f.read().decode(errors="replace").splitlines()[-_LOG_TAIL_LINES:]
+        except OSError:
+            return ""
+        return ("\nthe method's output (its last lines):\n" + "\n".join(lines)) if lines else ""
+
+    @staticmethod
+    def _kill(proc, scratch, fds):
+        if proc is not None and proc.poll() is None:
+            try:
+                os.killpg(proc.pid, signal.SIGKILL)
+            except OSError:
+                pass
+            proc.wait()
+        for fd in fds:
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+        shutil.rmtree(scratch, ignore_errors=True)
+
+    def close(self, show_output=True):
+        """Stops the process (and what it started), its pipes and its scratch directory; shows
+        the last lines the method printed."""
+        if self.proc is None:
+            return
+        tail = self._log_tail() if show_output else ""
+        if tail:
+            print(tail.lstrip("\n"), file=sys.stderr)
+        self._finalizer()
+        self.proc = None
+
+
+class _Proxy:
+    """The method as the mission calls it: observe, plan, free_space (and snapshot, counters
+    when the method has them), each answered by its process."""
+
+    def __init__(self, worker):
+        self._worker = worker
+        self.msbench_confinement = (f"own process, Landlock ABI {worker.ready['landlock_abi']}"
+                                    if worker.ready["landlock_abi"] else "own process, unconfined (no Landlock)")
+        if worker.ready["snapshot"]:
+            self.snapshot = lambda: worker.call("snapshot")
+        if worker.ready["counters"]:
+            self.counters = lambda: worker.call("counters")
+
+    def observe(self, frame):
+        self._worker.call("observe", {k: getattr(frame, k) for k in ("tick", "t_s", "pose", "points", "covariances",
+                                                                      "track_ids")})
+
+    def plan(self, vehicle):
+        return self._worker.call("plan", {k: getattr(vehicle, k) for k in ("tick", "t_s", "yaw_rad", "path_finished",
+                                                                            "pose", "position", "velocity")})
+
+    def free_space(self):
+        return self._worker.call("free_space")
+
+
+def factory(entry, method_dir, params, budget_s, scenario_file):
+    """A factory(context) that starts the method's process and returns the proxy."""
+
+    def build(context):
+        ctx = {k: getattr(context, k) for k in ("box_min", "box_max", "start_position", "start_yaw_rad", "start_pose",
+                                                "seed")}
+        return _Proxy(_Worker(entry, method_dir, dict(params or {}), ctx, budget_s, scenario_file))
+
+    return build
