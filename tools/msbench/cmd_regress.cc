@@ -61,6 +61,7 @@ int runRegressCommand(int argc, char** argv) {
       return kExitRuntime;
     }
     fs::create_directories(golden_file.parent_path().empty() ? fs::path(".") : golden_file.parent_path());
+    const OutputLock lock(outputPathOf(golden_file), "--against");  // one writer per golden
     writeFileAtomic(golden_file, g.dump(2) + "\n");
     std::printf("regress: golden %s written from %zu runs of %s\n", golden_file.c_str(), g["runs"].size(),
                 results.dir.c_str());

@@ -135,6 +135,9 @@ int runRunCommand(int argc, char** argv) {
   // does not compile is bad input (exit 2) and leaves nothing behind.
   Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });
   StagedOutputDir out(args.get("out"), args.has("overwrite"));
+  // One writer per recording too (the log is written as the run flies).
+  std::optional<OutputLock> record_lock;
+  if (!args.get("record").empty()) record_lock.emplace(outputPathOf(args.get("record")), "--record");
   writeFileAtomic(out.staging() / "config.yaml", configYamlText(file, !all_sets.empty(), effective_yaml));
 
   const bool quiet = args.has("quiet") || !spec.mission.progress;

@@ -29,7 +29,10 @@ int runSweepCommand(int argc, char** argv) {
       .flag("list", "print the run ids in order and exit")
       .option("task-index", "", "run only run K of the list (0-based; default $SLURM_ARRAY_TASK_ID if set)")
       .flag("emit-slurm", "prepare --out and print an sbatch script that runs the sweep as a job array, and exit")
-      .flag("accept-changes", "resume although the sweep file or the msbench build changed");
+      .flag("accept-changes", "resume although the sweep file or the msbench build changed")
+      .option("run-time-limit", "",
+              "wall-clock seconds a run may take before the sweep stops it and records it as failed\n"
+              "(default: 10x its simulated duration + 600 s; 0: no limit)");
   if (!args.parse(argc, argv)) return kExitOk;
   const SweepPlan plan = loadSweepPlan(args.get("SWEEP.yaml"));
   if (args.has("list")) {
@@ -59,12 +62,15 @@ int runSweepCommand(int argc, char** argv) {
   }
   options.jobs = args.getIntIn("jobs", 1, 256);
   options.accept_changes = args.has("accept-changes");
+  std::optional<double> limit;
+  if (args.given("run-time-limit")) limit = args.getDoubleIn("run-time-limit", 0.0, 1e7);
   // Every run's scenario must load before anything starts (unknown keys, bad values: exit 2).
   for (const auto& r : plan.runs) {
     std::vector<std::string> sets;
     for (const auto& [k, v] : r.sets) sets.push_back(k + "=" + v);
     try {
-      loadScenario(r.scenario, sets);
+      const ScenarioSpec spec = loadScenario(r.scenario, sets);
+      options.time_limit_s.push_back(limit ? *limit : defaultRunTimeLimitS(spec.flight.duration_s));
     } catch (const std::exception& e) {
       throw FileConfigError(plan.file + ": run " + r.id + ": " + e.what());
     }

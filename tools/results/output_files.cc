@@ -1,6 +1,13 @@
 #include "tools/results/output_files.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 
 #include <fstream>
 #include <iterator>
@@ -198,6 +205,70 @@ bool isMsbenchOutput(const fs::path& dir) {
   return fs::is_directory(dir) && markerTextOf(dir).find("msbench") != std::string::npos;
 }
 
+OutputLock::OutputLock(const fs::path& output, const std::string& flag) : path_(output.string() + ".lock") {
+  // Open, lock, and check the path still names the locked file (a releasing holder removes it
+  // between our open and our lock): otherwise try again.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    fd_ = open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd_ < 0)
+      throw UsageError(flag + " " + output.string() + ": cannot create its lock file " + path_.string() + ": " +
+                       std::strerror(errno));
+    // A file of that name msbench did not write (a lock file holds a pid or nothing) is never
+    // taken, and so never removed.
+    char text[24] = {};
+    const ssize_t got = pread(fd_, text, sizeof(text), 0);
+    if (got < 0 || got > 20 || !std::all_of(text, text + got, [](char c) { return c >= '0' && c <= '9'; })) {
+      close(fd_);
+      fd_ = -1;
+      throw UsageError(flag + " " + output.string() + ": " + path_.string() +
+                       " exists and is not an msbench lock file; remove or rename it first");
+    }
+    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      char pid[32] = {};
+      const ssize_t n = pread(fd_, pid, sizeof(pid) - 1, 0);
+      close(fd_);
+      fd_ = -1;
+      throw UsageError(flag + " " + output.string() + ": another msbench process (pid " +
+                       (n > 0 ? std::string(pid, size_t(n)) : std::string("?")) +
+                       ") is writing it; wait for it or choose another output (lock: " + path_.string() + ")");
+    }
+    struct stat held {
+    }, named{};
+    if (fstat(fd_, &held) == 0 && stat(path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev) {
+      const std::string pid = std::to_string(getpid());
+      if (ftruncate(fd_, 0) != 0 || pwrite(fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size())) {
+      }  // the pid is for the message of a second writer only
+      return;
+    }
+    close(fd_);
+    fd_ = -1;
+  }
+  throw UsageError(flag + " " + output.string() + ": cannot take its lock " + path_.string());
+}
+
+OutputLock::~OutputLock() {
+  if (fd_ < 0) return;
+  unlink(path_.c_str());  // while still held: a waiting writer then locks a fresh file
+  close(fd_);
+}
+
+namespace {
+
+// The entries below `dir` (relative paths, sorted); empty if it does not exist.
+std::vector<std::string> entriesOf(const fs::path& dir) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir, ec))) return out;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec))
+    out.push_back(fs::relative(it->path(), dir).string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
 StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind kind)
     : overwrite_(overwrite), kind_(kind) {
   // The form the overlap check uses (outputPathOf: symlinks and `..` resolved as the filesystem
@@ -225,6 +296,10 @@ StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind 
                          " output; refusing to replace it");
     }
   }
+  // One writer: a second msbench process writing here is refused before it touches anything.
+  std::error_code made;
+  if (p.has_parent_path()) fs::create_directories(p.parent_path(), made);
+  lock_.emplace(p, "--out");
   // The staging directory: a stale one of an interrupted msbench run is cleared, anything else kept.
   staging_ = p.string() + ".partial";
   if (existsNoFollow(staging_)) {
@@ -236,17 +311,27 @@ StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind 
   fs::create_directories(staging_, ec);
   if (ec) throw UsageError(staging_.string() + ": cannot create the output directory: " + ec.message());
   writeFileAtomic(staging_ / kMarker, markerText(kind_));
+  final_entries_ = entriesOf(p);
 }
 
 StagedOutputDir::~StagedOutputDir() {
-  if (!committed_) {
+  if (!committed_ && !kept_) {
     std::error_code ec;
     fs::remove_all(staging_, ec);
   }
 }
 
 void StagedOutputDir::commit() {
-  // The target is empty or an msbench result (checked at construction).
+  // The target is empty or an msbench result (checked at construction), and holds nothing new.
+  std::vector<std::string> added;
+  const std::vector<std::string> now = entriesOf(final_);
+  std::set_difference(now.begin(), now.end(), final_entries_.begin(), final_entries_.end(), std::back_inserter(added));
+  if (!added.empty()) {
+    kept_ = true;
+    throw std::runtime_error(final_.string() + " gained " + std::to_string(added.size()) +
+                             " file(s) msbench did not write while it ran (e.g. " + added.front() +
+                             "); it is left as it is, and this run's results stay in " + staging_.string());
+  }
   if (existsNoFollow(final_)) fs::remove_all(final_);
   if (final_.has_parent_path()) fs::create_directories(final_.parent_path());
   fs::rename(staging_, final_);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,25 @@ bool isMsbenchOutput(const std::filesystem::path& dir, OutputKind kind);
 /// target), the last component as named. The overlap check and every writer use this form.
 std::filesystem::path outputPathOf(const std::filesystem::path& path);
 
+/// One writer per output: an exclusive lock (flock) on "<output>.lock", held from construction
+/// to destruction. The lock file holds the holder's pid and is removed on release. The kernel
+/// releases the lock when its process ends in any way (exit, signal, crash), so a lock file a
+/// dead process left behind is taken over by the next writer without a check of its pid.
+class OutputLock {
+ public:
+  /// Takes the lock of `output` (the file or directory msbench will write); `flag` names it in
+  /// messages. Another process holding it: UsageError (exit 2) naming the output and its pid.
+  OutputLock(const std::filesystem::path& output, const std::string& flag);
+  /// Removes the lock file, then releases the lock.
+  ~OutputLock();
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+
+ private:
+  std::filesystem::path path_;
+  int fd_ = -1;
+};
+
 /// A staging directory "<final>.partial" that becomes "<final>" on commit(). Safe by
 /// construction: the path is outputPathOf's (a trailing slash is the same directory); the current
 /// directory, its parents, `/` and anything that is not a directory are refused; a non-empty
@@ -70,13 +90,17 @@ class StagedOutputDir {
   const std::filesystem::path& staging() const { return staging_; }
   /// The final location.
   const std::filesystem::path& finalDir() const { return final_; }
-  /// Moves the staged files into the final directory.
+  /// Moves the staged files into the final directory. A target that gained entries msbench did
+  /// not write since construction (a user's file) is never deleted: the staging directory is
+  /// kept and the error (std::runtime_error, exit 1) says where the results are.
   void commit();
 
  private:
   std::filesystem::path final_, staging_;
-  bool overwrite_, committed_ = false;
+  bool overwrite_, committed_ = false, kept_ = false;
   OutputKind kind_;
+  std::optional<OutputLock> lock_;          // one writer: "<final>.lock" while this object lives
+  std::vector<std::string> final_entries_;  // what an existing target held at construction
 };
 
 }  // namespace msb

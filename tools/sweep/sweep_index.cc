@@ -28,6 +28,7 @@ nlohmann::json sweepRunJson(const SweepRunRecord& r) {
     if (!f.last_progress.empty()) j["failure"]["last_progress"] = f.last_progress;
     if (!f.fatal.empty()) j["failure"]["fatal"] = f.fatal;
     if (!f.problem.empty()) j["failure"]["problem"] = f.problem;
+    if (!f.limit.empty()) j["failure"]["limit"] = f.limit;
   }
   if (r.area_m2) j["area_m2"] = *r.area_m2, j["run_status"] = r.run_status;
   return j;
@@ -57,6 +58,7 @@ SweepRunFailure readFailure(const nlohmann::json& f, const std::string& key,
   text("last_progress", out.last_progress);
   text("fatal", out.fatal);
   text("problem", out.problem);
+  text("limit", out.limit);
   return out;
 }
 

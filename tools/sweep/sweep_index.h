@@ -31,6 +31,7 @@ struct SweepRunFailure {
   std::string last_progress;  ///< its last progress line ("" if none)
   std::string fatal;          ///< the crash handler's line ("" if none)
   std::string problem;        ///< the report's: its results did not read ("" otherwise)
+  std::string limit;          ///< the sweep stopped it: its wall-clock limit passed ("" otherwise)
 };
 
 /// One run's entry.

@@ -578,7 +578,7 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
       const std::string ended =
           f.signal ? "signal " + std::to_string(f.signal) + (f.signal_name.empty() ? "" : " (" + f.signal_name + ")")
                    : "exit code " + std::to_string(f.exit_code);
-      const std::string why = !f.problem.empty() ? f.problem : text(f.fatal);
+      const std::string why = !f.problem.empty() ? f.problem : !f.limit.empty() ? f.limit : text(f.fatal);
       o << "| " << r.id << " | " << (!f.problem.empty() ? std::string("unreadable results") : ended) << " | "
         << text(f.last_progress) << " | " << why << " | logs/" << r.id << ".log |\n";
     }

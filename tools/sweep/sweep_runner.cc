@@ -35,6 +35,7 @@ struct RunState {
   std::string log_tail;
   std::string last_progress;  // the run's last progress line, if it printed one
   std::string fatal;          // the crash handler's line (signal, tick, simulated time)
+  std::string limit;          // the sweep stopped it at its wall-clock limit
   nlohmann::json metrics;     // the run's metrics.json (complete runs)
 };
 
@@ -107,7 +108,9 @@ std::string csvRow(const SweepRun& r, const RunState& s, const std::vector<std::
     << (m.is_object() ? num(m["coverage"]["area_m2"]) : "") << ","
     << (m.is_object() ? num(m["coverage"]["box_share"]) : "") << "," << (m.is_object() ? num(m["sim_time_s"]) : "")
     << "," << (m.is_object() ? num(m["wall_time_s"]) : "") << ","
-    << (m.is_object() ? m.value("determinism_hash", "") : "") << "," << s.exit_code << "," << s.signal << "\n";
+    << (m.is_object() ? m.value("determinism_hash", "") : "") << "," << s.exit_code << "," << s.signal << ","
+    << (m.is_object() ? num(m["coverage"]["verified_area_m2"]) : "") << ","
+    << (m.is_object() ? num(m["coverage"]["verified_box_share"]) : "") << "\n";
   return o.str();
 }
 
@@ -116,7 +119,9 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
   nlohmann::json runs = nlohmann::json::array();
   std::string csv = "id";
   for (const auto& a : plan.axes) csv += "," + a;
-  csv += ",seed,status,run_status,area_m2,box_share,sim_time_s,wall_time_s,determinism_hash,exit_code,signal\n";
+  csv +=
+      ",seed,status,run_status,area_m2,box_share,sim_time_s,wall_time_s,determinism_hash,exit_code,signal,"
+      "verified_area_m2,verified_box_share\n";
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const SweepRun& r = plan.runs[i];
     const RunState& s = states[i];
@@ -133,7 +138,7 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
       SweepRunFailure f;
       f.exit_code = s.exit_code, f.signal = s.signal, f.log_tail = s.log_tail;
       if (s.signal) f.signal_name = sigabbrev_np(s.signal) ? std::string("SIG") + sigabbrev_np(s.signal) : "?";
-      f.last_progress = s.last_progress, f.fatal = s.fatal;
+      f.last_progress = s.last_progress, f.fatal = s.fatal, f.limit = s.limit;
       rec.failure = f;
     }
     if (s.metrics.is_object() && s.metrics["coverage"]["area_m2"].is_number()) {
@@ -158,6 +163,8 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
 }  // namespace
 
 std::string sweepBuildId() { return buildIdText(); }
+
+double defaultRunTimeLimitS(double duration_s) { return 10.0 * duration_s + 600.0; }
 
 namespace {
 
@@ -259,6 +266,12 @@ void recordRunEnd(const SweepPlan& plan, const fs::path& dir, size_t i, int wsta
 
 SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRunOptions& options,
                       const std::function<bool()>& stop_requested) {
+  // One sweep writes a directory's index (Slurm tasks, which write no index, run side by side).
+  std::optional<OutputLock> lock;
+  if (!options.task) {
+    if (dir.has_parent_path()) fs::create_directories(dir.parent_path());
+    lock.emplace(outputPathOf(dir), "--out");
+  }
   // The directory: new, or a sweep of the same file and build (resume).
   prepareSweepDir(plan, dir, options);
   // Complete runs are skipped.
@@ -281,6 +294,24 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
 
   // The pool: start runs in order, N at a time; record each as it ends.
   std::map<pid_t, size_t> running;
+  std::map<pid_t, WallClock::time_point> started;  // the watchdog's clock (wall time decides nothing else)
+  std::map<pid_t, WallClock::time_point> stopped;  // runs past their limit: SIGTERM sent at
+  auto limitOf = [&](size_t i) { return i < options.time_limit_s.size() ? options.time_limit_s[i] : 0.0; };
+  // Stops runs past their wall-clock limit: SIGTERM, then SIGKILL if it has not ended 30 s later.
+  auto watchdog = [&]() {
+    for (const auto& [p, i] : running) {
+      const double limit = limitOf(i);
+      if (limit <= 0.0) continue;
+      if (!stopped.count(p) && secondsSince(started[p]) > limit) {
+        std::fprintf(stderr, "sweep: run %s passed its wall-clock limit of %.0f s; stopping it\n",
+                     plan.runs[i].id.c_str(), limit);
+        kill(p, SIGTERM);
+        stopped[p] = WallClock::now();
+      } else if (stopped.count(p) && secondsSince(stopped[p]) > 30.0) {
+        kill(p, SIGKILL);
+      }
+    }
+  };
   size_t next = 0, failed = 0, done = 0;
   const auto t0 = WallClock::now();
   auto progress = [&]() {
@@ -295,11 +326,14 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
     while (!interrupted && next < todo.size() && running.size() < size_t(options.jobs)) {
       const size_t i = todo[next++];
       const SweepRun& r = plan.runs[i];
-      running[startRun(r, dir / "runs" / r.id, dir / "logs" / (r.id + ".log"))] = i;
+      const pid_t p = startRun(r, dir / "runs" / r.id, dir / "logs" / (r.id + ".log"));
+      running[p] = i;
+      started[p] = WallClock::now();
     }
     int wstatus = 0;
     const pid_t pid = waitpid(-1, &wstatus, WNOHANG);
     if (pid <= 0) {
+      watchdog();
       if (!interrupted && stop_requested()) {
         interrupted = true;
         for (const auto& [p, i] : running) kill(p, SIGTERM);  // each run cleans up its own outputs
@@ -317,7 +351,14 @@ SweepOutcome runSweep(const SweepPlan& plan, const fs::path& dir, const SweepRun
       interrupted = true;
       for (const auto& [p, j] : running) kill(p, SIGTERM);
     }
-    recordRunEnd(plan, dir, i, wstatus, interrupted, states[i], failed);
+    const bool past_limit = stopped.erase(pid) > 0;
+    started.erase(pid);
+    recordRunEnd(plan, dir, i, wstatus, interrupted && !past_limit, states[i], failed);
+    if (past_limit && states[i].status == "failed") {
+      char why[160];
+      std::snprintf(why, sizeof(why), "stopped by the sweep: its wall-clock limit of %.0f s passed", limitOf(i));
+      states[i].limit = why;
+    }
     ++done;
     if (!options.task) writeIndex(dir, plan, states, int(options.jobs));
     progress();

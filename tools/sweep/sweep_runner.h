@@ -14,6 +14,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tools/config/sweep_plan.h"
 
@@ -24,7 +25,14 @@ struct SweepRunOptions {
   long jobs = 1;                ///< runs at a time (processes)
   std::optional<size_t> task;   ///< run only this run of the plan (a Slurm array task); no index written
   bool accept_changes = false;  ///< resume although the sweep file or the build changed
+  /// Wall-clock seconds each run may take, by plan index (empty or <= 0: no limit). A run past
+  /// it gets SIGTERM, SIGKILL 30 s later, and is recorded as failed with the limit named.
+  std::vector<double> time_limit_s;
 };
+
+/// The default wall-clock limit of a run of `duration_s` simulated seconds: 10× plus 10 minutes
+/// (the loop runs at real-time factor ≥ 1 on this machine class; a hang never ends by itself).
+double defaultRunTimeLimitS(double duration_s);
 
 /// What a sweep call did.
 struct SweepOutcome {

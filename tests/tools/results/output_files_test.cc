@@ -5,6 +5,9 @@
 // written at outputPathOf(path) — and the input is never lost.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -87,6 +90,63 @@ TEST(OutputFiles, NoGeneratedOutputPathEverLosesTheInputOrWritesElsewhere) {
   // Both outcomes occur: the generator reaches the refusals and the replacements.
   EXPECT_GT(written, 40);
   EXPECT_GT(refused, 40);
+}
+
+}  // namespace
+}  // namespace msb
+
+namespace msb {
+namespace {
+
+// One writer per output: a second StagedOutputDir (another process) is refused naming the pid
+// and leaves the first one's live staging as it is; the lock goes with its holder.
+TEST(OutputLock, ASecondWriterIsRefusedAndTheFirstsStagingIsKept) {
+  const fs::path root = msb_test::tempDir("msb_lock_", "second");
+  const fs::path out = root / "run";
+  StagedOutputDir first(out, false);
+  std::ofstream(first.staging() / "metrics.json") << "{}";
+  // Another process: fork, try, report by exit code (0 refused as expected, 1 not refused).
+  const pid_t child = fork();
+  if (child == 0) {
+    try {
+      StagedOutputDir second(out, true);
+      _exit(1);
+    } catch (const UsageError& e) {
+      const std::string what = e.what();
+      _exit(what.find("another msbench process (pid " + std::to_string(getppid()) + ")") != std::string::npos ? 0 : 2);
+    }
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_TRUE(fs::exists(first.staging() / "metrics.json"));
+  first.commit();
+  EXPECT_TRUE(fs::exists(out / "metrics.json"));
+}
+
+TEST(OutputLock, ALockFileOfADeadWriterIsTakenOverAndAForeignFileIsNeverTaken) {
+  const fs::path root = msb_test::tempDir("msb_lock_", "stale");
+  const fs::path out = root / "run";
+  std::ofstream(root / "run.lock") << "999999";  // a holder that died (the kernel released its lock)
+  { StagedOutputDir again(out, false); }
+  EXPECT_FALSE(fs::exists(root / "run.lock"));  // removed at release
+  std::ofstream(root / "run.lock") << "my notes, not a lock";
+  EXPECT_THROW(StagedOutputDir(out, false), UsageError);
+  EXPECT_EQ(readAll(root / "run.lock"), "my notes, not a lock");
+}
+
+TEST(StagedOutputDir, ATargetThatGainedAUserFileWhileTheRunFlewIsKept) {
+  const fs::path root = msb_test::tempDir("msb_lock_", "late");
+  const fs::path out = root / "run";
+  {
+    StagedOutputDir first(out, false);
+    first.commit();
+  }
+  StagedOutputDir again(out, true);
+  std::ofstream(out / "notes.txt") << "written by the user while the run flew";
+  EXPECT_THROW(again.commit(), std::runtime_error);
+  EXPECT_EQ(readAll(out / "notes.txt"), "written by the user while the run flew");
+  EXPECT_TRUE(fs::exists(again.staging()));  // the run's results stay staged
 }
 
 }  // namespace

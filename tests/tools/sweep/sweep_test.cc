@@ -224,6 +224,70 @@ TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
   EXPECT_NE(report.find("| s2 | signal 11 (SIGSEGV) |", failed_at), std::string::npos) << report;
 }
 
+TEST(Sweep, ARunPastItsWallClockLimitIsStoppedAndRecordedFailed) {
+  // A run that never ends by itself (a hung method, a deadlock) costs at most its limit: the
+  // sweep sends SIGTERM, records the run failed with the limit named, and goes on.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "limit");
+  const fs::path f = writeSweep(d, "set: {duration_s: 60}\nseeds: 1\n");
+  const fs::path out = d / "out";
+  run("sweep '" + f.string() + "' --out '" + out.string() + "' --run-time-limit 2", d / "log");
+  EXPECT_EQ(rows(out).at("s1")[2], "failed") << readText(d / "log");
+  const auto failure = nlohmann::json::parse(readText(out / "sweep.json"))["runs"][0]["failure"];
+  EXPECT_EQ(failure.value("limit", ""), "stopped by the sweep: its wall-clock limit of 2 s passed") << failure.dump(2);
+  EXPECT_EQ(failure.value("signal", -1) == 0 ? failure.value("exit_code", 0) : 128 + failure.value("signal", 0),
+            128 + SIGTERM)
+      << failure.dump(2);
+  EXPECT_NE(readText(d / "log").find("passed its wall-clock limit of 2 s"), std::string::npos) << readText(d / "log");
+}
+
+TEST(Sweep, ARecordChangedAfterMsbenchWroteItIsNotCounted) {
+  // metrics.json carries record_digest over itself and coverage.csv: a figure changed afterwards
+  // (by hand, by a script, by a method's hook) makes the run a failed one in report and regress.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "sealed");
+  const fs::path f = writeSweep(d, "set: {duration_s: 2}\nseeds: 3\n");
+  const fs::path out = d / "out";
+  ASSERT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log"), 0) << readText(d / "log");
+  // runs.csv carries the verified figures beside the paper's A.
+  const std::string csv = readText(out / "runs.csv");
+  EXPECT_NE(csv.find(",exit_code,signal,verified_area_m2,verified_box_share\n"), std::string::npos) << csv;
+  auto m = nlohmann::json::parse(readText(out / "runs" / "s1" / "metrics.json"));
+  ASSERT_TRUE(m.contains("record_digest"));
+  m["coverage"]["area_m2"] = 7777.0;
+  std::ofstream(out / "runs" / "s1" / "metrics.json") << m.dump(2) << "\n";
+  std::ofstream(out / "runs" / "s2" / "coverage.csv", std::ios::app) << "2.0,9999,9999,9999,9999,9999,9999\n";
+  ASSERT_EQ(run("report '" + out.string() + "' --no-figures", d / "log_report"), 0) << readText(d / "log_report");
+  const std::string report = readText(out / "report" / "report.md");
+  const size_t failed_at = report.find("## Failed runs");
+  ASSERT_NE(failed_at, std::string::npos) << report;
+  for (const char* id : {"| s1 |", "| s2 |"}) EXPECT_NE(report.find(id, failed_at), std::string::npos) << report;
+  EXPECT_NE(report.find("changed after msbench wrote them"), std::string::npos) << report;
+  EXPECT_EQ(report.find("7777"), std::string::npos) << report;
+}
+
+TEST(Sweep, ASecondSweepIntoTheSameDirectoryIsRefusedNamingTheFirst) {
+  // Two sweeps writing one index would mark each other's runs failed: the second is refused
+  // (exit 2, the holder's pid) and the first completes as if alone.
+  const fs::path d = msb_test::tempDir("msb_sweep_", "two");
+  const fs::path f = writeSweep(d, "set: {duration_s: 6}\nseeds: 1\n");
+  const fs::path out = d / "out";
+  const std::string cmd = "'" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() + "' > '" +
+                          (d / "log1").string() + "' 2>&1 & echo $!";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_TRUE(p);
+  int first = 0;
+  ASSERT_EQ(fscanf(p, "%d", &first), 1);
+  pclose(p);
+  for (int i = 0; i < 600 && !fs::exists(out / "logs" / "s1.log"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log2"), 2) << readText(d / "log2");
+  EXPECT_NE(readText(d / "log2").find("another msbench process (pid " + std::to_string(first) + ")"), std::string::npos)
+      << readText(d / "log2");
+  for (int i = 0; i < 1200 && readText(d / "log1").find("runs complete") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(rows(out).at("s1")[2], "complete") << readText(d / "log1");
+  EXPECT_FALSE(fs::exists(d / "out.lock"));
+}
+
 TEST(Sweep, ARunThatRecordedAnErrorIsRedoneOnResume) {
   // msbench run writes metrics.json with status "error" when a run fails with a caught error
   // (and exits 1); a resumed sweep must redo that run, not count it complete.
