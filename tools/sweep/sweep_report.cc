@@ -91,10 +91,18 @@ std::string meanCell(const MeanOf& m, int runs, int digits, const std::string& u
 }
 
 // "mean [lo, hi]" with its 95 % bootstrap interval, "(k/n)" when only k of n runs have a value.
+// Fewer than 3 values have no interval: "mean {min, max}", their range, and a lone value alone.
 std::string intervalCell(const MeanOf& m, int runs, int digits) {
   if (m.count == 0) return "—";
+  std::string s;
+  if (m.count < 3) {
+    const auto [lo, hi] = std::minmax_element(m.values.begin(), m.values.end());
+    s = fixed(m.mean, digits) + (m.count == 2 ? " {" + fixed(*lo, digits) + ", " + fixed(*hi, digits) + "}" : "");
+    if (m.count < runs) s += " (" + std::to_string(m.count) + "/" + std::to_string(runs) + ")";
+    return s;
+  }
   const stats::Estimate e = estimateOf(m);
-  std::string s = fixed(e.value, digits) + " [" + fixed(e.ci.lo, digits) + ", " + fixed(e.ci.hi, digits) + "]";
+  s = fixed(e.value, digits) + " [" + fixed(e.ci.lo, digits) + ", " + fixed(e.ci.hi, digits) + "]";
   if (m.count < runs) s += " (" + std::to_string(m.count) + "/" + std::to_string(runs) + ")";
   return s;
 }
@@ -368,32 +376,57 @@ std::string tableHead(const SweepResults& results, const std::vector<std::string
   return head + "\n" + rule + "\n";
 }
 
-// The paper's Table I layout, each mean with its interval.
-std::string tableOneSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
+// A sweep that is not Table I: rows ranked by verified A (what a method earned; docs/metrics.md),
+// the claim beside it. Rows without a verified figure (records from before it) come last.
+std::string rankedResultsSection(const SweepResults& results, std::vector<ReportRow> rows) {
+  std::stable_sort(rows.begin(), rows.end(), [](const ReportRow& a, const ReportRow& b) {
+    const double va = a.verified_area_m2.count ? a.verified_area_m2.mean : -1.0;
+    const double vb = b.verified_area_m2.count ? b.verified_area_m2.mean : -1.0;
+    return va > vb;
+  });
   std::ostringstream o;
-  const bool paper = isTableOneSweep(results);
-  o << (paper ? "## Table I layout\n\n" : "## Results\n\n")
+  o << "## Results\n\nRanked by verified A: the columns a method's free space earned (truly free and seen by the "
+       "camera; docs/metrics.md, \"Verified coverage\"), not the columns it claims. Means with their 95 % "
+       "bootstrap interval over the row's seeds (percentile, "
+    << stats::kDraws
+    << " resamples, fixed seed); with fewer than 3 runs, {min, max}: a range, not an interval. ⚠: verified / "
+       "claimed below "
+    << fixed(kFlagVerifiedShare, 2)
+    << ". Crashes: runs ended by a collision, k/n with the Wilson 95 % interval of the rate. Not a Table I sweep "
+       "(not every run is a Table I row flown for the paper's 1200 s): the paper's figures and findings are not "
+       "shown.\n\n"
+    << tableHead(results, {"method type", "runs", "verified A (m²)", "A, claimed (m²)", "verified / claimed",
+                           "crashes [95 % CI]"});
+  for (const ReportRow& r : rows) {
+    const bool low = r.verified_share.count > 0 && r.verified_share.mean < kFlagVerifiedShare;
+    o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
+    if (r.complete < r.runs) o << " of " << r.runs;
+    o << " | " << intervalCell(r.verified_area_m2, r.complete, 0) << " | " << intervalCell(r.area_m2, r.complete, 0)
+      << " | " << intervalCell(r.verified_share, r.complete, 2) << (low ? " ⚠" : "") << " | "
+      << (r.complete ? collisionCell(r) : "—") << " |\n";
+  }
+  return o.str();
+}
+
+// The paper's Table I layout (a Table I sweep), each mean with its interval; any other sweep's
+// rows ranked by verified A.
+std::string tableOneSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
+  if (!isTableOneSweep(results)) return rankedResultsSection(results, rows);
+  std::ostringstream o;
+  o << "## Table I layout\n\n"
     << "Mean A with its 95 % bootstrap interval over the row's seeds (percentile, " << stats::kDraws
     << " resamples, fixed seed; docs/sweeps.md, \"Intervals and verdicts\"). Crashes: runs ended by "
        "a collision, k/n with the Wilson 95 % interval of the rate"
-    << (paper ? "; the paper's count where §V-C gives it, with Fisher's exact p of the two counts.\n\n"
-              : ". Not a Table I sweep (not every run is a Table I row flown for the paper's 1200 s): the paper's "
-                "figures and findings are not shown.\n\n");
-  std::vector<std::string> head = {"method type", "runs", "mean A (m²) [95 % CI]", "max A (m²)"};
-  if (paper) head.insert(head.end(), {"paper mean A", "paper max A"});
-  head.push_back("crashes [95 % CI]");
-  if (paper) head.push_back("paper crashes (p)");
-  o << tableHead(results, head);
+    << "; the paper's count where §V-C gives it, with Fisher's exact p of the two counts.\n\n";
+  o << tableHead(results, {"method type", "runs", "mean A (m²) [95 % CI]", "max A (m²)", "paper mean A", "paper max A",
+                           "crashes [95 % CI]", "paper crashes (p)"});
   for (const ReportRow& r : rows) {
     o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
     if (r.complete < r.runs) o << " of " << r.runs;
-    o << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—");
-    if (paper)
-      o << " | " << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | "
-        << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—");
-    o << " | " << (r.complete ? collisionCell(r) : "—");
-    if (paper) o << " | " << paperCollisionCell(r);
-    o << " |\n";
+    o << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—")
+      << " | " << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | "
+      << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—") << " | " << (r.complete ? collisionCell(r) : "—") << " | "
+      << paperCollisionCell(r) << " |\n";
   }
   return o.str();
 }
@@ -510,8 +543,25 @@ std::string ratioText(const stats::Estimate& e) {
   return fixed(e.value, 2) + " [" + fixed(e.ci.lo, 2) + ", " + fixed(e.ci.hi, 2) + "]";
 }
 
-// Each row against its world's first row, independently and paired on common seeds.
-std::string pairedSection(const std::vector<ReportRow>& rows) {
+// The verified areas of a row with their seeds (every run of the row has one), or nullopt.
+std::optional<ReportRow> verifiedAsArea(const ReportRow& r) {
+  if (r.verified_area_m2.count != r.area_m2.count) return std::nullopt;
+  ReportRow v = r;
+  v.area_m2 = r.verified_area_m2;
+  return v;
+}
+
+// Each row against its world's first row, independently and paired on common seeds; on verified A
+// (`verified`: a sweep that is not Table I) or the paper's A.
+std::string pairedSection(const std::vector<ReportRow>& all_rows, bool verified) {
+  std::vector<ReportRow> rows;
+  for (const ReportRow& r : all_rows) {
+    if (!verified) {
+      rows.push_back(r);
+    } else if (auto v = verifiedAsArea(r)) {
+      rows.push_back(*v);
+    }
+  }
   std::ostringstream body;
   for (const ReportRow& r : rows) {
     const ReportRow* ref = nullptr;
@@ -534,7 +584,8 @@ std::string pairedSection(const std::vector<ReportRow>& rows) {
     }
   }
   if (body.str().empty()) return "";
-  return "\n## Paired comparisons\n\nEach row's mean A over its world's first row's: independently (each row's "
+  return std::string("\n## Paired comparisons\n\nEach row's mean ") + (verified ? "verified A" : "A") +
+         " over its world's first row's: independently (each row's "
          "seeds resampled on their own) and paired (runs with the same seed resampled together; r: the correlation "
          "of the pairs). Runs with the same seed share the world and every noise stream's seed; the pairing is "
          "tightest between a method and its own ablation, which fly the same until the switch first acts "
@@ -585,7 +636,7 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     o << "\n";
   }
   o << tableOneSection(results, rows) << verifiedSection(results, rows) << beyondPaperSection(results, rows)
-    << frontEndSection(results, rows) << saturationSection(rows) << pairedSection(rows);
+    << frontEndSection(results, rows) << saturationSection(rows) << pairedSection(rows, !isTableOneSweep(results));
   // Every run, with its collision.
   o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | tracked (mean) | drift (m) | collision |\n"
        "| --- | --- | --- | --- | --- | --- | --- | --- |\n";

@@ -94,7 +94,7 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   // The Markdown names every row and the failed run; the CSV has a line per row.
   const std::string md = reportMarkdown(s, rows);
   // Two runs (600, 800): the bootstrap means are 600, 700, 800 with probabilities 1/4, 1/2, 1/4.
-  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 700 [600, 800] | 800 | 4919 | 6081 | 1/2 [0.09, 0.91] | "
+  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 700 {600, 800} | 800 | 4919 | 6081 | 1/2 [0.09, 0.91] | "
                     "2/6 (p = 1.00) |"),
             std::string::npos)
       << md;
@@ -151,11 +151,22 @@ TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
   EXPECT_EQ(md.find("paper mean A"), std::string::npos) << md;
   EXPECT_EQ(md.find("Table I layout"), std::string::npos) << md;
   EXPECT_NE(md.find("Not a Table I sweep"), std::string::npos) << md;
-  // Paired rows by the sweep's variant names; verified A beside the claim.
+  // Ranked by verified A (ms earned 450, mine 120 of its 300 claimed: flagged), two runs a row
+  // shown as {min, max} ranges, not intervals; paired ratios on verified A.
+  const size_t results_at = md.find("## Results");
+  ASSERT_NE(results_at, std::string::npos) << md;
+  const size_t ms_at = md.find("| urban | ms |", results_at);
+  const size_t mine_at = md.find("| urban | mine |", results_at);
+  ASSERT_NE(ms_at, std::string::npos) << md;
+  ASSERT_NE(mine_at, std::string::npos) << md;
+  EXPECT_LT(ms_at, mine_at) << md;
+  EXPECT_NE(md.find("| 2 | 120 {120, 120} | 300 {300, 300} | 0.40 {0.40, 0.40} ⚠ |", mine_at), std::string::npos) << md;
+  EXPECT_NE(md.find("{min, max}: a range, not an interval"), std::string::npos) << md;
+  EXPECT_NE(md.find("Each row's mean verified A over its world's first row's"), std::string::npos) << md;
   EXPECT_NE(md.find("| urban | ms / mine |"), std::string::npos) << md;
   EXPECT_NE(md.find("## Verified coverage and map accuracy"), std::string::npos) << md;
   // (Verified / claimed 0.40 is below 0.75: flagged.)
-  EXPECT_NE(md.find("| urban | mine | 300 [300, 300] | 120 [120, 120] | 0.40 [0.40, 0.40] ⚠ |"), std::string::npos)
+  EXPECT_NE(md.find("| urban | mine | 300 {300, 300} | 120 {120, 120} | 0.40 {0.40, 0.40} ⚠ |"), std::string::npos)
       << md;
   // Every finding is n/a: nothing holds, fails or is undecided.
   const FindingCounts c = countFindings(evaluateFindings(s, rows));
@@ -382,8 +393,8 @@ TEST(SweepReport, TheVerifiedSectionFlagsARowThatClaimsWhatItDidNotEarn) {
   };
   EXPECT_EQ(line("| urban | honest |").find("⚠"), std::string::npos) << md;
   const std::string cheat = line("| urban | cheat |");
-  EXPECT_NE(cheat.find("0.08 [0.08, 0.08] ⚠"), std::string::npos) << cheat;
-  EXPECT_NE(cheat.find("0.500 [0.500, 0.500] ⚠"), std::string::npos) << cheat;
+  EXPECT_NE(cheat.find("0.08 ⚠"), std::string::npos) << cheat;
+  EXPECT_NE(cheat.find("0.500 ⚠"), std::string::npos) << cheat;
   EXPECT_NE(md.find("⚠: verified / claimed below 0.75"), std::string::npos) << md;
 }
 
