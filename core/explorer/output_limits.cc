@@ -8,6 +8,7 @@ std::optional<std::string> freeSpaceProblem(const std::vector<FreeSpaceElement>&
   if (free_space.size() > kMaxFreeSpaceElements)
     return std::to_string(free_space.size()) + " free-space elements (the limit is " +
            std::to_string(kMaxFreeSpaceElements) + ")";
+  double footprint_m2 = 0.0;
   for (size_t i = 0; i < free_space.size(); ++i) {
     const FreeSpaceElement& e = free_space[i];
     const std::string which = "free-space element " + std::to_string(i) + " (id " + std::to_string(e.id) + ")";
@@ -19,6 +20,12 @@ std::optional<std::string> freeSpaceProblem(const std::vector<FreeSpaceElement>&
     if (outside.maxCoeff() > kMaxElementOffsetM)
       return which + ": its centre lies " + std::to_string(outside.maxCoeff()) +
              " m outside the exploration box (the limit is " + std::to_string(int(kMaxElementOffsetM)) + " m)";
+    // The total footprint, the metric's work per sample.
+    footprint_m2 +=
+        e.footprint == FreeSpaceElement::Footprint::kSquare ? 4.0 * e.radius * e.radius : M_PI * e.radius * e.radius;
+    if (footprint_m2 > kMaxFreeSpaceFootprintM2)
+      return "the free space's total footprint passes " + std::to_string(int(kMaxFreeSpaceFootprintM2)) + " m² at " +
+             which + " (the limit bounds the metric's work per sample)";
   }
   return std::nullopt;
 }

@@ -30,6 +30,26 @@ TEST(FreeSpaceLimits, NamesTheBadElement) {
   EXPECT_TRUE(freeSpaceProblem({inf}, box));
 }
 
+TEST(FreeSpaceLimits, AFloodOfLargeElementsIsRefusedByItsTotalFootprint) {
+  // 1000 disks of 250 m (the flood that cost 27.9 s of metric time per simulated second) pass
+  // every per-element limit; their footprint, 2·10⁸ m², does not. Fifteen disks of 145 m
+  // (0.99·10⁶ m²) are within it; a sixteenth square of 50 m half side (10⁴ m²) is not.
+  const Aabb box{Vec3(0, 0, 0), Vec3(100, 100, 7)};
+  FreeSpaceElement disk;
+  disk.radius = 250.0;
+  const auto flood = freeSpaceProblem(std::vector<FreeSpaceElement>(1000, disk), box);
+  ASSERT_TRUE(flood);
+  EXPECT_NE(flood->find("total footprint passes 1000000 m² at free-space element 5 "), std::string::npos) << *flood;
+  disk.radius = 145.0;
+  std::vector<FreeSpaceElement> fifteen(15, disk);
+  EXPECT_FALSE(freeSpaceProblem(fifteen, box));
+  FreeSpaceElement square;
+  square.radius = 50.0;
+  square.footprint = FreeSpaceElement::Footprint::kSquare;
+  fifteen.push_back(square);
+  EXPECT_TRUE(freeSpaceProblem(fifteen, box));
+}
+
 TEST(WaypointLimits, NamesWhatIsWrong) {
   const Vec3 start(1, 2, 0);
   EXPECT_FALSE(waypointProblem({Vec3(500, 2, 3), 0.5}, start));
