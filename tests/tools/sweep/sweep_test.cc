@@ -173,6 +173,19 @@ exclude: [{variant: broken, seed: 2}]
   EXPECT_NE(readText(d / "log3").find("the sweep file changed"), std::string::npos) << readText(d / "log3");
 }
 
+// Starts `msbench sweep SWEEP --out OUT` in the background, its output to `log`; its pid (0 if it
+// could not be started).
+int startSweepInBackground(const fs::path& sweep, const fs::path& out, const fs::path& log) {
+  const std::string cmd = "'" + msb_test::kExe + "' sweep '" + sweep.string() + "' --out '" + out.string() + "' > '" +
+                          log.string() + "' 2>&1 & echo $!";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return 0;
+  int pid = 0;
+  if (fscanf(p, "%d", &pid) != 1) pid = 0;
+  pclose(p);
+  return pid;
+}
+
 TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
   // Three runs one at a time; the second gets SIGSEGV once it has printed its first progress
   // line (as a memory error would end it): recorded failed with the signal, the crash handler's
@@ -180,13 +193,7 @@ TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "signal");
   const fs::path f = writeSweep(d, "set: {duration_s: 12}\nseeds: 3\n");
   const fs::path out = d / "out";
-  const std::string cmd = "'" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() + "' > '" +
-                          (d / "log").string() + "' 2>&1 & echo $!";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_TRUE(p);
-  int sweep_pid = 0;
-  ASSERT_EQ(fscanf(p, "%d", &sweep_pid), 1);
-  pclose(p);
+  ASSERT_NE(startSweepInBackground(f, out, d / "log"), 0);
   // Wait for run s2's first progress line, then kill it (its command line names its output
   // directory).
   const std::string pattern = (out / "runs" / "s2").string();
@@ -270,13 +277,8 @@ TEST(Sweep, ASecondSweepIntoTheSameDirectoryIsRefusedNamingTheFirst) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "two");
   const fs::path f = writeSweep(d, "set: {duration_s: 6}\nseeds: 1\n");
   const fs::path out = d / "out";
-  const std::string cmd = "'" + msb_test::kExe + "' sweep '" + f.string() + "' --out '" + out.string() + "' > '" +
-                          (d / "log1").string() + "' 2>&1 & echo $!";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_TRUE(p);
-  int first = 0;
-  ASSERT_EQ(fscanf(p, "%d", &first), 1);
-  pclose(p);
+  const int first = startSweepInBackground(f, out, d / "log1");
+  ASSERT_NE(first, 0);
   for (int i = 0; i < 600 && !fs::exists(out / "logs" / "s1.log"); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log2"), 2) << readText(d / "log2");
