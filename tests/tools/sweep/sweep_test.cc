@@ -102,7 +102,6 @@ TEST(SweepPlan, BadSweepFilesNameTheFileAndKey) {
               "exclude[0]': matches no combination");
 }
 
-// A sweep directory's runs.csv as id → row fields.
 // Starts `msbench sweep FILE --out OUT` in the background as the leader of its own process group
 // (setsid), output to `log`; returns its pid (0 if it could not be started).
 int startSweepInItsOwnGroup(const fs::path& file, const fs::path& out, const fs::path& log) {
@@ -116,6 +115,7 @@ int startSweepInItsOwnGroup(const fs::path& file, const fs::path& out, const fs:
   return pid;
 }
 
+// A sweep directory's runs.csv as id → row fields.
 std::map<std::string, std::vector<std::string>> rows(const fs::path& dir) {
   std::map<std::string, std::vector<std::string>> out;
   std::istringstream in(readText(dir / "runs.csv"));
@@ -173,19 +173,6 @@ exclude: [{variant: broken, seed: 2}]
   EXPECT_NE(readText(d / "log3").find("the sweep file changed"), std::string::npos) << readText(d / "log3");
 }
 
-// Starts `msbench sweep SWEEP --out OUT` in the background, its output to `log`; its pid (0 if it
-// could not be started).
-int startSweepInBackground(const fs::path& sweep, const fs::path& out, const fs::path& log) {
-  const std::string cmd = "'" + msb_test::kExe + "' sweep '" + sweep.string() + "' --out '" + out.string() + "' > '" +
-                          log.string() + "' 2>&1 & echo $!";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return 0;
-  int pid = 0;
-  if (fscanf(p, "%d", &pid) != 1) pid = 0;
-  pclose(p);
-  return pid;
-}
-
 TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
   // Three runs one at a time; the second gets SIGSEGV once it has printed its first progress
   // line (as a memory error would end it): recorded failed with the signal, the crash handler's
@@ -193,7 +180,7 @@ TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "signal");
   const fs::path f = writeSweep(d, "set: {duration_s: 12}\nseeds: 3\n");
   const fs::path out = d / "out";
-  ASSERT_NE(startSweepInBackground(f, out, d / "log"), 0);
+  ASSERT_NE(startSweepInItsOwnGroup(f, out, d / "log"), 0);
   // Wait for run s2's first progress line, then kill it (its command line names its output
   // directory).
   const std::string pattern = (out / "runs" / "s2").string();
@@ -277,7 +264,7 @@ TEST(Sweep, ASecondSweepIntoTheSameDirectoryIsRefusedNamingTheFirst) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "two");
   const fs::path f = writeSweep(d, "set: {duration_s: 6}\nseeds: 1\n");
   const fs::path out = d / "out";
-  const int first = startSweepInBackground(f, out, d / "log1");
+  const int first = startSweepInItsOwnGroup(f, out, d / "log1");
   ASSERT_NE(first, 0);
   for (int i = 0; i < 600 && !fs::exists(out / "logs" / "s1.log"); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
