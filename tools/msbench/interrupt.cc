@@ -36,6 +36,9 @@ void installInterruptHandlers() {
   // A closed stdout (`msbench run ... | head -1`) must not kill a run half-way and leave its
   // staging directory: writes to it fail instead, and the run finishes its files.
   std::signal(SIGPIPE, SIG_IGN);
+  // A file past the size limit (ulimit -f) fails its write (EFBIG), which writeFileAtomic names,
+  // instead of killing msbench with a temporary left behind.
+  std::signal(SIGXFSZ, SIG_IGN);
 }
 
 bool interruptRequested() { return g_signal != 0; }

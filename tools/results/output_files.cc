@@ -29,14 +29,31 @@ std::string readFileText(const std::filesystem::path& path) {
 }
 
 void writeFileAtomic(const fs::path& path, const std::string& bytes) {
+  // Every step is checked — open, each write, close (where some file systems report a full
+  // disk) — before the rename; on failure the temporary goes and `path` is as it was.
   const fs::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+  auto fail = [&](const char* step, int err) {
+    ::unlink(tmp.c_str());
+    throw std::runtime_error(path.string() + ": cannot " + step + " (" + tmp.filename().string() +
+                             "): " + std::strerror(err) + "; the file was not changed");
+  };
+  ::unlink(tmp.c_str());  // a temporary of an earlier process with this pid
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) fail("create the file", errno);
+  for (size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : EIO;
+      ::close(fd);
+      fail("write it", err);
+    }
+    done += size_t(n);
   }
-  fs::rename(tmp, path);
+  if (::close(fd) != 0) fail("close it", errno);
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) fail("rename it into place", ec.value());
 }
 
 namespace {

@@ -5,9 +5,11 @@
 // written at outputPathOf(path) — and the input is never lost.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -147,6 +149,41 @@ TEST(StagedOutputDir, ATargetThatGainedAUserFileWhileTheRunFlewIsKept) {
   EXPECT_THROW(again.commit(), std::runtime_error);
   EXPECT_EQ(readAll(out / "notes.txt"), "written by the user while the run flew");
   EXPECT_TRUE(fs::exists(again.staging()));  // the run's results stay staged
+}
+
+}  // namespace
+}  // namespace msb
+
+namespace msb {
+namespace {
+
+// A write that fails (here: past RLIMIT_FSIZE, as on a full disk) never replaces the file it was
+// to replace, leaves no temporary and names the path and the OS error.
+TEST(WriteFileAtomic, AFailedWriteKeepsTheOldFileAndLeavesNoTemporary) {
+  const fs::path root = msb_test::tempDir("msb_write_", "full");
+  const fs::path file = root / "golden.json";
+  std::ofstream(file) << "the golden msbench wrote before";
+  const pid_t child = fork();
+  if (child == 0) {
+    signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{1024, 1024};
+    setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      writeFileAtomic(file, std::string(64 * 1024, 'x'));
+      _exit(1);
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      _exit(what.find(file.string() + ": cannot write it") == 0 && what.find("File too large") != std::string::npos &&
+                    what.find("the file was not changed") != std::string::npos
+                ? 0
+                : 2);
+    }
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(readAll(file), "the golden msbench wrote before");
+  for (const auto& e : fs::directory_iterator(root)) EXPECT_EQ(e.path(), file) << "left behind: " << e.path();
 }
 
 }  // namespace

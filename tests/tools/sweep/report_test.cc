@@ -231,6 +231,17 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   EXPECT_EQ(run("regress '" + out.string() + "' --against '" + golden.string() + "'", d / "log_same"), 0)
       << readText(d / "log_same");
   EXPECT_NE(readText(d / "log_same").find("4 runs compared (4 exactly"), std::string::npos) << readText(d / "log_same");
+  // An update that cannot be written (a file size limit, as a full disk) keeps the golden as it
+  // was, leaves no temporary and says so (before: a 0-byte golden and exit 0).
+  const std::string golden_text = readText(golden / "golden.json");
+  const std::string limited = "ulimit -f 1; '" + msb_test::kExe + "' regress '" + out.string() + "' --against '" +
+                              golden.string() + "' --update > '" + (d / "log_full").string() + "' 2>&1";
+  const int full = std::system(("sh -c \"" + limited + "\"").c_str());
+  EXPECT_TRUE(WIFEXITED(full) && WEXITSTATUS(full) != 0) << readText(d / "log_full");
+  EXPECT_NE(readText(d / "log_full").find("File too large; the file was not changed"), std::string::npos)
+      << readText(d / "log_full");
+  EXPECT_EQ(readText(golden / "golden.json"), golden_text);
+  for (const auto& e : fs::directory_iterator(golden)) EXPECT_EQ(e.path().filename(), "golden.json") << e.path();
   // A changed A on the same machine is a regression, named.
   const fs::path run_dir = out / "runs" / "no_fff-s2";
   const std::string original = readText(run_dir / "metrics.json");
