@@ -253,9 +253,10 @@ OutputLock::OutputLock(const fs::path& output, const std::string& flag) : path_(
     }, named{};
     if (fstat(fd_, &held) == 0 && stat(path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
         held.st_dev == named.st_dev) {
+      // The pid is for a second writer's message only: a failure to note it changes nothing.
       const std::string pid = std::to_string(getpid());
-      if (ftruncate(fd_, 0) != 0 || pwrite(fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size())) {
-      }  // the pid is for the message of a second writer only
+      const bool noted = ftruncate(fd_, 0) == 0 && pwrite(fd_, pid.data(), pid.size(), 0) == ssize_t(pid.size());
+      (void)noted;
       return;
     }
     close(fd_);

@@ -12,6 +12,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -94,11 +95,15 @@ TEST(OutputFiles, NoGeneratedOutputPathEverLosesTheInputOrWritesElsewhere) {
   EXPECT_GT(refused, 40);
 }
 
-}  // namespace
-}  // namespace msb
-
-namespace msb {
-namespace {
+// Runs `body` in a forked child (another process, as a second msbench would be) and returns
+// its exit code: the child exits with what `body` returns.
+int inAnotherProcess(const std::function<int()>& body) {
+  const pid_t child = fork();
+  if (child == 0) _exit(body());
+  int status = 0;
+  waitpid(child, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
 
 // One writer per output: a second StagedOutputDir (another process) is refused naming the pid
 // and leaves the first one's live staging as it is; the lock goes with its holder.
@@ -107,20 +112,19 @@ TEST(OutputLock, ASecondWriterIsRefusedAndTheFirstsStagingIsKept) {
   const fs::path out = root / "run";
   StagedOutputDir first(out, false);
   std::ofstream(first.staging() / "metrics.json") << "{}";
-  // Another process: fork, try, report by exit code (0 refused as expected, 1 not refused).
-  const pid_t child = fork();
-  if (child == 0) {
-    try {
-      StagedOutputDir second(out, true);
-      _exit(1);
-    } catch (const UsageError& e) {
-      const std::string what = e.what();
-      _exit(what.find("another msbench process (pid " + std::to_string(getppid()) + ")") != std::string::npos ? 0 : 2);
-    }
-  }
-  int status = 0;
-  waitpid(child, &status, 0);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  // Another process: 0 when refused as expected, 1 when not refused.
+  const int parent = getpid();
+  EXPECT_EQ(
+      inAnotherProcess([&] {
+        try {
+          StagedOutputDir second(out, true);
+          return 1;
+        } catch (const UsageError& e) {
+          const std::string what = e.what();
+          return what.find("another msbench process (pid " + std::to_string(parent) + ")") != std::string::npos ? 0 : 2;
+        }
+      }),
+      0);
   EXPECT_TRUE(fs::exists(first.staging() / "metrics.json"));
   first.commit();
   EXPECT_TRUE(fs::exists(out / "metrics.json"));
@@ -151,37 +155,29 @@ TEST(StagedOutputDir, ATargetThatGainedAUserFileWhileTheRunFlewIsKept) {
   EXPECT_TRUE(fs::exists(again.staging()));  // the run's results stay staged
 }
 
-}  // namespace
-}  // namespace msb
-
-namespace msb {
-namespace {
-
 // A write that fails (here: past RLIMIT_FSIZE, as on a full disk) never replaces the file it was
 // to replace, leaves no temporary and names the path and the OS error.
 TEST(WriteFileAtomic, AFailedWriteKeepsTheOldFileAndLeavesNoTemporary) {
   const fs::path root = msb_test::tempDir("msb_write_", "full");
   const fs::path file = root / "golden.json";
   std::ofstream(file) << "the golden msbench wrote before";
-  const pid_t child = fork();
-  if (child == 0) {
-    signal(SIGXFSZ, SIG_IGN);
-    const rlimit limit{1024, 1024};
-    setrlimit(RLIMIT_FSIZE, &limit);
-    try {
-      writeFileAtomic(file, std::string(64 * 1024, 'x'));
-      _exit(1);
-    } catch (const std::runtime_error& e) {
-      const std::string what = e.what();
-      _exit(what.find(file.string() + ": cannot write it") == 0 && what.find("File too large") != std::string::npos &&
-                    what.find("the file was not changed") != std::string::npos
-                ? 0
-                : 2);
-    }
-  }
-  int status = 0;
-  waitpid(child, &status, 0);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(inAnotherProcess([&] {
+              signal(SIGXFSZ, SIG_IGN);
+              const rlimit limit{1024, 1024};
+              setrlimit(RLIMIT_FSIZE, &limit);
+              try {
+                writeFileAtomic(file, std::string(64 * 1024, 'x'));
+                return 1;
+              } catch (const std::runtime_error& e) {
+                const std::string what = e.what();
+                return what.find(file.string() + ": cannot write it") == 0 &&
+                               what.find("File too large") != std::string::npos &&
+                               what.find("the file was not changed") != std::string::npos
+                           ? 0
+                           : 2;
+              }
+            }),
+            0);
   EXPECT_EQ(readAll(file), "the golden msbench wrote before");
   for (const auto& e : fs::directory_iterator(root)) EXPECT_EQ(e.path(), file) << "left behind: " << e.path();
 }

@@ -80,6 +80,12 @@ class _Worker:
 
     def __init__(self, entry, method_dir, params, context, budget_s, scenario_file):
         self.budget_s, self.entry = budget_s, entry
+        # A method directory that holds msbench is refused before any process starts.
+        excluded = _excluded()
+        if method_dir and any(e == method_dir or e.startswith(method_dir.rstrip("/") + "/") for e in excluded):
+            raise ConfigError(f"{scenario_file}: key 'method.path': {method_dir} holds msbench itself (its package, "
+                              "worlds or binary), which a method may not read: give the method its own directory")
+        read_exec, read_only = _allowed_reads(method_dir)
         self.scratch = tempfile.mkdtemp(prefix="msbench-method-")
         self.log_path = os.path.join(self.scratch, "method.log")
         self.rngs = {}
@@ -99,15 +105,9 @@ class _Worker:
         _workers.add(self)
         self._finalizer = weakref.finalize(self, _Worker._kill, self.proc, self.scratch,
                                            [self.to_host, self.from_host])
-        read_exec, read_only = _allowed_reads(method_dir)
-        excluded = _excluded()
-        if method_dir and any(e == method_dir or e.startswith(method_dir.rstrip("/") + "/") for e in excluded):
-            self.close()
-            raise ConfigError(f"{scenario_file}: key 'method.path': {method_dir} holds msbench itself (its package, "
-                              "worlds or binary), which a method may not read: give the method its own directory")
         self._send({"entry": entry, "path": method_dir, "params": params, "context": context,
-                                    "read_exec": read_exec, "read_only": read_only, "scratch": self.scratch,
-                                    "excluded": excluded, "confine": True, "file_limit_bytes": _FILE_LIMIT_BYTES})
+                    "read_exec": read_exec, "read_only": read_only, "scratch": self.scratch,
+                    "excluded": excluded, "confine": True, "file_limit_bytes": _FILE_LIMIT_BYTES})
         first = self._answer("the factory", 4 * budget_s)
         if "config" in first:
             self.close()
