@@ -198,6 +198,15 @@ void missionKeys(Keys r, MissionSettings& m) {
   r.finish();
 }
 
+template <class Keys>
+void videoKeys(Keys r, VideoSettings& v) {
+  r.field("enabled", v.enabled);
+  r.field("speedup", v.speedup);
+  r.field("fps", v.fps);
+  r.field("height", v.height);
+  r.finish();
+}
+
 // The `goals` section: entry, path, and params (a map, kept as YAML text for the factory).
 PythonMethodConfig readGoals(MapReader g) {
   PythonMethodConfig c;
@@ -222,6 +231,7 @@ void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
     s.exploration_box = box;
   }
   if (r.has("mission")) missionKeys(r.sub("mission"), s.mission);
+  if (r.has("video")) videoKeys(r.sub("video"), s.video);
   if (r.has("goals")) s.goals = readGoals(r.sub("goals"));
   r.finish();
 }
@@ -307,6 +317,8 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec) {
   }
   MissionSettings mission = spec.mission;
   missionKeys(w.sub("mission"), mission);
+  VideoSettings video = spec.video;
+  videoKeys(w.sub("video"), video);
   if (spec.goals) {
     MapWriter g = w.sub("goals");
     g.field("entry", spec.goals->entry);

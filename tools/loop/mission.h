@@ -98,6 +98,8 @@ class Mission {
   void abandon() { loop_->abandon(); }
   /// Explored area so far (VIO frame, m²).
   double areaM2() const { return coverage_.columns().areaM2(); }
+  /// Explored columns so far (VIO frame).
+  const ColumnCoverage& columns() const { return coverage_.columns(); }
   /// The closed loop (frames, vehicle states) for callers that read more than a TickRecord.
   const ClosedLoop& loop() const { return *loop_; }
   /// The loop's tick rate.

@@ -23,6 +23,13 @@ void MissionSettings::validate(ConfigChecker& c) const {
   c.inRange("trajectory_rate_hz", trajectory_rate_hz, 0.1, 500.0);
 }
 
+void VideoSettings::validate(ConfigChecker& c) const {
+  c.inRange("speedup", speedup, 0.1, 1000.0);
+  c.inRange("fps", fps, 1, 60);
+  c.inRange("height", height, 240, 2160);
+  c.require(height % 2 == 0, "height", "must be even (the encoder's 4:2:0 chroma), got " + std::to_string(height));
+}
+
 void ScenarioSpec::validate(ConfigChecker& c) const {
   c.require(bool(method.make), "method", "no exploration method chosen");
   flight.validate(c);
@@ -39,6 +46,7 @@ void ScenarioSpec::validate(ConfigChecker& c) const {
     c.require(size.maxCoeff() <= 10000.0, "exploration_box", "must be at most 10 km on every axis");
   }
   c.nested("mission", mission);
+  c.nested("video", video);
   if (goals) {
     c.nested("goals", *goals);
     c.require(

@@ -27,6 +27,18 @@ struct MissionSettings {
   void validate(ConfigChecker& c) const;
 };
 
+/// A video of the run (video.mp4; docs/video.md): the fisheye frame beside the top-down map as
+/// it grows, one frame every speedup / fps simulated seconds.
+struct VideoSettings {
+  bool enabled = false;  ///< write video.mp4 (`msbench run --video`)
+  double speedup = 10;   ///< simulated seconds per second of video
+  int fps = 10;          ///< frames per second of video
+  int height = 720;      ///< frame height in pixels (even; the width follows the box)
+
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
 /// A flight with the defaults of a mission where they differ from a scripted flight's: 20
 /// simulated minutes (Table I), perception on with a latency of 3 frames on a second thread,
 /// no frames saved.
@@ -44,6 +56,7 @@ struct ScenarioSpec {
   /// scenario's `goals` section (entry, path, params); runs through the Python module.
   std::optional<PythonMethodConfig> goals;
   MissionSettings mission;
+  VideoSettings video;  ///< off by default; nothing of the run depends on it
   /// The files the scenario was read from: the file itself, then its `base:` chain (absolute).
   /// Outputs may not overlap them (checkNoOverlap).
   std::vector<std::string> input_files;

@@ -23,6 +23,8 @@
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
 #include "tools/results/provenance.h"
+#include "tools/results/run_record.h"
+#include "tools/results/run_video.h"
 
 namespace msb {
 
@@ -44,20 +46,46 @@ void printProgress(const std::string& name, const std::string& method, double du
                duration_s, rtf, area, counters.c_str(), (duration_s - sim_s) / std::max(rtf, 1e-9));
 }
 
-// Steps the mission to its end; records perception and prints progress between ticks; stops at
-// the end of a tick on SIGINT/SIGTERM (nothing is kept).
-void stepToEnd(Mission& mission, const ScenarioSpec& spec, PerceptionLogWriter* recorder, bool quiet) {
+// Steps the mission to its end; records perception, video frames and progress between ticks;
+// stops at the end of a tick on SIGINT/SIGTERM (nothing is kept). Returns the wall seconds the
+// video took (recorded, never used).
+double stepToEnd(Mission& mission, const ScenarioSpec& spec, PerceptionLogWriter* recorder, RunVideo* video,
+                 bool quiet) {
   const auto wall_start = WallClock::now();
   const int64_t progress_ticks = 10 * int64_t(mission.physicsHz());
+  const int64_t video_ticks = video ? video->periodTicks(mission.physicsHz()) : 0;
+  double video_s = 0;
   while (mission.running()) {
     throwIfInterrupted();
     const TickRecord& t = mission.step();
     setCrashContext(t.tick, t.t_s);
     if (recorder && t.points) recorder->write(*t.points, t.perceived->T_W_C);
+    if (video && t.completed && t.tick % video_ticks == 0) {
+      const auto start = WallClock::now();
+      video->addFrame(mission);
+      video_s += secondsSince(start);
+    }
     if (!quiet && t.completed && t.tick > 0 && t.tick % progress_ticks == 0)
       printProgress(spec.name, spec.method.type, spec.flight.duration_s, t.t_s, secondsSince(wall_start),
                     mission.areaM2(), mission.explorer().counters());
   }
+  return video_s;
+}
+
+// Ends the video: the run's final frames, then the encoder. metrics.json's `video`: the file and
+// its frames, or why there is none (the run's other files are written either way).
+nlohmann::json finishVideo(RunVideo& video, const Mission& mission, const MissionResult& r, const VideoSettings& s,
+                           double wall_s, const fs::path& final_dir) {
+  const auto start = WallClock::now();
+  video.addFinalFrames(r, mission.loop().sharedFrame().get());
+  const std::string error = video.finish();
+  wall_s += secondsSince(start);
+  if (!error.empty()) {
+    std::fprintf(stderr, "msbench run: video %s not written: %s\n", (final_dir / "video.mp4").c_str(), error.c_str());
+    return {{"file", nullptr}, {"error", error}, {"wall_time_s", wall_s}};
+  }
+  return {{"file", "video.mp4"}, {"frames", video.frames()}, {"width", video.width()}, {"height", video.height()},
+          {"fps", s.fps},        {"speedup", s.speedup},     {"wall_time_s", wall_s}};
 }
 
 // The run's result line, and the collision's if it ended in one.
@@ -112,6 +140,7 @@ int runRunCommand(int argc, char** argv) {
       .option("seed", "", "override the scenario seed")
       .option("duration", "", "override the mission duration (simulated seconds)")
       .option("record", "", "also record the perception stream to this log (for map-replay)")
+      .flag("video", "also write video.mp4: the camera beside the growing map (needs ffmpeg; docs/video.md)")
       .flag("quiet", "no progress line")
       .flag("overwrite", "replace an existing non-empty output directory");
   if (!args.parse(argc, argv)) return kExitOk;
@@ -121,7 +150,12 @@ int runRunCommand(int argc, char** argv) {
   std::vector<std::string> all_sets = sets;
   if (args.given("seed")) all_sets.push_back("seed=" + args.get("seed"));
   if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
+  if (args.has("video")) all_sets.push_back("video.enabled=true");
   ScenarioSpec spec = loadScenario(file, all_sets);
+  if ((spec.method.type == kPythonMethodType || spec.goals) && spec.video.enabled)
+    throw UsageError(file +
+                     ": video.enabled: not available for a method written in Python (its loop runs in the "
+                     "Python module; docs/video.md)");
   if (spec.method.type == kPythonMethodType || spec.goals) execPythonRun(original_args);
   const std::string effective_yaml = effectiveScenarioYaml(spec);  // before the world fills in the start
   MissionWorld world = prepareMissionWorld(file, spec);
@@ -131,6 +165,8 @@ int runRunCommand(int argc, char** argv) {
   checkNoOverlap(missionInputs(file, spec), {{"--out", args.get("out")}, {"--record", args.get("record")}});
   if (!args.get("record").empty())
     checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
+  if (spec.video.enabled && findFfmpeg().empty())
+    throw UsageError(file + ": video.enabled: the ffmpeg program is not installed (apt-get install ffmpeg)");
   // Build the mission (world model, renderer, method) before any output exists: a world that
   // does not compile is bad input (exit 2) and leaves nothing behind.
   Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });
@@ -149,9 +185,15 @@ int runRunCommand(int argc, char** argv) {
                        {"seed", spec.flight.seed},
                        {"camera_scale", spec.flight.camera.scale},
                        {"scenario", file}});
+  std::unique_ptr<RunVideo> video;
+  if (spec.video.enabled)
+    video = std::make_unique<RunVideo>(out.staging() / "video.mp4", spec.video, spec.name, spec.flight.duration_s, box,
+                                       truth ? &*truth : nullptr, mission.loop().camera().width(),
+                                       mission.loop().camera().height());
   MissionResult r;
+  double video_s = 0;
   try {
-    stepToEnd(mission, spec, recorder.get(), quiet);
+    video_s = stepToEnd(mission, spec, recorder.get(), video.get(), quiet);
     r = mission.finish();
   } catch (const Interrupted&) {
     throw;  // unwinds: the recorder and the staging directory remove themselves
@@ -165,10 +207,85 @@ int runRunCommand(int argc, char** argv) {
   }
 
   if (recorder) recorder->close();
-  const nlohmann::json metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr);
+  nlohmann::json extra = nlohmann::json::object();
+  if (video) extra["video"] = finishVideo(*video, mission, r, spec.video, video_s, out.finalDir());
+  const nlohmann::json metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr, extra);
   out.commit();
 
   printRunSummary(spec, r, metrics, out.finalDir());
+  return kExitOk;
+}
+
+namespace {
+
+// A file removed when the scope ends unless kept (the replayed video before its hash check).
+struct RemoveUnlessKept {
+  fs::path file;
+  bool kept = false;
+  ~RemoveUnlessKept() {
+    std::error_code ec;
+    if (!kept) fs::remove(file, ec);
+  }
+};
+
+// The scenario of a finished run, replayable: its config.yaml with `video.enabled` and the
+// video keys given by --set; a Python method's run cannot be replayed here.
+ScenarioSpec replayableScenario(const fs::path& config, std::vector<std::string> sets) {
+  for (const std::string& kv : sets)
+    if (kv.rfind("video.", 0) != 0) throw UsageError("--set " + kv + ": msbench video takes video.KEY=VALUE only");
+  if (readFileText(config).rfind("# NOT REPLAYABLE", 0) == 0)
+    throw UsageError(config.string() + ": the run is not replayable (its first line says why)");
+  sets.push_back("video.enabled=true");
+  ScenarioSpec spec = loadScenario(config.string(), sets);
+  if (spec.method.type == kPythonMethodType || spec.goals)
+    throw UsageError(config.string() + ": a method written in Python; its video is not available (docs/video.md)");
+  return spec;
+}
+
+}  // namespace
+
+int runVideoCommand(int argc, char** argv) {
+  const std::vector<std::string> sets = takeRepeatedOption(argc, argv, "set");
+  ArgParser args("msbench video",
+                 "Video of a finished run: replays RUN/config.yaml (same build and machine: the run\n"
+                 "reproduces bit for bit), checks the replay's hash against RUN/metrics.json and adds\n"
+                 "RUN/video.mp4; nothing else in RUN changes. --set video.KEY=VALUE (speedup, fps,\n"
+                 "height) as in a scenario's video section (docs/video.md).");
+  args.positional("RUN", "a run's directory (config.yaml, metrics.json)")
+      .flag("quiet", "no progress line")
+      .flag("overwrite", "replace RUN/video.mp4");
+  if (!args.parse(argc, argv)) return kExitOk;
+  const fs::path run = args.get("RUN");
+  const MissionRecordRead read = readMissionRecord(run / "metrics.json");
+  if (!read.record) throw UsageError(read.problem);
+  ScenarioSpec spec = replayableScenario(run / "config.yaml", sets);
+  if (findFfmpeg().empty())
+    throw UsageError("msbench video: the ffmpeg program is not installed (apt-get install ffmpeg)");
+  const fs::path file = run / "video.mp4";
+  if (fs::exists(fs::symlink_status(file)) && !args.has("overwrite"))
+    throw UsageError(file.string() + ": exists; --overwrite replaces it");
+  const OutputLock lock(file, "RUN/video.mp4");
+  MissionWorld world = prepareMissionWorld((run / "config.yaml").string(), spec);
+  const WorldTruth* truth = world.truth ? &*world.truth : nullptr;
+  Mission mission = buildNamingFile((run / "config.yaml").string(), [&] { return Mission(spec, world.box, truth); });
+
+  // The replay with its video; the video is kept only if the replay is the recorded run.
+  RemoveUnlessKept staged{run / ".video.mp4.replay"};
+  RunVideo video(staged.file, spec.video, spec.name, spec.flight.duration_s, world.box, truth,
+                 mission.loop().camera().width(), mission.loop().camera().height());
+  stepToEnd(mission, spec, nullptr, &video, args.has("quiet") || !spec.mission.progress);
+  const MissionResult r = mission.finish();
+  video.addFinalFrames(r, mission.loop().sharedFrame().get());
+  if (const std::string error = video.finish(); !error.empty())
+    throw std::runtime_error("video " + file.string() + " not written: " + error);
+  if (hexHash(r.run_hash) != read.record->determinism_hash)
+    throw std::runtime_error("the replay of " + run.string() + " is not the recorded run (hash " + hexHash(r.run_hash) +
+                             ", recorded " + read.record->determinism_hash +
+                             "; another build or machine?); no video written");
+  fs::rename(staged.file, file);
+  staged.kept = true;
+  std::printf("video %s: %d frames of %dx%d at %d fps (%.0fx), replay hash %s matches\n", file.c_str(), video.frames(),
+              video.width(), video.height(), spec.video.fps, spec.video.speedup, hexHash(r.run_hash).c_str());
   return kExitOk;
 }
 

@@ -33,6 +33,7 @@ std::string mapPly(const ExplorerSnapshot& snap);
 /// collision and `truth` is given, the geom hit is outlined in red on top of the map, with the
 /// contact point and a label (name, kind, height).
 cv::Mat topdownImage(const MissionResult& r, const WorldTruth* truth);
+/// Writes topdownImage() as a PNG.
 void writeTopdown(const std::filesystem::path& file, const MissionResult& r, const WorldTruth* truth);
 
 /// config.yaml text: the effective configuration of `scenario_file`, headed by where it came from,
@@ -43,9 +44,10 @@ std::string configYamlText(const std::string& scenario_file, bool with_overrides
 
 /// Writes a finished mission's result files into `dir` (coverage.csv, trajectory.csv, timing.csv,
 /// map.ply when the scenario asks for it, topdown.png, metrics.json last) and returns metrics.json's
-/// content. What `msbench run` and the Python module write alike.
+/// content. What `msbench run` and the Python module write alike. `extra` (an object) adds keys
+/// to metrics.json before it is sealed (the video's outcome).
 nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, const MissionResult& r,
-                                   const WorldTruth* truth);
+                                   const WorldTruth* truth, const nlohmann::json& extra = nullptr);
 
 /// Everything a mission reads that its outputs must not overlap: the scenario file, its `base:`
 /// chain, an MJCF world file, and `extra` (e.g. a Python method's module file).

@@ -1,0 +1,112 @@
+// Videos of runs (msbench run --video, msbench video RUN; docs/video.md): the frames and size as
+// documented, the run's hash unchanged by the video, a replay that adds the video to a finished
+// run, a video that cannot be written (file-size limit) loses none of the run's other files,
+// bad video settings write nothing.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/tools/cli_helpers.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using msb_test::readText;
+using msb_test::run;
+
+const std::string kScenario = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/test_world_short.yaml";
+
+fs::path tempDir(const std::string& name) { return msb_test::tempDir("msb_video_cli_", name); }
+
+bool haveFfmpeg() {
+  return std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") == 0;
+}
+
+// "frames,width,height" of a video as ffprobe decodes it.
+std::string probe(const fs::path& video) {
+  const std::string cmd =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=nb_read_frames,width,height -of csv=p=0 '" +
+      video.string() + "'";
+  std::string out;
+  if (FILE* p = popen(cmd.c_str(), "r")) {
+    char buf[256];
+    while (std::fgets(buf, sizeof(buf), p)) out += buf;
+    pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == ',')) out.pop_back();
+  return out;
+}
+
+nlohmann::json metrics(const fs::path& run_dir) { return nlohmann::json::parse(readText(run_dir / "metrics.json")); }
+
+TEST(Video, ARunWithVideoKeepsItsHashAndTheVideoIsAsDocumented) {
+  if (!haveFfmpeg()) GTEST_SKIP() << "ffmpeg is not installed (apt-get install ffmpeg)";
+  const fs::path d = tempDir("run");
+  ASSERT_EQ(
+      run("run '" + kScenario + "' --duration 20 --quiet --video --out '" + (d / "v").string() + "'", d / "log_v"), 0)
+      << readText(d / "log_v");
+  ASSERT_EQ(run("run '" + kScenario + "' --duration 20 --quiet --out '" + (d / "p").string() + "'", d / "log_p"), 0)
+      << readText(d / "log_p");
+  const auto v = metrics(d / "v"), p = metrics(d / "p");
+  EXPECT_EQ(v["determinism_hash"], p["determinism_hash"]);
+  EXPECT_FALSE(p.contains("video"));
+  EXPECT_FALSE(fs::exists(d / "p" / "video.mp4"));
+  // One frame a simulated second (speedup 10 at 10 fps) for 20 s, then the end held 2 s (20).
+  ASSERT_TRUE(v.contains("video")) << v.dump(2);
+  EXPECT_EQ(v["video"]["file"], "video.mp4");
+  EXPECT_EQ(v["video"]["frames"], 40);
+  EXPECT_EQ(v["video"]["height"], 720);
+  EXPECT_EQ(probe(d / "v" / "video.mp4"), std::to_string(v["video"]["width"].get<int>()) + ",720,40");
+  EXPECT_NE(readText(d / "v" / "config.yaml").find("enabled: true"), std::string::npos);
+
+  // The finished run without a video gets one from a replay; its record is not touched.
+  const std::string before = readText(d / "p" / "metrics.json");
+  ASSERT_EQ(run("video '" + (d / "p").string() + "' --quiet --set video.fps=5", d / "log_r"), 0)
+      << readText(d / "log_r");
+  EXPECT_NE(readText(d / "log_r").find("matches"), std::string::npos) << readText(d / "log_r");
+  EXPECT_EQ(readText(d / "p" / "metrics.json"), before);
+  EXPECT_EQ(probe(d / "p" / "video.mp4"), std::to_string(v["video"]["width"].get<int>()) + ",720,20");
+  EXPECT_EQ(run("video '" + (d / "p").string() + "' --quiet", d / "log_again"), 2);  // exists: --overwrite
+  EXPECT_EQ(run("video '" + (d / "p").string() + "' --set duration_s=5", d / "log_set"), 2);
+  EXPECT_NE(readText(d / "log_set").find("video.KEY"), std::string::npos) << readText(d / "log_set");
+}
+
+TEST(Video, AVideoThatCannotBeWrittenLosesNoneOfTheRunsFiles) {
+  if (!haveFfmpeg()) GTEST_SKIP() << "ffmpeg is not installed (apt-get install ffmpeg)";
+  const fs::path d = tempDir("full");
+  // 150 KB per file: every result file fits, the video does not (a full disk for the encoder).
+  const std::string cmd = "bash -c \"ulimit -f 150; '" + msb_test::kExe + "' run '" + kScenario +
+                          "' --duration 20 --quiet --video --out '" + (d / "v").string() + "'\" > '" +
+                          (d / "log").string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << readText(d / "log");
+  const auto m = metrics(d / "v");
+  EXPECT_EQ(m["status"], "completed");
+  ASSERT_TRUE(m.contains("video"));
+  EXPECT_TRUE(m["video"]["file"].is_null());
+  EXPECT_NE(m["video"]["error"].get<std::string>().find("ffmpeg"), std::string::npos) << m["video"].dump();
+  EXPECT_NE(readText(d / "log").find((d / "v" / "video.mp4").string()), std::string::npos) << readText(d / "log");
+  for (const char* f : {"config.yaml", "coverage.csv", "trajectory.csv", "topdown.png", "map.ply"})
+    EXPECT_TRUE(fs::exists(d / "v" / f)) << f;
+  for (const auto& e : fs::directory_iterator(d / "v"))
+    EXPECT_EQ(e.path().filename().string().find("video"), std::string::npos) << e.path();
+}
+
+TEST(Video, BadVideoSettingsWriteNothing) {
+  const fs::path d = tempDir("bad");
+  for (const std::string set :
+       {"video.height=721", "video.fps=0", "video.speedup=-1", "video.enabled=maybe", "video.colour=red"}) {
+    EXPECT_EQ(run("run '" + kScenario + "' --quiet --set " + set + " --out '" + (d / "out").string() + "'", d / "log"),
+              2)
+        << set;
+    EXPECT_NE(readText(d / "log").find(set.substr(6, set.find('=') - 6)), std::string::npos) << readText(d / "log");
+    EXPECT_FALSE(fs::exists(d / "out")) << set;
+  }
+}
+
+}  // namespace
