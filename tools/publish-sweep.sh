@@ -4,7 +4,7 @@
 #   tools/publish-sweep.sh --report-only DEST    the report of published results written anew from
 #                                                their committed runs (no run re-done; the gallery,
 #                                                which needs the runs' pictures, is kept)
-# DEST receives the report (report.md with the findings, table.csv, findings.csv, the Table I and
+# DEST receives the report (report.md with the findings, report.html, table.csv, findings.csv, the Table I and
 # coverage figures, the ablation-across-levels table and figures of a level sweep, and the gallery), the sweep's index (sweep.json, runs.csv) and each run's
 # metrics.json, coverage.csv and config.yaml — no maps, trajectories or logs, so that it stays small;
 # paths of the machine it ran on are rewritten (the sweep directory to DEST, scenario files
@@ -21,6 +21,11 @@ if [ $# -eq 2 ] && [ "$1" = "--report-only" ]; then
   "$msbench" report "$dest" --out "$tmp/report"
   for f in report.md table.csv findings.csv table1.png ablation_levels.csv; do [ -f "$tmp/report/$f" ] && cp "$tmp/report/$f" "$dest/"; done
   for f in "$tmp"/report/coverage_*.png "$tmp"/report/ablation_levels_*.png; do [ -f "$f" ] && cp "$f" "$dest/"; done
+  # report.html over the kept gallery, its links relative to DEST.
+  [ -f "$dest/gallery.png" ] && cp "$dest/gallery.png" "$tmp/report/"
+  if /usr/bin/python3 -c 'import markdown' 2>/dev/null; then
+    /usr/bin/python3 "$tmp/report/make_html.py" "$tmp/report" "$dest" >/dev/null && cp "$tmp/report/report.html" "$dest/"
+  fi
   rm -rf "$tmp"
   echo "report of $dest written anew from its $(ls "$dest/runs" | wc -l) committed runs"
   exit 0
@@ -39,6 +44,7 @@ for f in "$tmp"/report/coverage_*.png "$tmp"/report/ablation_levels_*.png; do [ 
 if [ -f "$tmp/gallery.png" ] && /usr/bin/python3 -c 'import PIL' 2>/dev/null; then
   /usr/bin/python3 -c 'import sys; from PIL import Image; Image.open(sys.argv[1]).convert("RGB").quantize(256).save(sys.argv[1], optimize=True)' "$tmp/gallery.png"
 fi
+mv "$tmp/report/make_html.py" "$tmp/report/report_runs.csv" "$tmp/"
 rm -rf "$tmp/report"
 cp "$src/sweep.json" "$src/runs.csv" "$tmp/"
 for run in "$src"/runs/*/; do
@@ -50,6 +56,14 @@ done
 # Paths of the machine it ran on: the sweep directory becomes DEST, scenario files repository-relative.
 find "$tmp" \( -name report.md -o -name sweep.json -o -name config.yaml \) -exec \
   sed -i -e "s|$src|$dest|g" -e 's|/[^ "]*/scenarios/|scenarios/|g' {} +
+# report.html from the published files (the runs' records under DEST; links relative to DEST).
+sed -i "s|,$src/runs/|,$tmp/runs/|" "$tmp/report_runs.csv"
+if /usr/bin/python3 -c 'import markdown' 2>/dev/null; then
+  /usr/bin/python3 "$tmp/make_html.py" "$tmp" "$dest" >/dev/null
+else
+  echo "$0: python3-markdown not found: no report.html (apt-get install python3-markdown)" >&2
+fi
+rm -f "$tmp/make_html.py" "$tmp/report_runs.csv"
 rm -rf "$dest"
 mv "$tmp" "$dest"
 echo "published $(ls "$dest/runs" | wc -l) runs of $src -> $dest ($(du -sh "$dest" | cut -f1))"

@@ -21,7 +21,8 @@
 
 namespace msb {
 
-extern const char* const kReportFiguresScript;  // tools/report_figures.py, embedded at build time
+extern const char* const kReportFiguresScript;  // tools/sweep/report_figures.py, embedded at build time
+extern const char* const kReportHtmlScript;     // tools/sweep/report_html.py, embedded at build time
 
 namespace {
 
@@ -59,14 +60,30 @@ int runInterruptible(const std::string& cmd) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// A Python interpreter that has matplotlib (Debian's python3-matplotlib installs it for
-// /usr/bin/python3, which a user's own python3 on PATH may not see), or "".
-std::string pythonWithMatplotlib() {
+// A Python interpreter that has `module` (Debian's python3-matplotlib and python3-markdown
+// install for /usr/bin/python3, which a user's own python3 on PATH may not see), or "".
+std::string pythonWith(const std::string& module) {
   for (const char* candidate : {"/usr/bin/python3", "python3"}) {
-    const std::string cmd = std::string(candidate) + " -c 'import matplotlib' >/dev/null 2>&1";
+    const std::string cmd = std::string(candidate) + " -c 'import " + module + "' >/dev/null 2>&1";
     if (std::system(cmd.c_str()) == 0) return candidate;
   }
   return "";
+}
+
+// report.html (tools/sweep/report_html.py) into the staging directory, its links to the runs
+// relative to `final_dir`; says what it did.
+std::string writeHtmlPage(const StagedOutputDir& staged, const fs::path& final_dir) {
+  writeFileAtomic(staged.staging() / "make_html.py", kReportHtmlScript);
+  const std::string python = pythonWith("markdown");
+  if (python.empty())
+    return "report.html: skipped, python3-markdown not found; install it (apt-get install python3-markdown) and "
+           "run: /usr/bin/python3 " +
+           (final_dir / "make_html.py").string() + " " + final_dir.string();
+  const std::string cmd = python + " " + shellQuote((staged.staging() / "make_html.py").string()) + " " +
+                          shellQuote(staged.staging().string()) + " " + shellQuote(fs::absolute(final_dir).string()) +
+                          " >/dev/null";
+  if (runInterruptible(cmd) != 0) throw std::runtime_error("the report.html script failed: " + cmd);
+  return "report.html";
 }
 
 }  // namespace
@@ -122,7 +139,7 @@ int runReportCommand(int argc, char** argv) {
   // Figures: into the staging directory, so the report appears whole or not at all.
   std::string figures = "figures: skipped (--no-figures)";
   if (!args.has("no-figures")) {
-    const std::string python = pythonWithMatplotlib();
+    const std::string python = pythonWith("matplotlib");
     if (python.empty()) {
       figures =
           "figures: skipped, python3 with matplotlib not found; install it (apt-get install "
@@ -137,12 +154,14 @@ int runReportCommand(int argc, char** argv) {
     }
   }
   throwIfInterrupted();
+  const std::string page = writeHtmlPage(staged, out);
   staged.commit();
   const FindingCounts c = countFindings(findings);
   std::printf(
       "report: %zu rows from %zu runs -> %s (report.md, table.csv, findings.csv); findings %d hold, %d fail, "
-      "%d undecided, %d not evaluated; %s\n",
-      rows.size(), results.runs.size(), out.c_str(), c.holds, c.fails, c.undecided, c.not_evaluated, figures.c_str());
+      "%d undecided, %d not evaluated; %s; %s\n",
+      rows.size(), results.runs.size(), out.c_str(), c.holds, c.fails, c.undecided, c.not_evaluated, figures.c_str(),
+      page.c_str());
   return kExitOk;
 }
 

@@ -1,0 +1,129 @@
+#!/usr/bin/python3
+"""report.html in a real browser (docs/sweeps.md, "The report page"): a small sweep with videos,
+its report, and the page opened in headless Chromium. Checks that the page runs without script
+errors, that every image and every video loads, and that a click on a column heading reorders the
+rows. Exit 77 (ctest: skipped) with a message when Chromium is not installed.
+
+usage: report_html_browser_test.py MSBENCH SOURCE_DIR WORK_DIR
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+# Injected first into <head>: records script errors and failed loads, then, once the page and
+# its videos' metadata have loaded, checks the images, sorts the runs table by its first column
+# twice and writes what it found into the title (read back from the dumped DOM).
+PROBE = r"""<script>
+window.__errors = [];
+window.addEventListener('error', e => {
+  const t = e.target;
+  if (t && (t.tagName === 'IMG' || t.tagName === 'VIDEO')) window.__errors.push('load failed: ' + (t.currentSrc || t.src));
+  else window.__errors.push('script error: ' + e.message);
+}, true);
+window.addEventListener('load', () => {
+  const videos = Array.from(document.querySelectorAll('video'));
+  const ready = videos.map(v => new Promise(res => {
+    if (v.readyState >= 1) return res(true);
+    v.addEventListener('loadedmetadata', () => res(true));
+    v.addEventListener('error', () => res(false));
+    v.load();
+  }));
+  Promise.all(ready).then(states => {
+    const imgs = Array.from(document.querySelectorAll('img'));
+    const runs = Array.from(document.querySelectorAll('table')).pop();
+    const first = () => Array.from(runs.tBodies[0].rows).map(r => r.cells[0].textContent);
+    const before = first();
+    const th = runs.querySelector('th');
+    th.click();
+    const asc = first();
+    th.click();
+    const desc = first();
+    document.title = 'RESULT:' + JSON.stringify({
+      errors: window.__errors,
+      images: imgs.length,
+      images_loaded: imgs.filter(i => i.complete && i.naturalWidth > 0).length,
+      videos: videos.length,
+      videos_loaded: states.filter(s => s).length,
+      video_sizes: videos.map(v => [v.videoWidth, v.videoHeight]),
+      tables: document.querySelectorAll('table').length,
+      before: before, asc: asc, desc: desc,
+    });
+  });
+});
+</script>"""
+
+SWEEP = """# report.html browser test: two short runs with videos
+scenario: {scenario}
+set: {{duration_s: 12, video.enabled: true, video.speedup: 4, video.fps: 5, video.height: 360}}
+axes:
+  - name: code
+    variants:
+      a: {{}}
+      b: {{method.switches.vpb: false}}
+seeds: [1]
+"""
+
+
+def find_chromium():
+    for name in ("chromium", "chromium-browser", "google-chrome"):
+        path = shutil.which(name)
+        if path:
+            return path
+    return None
+
+
+def fail(msg):
+    print("FAIL: " + msg)
+    sys.exit(1)
+
+
+def main():
+    msbench, source, work = sys.argv[1:4]
+    chromium = find_chromium()
+    if not chromium:
+        print("SKIP: chromium is not installed (apt-get install chromium); report.html was not opened in a browser")
+        sys.exit(77)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    sweep_file = os.path.join(work, "sweep.yaml")
+    with open(sweep_file, "w") as f:
+        f.write(SWEEP.format(scenario=os.path.join(source, "scenarios/missions/test_world_short.yaml")))
+    sweep = os.path.join(work, "sweep")
+    subprocess.run([msbench, "sweep", sweep_file, "--out", sweep, "--jobs", "2"], check=True)
+    subprocess.run([msbench, "report", sweep], check=True)
+    page = os.path.join(sweep, "report", "report.html")
+    if not os.path.exists(page):
+        fail("no report.html")
+    # The probed copy sits beside the page, so its relative links are the page's.
+    with open(page, encoding="utf-8") as f:
+        text = f.read()
+    probed = os.path.join(sweep, "report", "probe.html")
+    with open(probed, "w", encoding="utf-8") as f:
+        f.write(text.replace("<head>", "<head>\n" + PROBE, 1))
+    dom = subprocess.run([chromium, "--headless", "--no-sandbox", "--disable-gpu", "--mute-audio",
+                          "--autoplay-policy=no-user-gesture-required", "--virtual-time-budget=30000", "--dump-dom",
+                          "file://" + probed], capture_output=True, text=True, timeout=180).stdout
+    m = re.search(r"<title>RESULT:(.*?)</title>", dom, re.S)
+    if not m:
+        fail("the page's checks did not run (no RESULT in the title):\n" + dom[:2000])
+    r = json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    print(json.dumps(r, indent=1))
+    if r["errors"]:
+        fail("errors: %s" % r["errors"])
+    if r["images"] < 3 or r["images_loaded"] != r["images"]:
+        fail("images: %d of %d loaded (expected the figures and both runs' top-downs)" % (r["images_loaded"], r["images"]))
+    if r["videos"] != 2 or r["videos_loaded"] != 2:
+        fail("videos: %d of %d loaded (expected 2)" % (r["videos_loaded"], r["videos"]))
+    if any(h != 360 for _, h in r["video_sizes"]):
+        fail("video sizes %s (expected height 360)" % r["video_sizes"])
+    if r["asc"] != sorted(r["before"]) or r["desc"] != sorted(r["before"], reverse=True) or r["asc"] == r["desc"]:
+        fail("sorting by the first column: before %s, ascending %s, descending %s" % (r["before"], r["asc"], r["desc"]))
+    print("ok: report.html renders without errors, %d images and %d videos load, sorting reorders the rows"
+          % (r["images"], r["videos"]))
+
+
+if __name__ == "__main__":
+    main()
