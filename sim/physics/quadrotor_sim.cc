@@ -1,5 +1,6 @@
 #include "sim/physics/quadrotor_sim.h"
 
+#include "sim/physics/mjcf_files.h"
 #include "sim/physics/mujoco_messages.h"
 
 #include <cmath>
@@ -18,25 +19,6 @@ void PhysicsConfig::validate(ConfigChecker& c) const {
 }
 
 namespace {
-
-std::string readFile(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw ConfigError("world", path + ": world file not found");
-  if (!fs::is_regular_file(path, ec))
-    throw ConfigError("world", path + ": not a regular file (a world is an MJCF file)");
-  // The largest generated world's MJCF is a few MB (meshes are separate files).
-  constexpr std::uintmax_t kMaxBytes = std::uintmax_t(64) << 20;
-  if (fs::file_size(path, ec) > kMaxBytes)
-    throw ConfigError("world", path + ": larger than 64 MiB, not a world file msbench can load");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError("world", path + ": cannot open world file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  // MuJoCo's virtual files must not be empty (its check is a fatal error, not a message).
-  if (ss.str().empty()) throw ConfigError("world", path + ": the world file is empty");
-  return ss.str();
-}
 
 // MuJoCo reports errors through a global handler; route them to exceptions while loading.
 // (Only the compile step uses it; it is restored right after.)
@@ -59,7 +41,9 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
   installMujocoHandlers();
   // The world file and a wrapper that includes it, both as virtual files in the world's
   // directory (relative texture and mesh paths resolve against the world file).
-  const std::string world = readFile(world_xml_path);
+  // Every XML file MuJoCo would read (the world and its includes), checked and read here.
+  const std::vector<std::pair<std::string, std::string>> files = readMjcfFiles(world_xml_path);
+  const std::string& world = files.front().second;
   const fs::path dir = fs::absolute(world_xml_path).parent_path();
   const std::string world_name = fs::path(world_xml_path).filename().string();
   const std::string wrapper_name = "msbench_composed_model.xml";
@@ -77,6 +61,8 @@ QuadrotorSim::QuadrotorSim(const PhysicsConfig& config, const std::string& world
   };
   addFile(world_name, world);
   addFile(wrapper_name, xml);
+  for (size_t i = 1; i < files.size(); ++i)
+    addFile(fs::path(files[i].first).lexically_relative(dir).string(), files[i].second);
 
   char error[1024] = "";
   auto* prev_warning = mju_user_warning;

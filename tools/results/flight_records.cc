@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/common/png.h"
+#include "sim/physics/mjcf_files.h"
 
 namespace msb {
 
@@ -45,9 +46,16 @@ double percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
+void addWorldInputs(std::vector<NamedPath>& in, const FlightSpec& spec) {
+  if (spec.world_path.empty() || !spec.world_name.empty()) return;
+  const std::vector<std::string> files = mjcfInputFiles(spec.world_path);
+  in.push_back({"its world file", files.front()});
+  for (size_t i = 1; i < files.size(); ++i) in.push_back({"a file its world includes", files[i]});
+}
+
 std::vector<NamedPath> flightInputs(const std::string& flight_file, const FlightSpec& spec) {
   std::vector<NamedPath> in = {{"FILE.yaml", flight_file}};
-  if (!spec.world_path.empty() && spec.world_name.empty()) in.push_back({"its world file", spec.world_path});
+  addWorldInputs(in, spec);
   return in;
 }
 

@@ -21,8 +21,11 @@ std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows);
 std::string imuCsv(const std::vector<ImuSample>& samples);
 
 /// Everything a scripted flight (`fly`, `vio-eval`) reads that its outputs must not overlap: the
-/// flight file and an MJCF world file it names.
+/// flight file, an MJCF world file it names and the files that world includes.
 std::vector<NamedPath> flightInputs(const std::string& flight_file, const FlightSpec& spec);
+/// Adds an MJCF world file `spec` names (not a generated world) and every file it includes,
+/// each checked as the loader checks it (sim/physics/mjcf_files.h; throws ConfigError).
+void addWorldInputs(std::vector<NamedPath>& in, const FlightSpec& spec);
 
 /// The q-quantile (0..1, nearest rank) of a sample; 0 for an empty one.
 double percentile(std::vector<double> values, double q);

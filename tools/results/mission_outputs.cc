@@ -276,8 +276,7 @@ std::vector<NamedPath> missionInputs(const std::string& scenario_file, const Sce
                                      const std::vector<NamedPath>& extra) {
   std::vector<NamedPath> in = {{"SCENARIO", scenario_file}};
   for (size_t i = 1; i < spec.input_files.size(); ++i) in.push_back({"its base: file", spec.input_files[i]});
-  if (!spec.flight.world_path.empty() && spec.flight.world_name.empty())
-    in.push_back({"its world file", spec.flight.world_path});
+  addWorldInputs(in, spec.flight);
   in.insert(in.end(), extra.begin(), extra.end());
   return in;
 }

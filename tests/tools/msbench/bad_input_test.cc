@@ -2,6 +2,7 @@
 // the file and the key (or the flag), and nothing is written or deleted — a sentinel file beside
 // the output survives. Interrupts stop a run at the end of a tick and leave nothing behind.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -394,6 +395,20 @@ TEST(BadInput, OutputsNeverOverlapInputsOrEachOther) {
     t.expectRefused(std::string(verb) + " " + t.p("fw.yaml") + " --out " + t.p("wo") + " --overwrite",
                     {"--out", "overlaps the input its world file"});
   EXPECT_TRUE(fs::is_regular_file(t.d / "wo" / "w.xml"));
+  // So is every file the world includes (before: an included file inside --out was deleted by
+  // --overwrite, and an included FIFO blocked the loader).
+  t.write("wi.xml", "<mujoco><include file=\"wo/part.xml\"/></mujoco>\n");
+  t.write("wo/part.xml", readText(t.d / "w.xml"));
+  t.write("fi.yaml",
+          "world: wi.xml\nduration_s: 1\ncamera_stream: {save_every_n: 0}\n"
+          "trajectory: {waypoints: [[0, 0, 1]]}\n");
+  t.expectRefused("fly " + t.p("fi.yaml") + " --out " + t.p("wo") + " --overwrite",
+                  {"--out", "overlaps the input a file its world includes"});
+  EXPECT_TRUE(fs::is_regular_file(t.d / "wo" / "part.xml"));
+  fs::remove(t.d / "wo" / "part.xml");
+  ASSERT_EQ(mkfifo((t.d / "wo" / "part.xml").c_str(), 0600), 0);
+  t.expectRefused("fly " + t.p("fi.yaml") + " --out " + t.p("fo"), {"part.xml: not a regular file"});
+  EXPECT_FALSE(fs::exists(t.d / "fo"));
   // map-replay's output directory may not hold its own input log.
   fs::create_directories(t.d / "rd");
   t.write("rd/.msbench-output",
