@@ -87,20 +87,27 @@ ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
 }
 
 void ClosedLoop::startPipeline(const FlightSpec& spec, const LoopSetup& setup) {
-  if (!features_ || spec.perception.latency_frames == 0) return;
-  latency_ = spec.perception.latency_frames;
+  if (!features_) {
+    if (setup.explorer) throw ConfigError("perception.enabled", "an exploration method needs perception");
+    return;
+  }
   // The explorer's map updates and plans run with a frame's perception: on camera ticks only.
   auto onCameraTicks = [&](double rate_hz, const char* key) {
     const int64_t cam = std::llround(spec.camera_stream.rate_hz * 1000), r = std::llround(rate_hz * 1000);
     if (r <= 0 || cam % r != 0)
-      throw ConfigError(key, "with perception.latency_frames >= 1 it must divide camera_stream.rate_hz (" +
-                                 std::to_string(spec.camera_stream.rate_hz) + " Hz)");
+      throw ConfigError(key, "must divide camera_stream.rate_hz (" + std::to_string(spec.camera_stream.rate_hz) +
+                                 " Hz): map updates and plans run with a frame's perception");
   };
   if (setup.explorer) {
     onCameraTicks(setup.map_rate_hz, "mission.map_rate_hz");
     onCameraTicks(setup.planning_rate_hz, "mission.planning_rate_hz");
   }
-  if (spec.perception.threads == 2) worker_ = std::make_unique<JobWorker>(), result_.threads = 2;
+  const int depth = spec.perception.latency_frames;
+  const bool threaded = spec.perception.threads == 2 && depth > 0;
+  PerceptionStages stages{features_.get(), slam_.get(), jitter_ ? &*jitter_ : nullptr, setup.explorer,
+                          [this](const PathCommand& cmd, const VehicleState& vs) { checkWaypoints(cmd, vs); }};
+  pipeline_ = std::make_unique<PerceptionPipeline>(depth, threaded, std::move(stages));
+  if (threaded) result_.threads = 2;
 }
 
 ClosedLoop::~ClosedLoop() = default;
@@ -115,17 +122,16 @@ const TickRecord& ClosedLoop::step() {
   if (!stepPhysicsAndContacts()) return record_;
   // The VIO estimate of the true state (the controller and the planner fly on it).
   estimateState();
-  // Camera, then perception on the new frame (tracking loss ends the run); pipelined: the
-  // results of the frame latency_frames back, then this frame's perception starts.
+  // Camera, then perception: what is due (latency_frames back), this frame's job (tracks, SLAM
+  // points, the method's map update and plan due now), what is due again (latency 0: this
+  // frame's). Tracking loss ends the run; the method's path replaces the tracker's.
   if (renderer_ && cam_schedule_->due(record_.tick)) {
     renderFrame();
-    if (features_ && !(latency_ > 0 ? usePerception() : perceive())) return record_;
-    if (latency_ > 0) launchPerception();
-  }
-  // The exploration method: map update, then planning (its path replaces the tracker's).
-  if (setup_.explorer && latency_ == 0) {
-    updateMap();
-    planPath();
+    if (pipeline_) {
+      if (!usePerception()) return record_;
+      launchPerception();
+      if (!usePerception()) return record_;
+    }
   }
   // Trajectory reference and controller; records; actuators, integration and the IMU.
   trackAndControl();
@@ -166,7 +172,7 @@ void ClosedLoop::renderFrame() {
   frame_timing_ = RenderTiming{};
   // A frame someone still holds (a Python view, a perception job) is left alone: this one renders
   // into one nobody holds.
-  if (frame_.use_count() > 1) frame_ = freeFrame();
+  frame_ = frame_pool_.renderTarget(std::move(frame_));
   ++frame_index_;
   CameraFrame& frame = *frame_;
   renderer_->render(sim_.data(), T_W_C, &frame, &frame_timing_);
@@ -183,23 +189,6 @@ void ClosedLoop::renderFrame() {
   record_.frame = frame_.get();
   record_.render = &frame_timing_;
   record_.timing.render_ms = frame_timing_.totalMs();
-}
-
-bool ClosedLoop::perceive() {
-  // Tracks, then SLAM points from the (noisy) estimated camera pose.
-  auto t0 = WallClock::now();
-  tracks_ = features_->process(*frame_);
-  record_.timing.tracker_ms = msSince(t0);
-  t0 = WallClock::now();
-  points_ = slam_->update(tracks_, vio_.noisyCameraPose(frame_->T_W_C));
-  if (jitter_) jitter_->apply(points_);                   // a moving filter estimate (degradation, off by default)
-  vio_.setTrackedFeatures(trackedFromPrevious(tracks_));  // drift grows with few features
-  record_.timing.triangulation_ms = msSince(t0);
-  record_.tracks = &tracks_;
-  record_.points = &points_;
-  record_.perceived = frame_.get();
-  if (setup_.explorer) pending_points_ = points_;
-  return trackingHolds(tracks_, record_.tick);
 }
 
 bool ClosedLoop::trackingHolds(const TrackFrame& tracks, int64_t frame_tick) {
@@ -226,15 +215,6 @@ bool ClosedLoop::trackingHolds(const TrackFrame& tracks, int64_t frame_tick) {
   return true;
 }
 
-void ClosedLoop::updateMap() {
-  if (!map_schedule_->due(record_.tick) || !pending_points_) return;
-  const auto t0 = WallClock::now();
-  setup_.explorer->observe(*pending_points_);
-  record_.timing.map_ms = msSince(t0);
-  record_.map_updated = true;
-  pending_points_.reset();
-}
-
 void ClosedLoop::checkWaypoints(const PathCommand& cmd, const VehicleState& vs) const {
   for (size_t i = 0; i < cmd.waypoints.size(); ++i) {
     if (const auto why = waypointProblem(cmd.waypoints[i], spec_.start_position_m))
@@ -252,16 +232,6 @@ VehicleState ClosedLoop::vehicleState() const {
   vs.reference = trajectory_.reference();
   vs.path_finished = trajectory_.finished();
   return vs;
-}
-
-void ClosedLoop::planPath() {
-  if (!plan_schedule_->due(record_.tick)) return;
-  const auto t0 = WallClock::now();
-  const VehicleState vs = vehicleState();
-  const std::optional<PathCommand> cmd = setup_.explorer->plan(vs);
-  record_.timing.planning_ms = msSince(t0);
-  if (cmd) checkWaypoints(*cmd, vs);
-  if (cmd) trajectory_.setPath(cmd->waypoints), last_path_t_s_ = vs.t_s;
 }
 
 void ClosedLoop::trackAndControl() {
@@ -321,8 +291,7 @@ const FlightResult& ClosedLoop::finish() {
   if (finished_) return result_;
   // The perception in flight completes; its error (once) is the run's.
   sync();
-  for (auto& job : jobs_)
-    if (job->error) std::rethrow_exception(std::exchange(job->error, nullptr));
+  if (pipeline_) pipeline_->rethrowPending(), result_.perception_wait_ms = pipeline_->waitMs();
   finished_ = true;
   result_.ticks = sim_.tick();
   result_.collision_detection_steps = sim_.stepsDetected();
@@ -333,19 +302,6 @@ const FlightResult& ClosedLoop::finish() {
   result_.mujoco_warnings = sim_.warningCounts();
   result_.wall_time_s = secondsSince(wall_start_);
   return result_;
-}
-
-std::shared_ptr<CameraFrame> ClosedLoop::freeFrame() {
-  // The held frame joins the pool; one of the pool's frames nobody else holds is reused (every
-  // pixel is rendered again), else a new one.
-  frame_pool_.push_back(std::move(frame_));
-  for (size_t i = 0; i + 1 < frame_pool_.size(); ++i)
-    if (frame_pool_[i].use_count() == 1) {
-      std::shared_ptr<CameraFrame> f = std::move(frame_pool_[i]);
-      frame_pool_.erase(frame_pool_.begin() + std::ptrdiff_t(i));
-      return f;
-    }
-  return std::make_shared<CameraFrame>();
 }
 
 void ClosedLoop::launchPerception() {
@@ -359,76 +315,28 @@ void ClosedLoop::launchPerception() {
     job->map_due = map_schedule_->due(record_.tick);
     if (plan_schedule_->due(record_.tick)) job->plan_state = vehicleState();
   }
-  PerceptionJob* p = job.get();
-  jobs_.push_back(std::move(job));
-  if (worker_) p->worker_id = worker_->submit([this, p] { runJob(*p); });
-}
-
-void ClosedLoop::runJob(PerceptionJob& j) {
-  // Tracks, SLAM points, then the explorer's map update and plan due on the frame's tick.
-  try {
-    auto t0 = WallClock::now();
-    j.tracks = features_->process(*j.frame);
-    j.timing.tracker_ms = msSince(t0);
-    t0 = WallClock::now();
-    j.points = slam_->update(j.tracks, j.camera_estimate);
-    if (jitter_) jitter_->apply(j.points);
-    j.timing.triangulation_ms = msSince(t0);
-    if (j.map_due) {
-      t0 = WallClock::now();
-      setup_.explorer->observe(j.points);
-      j.timing.map_ms = msSince(t0);
-      j.map_updated = true;
-    }
-    if (j.plan_state) {
-      t0 = WallClock::now();
-      j.cmd = setup_.explorer->plan(*j.plan_state);
-      j.timing.planning_ms = msSince(t0);
-      if (j.cmd) checkWaypoints(*j.cmd, *j.plan_state);
-    }
-  } catch (...) {
-    j.error = std::current_exception();
-  }
-  j.done = true;
-}
-
-void ClosedLoop::completeJob(PerceptionJob& job) {
-  if (worker_) {
-    const auto t0 = WallClock::now();
-    worker_->wait(job.worker_id);
-    result_.perception_wait_ms += msSince(t0);
-    return;
-  }
-  for (auto& q : jobs_) {  // one thread: the jobs run in order, when first needed
-    if (!q->done) runJob(*q);
-    if (q.get() == &job) return;
-  }
+  pipeline_->launch(std::move(job));
 }
 
 void ClosedLoop::sync() {
-  if (jobs_.empty()) return;
-  completeJob(*jobs_.back());
+  if (pipeline_) pipeline_->sync();
 }
 
 void ClosedLoop::abandon() {
-  if (worker_) {
-    worker_->cancelPending();
-    worker_->waitAll();
-  }
-  jobs_.clear();
+  if (pipeline_) pipeline_->abandon();
   ended_ = true;
 }
 
 bool ClosedLoop::usePerception() {
-  if (jobs_.empty() || jobs_.front()->frame_index > frame_index_ - latency_) return true;
-  completeJob(*jobs_.front());
-  used_ = std::move(jobs_.front());
-  jobs_.pop_front();
-  const PerceptionJob& j = *used_;
-  if (j.error) {  // the method failed: no later job of it runs
-    abandon();
-    std::rethrow_exception(j.error);
+  const PerceptionJob* due = nullptr;
+  try {
+    due = pipeline_->takeDue(frame_index_);
+  } catch (...) {
+    ended_ = true;  // the method failed: the run ends with its error
+    throw;
   }
+  if (!due) return true;
+  const PerceptionJob& j = *due;
   record_.tracks = &j.tracks;
   record_.points = &j.points;
   record_.perceived = j.frame.get();

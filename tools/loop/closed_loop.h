@@ -5,12 +5,13 @@
 //   tracking loss) → map update → planning → trajectory + controller → records →
 //   physics step 2 (actuators, integration) → IMU
 //
-// With perception.latency_frames = k ≥ 1 (the pipelined loop), what a frame's tick computes
-// from its image — tracks, SLAM points, the map update and the plan due on that tick, from the
-// state snapshotted then — is used k frames later: render → use frame n − k's results (tracks,
-// tracking loss, path) → start frame n's perception. perception.threads = 2 runs that work on a
-// second thread while the loop renders; the results are the same with one thread (the latency,
-// not the thread, decides when they are used).
+// Perception is one pipeline (tools/loop/perception_pipeline.h) for every
+// perception.latency_frames = k: what a frame's tick computes from its image — tracks, SLAM
+// points, the map update and the plan due on that tick, from the state snapshotted then — is
+// used k frames later: render → use what is due → start frame n's perception → use what is due
+// (k = 0: frame n's own results, on its tick). The map and planning rates divide the camera's.
+// perception.threads = 2 runs that work on a second thread while the loop renders (k ≥ 1); the
+// results are the same with one thread (the latency, not the thread, decides when they are used).
 //
 // A scripted flight and an exploration mission are two uses of the same loop: without an
 // explorer the trajectory tracker follows the flight's waypoints and the run ends
@@ -25,7 +26,6 @@
 #pragma once
 
 #include <chrono>
-#include <deque>
 #include <exception>
 #include <map>
 #include <memory>
@@ -45,7 +45,7 @@
 #include "sim/sensors/imu_model.h"
 #include "sim/sensors/vio_drift.h"
 #include "tools/loop/flight_spec.h"
-#include "tools/loop/job_worker.h"
+#include "tools/loop/perception_pipeline.h"
 #include "tools/loop/records.h"
 
 namespace msb {
@@ -91,11 +91,6 @@ struct LoopSetup {
   double trajectory_rate_hz = 50.0;   ///< trajectory rows
   double map_rate_hz = 5.0;           ///< explorer map updates (latest SLAM points)
   double planning_rate_hz = 5.0;      ///< explorer planning steps
-};
-
-/// Wall time of the stages of one tick (ms; recorded, never used).
-struct TickTiming {
-  double render_ms = 0, tracker_ms = 0, triangulation_ms = 0, map_ms = 0, planning_ms = 0;
 };
 
 /// What one tick produced; pointers are valid until the next step().
@@ -164,9 +159,11 @@ class ClosedLoop {
   bool stepPhysicsAndContacts();
   void estimateState();
   void renderFrame();
-  bool perceive();
-  void updateMap();
-  void planPath();
+  // Applies the perception due now (tracks, drift, path, tracking loss); false when tracking
+  // has been lost.
+  bool usePerception();
+  // Starts the perception of the frame just rendered, with the map update and plan due on its tick.
+  void launchPerception();
   // Throws MethodOutputError for a waypoint that is not finite or lies beyond
   // kMaxWaypointDistanceM of the start (core/explorer/output_limits.h).
   void checkWaypoints(const PathCommand& cmd, const VehicleState& vs) const;
@@ -178,30 +175,7 @@ class ClosedLoop {
   bool trackingHolds(const TrackFrame& tracks, int64_t frame_tick);
   // The vehicle state the explorer plans on (this tick).
   VehicleState vehicleState() const;
-
-  // The pipelined loop: each rendered frame's perception is a job, run on the worker (or
-  // lazily on this thread) and used latency_frames frames later.
-  struct PerceptionJob {
-    int64_t frame_index = 0, tick = 0;
-    std::shared_ptr<const CameraFrame> frame;
-    Pose camera_estimate;                    // the VIO's camera pose of the frame
-    bool map_due = false;                    // the explorer's map update is due on its tick
-    std::optional<VehicleState> plan_state;  // planning is due on its tick: from this state
-    uint64_t worker_id = 0;                  // its task number on the worker
-    bool done = false;                       // (one thread) it has run
-    TrackFrame tracks;                       // outputs ...
-    SlamPointsFrame points;
-    std::optional<PathCommand> cmd;
-    bool map_updated = false;
-    TickTiming timing;
-    std::exception_ptr error;  // what the job threw (rethrown when used)
-  };
   void startPipeline(const FlightSpec& spec, const LoopSetup& setup);
-  bool usePerception();
-  void launchPerception();
-  void runJob(PerceptionJob& job);
-  void completeJob(PerceptionJob& job);
-  std::shared_ptr<CameraFrame> freeFrame();
 
   // Configuration (fixed for the loop's life) ...
   const FlightSpec spec_;
@@ -226,10 +200,9 @@ class ClosedLoop {
   Vec4 cmd_ = Vec4::Zero();
   Odometry gt_, est_;
   std::shared_ptr<CameraFrame> frame_ = std::make_shared<CameraFrame>();  // shared with Python views
+  FramePool frame_pool_;                                                  // frames to render into again
+  int64_t frame_index_ = -1;                                              // index of the latest rendered frame
   RenderTiming frame_timing_;
-  TrackFrame tracks_;
-  SlamPointsFrame points_;
-  std::optional<SlamPointsFrame> pending_points_;  // latest SLAM points not yet given to the map
   int64_t few_tracks_since_ = -1, finished_tick_ = -1, last_imu_tick_ = 0, err_count_ = 0;
   double err_sq_sum_ = 0.0, last_path_t_s_ = -1.0;
   Vec3 last_position_;
@@ -237,13 +210,8 @@ class ClosedLoop {
   TickRecord record_;
   FlightResult result_;
   std::chrono::steady_clock::time_point wall_start_;
-  // The pipelined loop (latency_frames ≥ 1 with perception).
-  int latency_ = 0;
-  int64_t frame_index_ = -1;                              // index of the latest rendered frame
-  std::deque<std::unique_ptr<PerceptionJob>> jobs_;       // started, not yet used (FIFO)
-  std::unique_ptr<PerceptionJob> used_;                   // the job whose results this tick used
-  std::vector<std::shared_ptr<CameraFrame>> frame_pool_;  // frames to render into again
-  std::unique_ptr<JobWorker> worker_;                     // last: stopped before the rest goes
+  // Perception (when on): last, so that its worker stops before the stages it borrows go.
+  std::unique_ptr<PerceptionPipeline> pipeline_;
 };
 
 }  // namespace msb

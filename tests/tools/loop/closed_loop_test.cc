@@ -181,16 +181,51 @@ TEST(ClosedLoop, ThePipelinedLoopIsTheSameOnOneThreadOnTwoAndUnderLoad) {
   EXPECT_NE(runMission(sequential, box, &truth).run_hash, ra.run_hash);
 }
 
-TEST(ClosedLoop, ThePipelinedLoopRefusesRatesOffTheCameraTicks) {
-  // The map update and the plan run with a frame's perception: their rates must divide the camera's.
+// One rule for every latency (tools/loop/perception_pipeline.h): the results a tick uses are
+// those of the frame `latency` frames back (latency 0: its own), the map updates only with
+// them, on camera ticks.
+TEST(ClosedLoop, EachLatencyUsesTheFrameThatManyFramesBack) {
   const WorldTruth truth(urban().generated.shapes);
-  ScenarioSpec spec = pipelinedOracleMission(1);
-  spec.mission.map_rate_hz = 4.0;
-  try {
+  for (int latency : {0, 1, 3}) {
+    ScenarioSpec spec = oracleMission(4.0);
+    spec.flight.perception.latency_frames = latency;
+    spec.flight.perception.threads = 1;
     Mission m(spec, urban().generated.exploration_box, &truth);
-    ADD_FAILURE() << "a 4 Hz map on a 15 Hz camera was accepted";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("mission.map_rate_hz"), std::string::npos) << e.what();
+    std::vector<int64_t> frame_ticks;
+    int used = 0, map_updates = 0;
+    while (m.running()) {
+      const TickRecord& t = m.step();
+      if (t.frame) frame_ticks.push_back(t.frame->tick);
+      if (t.map_updated) {
+        ++map_updates;
+        EXPECT_TRUE(t.frame) << "latency " << latency << ": a map update off a camera tick at " << t.tick;
+      }
+      if (!t.perceived) continue;
+      ++used;
+      ASSERT_GE(frame_ticks.size(), size_t(latency) + 1) << "latency " << latency;
+      EXPECT_EQ(t.perceived->tick, frame_ticks[frame_ticks.size() - 1 - size_t(latency)])
+          << "latency " << latency << " at tick " << t.tick;
+    }
+    m.finish();
+    EXPECT_EQ(used, int(frame_ticks.size()) - latency) << "latency " << latency;
+    EXPECT_GE(map_updates, 15) << "latency " << latency;  // 5 Hz for 4 s
+  }
+}
+
+TEST(ClosedLoop, ThePipelinedLoopRefusesRatesOffTheCameraTicks) {
+  // The map update and the plan run with a frame's perception: their rates must divide the
+  // camera's, at every latency (latency 0 too: one rule).
+  const WorldTruth truth(urban().generated.shapes);
+  for (int latency : {0, 1}) {
+    ScenarioSpec spec = pipelinedOracleMission(1);
+    spec.flight.perception.latency_frames = latency;
+    spec.mission.map_rate_hz = 4.0;
+    try {
+      Mission m(spec, urban().generated.exploration_box, &truth);
+      ADD_FAILURE() << "a 4 Hz map on a 15 Hz camera was accepted at latency " << latency;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("mission.map_rate_hz"), std::string::npos) << e.what();
+    }
   }
   // Two threads need a latency to overlap.
   FlightSpec f = oracleFlight();
