@@ -376,4 +376,23 @@ void writeMethod(MapWriter& w, const MethodChoice& method) {
   e->write(method.config, w);
 }
 
+std::string methodDefaultsYaml(const std::string& type) {
+  // A `method:` section that names only the type: every other key takes its default.
+  struct MethodSection {
+    MethodChoice choice;
+    void validate(ConfigChecker&) const {}
+  };
+  YAML::Node tree(YAML::NodeType::Map);
+  tree["method"]["type"] = type;
+  if (type == kPythonMethodType) tree["method"]["entry"] = "package.module:factory";  // required: a placeholder
+  const MethodSection section = parseConfigNode<MethodSection>("--type", tree, [](MapReader& r, MethodSection& s) {
+    s.choice = readMethod(r.sub("method"));
+    r.finish();
+  });
+  MapWriter w{YAML::Node(YAML::NodeType::Map)};
+  MapWriter m = w.sub("method");
+  writeMethod(m, section.choice);
+  return yamlText(w.node());
+}
+
 }  // namespace msb

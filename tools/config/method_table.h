@@ -61,6 +61,10 @@ MethodChoice readMethod(MapReader method);
 /// Writes `method.type` and every key of the method's config (defaults included).
 void writeMethod(MapWriter& w, const MethodChoice& method);
 
+/// Every key of method `type` with its default, as the YAML of a scenario's `method:` section
+/// (`msbench methods`). Throws ConfigError for an unknown type (naming the known ones).
+std::string methodDefaultsYaml(const std::string& type);
+
 /// The MonoSpheres mapper keys (shared with map-replay's --set map.KEY=VALUE); the caller
 /// finishes the reader.
 void readSphereMapKeys(MapReader& r, SphereMapConfig& c);

@@ -38,6 +38,30 @@ TEST(Cli, HelpAndUsageErrors) {
       << readText(d / "log");
 }
 
+// msbench methods lists every registered method; a method's keys, as printed, are a method:
+// section a scenario accepts (the same effective configuration back).
+TEST(Cli, MethodsListsEveryMethodAndKeysAScenarioAccepts) {
+  const fs::path d = tempDir("methods");
+  ASSERT_EQ(run("methods", d / "list"), 0) << readText(d / "list");
+  for (const char* type : {"monospheres:", "grid_random:", "star_discovery:", "hover_turn:", "python:"})
+    EXPECT_NE(readText(d / "list").find(type), std::string::npos) << type;
+  ASSERT_EQ(run("methods --type monospheres", d / "mono"), 0) << readText(d / "mono");
+  const std::string mono = readText(d / "mono");
+  EXPECT_NE(mono.find("ovde: true"), std::string::npos) << mono;
+  // The keys block, unindented, as a scenario's method section over the short test mission.
+  std::istringstream in(mono.substr(mono.find("    method:")));
+  std::string line, section;
+  while (std::getline(in, line)) section += line.substr(4) + "\n";
+  std::ofstream(d / "s.yaml") << "base: " << MSB_SOURCE_DIR << "/scenarios/missions/test_world_short.yaml\n" << section;
+  ASSERT_EQ(
+      run("run '" + (d / "s.yaml").string() + "' --duration 1 --quiet --out '" + (d / "o").string() + "'", d / "run"),
+      0)
+      << readText(d / "run");
+  EXPECT_NE(readText(d / "o" / "config.yaml").find("ovde: true"), std::string::npos);
+  EXPECT_EQ(run("methods --type nope", d / "nope"), 2);
+  EXPECT_NE(readText(d / "nope").find("known: monospheres"), std::string::npos) << readText(d / "nope");
+}
+
 TEST(Cli, WorldListBuildAndShow) {
   const fs::path d = tempDir("world");
   const std::string env = "MSBENCH_CACHE_DIR='" + (d / "cache").string() + "' ";

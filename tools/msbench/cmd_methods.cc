@@ -1,0 +1,56 @@
+// msbench methods: the registered exploration methods (tools/config/method_table.cc), each with
+// its summary, the Table I rows it answers to and every key of its `method:` section with its
+// default — what a scenario may set.
+#include <cstdio>
+#include <sstream>
+
+#include "tools/config/method_table.h"
+#include "tools/msbench/cli_args.h"
+#include "tools/msbench/commands.h"
+
+namespace msb {
+
+namespace {
+
+// The YAML text indented by `pad` spaces.
+std::string indented(const std::string& text, const std::string& pad) {
+  std::istringstream in(text);
+  std::string line, out;
+  while (std::getline(in, line)) out += pad + line + "\n";
+  return out;
+}
+
+void printMethod(const MethodEntry& e, bool keys) {
+  std::printf("%s: %s\n", e.type, e.summary);
+  if (!e.paper_rows.empty()) {
+    std::string rows;
+    for (const PaperRow& r : e.paper_rows)
+      rows += std::string(rows.empty() ? "" : ", ") + r.world +
+              (*r.switched_off ? std::string(" no ") + r.switched_off : "");
+    std::printf("  Table I rows: %s\n", rows.c_str());
+  }
+  if (e.attach_goal_chooser) std::printf("  takes a goal chooser written in Python (a scenario's goals: section)\n");
+  if (keys) std::printf("  keys and defaults:\n%s", indented(methodDefaultsYaml(e.type), "    ").c_str());
+}
+
+}  // namespace
+
+int runMethodsCommand(int argc, char** argv) {
+  ArgParser args("msbench methods",
+                 "The registered exploration methods (method.type): summary, the Table I rows each\n"
+                 "answers to, and with --type TYPE (or --keys) every key of its method: section with its\n"
+                 "default. A method written in Python is method.type: python (docs/python.md).");
+  args.option("type", "", "one method's type: it alone, with its keys").flag("keys", "list every method's keys");
+  if (!args.parse(argc, argv)) return kExitOk;
+  const std::string type = args.get("type");
+  if (!type.empty()) {
+    const MethodEntry* e = findMethod(type);
+    if (!e) methodDefaultsYaml(type);  // throws, naming the known types
+    if (e) printMethod(*e, true);
+    return kExitOk;
+  }
+  for (const MethodEntry& e : methodTable()) printMethod(e, args.has("keys"));
+  return kExitOk;
+}
+
+}  // namespace msb
