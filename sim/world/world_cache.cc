@@ -1,6 +1,10 @@
 #include "sim/world/world_cache.h"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <chrono>
 #include <cstdio>
@@ -20,10 +24,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Writes a file of the world being built, checked through close (a full disk shows at close).
 void writeBytes(const fs::path& p, const std::string& bytes) {
+  errno = 0;
   std::ofstream out(p, std::ios::binary);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error(p.string() + ": write failed");
+  out.close();
+  if (!out)
+    throw std::runtime_error(p.string() + ": write failed" + (errno ? std::string(": ") + std::strerror(errno) : ""));
 }
 
 std::string shapesCsv(const std::vector<Shape>& shapes) {
@@ -44,6 +52,41 @@ std::string shapesCsv(const std::vector<Shape>& shapes) {
   return s;
 }
 
+// Temporary build directories of `name` that a process now gone left behind (killed while it
+// built): removed, so the cache does not collect them.
+void removeStaleTemporaries(const fs::path& cache_root, const std::string& name) {
+  std::error_code ec;
+  const std::string prefix = ".tmp-" + name + "-";
+  for (const auto& e : fs::directory_iterator(cache_root, ec)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind(prefix, 0) != 0) continue;
+    const std::string pid_text = f.substr(prefix.size());
+    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(pid_text);
+    if (pid != ::getpid() && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove_all(e.path(), ec);
+  }
+}
+
+// Writes the world's files into `tmp` and renames it to `dir` (another process may have built
+// it first). On any failure the temporary directory is removed and the error names the cache.
+void writeWorldDirectory(const GeneratedWorld& g, int texture_px, const fs::path& tmp, const fs::path& dir) {
+  try {
+    fs::remove_all(tmp);
+    fs::create_directories(tmp / "textures");
+    for (const auto& t : g.textures)
+      writeBytes(tmp / "textures" / (t + ".png"), encodePng(viewOf(makeTexture(t, texture_px, 0))));
+    writeBytes(tmp / "shapes.csv", shapesCsv(g.shapes));
+    writeBytes(tmp / "world.xml", g.mjcf);
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    fs::remove_all(tmp, ec);
+    throw std::runtime_error(dir.string() + ": could not write the world cache: " + e.what());
+  }
+  std::error_code ec;
+  fs::rename(tmp, dir, ec);
+  if (ec) fs::remove_all(tmp, ec);  // another process built it first
+}
+
 }  // namespace
 
 BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
@@ -62,17 +105,9 @@ BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
   out.world_xml = (dir / "world.xml").string();
 
   if (!fs::is_regular_file(dir / "world.xml")) {
+    removeStaleTemporaries(cache_root, spec.name);
     const fs::path tmp = fs::path(cache_root) / (".tmp-" + spec.name + "-" + std::to_string(::getpid()));
-    fs::remove_all(tmp);
-    fs::create_directories(tmp / "textures");
-    for (const auto& t : out.generated.textures) {
-      writeBytes(tmp / "textures" / (t + ".png"), encodePng(viewOf(makeTexture(t, spec.texture_px, 0))));
-    }
-    writeBytes(tmp / "shapes.csv", shapesCsv(out.generated.shapes));
-    writeBytes(tmp / "world.xml", out.generated.mjcf);
-    std::error_code ec;
-    fs::rename(tmp, dir, ec);
-    if (ec) fs::remove_all(tmp);  // another process built it first
+    writeWorldDirectory(out.generated, spec.texture_px, tmp, dir);
     if (!fs::is_regular_file(dir / "world.xml"))
       throw std::runtime_error(dir.string() + ": could not write the world cache");
   } else {

@@ -207,8 +207,12 @@ int runRunCommand(int argc, char** argv) {
   }
 
   if (recorder) recorder->close();
-  nlohmann::json extra = nlohmann::json::object();
-  if (video) extra["video"] = finishVideo(*video, mission, r, spec.video, video_s, out.finalDir());
+  // The video ends after the run's other files are written (on a full disk they go first).
+  const auto extra = [&] {
+    nlohmann::json j = nlohmann::json::object();
+    if (video) j["video"] = finishVideo(*video, mission, r, spec.video, video_s, out.finalDir());
+    return j;
+  };
   const nlohmann::json metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr, extra);
   out.commit();
 

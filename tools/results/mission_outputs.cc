@@ -237,16 +237,18 @@ std::string configYamlText(const std::string& scenario_file, bool with_overrides
 }
 
 nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, const MissionResult& r,
-                                   const WorldTruth* truth, const nlohmann::json& extra) {
+                                   const WorldTruth* truth, const std::function<nlohmann::json()>& extra) {
   nlohmann::json metrics = missionMetrics(spec, r, truth);
-  if (extra.is_object()) metrics.update(extra);
   const std::string coverage_csv = coverageCsv(r.coverage);
-  metrics["record_digest"] = recordDigest(metrics, coverage_csv);  // the seal report and regress check
   writeFileAtomic(dir / "coverage.csv", coverage_csv);
   writeFileAtomic(dir / "trajectory.csv", trajectoryCsv(r.flight.trajectory));
   writeFileAtomic(dir / "timing.csv", timingCsv(r));
   if (spec.mission.write_map_ply) writeFileAtomic(dir / "map.ply", mapPly(r.final_map));
   writeTopdown(dir / "topdown.png", r, truth);
+  // What finishes after the run's files (its video: on a full disk, they go first) adds its keys
+  // before the record is sealed.
+  if (extra) metrics.update(extra());
+  metrics["record_digest"] = recordDigest(metrics, coverage_csv);  // the seal report and regress check
   writeFileAtomic(dir / "metrics.json", metrics.dump(2) + "\n");
   return metrics;
 }

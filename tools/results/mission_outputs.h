@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -44,10 +45,11 @@ std::string configYamlText(const std::string& scenario_file, bool with_overrides
 
 /// Writes a finished mission's result files into `dir` (coverage.csv, trajectory.csv, timing.csv,
 /// map.ply when the scenario asks for it, topdown.png, metrics.json last) and returns metrics.json's
-/// content. What `msbench run` and the Python module write alike. `extra` (an object) adds keys
-/// to metrics.json before it is sealed (the video's outcome).
+/// content. What `msbench run` and the Python module write alike. `extra`, called after every
+/// file but metrics.json (a run's video finishes there), returns keys metrics.json gains before
+/// it is sealed.
 nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const ScenarioSpec& spec, const MissionResult& r,
-                                   const WorldTruth* truth, const nlohmann::json& extra = nullptr);
+                                   const WorldTruth* truth, const std::function<nlohmann::json()>& extra = nullptr);
 
 /// Everything a mission reads that its outputs must not overlap: the scenario file, its `base:`
 /// chain, an MJCF world file, and `extra` (e.g. a Python method's module file).

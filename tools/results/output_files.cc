@@ -328,7 +328,12 @@ StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind 
   std::error_code ec;
   fs::create_directories(staging_, ec);
   if (ec) throw UsageError(staging_.string() + ": cannot create the output directory: " + ec.message());
-  writeFileAtomic(staging_ / kMarker, markerText(kind_));
+  try {
+    writeFileAtomic(staging_ / kMarker, markerText(kind_));
+  } catch (...) {
+    fs::remove_all(staging_, ec);  // a full disk: no empty staging directory is left behind
+    throw;
+  }
   final_entries_ = entriesOf(p);
 }
 

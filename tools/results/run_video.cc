@@ -186,6 +186,8 @@ void RunVideo::send(const cv::Mat& img) {
       error_ = std::string("the encoder (ffmpeg) stopped reading frames (") + std::strerror(errno) + ")";
       stopEncoder(/*kill=*/true);
       error_ += ": " + logTail(log_);
+      std::error_code ec;
+      fs::remove(partial_, ec);  // its space goes back to the run's other files (a full disk)
       return;
     }
     off += size_t(w);

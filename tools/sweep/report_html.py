@@ -6,13 +6,12 @@ One self-contained page, no network: report.md's sections as HTML (every table s
 click on any column heading; the findings' verdicts coloured), the figures embedded (table1.png,
 coverage_<world>.png, ablation_levels_<world>.png), the gallery beside it (gallery.png), and a
 table of the runs with each run's top-down picture and video linked where the run directory has
-them, its claimed and verified area and a flag where the method claims more than msbench could
-verify. The same inputs give the same page, byte for byte. Needs Debian's python3-markdown.
+them, its claimed and verified area (from report_runs.csv: msbench's reading of the checked records) and
+a flag where the method claims more than msbench could verify. The same inputs give the same page, byte for byte. Needs Debian's python3-markdown.
 """
 import base64
 import csv
 import html
-import json
 import os
 import re
 import sys
@@ -68,7 +67,7 @@ def data_uri(path):
 
 def body_of_markdown(report_dir):
     """report.md as HTML, its tables with a <tbody> and its verdict cells coloured."""
-    with open(os.path.join(report_dir, "report.md"), encoding="utf-8") as f:
+    with open(os.path.join(report_dir, "report.md"), encoding="utf-8", errors="replace") as f:
         text = f.read()
     body = markdown.markdown(text, extensions=["tables"], output_format="html")
     for verdict in ("holds", "fails", "undecided"):
@@ -93,13 +92,10 @@ def run_row(run, final_dir):
     """One run's row: id, world, series, status, claimed and verified A, pictures, video."""
     run_dir = os.path.abspath(run["dir"])
     rel = os.path.relpath(run_dir, final_dir)
-    claimed = verified = None
-    try:
-        with open(os.path.join(run_dir, "metrics.json"), encoding="utf-8") as f:
-            cov = json.load(f).get("coverage", {})
-        claimed, verified = cov.get("area_m2"), cov.get("verified_area_m2")
-    except (OSError, ValueError):
-        pass
+    # The areas msbench read from the run's checked record (report_runs.csv); a run's own files
+    # are never opened here, but for the pictures it links.
+    claimed = float(run["area_m2"]) if run.get("area_m2") else None
+    verified = float(run["verified_area_m2"]) if run.get("verified_area_m2") else None
     share = verified / claimed if claimed and verified is not None else None
     flagged = share is not None and share < VERIFIED_FLAG_SHARE
     cells = [html.escape(run[k]) for k in ("id", "world", "series", "run_status")]
@@ -109,16 +105,16 @@ def run_row(run, final_dir):
     cells.append(share_text)
     pic = os.path.join(run_dir, "topdown.png")
     cells.append(f'<a href="{html.escape(rel)}/topdown.png"><img class="thumb" loading="lazy" alt="top-down" '
-                 f'src="{html.escape(rel)}/topdown.png"></a>' if os.path.exists(pic) else "")
+                 f'src="{html.escape(rel)}/topdown.png"></a>' if os.path.isfile(pic) else "")
     video = os.path.join(run_dir, "video.mp4")
     cells.append(f'<video controls preload="metadata" src="{html.escape(rel)}/video.mp4"></video>'
-                 if os.path.exists(video) else "")
+                 if os.path.isfile(video) else "")
     tds = "".join(f'<td class="flag">{c}</td>' if i == 6 and flagged else f"<td>{c}</td>" for i, c in enumerate(cells))
     return f"<tr>{tds}</tr>"
 
 
 def runs_html(report_dir, final_dir):
-    with open(os.path.join(report_dir, "report_runs.csv"), newline="", encoding="utf-8") as f:
+    with open(os.path.join(report_dir, "report_runs.csv"), newline="", encoding="utf-8", errors="replace") as f:
         runs = list(csv.DictReader(f))
     if not runs:
         return ""

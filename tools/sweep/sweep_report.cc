@@ -716,7 +716,7 @@ std::string reportTableCsv(const SweepResults& results, const std::vector<Report
 
 std::string reportRunsCsv(const SweepResults& results) {
   std::ostringstream o;
-  o << "id,world,series,status,run_status,dir\n";
+  o << "id,world,series,status,run_status,dir,area_m2,verified_area_m2\n";
   for (const ReportRun& r : results.runs) {
     const std::string world = r.metrics.is_object() ? r.metrics.value("world", std::string("?")) : "";
     // The series: the run's labels except the one naming its world (one line per method/variant).
@@ -727,9 +727,17 @@ std::string reportRunsCsv(const SweepResults& results) {
       series += (series.empty() ? "" : "-") + l;
     }
     if (series.empty()) series = r.metrics.is_object() ? reportMethodName(r.metrics) : "run";
+    // The claimed and verified areas of a complete run (its record, checked when loaded).
+    std::string claimed, verified;
+    if (r.status == "complete" && r.metrics.is_object() && r.metrics.contains("coverage")) {
+      const nlohmann::json& cov = r.metrics["coverage"];
+      if (cov.contains("area_m2") && cov["area_m2"].is_number()) claimed = fixed(cov["area_m2"].get<double>(), 1);
+      if (cov.contains("verified_area_m2") && cov["verified_area_m2"].is_number())
+        verified = fixed(cov["verified_area_m2"].get<double>(), 1);
+    }
     o << r.id << "," << world << "," << series << "," << r.status << ","
       << (r.metrics.is_object() ? r.metrics.value("status", std::string()) : "") << ","
-      << (results.dir / "runs" / r.id).string() << "\n";
+      << (results.dir / "runs" / r.id).string() << "," << claimed << "," << verified << "\n";
   }
   return o.str();
 }

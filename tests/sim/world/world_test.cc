@@ -1,6 +1,10 @@
 // The benchmark worlds: compile cleanly, deterministic, seed moves objects only, ground truth
 // agrees with MuJoCo's own ray casts, start poses have clearance.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <cerrno>
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -52,6 +56,40 @@ TEST(Worlds, EveryWorldCompilesInMuJoCoWithoutWarningsAndStartsCollisionFree) {
       sim.endTick(Vec4::Zero());
     }
   }
+}
+
+// A world cache that cannot be written (a file-size limit standing in for a full disk): the
+// error names the cache directory and the OS reason, and no temporary directory is left; one a
+// killed builder left behind is removed by the next build.
+TEST(Worlds, AFailedCacheWriteLeavesNoTemporaries) {
+  const fs::path cache = tempCache("full");
+  fs::create_directories(cache);
+  rlimit old{};
+  getrlimit(RLIMIT_FSIZE, &old);
+  rlimit small = old;
+  small.rlim_cur = 4096;
+  auto* prev = std::signal(SIGXFSZ, SIG_IGN);  // a write past the limit fails with EFBIG
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::string error;
+  try {
+    buildWorld(spec("urban"), cache.string());
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, prev);
+  EXPECT_NE(error.find("could not write the world cache"), std::string::npos) << error;
+  EXPECT_NE(error.find("File too large"), std::string::npos) << error;
+  EXPECT_TRUE(fs::is_empty(cache)) << fs::directory_iterator(cache)->path();
+  // A stale temporary of a process that is gone.
+  pid_t gone = 0;
+  for (pid_t p = 4000000; p > 3000000 && !gone; --p)
+    if (::kill(p, 0) != 0 && errno == ESRCH) gone = p;
+  ASSERT_GT(gone, 0);
+  fs::create_directories(cache / (".tmp-urban-" + std::to_string(gone)) / "textures");
+  const BuiltWorld w = buildWorld(spec("urban"), cache.string());
+  EXPECT_FALSE(fs::exists(cache / (".tmp-urban-" + std::to_string(gone))));
+  EXPECT_TRUE(fs::is_regular_file(w.world_xml));
 }
 
 TEST(Worlds, GenerationIsByteIdenticalForTheSameSpecAndSeed) {
