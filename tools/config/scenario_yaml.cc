@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
 #include "core/common/config_check.h"
+#include "core/common/rng.h"
 #include "tools/config/flight_keys.h"
 #include "tools/config/flight_yaml.h"
 #include "tools/config/method_table.h"
@@ -271,6 +273,7 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
   }
   if (spec.goals && !spec.goals->path.empty() && fs::path(spec.goals->path).is_relative())
     spec.goals->path = (dir / spec.goals->path).lexically_normal().string();
+  spec.fixed_settings_hash = fixedSettingsHash(spec);
   // Names and paths end up in metrics.json (JSON is UTF-8): checked now, not after the mission.
   if (!isValidUtf8(path)) throw FileConfigError(path + ": the file name is not valid UTF-8");
   if (!isValidUtf8(spec.name)) throw FileConfigError(label + ": key 'name': not valid UTF-8");
@@ -326,6 +329,23 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec) {
     g.node()["params"] = YAML::Load(spec.goals->params_yaml);
   }
   return yamlText(w.node());
+}
+
+std::string fixedSettingsYaml(const ScenarioSpec& spec) {
+  YAML::Node tree = YAML::Load(effectiveScenarioYaml(spec));
+  for (const char* key : {"name", "seed", "method", "goals", "video"}) tree.remove(key);
+  if (tree["mission"]) {
+    tree["mission"].remove("progress");
+    tree["mission"].remove("write_map_ply");
+  }
+  return yamlText(tree);
+}
+
+std::string fixedSettingsHash(const ScenarioSpec& spec) {
+  const std::string text = fixedSettingsYaml(spec);
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(fnv1a64(text.data(), text.size())));
+  return hex;
 }
 
 }  // namespace msb

@@ -27,4 +27,12 @@ SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets);
 /// the scenario gave one (else the generated world's start applies).
 std::string effectiveScenarioYaml(const ScenarioSpec& spec);
 
+/// The benchmark's side of a scenario (docs/metrics.md, "Fixed settings"): the effective YAML
+/// without what a method or a run chooses — `name`, `seed`, `method`, `goals`, `video`,
+/// `mission.progress`, `mission.write_map_ply`. Two runs with the same text flew the same world,
+/// duration, vehicle, speed set, camera, front end, rates and box.
+std::string fixedSettingsYaml(const ScenarioSpec& spec);
+/// FNV-1a 64 of fixedSettingsYaml(), 16 hex digits (metrics.json `fixed_settings_hash`).
+std::string fixedSettingsHash(const ScenarioSpec& spec);
+
 }  // namespace msb

@@ -60,6 +60,10 @@ struct ScenarioSpec {
   /// The files the scenario was read from: the file itself, then its `base:` chain (absolute).
   /// Outputs may not overlap them (checkNoOverlap).
   std::vector<std::string> input_files;
+  /// The hash of the benchmark's side of the scenario (everything but what a method or a run
+  /// chooses; tools/config/scenario_yaml.h fixedSettingsHash), set by loadScenario; "" for a
+  /// spec built in code. Recorded in metrics.json.
+  std::string fixed_settings_hash;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -101,6 +101,8 @@ int runReportCommand(int argc, char** argv) {
                  "matplotlib is available.");
   args.positional("DIR", "sweep directory (from msbench sweep)")
       .option("out", "", "report directory (default DIR/report; an earlier report there is replaced)")
+      .option("suite", "",
+              "published runs whose settings the runs must share (e.g. results/table1); others are set aside")
       .flag("no-figures", "write the Markdown and CSV files only");
   if (!args.parse(argc, argv)) return kExitOk;
   const fs::path dir = args.get("DIR");
@@ -108,6 +110,7 @@ int runReportCommand(int argc, char** argv) {
   SweepResults results;
   try {
     results = loadSweepResults(dir);
+    if (!args.get("suite").empty()) applySuite(results, args.get("suite"));
   } catch (const std::runtime_error& e) {
     throw UsageError(e.what());
   }

@@ -43,6 +43,24 @@ MonoSpheresConfig mono(const ScenarioSpec& s) {
   return std::any_cast<MonoSpheresConfig>(s.method.config);
 }
 
+// The fixed settings (the benchmark's side of a scenario) ignore what a method or a run chooses
+// and see everything else.
+TEST(ScenarioYaml, TheFixedSettingsHashIgnoresTheMethodAndTheRunAndSeesTheRest) {
+  const fs::path d = tempDir();
+  write(d / "s.yaml", kBase);
+  const std::string s = (d / "s.yaml").string();
+  const std::string h = loadScenario(s).fixed_settings_hash;
+  EXPECT_EQ(h.size(), 16u);
+  EXPECT_EQ(h, fixedSettingsHash(loadScenario(s)));
+  for (const char* same : {"method.switches.fff=false", "seed=9", "name=other", "video.enabled=true",
+                           "mission.progress=false", "method.planner.local_radius_m=15", "mission.write_map_ply=false"})
+    EXPECT_EQ(loadScenario(s, {same}).fixed_settings_hash, h) << same;
+  for (const char* other : {"duration_s=60", "trajectory.limits=fast", "camera.clip_far_m=150",
+                            "mission.map_rate_hz=2.5", "perception.latency_frames=1"})
+    EXPECT_NE(loadScenario(s, {other}).fixed_settings_hash, h) << other;
+  EXPECT_EQ(fixedSettingsYaml(loadScenario(s)).find("method"), std::string::npos);
+}
+
 TEST(ScenarioYaml, BaseChainOverridesAndSwitches) {
   const fs::path d = tempDir();
   write(d / "base.yaml", kBase);

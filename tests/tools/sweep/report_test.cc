@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/tools/cli_helpers.h"
+#include "tools/config/scenario_yaml.h"
 #include "tools/results/run_record.h"
 #include "tools/sweep/findings.h"
 #include "tools/sweep/regression.h"
@@ -54,6 +55,40 @@ ReportRun madeRun(const std::string& id, const std::string& world, const std::st
     r.coverage.push_back(c);
   }
   return r;
+}
+
+// A suite's published runs fix each world's settings: a run whose fixed settings differ is set
+// aside (no row, named with both hashes), one that matches is counted.
+TEST(SweepReport, ASuiteSetsAsideRunsWithOtherSettings) {
+  const fs::path d = fs::path(::testing::TempDir()) / "msb_report_suite";
+  fs::remove_all(d);
+  fs::create_directories(d / "suite/runs/urban-s1");
+  const std::string scenario = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/urban.yaml";
+  std::ofstream(d / "suite/runs/urban-s1/config.yaml") << effectiveScenarioYaml(loadScenario(scenario));
+  const std::string suite_hash = loadScenario(scenario).fixed_settings_hash;
+  SweepResults s;
+  s.dir = d / "sweep";
+  s.axes = {"world", "method"};
+  s.runs = {madeRun("urban-mine-s1", "urban", "mine", 800, "completed"),
+            madeRun("urban-fast-s1", "urban", "fast", 900, "completed"),
+            madeRun("cave-mine-s1", "cave", "mine", 500, "completed")};
+  s.runs[0].metrics["fixed_settings_hash"] = suite_hash;
+  s.runs[1].metrics["fixed_settings_hash"] = loadScenario(scenario, {"trajectory.limits=fast"}).fixed_settings_hash;
+  s.runs[2].metrics["fixed_settings_hash"] = suite_hash;
+  applySuite(s, d / "suite");
+  EXPECT_EQ(s.runs[0].status, "complete");
+  EXPECT_EQ(s.runs[1].status, "off-suite");
+  EXPECT_NE(s.runs[1].off_suite.find(suite_hash), std::string::npos) << s.runs[1].off_suite;
+  EXPECT_EQ(s.runs[2].status, "off-suite");
+  EXPECT_NE(s.runs[2].off_suite.find("not in the suite"), std::string::npos) << s.runs[2].off_suite;
+  const auto rows = reportRows(s);
+  int complete = 0;
+  for (const auto& r : rows) complete += r.complete;
+  EXPECT_EQ(complete, 1);
+  const std::string md = reportMarkdown(s, rows);
+  EXPECT_NE(md.find("## Off the suite"), std::string::npos);
+  EXPECT_NE(md.find("2 off the suite"), std::string::npos);
+  EXPECT_THROW(applySuite(s, d / "nothing"), std::runtime_error);
 }
 
 TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
