@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -85,8 +86,13 @@ pid_t startRun(const SweepRun& run, const fs::path& out, const fs::path& log) {
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) dup2(fd, 1), dup2(fd, 2), close(fd);
+    // The log: a regular file or nothing. A FIFO or device put there is never opened for
+    // writing (it would block); the run fails and the sweep's record names the log.
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC, 0644);
+    struct stat st {};
+    if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) _exit(126);
+    if (ftruncate(fd, 0) != 0) _exit(126);
+    dup2(fd, 1), dup2(fd, 2), close(fd);
     signal(SIGINT, SIG_DFL);
     signal(SIGTERM, SIG_DFL);
     std::vector<char*> argv;

@@ -3,6 +3,7 @@
 // complete, resume (complete runs skipped, missing ones redone), a killed sweep resumed to the
 // same results, a changed sweep file named.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <signal.h>
 
@@ -171,6 +172,30 @@ exclude: [{variant: broken, seed: 2}]
   std::ofstream(f, std::ios::app) << "# changed\n";
   EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log3"), 2);
   EXPECT_NE(readText(d / "log3").find("the sweep file changed"), std::string::npos) << readText(d / "log3");
+}
+
+// A run's log path that is a FIFO (or device) is never opened for writing: the run fails at
+// once, its record names the log, the sweep goes on (before: the run blocked until its limit).
+TEST(Sweep, ARunWhoseLogIsAFifoFailsAtOnceNamingIt) {
+  const fs::path d = msb_test::tempDir("msb_sweep_", "fifo_log");
+  const fs::path f = writeSweep(d, "set: {duration_s: 2}\nseeds: 2\n");
+  const fs::path out = d / "out";
+  ASSERT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --jobs 1", d / "log0"), 0)
+      << readText(d / "log0");
+  // Resumed with run s1 to redo and a FIFO where its log goes.
+  fs::remove_all(out / "runs" / "s1");
+  fs::remove(out / "logs" / "s1.log");
+  ASSERT_EQ(mkfifo((out / "logs" / "s1.log").c_str(), 0600), 0);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "' --jobs 1", d / "log"), 1)
+      << readText(d / "log");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(120));
+  auto r = rows(out);
+  EXPECT_EQ(r["s1"][2], "failed");  // id, seed, status (no axes)
+  EXPECT_EQ(r["s2"][2], "complete");
+  const auto index = nlohmann::json::parse(readText(out / "sweep.json"));
+  EXPECT_NE(index["runs"][0]["failure"]["log_tail"].get<std::string>().find("s1.log: is a FIFO"), std::string::npos)
+      << index["runs"][0]["failure"].dump();
 }
 
 TEST(Sweep, ARunKilledByASignalIsRecordedFailedAndTheSweepGoesOn) {
