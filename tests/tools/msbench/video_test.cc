@@ -26,22 +26,6 @@ bool haveFfmpeg() {
   return std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") == 0;
 }
 
-// "frames,width,height" of a video as ffprobe decodes it.
-std::string probe(const fs::path& video) {
-  const std::string cmd =
-      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=nb_read_frames,width,height -of csv=p=0 '" +
-      video.string() + "'";
-  std::string out;
-  if (FILE* p = popen(cmd.c_str(), "r")) {
-    char buf[256];
-    while (std::fgets(buf, sizeof(buf), p)) out += buf;
-    pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == ',')) out.pop_back();
-  return out;
-}
-
 nlohmann::json metrics(const fs::path& run_dir) { return nlohmann::json::parse(readText(run_dir / "metrics.json")); }
 
 TEST(Video, ARunWithVideoKeepsItsHashAndTheVideoIsAsDocumented) {
@@ -61,7 +45,7 @@ TEST(Video, ARunWithVideoKeepsItsHashAndTheVideoIsAsDocumented) {
   EXPECT_EQ(v["video"]["file"], "video.mp4");
   EXPECT_EQ(v["video"]["frames"], 40);
   EXPECT_EQ(v["video"]["height"], 720);
-  EXPECT_EQ(probe(d / "v" / "video.mp4"), std::to_string(v["video"]["width"].get<int>()) + ",720,40");
+  EXPECT_EQ(msb_test::probeVideo(d / "v" / "video.mp4"), std::to_string(v["video"]["width"].get<int>()) + ",720,40");
   EXPECT_NE(readText(d / "v" / "config.yaml").find("enabled: true"), std::string::npos);
 
   // The finished run without a video gets one from a replay; its record is not touched.
@@ -70,7 +54,7 @@ TEST(Video, ARunWithVideoKeepsItsHashAndTheVideoIsAsDocumented) {
       << readText(d / "log_r");
   EXPECT_NE(readText(d / "log_r").find("matches"), std::string::npos) << readText(d / "log_r");
   EXPECT_EQ(readText(d / "p" / "metrics.json"), before);
-  EXPECT_EQ(probe(d / "p" / "video.mp4"), std::to_string(v["video"]["width"].get<int>()) + ",720,20");
+  EXPECT_EQ(msb_test::probeVideo(d / "p" / "video.mp4"), std::to_string(v["video"]["width"].get<int>()) + ",720,20");
   EXPECT_EQ(run("video '" + (d / "p").string() + "' --quiet", d / "log_again"), 2);  // exists: --overwrite
   EXPECT_EQ(run("video '" + (d / "p").string() + "' --set duration_s=5", d / "log_set"), 2);
   EXPECT_NE(readText(d / "log_set").find("video.KEY"), std::string::npos) << readText(d / "log_set");

@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "tests/tools/cli_helpers.h"
 #include "tools/results/run_video.h"
 
 namespace msb {
@@ -21,22 +22,6 @@ fs::path tempDir(const std::string& name) {
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
-}
-
-// "frames,width,height" of a video as ffprobe decodes it.
-std::string probe(const fs::path& video) {
-  const std::string cmd =
-      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=nb_read_frames,width,height -of csv=p=0 '" +
-      video.string() + "'";
-  std::string out;
-  if (FILE* p = popen(cmd.c_str(), "r")) {
-    char buf[256];
-    while (std::fgets(buf, sizeof(buf), p)) out += buf;
-    pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == ',')) out.pop_back();
-  return out;
 }
 
 // A camera frame of noise (the encoder cannot compress it away).
@@ -80,7 +65,7 @@ TEST_F(RunVideoTest, FramesAndSizeAreAsDocumented) {
   video.addFinalFrames(r, &cam);  // the end, held 2 s: 2 × fps frames
   EXPECT_EQ(video.finish(), "");
   EXPECT_EQ(video.frames(), 10);
-  EXPECT_EQ(probe(d / "video.mp4"), "" + std::to_string(video.width()) + ",360,10");
+  EXPECT_EQ(msb_test::probeVideo(d / "video.mp4"), "" + std::to_string(video.width()) + ",360,10");
   EXPECT_FALSE(fs::exists(d / "video.mp4.partial"));
   EXPECT_FALSE(fs::exists(d / "video.mp4.ffmpeg.log"));
 }
