@@ -72,22 +72,6 @@ double stepToEnd(Mission& mission, const ScenarioSpec& spec, PerceptionLogWriter
   return video_s;
 }
 
-// Ends the video: the run's final frames, then the encoder. metrics.json's `video`: the file and
-// its frames, or why there is none (the run's other files are written either way).
-nlohmann::json finishVideo(RunVideo& video, const Mission& mission, const MissionResult& r, const VideoSettings& s,
-                           double wall_s, const fs::path& final_dir) {
-  const auto start = WallClock::now();
-  video.addFinalFrames(r, mission.loop().sharedFrame().get());
-  const std::string error = video.finish();
-  wall_s += secondsSince(start);
-  if (!error.empty()) {
-    std::fprintf(stderr, "msbench run: video %s not written: %s\n", (final_dir / "video.mp4").c_str(), error.c_str());
-    return {{"file", nullptr}, {"error", error}, {"wall_time_s", wall_s}};
-  }
-  return {{"file", "video.mp4"}, {"frames", video.frames()}, {"width", video.width()}, {"height", video.height()},
-          {"fps", s.fps},        {"speedup", s.speedup},     {"wall_time_s", wall_s}};
-}
-
 // The run's result line, and the collision's if it ended in one.
 void printRunSummary(const ScenarioSpec& spec, const MissionResult& r, const nlohmann::json& metrics,
                      const fs::path& dir) {
@@ -152,10 +136,8 @@ int runRunCommand(int argc, char** argv) {
   if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
   if (args.has("video")) all_sets.push_back("video.enabled=true");
   ScenarioSpec spec = loadScenario(file, all_sets);
-  if ((spec.method.type == kPythonMethodType || spec.goals) && spec.video.enabled)
-    throw UsageError(file +
-                     ": video.enabled: not available for a method written in Python (its loop runs in the "
-                     "Python module; docs/video.md)");
+  if (spec.video.enabled && findFfmpeg().empty())
+    throw UsageError(file + ": video.enabled: the ffmpeg program is not installed (apt-get install ffmpeg)");
   if (spec.method.type == kPythonMethodType || spec.goals) execPythonRun(original_args);
   const std::string effective_yaml = effectiveScenarioYaml(spec);  // before the world fills in the start
   MissionWorld world = prepareMissionWorld(file, spec);
@@ -165,8 +147,6 @@ int runRunCommand(int argc, char** argv) {
   checkNoOverlap(missionInputs(file, spec), {{"--out", args.get("out")}, {"--record", args.get("record")}});
   if (!args.get("record").empty())
     checkOutputFile(args.get("record"), args.has("overwrite"), "record", kPerceptionLogMagic);
-  if (spec.video.enabled && findFfmpeg().empty())
-    throw UsageError(file + ": video.enabled: the ffmpeg program is not installed (apt-get install ffmpeg)");
   // Build the mission (world model, renderer, method) before any output exists: a world that
   // does not compile is bad input (exit 2) and leaves nothing behind.
   Mission mission = buildNamingFile(file, [&] { return Mission(spec, box, truth ? &*truth : nullptr); });
@@ -210,7 +190,8 @@ int runRunCommand(int argc, char** argv) {
   // The video ends after the run's other files are written (on a full disk they go first).
   const auto extra = [&] {
     nlohmann::json j = nlohmann::json::object();
-    if (video) j["video"] = finishVideo(*video, mission, r, spec.video, video_s, out.finalDir());
+    if (video)
+      j["video"] = finishRunVideo(*video, r, mission.loop().sharedFrame().get(), video_s, out.finalDir() / "video.mp4");
     return j;
   };
   const nlohmann::json metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr, extra);

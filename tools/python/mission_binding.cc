@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <filesystem>
 
 #include "core/common/wall_time.h"
 #include "core/geometry/world_truth.h"
@@ -14,6 +16,7 @@
 #include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
+#include "tools/results/run_video.h"
 
 namespace msb {
 namespace binding {
@@ -109,9 +112,13 @@ class PyMission {
   // chooser on the loop's second thread takes the GIL): nothing runs on that thread once Python
   // code continues or the mission goes.
   ~PyMission() {
-    if (!mission_) return;
-    py::gil_scoped_release release;
-    mission_->sync();
+    if (mission_) {
+      py::gil_scoped_release release;
+      mission_->sync();
+    }
+    video_.reset();  // an unfinished video: its encoder stopped, its file removed
+    std::error_code ec;
+    if (!video_dir_.empty()) std::filesystem::remove_all(video_dir_, ec);
   }
   PyMission(const PyMission&) = delete;
   PyMission& operator=(const PyMission&) = delete;
@@ -133,8 +140,10 @@ class PyMission {
       py::gil_scoped_release release;
       const SyncAtExit sync{*mission_, std::uncaught_exceptions()};
       const int64_t hz = mission_->physicsHz();
+      startVideo();
       for (int64_t i = 0; i < n && mission_->running(); ++i) {
         const TickRecord& r = mission_->step();
+        videoFrame(r);
         last_tick_ = r.tick;
         last_t_s_ = r.t_s;
         if (r.frame) new_frame = true;
@@ -155,7 +164,12 @@ class PyMission {
       guarded([&] {
         py::gil_scoped_release release;
         const SyncAtExit sync{*mission_, std::uncaught_exceptions()};
-        for (int64_t i = 0; i < chunk && mission_->running(); ++i) last_tick_ = mission_->step().tick;
+        startVideo();
+        for (int64_t i = 0; i < chunk && mission_->running(); ++i) {
+          const TickRecord& r = mission_->step();
+          videoFrame(r);
+          last_tick_ = r.tick;
+        }
         checkSignals();
       });
       if (progress && last_tick_ + 1 >= next_progress) {  // ticks count from 0: tick k ends at (k + 1) / hz
@@ -188,7 +202,8 @@ class PyMission {
       writeErroredMissionOutputs(out.staging(), scenario_.spec, *mission_, *error_, last_tick_,
                                  world_->truth ? &*world_->truth : nullptr, error_status_);
     } else {
-      writeMissionOutputs(out.staging(), scenario_.spec, finished(), world_->truth ? &*world_->truth : nullptr);
+      writeMissionOutputs(out.staging(), scenario_.spec, finished(), world_->truth ? &*world_->truth : nullptr,
+                          [&] { return finishVideo(out.staging(), out.finalDir()); });
     }
     out.commit();
     return out.finalDir().string();
@@ -203,6 +218,50 @@ class PyMission {
   }
 
  private:
+  // The run's video (video.enabled; docs/video.md), started with the first step: its frames go
+  // to a temporary directory until write() moves the file into the output.
+  void startVideo() {
+    if (!scenario_.spec.video.enabled || video_ || video_done_) return;
+    char dir[] = "/tmp/msbench_video.XXXXXX";
+    if (!mkdtemp(dir)) throw std::runtime_error("video: cannot create a temporary directory in /tmp");
+    video_dir_ = dir;
+    video_ = std::make_unique<RunVideo>(video_dir_ / "video.mp4", scenario_.spec.video, scenario_.spec.name,
+                                        scenario_.spec.flight.duration_s, world_->box,
+                                        world_->truth ? &*world_->truth : nullptr, mission_->loop().camera().width(),
+                                        mission_->loop().camera().height());
+    video_ticks_ = video_->periodTicks(mission_->physicsHz());
+  }
+
+  // A video frame at the end of every frame period's tick.
+  void videoFrame(const TickRecord& r) {
+    if (!video_ || !r.completed || r.tick % video_ticks_ != 0) return;
+    const auto start = WallClock::now();
+    video_->addFrame(*mission_);
+    video_s_ += secondsSince(start);
+  }
+
+  // Ends the video into `staging` (after the run's other files): metrics.json's `video`.
+  nlohmann::json finishVideo(const std::filesystem::path& staging, const std::filesystem::path& final_dir) {
+    nlohmann::json j = nlohmann::json::object();
+    if (!video_) return j;
+    video_done_ = true;
+    nlohmann::json v =
+        finishRunVideo(*video_, finished(), mission_->loop().sharedFrame().get(), video_s_, final_dir / "video.mp4");
+    video_.reset();
+    if (!v["file"].is_null()) {
+      std::error_code ec;
+      std::filesystem::copy_file(video_dir_ / "video.mp4", staging / "video.mp4", ec);
+      if (ec) {
+        std::filesystem::remove(staging / "video.mp4", ec);
+        v = {{"file", nullptr}, {"error", "cannot copy it into the output: " + ec.message()}};
+        std::fprintf(stderr, "msbench run: video %s not written: %s\n", (final_dir / "video.mp4").c_str(),
+                     v["error"].get<std::string>().c_str());
+      }
+    }
+    j["video"] = v;
+    return j;
+  }
+
   // Runs `f`; a method error (or any failure of the loop) ends the run with status error.
   template <class F>
   void guarded(F&& f) {
@@ -326,6 +385,11 @@ class PyMission {
   std::unique_ptr<MissionWorld> world_;  // the truth the mission points into: never moves
   std::unique_ptr<Mission> mission_;
   std::optional<MissionResult> result_;
+  std::unique_ptr<RunVideo> video_;  // the run's video while it is recorded (video.enabled)
+  std::filesystem::path video_dir_;  // its temporary directory (removed with the mission)
+  int64_t video_ticks_ = 1;
+  double video_s_ = 0;
+  bool video_done_ = false;
   std::optional<std::string> error_;            // the run ended with an error (a Python method raised)
   RunStatus error_status_ = RunStatus::kError;  // or its process failed (method_timeout, method_exited)
   bool interrupted_ = false;                    // a KeyboardInterrupt ended it: nothing to write

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -223,6 +224,26 @@ std::string RunVideo::finish() {
   if (!error_.empty()) fs::remove(partial_, ec);
   fs::remove(log_, ec);
   return error_;
+}
+
+nlohmann::json finishRunVideo(RunVideo& video, const MissionResult& r, const CameraFrame* last_frame, double wall_s,
+                              const fs::path& final_path) {
+  const auto start = std::chrono::steady_clock::now();
+  video.addFinalFrames(r, last_frame);
+  const std::string error = video.finish();
+  wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!error.empty()) {
+    std::fprintf(stderr, "msbench run: video %s not written: %s\n", final_path.c_str(), error.c_str());
+    return {{"file", nullptr}, {"error", error}, {"wall_time_s", wall_s}};
+  }
+  const VideoSettings& s = video.settings();
+  return {{"file", final_path.filename().string()},
+          {"frames", video.frames()},
+          {"width", video.width()},
+          {"height", video.height()},
+          {"fps", s.fps},
+          {"speedup", s.speedup},
+          {"wall_time_s", wall_s}};
 }
 
 }  // namespace msb

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
 #include "core/common/messages.h"
@@ -49,6 +50,8 @@ class RunVideo {
   /// Frame size in pixels.
   int width() const { return width_; }
   int height() const { return height_; }
+  /// The settings it was made with.
+  const VideoSettings& settings() const { return settings_; }
 
  private:
   cv::Mat compose(const CameraFrame* frame, const TopdownView& view, const WorldTruth* truth);
@@ -70,5 +73,12 @@ class RunVideo {
   bool finished_ = false;
   bool finished_frame_ = false;  // the run's end: the caption says how it ended
 };
+
+/// Ends a run's video: the run's end held 2 s (`last_frame`: the latest camera image), then the
+/// encoder. Returns metrics.json's `video` — the file's name (`final_path`'s), frames, size, fps,
+/// speed-up and the wall seconds spent (`wall_s` so far plus these) — or, when the encoder failed,
+/// `file: null` and the error, which stderr also names with `final_path`.
+nlohmann::json finishRunVideo(RunVideo& video, const MissionResult& r, const CameraFrame* last_frame, double wall_s,
+                              const std::filesystem::path& final_path);
 
 }  // namespace msb

@@ -29,6 +29,7 @@ def run(argv):
     p.add_argument("--seed")
     p.add_argument("--duration")
     p.add_argument("--record")
+    p.add_argument("--video", action="store_true")
     p.add_argument("--quiet", action="store_true")
     p.add_argument("--overwrite", action="store_true")
     a = p.parse_args(argv)
@@ -37,6 +38,8 @@ def run(argv):
         sets.append(f"seed={a.seed}")
     if a.duration is not None:
         sets.append(f"duration_s={a.duration}")
+    if a.video:
+        sets.append("video.enabled=true")
     try:
         if a.record:
             raise ConfigError("--record: not available for Python methods (the perception log is the C++ runner's)")
