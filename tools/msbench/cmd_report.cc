@@ -17,6 +17,7 @@
 #include "tools/results/output_files.h"
 #include "tools/sweep/findings.h"
 #include "tools/sweep/level_sweep.h"
+#include "tools/sweep/suite.h"
 #include "tools/sweep/sweep_report.h"
 
 namespace msb {

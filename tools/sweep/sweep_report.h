@@ -108,14 +108,6 @@ SweepResults loadSweepResults(const std::filesystem::path& dir);
 /// First time the box share reached `share` (nullopt: never).
 std::optional<double> timeToBoxShare(const std::vector<CoverageSample>& coverage, double share);
 
-/// A benchmark suite (docs/sweeps.md, "Suites"): the published runs in `suite_dir` (runs/*/
-/// config.yaml) fix, per world, the settings a run may fly with — the hashes of their fixed
-/// settings (tools/config/scenario_yaml.h). Every complete run of `results` whose own hash
-/// (metrics.json `fixed_settings_hash`, else from its config.yaml) is not among its world's is
-/// set aside: status "off-suite", no record (in no row, ranking or finding), `off_suite` saying
-/// why. Throws std::runtime_error when the suite has no readable run.
-void applySuite(SweepResults& results, const std::filesystem::path& suite_dir);
-
 /// The table rows, in the order their first run appears.
 std::vector<ReportRow> reportRows(const SweepResults& results);
 

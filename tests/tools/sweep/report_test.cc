@@ -19,6 +19,7 @@
 #include "tools/results/run_record.h"
 #include "tools/sweep/findings.h"
 #include "tools/sweep/regression.h"
+#include "tools/sweep/suite.h"
 #include "tools/sweep/sweep_report.h"
 
 namespace msb {

@@ -1,0 +1,62 @@
+#include "tools/sweep/suite.h"
+
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "tools/config/scenario_yaml.h"
+
+namespace msb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// (world, fixed-settings hash) of the scenario in a run's config.yaml.
+std::pair<std::string, std::string> settingsOf(const fs::path& config) {
+  const ScenarioSpec spec = loadScenario(config.string());
+  return {spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name, spec.fixed_settings_hash};
+}
+
+}  // namespace
+
+void applySuite(SweepResults& results, const fs::path& suite_dir) {
+  // The suite: per world, the hashes its published runs flew with.
+  std::map<std::string, std::set<std::string>> allowed;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(suite_dir / "runs", ec)) {
+    if (!fs::is_regular_file(e.path() / "config.yaml")) continue;
+    const auto [world, hash] = settingsOf(e.path() / "config.yaml");
+    allowed[world].insert(hash);
+  }
+  if (allowed.empty())
+    throw std::runtime_error("--suite " + suite_dir.string() + ": no run with a readable config.yaml under runs/");
+  results.suite = suite_dir.string();
+  for (ReportRun& run : results.runs) {
+    if (!run.record) continue;
+    const std::string world = run.metrics.value("world", std::string("?"));
+    std::string hash;
+    try {
+      hash = run.metrics.contains("fixed_settings_hash") && run.metrics["fixed_settings_hash"].is_string()
+                 ? run.metrics["fixed_settings_hash"].get<std::string>()
+                 : settingsOf(results.dir / "runs" / run.id / "config.yaml").second;
+    } catch (const std::exception& e) {
+      run.off_suite = std::string("its settings cannot be read: ") + e.what();
+    }
+    if (run.off_suite.empty() && !allowed.count(world))
+      run.off_suite = "world " + world + " is not in the suite";
+    else if (run.off_suite.empty() && !allowed[world].count(hash))
+      run.off_suite = "fixed settings " + hash + " differ from the suite's for " + world + " (" + [&] {
+        std::string s;
+        for (const auto& h : allowed[world]) s += (s.empty() ? "" : ", ") + h;
+        return s;
+      }() + ")";
+    if (run.off_suite.empty()) continue;
+    run.status = "off-suite";
+    run.record.reset();
+  }
+}
+
+}  // namespace msb
