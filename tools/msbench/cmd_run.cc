@@ -19,6 +19,7 @@
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
 #include "tools/results/flight_records.h"
+#include "tools/results/input_files.h"
 #include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
@@ -218,7 +219,7 @@ struct RemoveUnlessKept {
 ScenarioSpec replayableScenario(const fs::path& config, std::vector<std::string> sets) {
   for (const std::string& kv : sets)
     if (kv.rfind("video.", 0) != 0) throw UsageError("--set " + kv + ": msbench video takes video.KEY=VALUE only");
-  if (readFileText(config).rfind("# NOT REPLAYABLE", 0) == 0)
+  if (readInputFile(config).rfind("# NOT REPLAYABLE", 0) == 0)  // a FIFO or device refused, not read
     throw UsageError(config.string() + ": the run is not replayable (its first line says why)");
   sets.push_back("video.enabled=true");
   ScenarioSpec spec = loadScenario(config.string(), sets);

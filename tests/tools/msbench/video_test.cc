@@ -3,6 +3,7 @@
 // run, a video that cannot be written (file-size limit) loses none of the run's other files,
 // bad video settings write nothing.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -56,6 +57,13 @@ TEST(Video, ARunWithVideoKeepsItsHashAndTheVideoIsAsDocumented) {
   EXPECT_EQ(readText(d / "p" / "metrics.json"), before);
   EXPECT_EQ(msb_test::probeVideo(d / "p" / "video.mp4"), std::to_string(v["video"]["width"].get<int>()) + ",720,20");
   EXPECT_EQ(run("video '" + (d / "p").string() + "' --quiet", d / "log_again"), 2);  // exists: --overwrite
+  // A config.yaml that is a FIFO is refused, not read (it would block).
+  fs::create_directories(d / "f");
+  fs::copy_file(d / "p" / "metrics.json", d / "f" / "metrics.json");
+  fs::copy_file(d / "p" / "coverage.csv", d / "f" / "coverage.csv");
+  ASSERT_EQ(mkfifo((d / "f" / "config.yaml").c_str(), 0600), 0);
+  EXPECT_EQ(run("video '" + (d / "f").string() + "'", d / "log_fifo"), 2);
+  EXPECT_NE(readText(d / "log_fifo").find("config.yaml: is a FIFO"), std::string::npos) << readText(d / "log_fifo");
   EXPECT_EQ(run("video '" + (d / "p").string() + "' --set duration_s=5", d / "log_set"), 2);
   EXPECT_NE(readText(d / "log_set").find("video.KEY"), std::string::npos) << readText(d / "log_set");
 }
