@@ -13,6 +13,7 @@ struct CoverageSample {
   double area_box_m2 = 0;       ///< columns whose node lies in the exploration box
   double area_gt_m2 = 0;        ///< unbounded, free space mapped to the true frame when first seen
   double area_verified_m2 = 0;  ///< verified columns (seen, covered, truly free; docs/metrics.md)
+  double score_earned_m3 = 0;   ///< the earned score before any collision forfeit (docs/metrics.md)
   double distance_m = 0;        ///< flown so far (ground truth)
   double box_share = 0;         ///< explored explorable columns of the box / explorable (0 if unknown)
 };

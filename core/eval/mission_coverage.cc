@@ -32,10 +32,19 @@ MissionCoverage::~MissionCoverage() = default;
 void MissionCoverage::enableVerification(const WorldTruth& truth, const FisheyeCamera& camera,
                                          const VerifiedCoverageConfig& config) {
   verified_ = std::make_unique<VerifiedCoverage>(truth, camera, config);
+  Aabb heights = box_;
+  heights.min.z() = config.z_lo_m, heights.max.z() = config.z_hi_m;
+  EarnedScoreConfig e;
+  e.cell_m = config.cell_m, e.lattice_m = config.lattice_m, e.free_tolerance_m = config.free_tolerance_m;
+  earned_ = std::make_unique<EarnedScore>(truth, heights, e);
 }
 
 void MissionCoverage::look(const Pose& T_W_C_true) {
-  if (verified_) verified_->look(T_W_C_true);
+  if (!verified_) return;
+  VerifiedCoverage::Sight sight;
+  verified_->look(T_W_C_true, &sight);
+  camera_inside_ = earned_->inside(T_W_C_true.translation());
+  earned_->see(T_W_C_true.translation(), sight);
 }
 
 size_t MissionCoverage::verifiedExplorableColumns() const {
@@ -91,6 +100,7 @@ void MissionCoverage::sample(double t_s, double distance_m, const std::vector<Fr
       if (published_rule_ && d.footprint == FreeSpaceElement::Footprint::kSquare)
         published_rule_->markDisk(d.centre.head<2>(), publishedRuleRadius(d.radius));
       st.settled = false;
+      if (earned_) earned_->declare(e);
     }
     if (verified_ && !st.settled) st.settled = verified_->markElement(st.placed);
   }
@@ -101,6 +111,9 @@ void MissionCoverage::sample(double t_s, double distance_m, const std::vector<Fr
   c.area_box_m2 = double(columns_.countInside(box_.min.head<2>(), box_.max.head<2>())) * cell * cell;
   c.area_gt_m2 = columns_gt_.areaM2();
   if (verified_) c.area_verified_m2 = verified_->verified().areaM2();
+  if (earned_) c.score_earned_m3 = earned_->tally().earnedM3();
+  if (!camera_inside_) time_outside_s_ += t_s - last_sample_t_s_;
+  last_sample_t_s_ = t_s;
   c.distance_m = distance_m;
   if (!box_explorable_.empty()) c.box_share = double(exploredExplorableColumns()) / double(box_explorable_.size());
   samples_.push_back(c);

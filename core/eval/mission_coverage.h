@@ -16,6 +16,7 @@
 #include "core/common/aabb.h"
 #include "core/eval/column_coverage.h"
 #include "core/eval/coverage_sample.h"
+#include "core/eval/earned_score.h"
 #include "core/eval/verified_coverage.h"
 #include "core/explorer/snapshot.h"
 #include "core/geometry/world_truth.h"
@@ -43,7 +44,8 @@ class MissionCoverage {
   const ColumnCoverage& columns() const { return columns_; }
   /// Explored columns with free space mapped to the true frame.
   const ColumnCoverage& trueFrameColumns() const { return columns_gt_; }
-  /// Turns on the verified coverage (worlds with ground truth; the camera gives the rays).
+  /// Turns on the verified coverage and the earned score (worlds with ground truth; the camera
+  /// gives the rays).
   void enableVerification(const WorldTruth& truth, const FisheyeCamera& camera, const VerifiedCoverageConfig& config);
   /// Also scores OctoMap free cells (square elements of leaf size `resolution_m` · 2^k) by the
   /// authors' evaluation rule (EVAL process_explored_volume_octomap_gridmarking, BUG-11): a
@@ -60,6 +62,10 @@ class MissionCoverage {
   void sample(double t_s, double distance_m, const std::vector<FreeSpaceElement>& free_space);
   /// The verified coverage (null unless enabled).
   const VerifiedCoverage* verified() const { return verified_.get(); }
+  /// The earned score (null unless verification is enabled).
+  EarnedScore* earned() { return earned_.get(); }
+  /// Seconds of metric samples whose camera was outside the box (beyond the earned score's margin).
+  double timeOutsideBoxS() const { return time_outside_s_; }
   /// Verified columns that are explorable columns of the box.
   size_t verifiedExplorableColumns() const;
   /// All samples so far.
@@ -97,6 +103,9 @@ class MissionCoverage {
   Pose T_true_est_ = Pose::Identity();
   std::vector<CoverageSample> samples_;
   std::unique_ptr<VerifiedCoverage> verified_;
+  std::unique_ptr<EarnedScore> earned_;
+  bool camera_inside_ = true;  // at the latest look
+  double time_outside_s_ = 0.0, last_sample_t_s_ = 0.0;
 };
 
 }  // namespace msb

@@ -27,7 +27,7 @@ VerifiedCoverage::VerifiedCoverage(const WorldTruth& truth, const FisheyeCamera&
       if (camera.pixelInFov(Vec2(u, v))) rays_C_.push_back(camera.unproject(Vec2(u, v)));
 }
 
-int VerifiedCoverage::look(const Pose& T_W_C) {
+int VerifiedCoverage::look(const Pose& T_W_C, Sight* sight) {
   // Mark into a local grid around the camera first (a ray crosses a column many times).
   const double cell = config_.cell_m;
   const int side = 2 * int(std::ceil(range_m_ / cell)) + 3;
@@ -35,16 +35,19 @@ int VerifiedCoverage::look(const Pose& T_W_C) {
   const int64_t i0 = int64_t(std::floor(o.x() / cell + 0.5)) - side / 2;
   const int64_t j0 = int64_t(std::floor(o.y() / cell + 0.5)) - side / 2;
   std::vector<char> local(size_t(side) * size_t(side), 0);
-  for (const Vec3& b : rays_C_) markRay(o, T_W_C.linear() * b, local, i0, j0, side);
+  for (const Vec3& b : rays_C_) markRay(o, T_W_C.linear() * b, local, i0, j0, side, sight);
   int added = 0;
   for (int a = 0; a < side; ++a)
     for (int b = 0; b < side; ++b)
-      if (local[size_t(b) * size_t(side) + size_t(a)]) added += seen_.insert({i0 + a, j0 + b}).second;
+      if (local[size_t(b) * size_t(side) + size_t(a)]) {
+        added += seen_.insert({i0 + a, j0 + b}).second;
+        if (sight) sight->columns.push_back({i0 + a, j0 + b});
+      }
   return added;
 }
 
-void VerifiedCoverage::markRay(const Vec3& o, const Vec3& d, std::vector<char>& local, int64_t i0, int64_t j0,
-                               int side) const {
+void VerifiedCoverage::markRay(const Vec3& o, const Vec3& d, std::vector<char>& local, int64_t i0, int64_t j0, int side,
+                               Sight* sight) const {
   // The ray until its first hit (or the clip range), cut to the flight heights.
   const auto hit = truth_.raycastIndexed(o, d, range_m_);
   double t0 = 0.0, t1 = hit ? hit->distance_m : range_m_;
@@ -56,6 +59,7 @@ void VerifiedCoverage::markRay(const Vec3& o, const Vec3& d, std::vector<char>& 
     t0 = std::max(t0, a), t1 = std::min(t1, b);
   }
   if (t0 > t1) return;
+  if (sight) sight->stretches.emplace_back(o + t0 * d, o + t1 * d);
   // Walk the columns its footprint crosses (cells centred on the nodes).
   const double cell = config_.cell_m;
   const Vec2 p0 = (o + t0 * d).head<2>(), dxy = d.head<2>();

@@ -41,8 +41,15 @@ class VerifiedCoverage {
  public:
   VerifiedCoverage(const WorldTruth& truth, const FisheyeCamera& camera, const VerifiedCoverageConfig& config);
 
-  /// Marks the columns the camera sees from the true camera pose T_W_C. Returns how many were new.
-  int look(const Pose& T_W_C);
+  /// What one look saw: every column marked, and each ray's free stretch (from `from` to `to`:
+  /// the camera to its first hit or the clip range, cut to the flight heights).
+  struct Sight {
+    std::vector<ColumnIndex> columns;
+    std::vector<std::pair<Vec3, Vec3>> stretches;
+  };
+  /// Marks the columns the camera sees from the true camera pose T_W_C (and tells what it saw
+  /// in `sight`, when given). Returns how many were new.
+  int look(const Pose& T_W_C, Sight* sight = nullptr);
   /// Verifies the columns the elements cover (conditions a–c). Returns how many were new.
   int mark(const std::vector<PlacedElement>& elements);
   /// Verifies the columns one element covers; returns true when nothing is left to decide for it
@@ -60,7 +67,8 @@ class VerifiedCoverage {
   bool partIsFree(const PlacedElement& e, const ColumnIndex& c) const;
 
  private:
-  void markRay(const Vec3& o, const Vec3& d, std::vector<char>& local, int64_t i0, int64_t j0, int side) const;
+  void markRay(const Vec3& o, const Vec3& d, std::vector<char>& local, int64_t i0, int64_t j0, int side,
+               Sight* sight) const;
 
   const WorldTruth& truth_;
   VerifiedCoverageConfig config_;

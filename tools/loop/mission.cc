@@ -122,6 +122,9 @@ MissionResult Mission::finish() {
     r.columns_verified = v->verified();
     r.seen_columns = v->seen().size();
     r.box_verified_explorable_columns = int(coverage_.verifiedExplorableColumns());
+    r.earned = coverage_.earned()->tally();
+    r.box_free_m3 = coverage_.earned()->boxFreeM3();
+    r.time_outside_box_s = coverage_.timeOutsideBoxS();
   }
   r.final_map = explorer_->snapshot();
   r.counters = explorer_->counters();

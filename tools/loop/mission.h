@@ -48,6 +48,9 @@ struct MissionResult {
   std::optional<ColumnCoverage> columns_published_rule;
   size_t seen_columns = 0;                  ///< columns the camera saw (verified coverage's (c))
   int box_verified_explorable_columns = 0;  ///< verified columns among the box's explorable ones
+  std::optional<EarnedTally> earned;        ///< the earned score's parts at the end (ground truth)
+  double box_free_m3 = 0;                   ///< the box's truly free volume (the earned score's ceiling)
+  double time_outside_box_s = 0;            ///< seconds the camera spent outside the box (+ margin)
   ExplorerSnapshot final_map;               ///< the map at the end
   std::map<std::string, double> counters;   ///< the method's counters at the end
   StageTimes stages;

@@ -60,6 +60,24 @@ nlohmann::json coverageJson(const MissionResult& r) {
       {"exploration_box", nlohmann::json{{"min", vec(r.exploration_box.min)}, {"max", vec(r.exploration_box.max)}}}};
 }
 
+// metrics.json → score: the earned score (docs/metrics.md, "The earned score"); a run that ended
+// in a collision forfeits it (a lost vehicle brings back no map). Null without ground truth.
+nlohmann::json scoreJson(const MissionResult& r) {
+  if (!r.earned) return nullptr;
+  const bool forfeit = r.flight.collision.has_value();
+  const double earned = forfeit ? 0.0 : r.earned->earnedM3();
+  return {{"earned", earned},
+          {"unit", "m3"},
+          {"earned_share", r.box_free_m3 > 0 ? nlohmann::json(earned / r.box_free_m3) : nlohmann::json(nullptr)},
+          {"before_forfeit", r.earned->earnedM3()},
+          {"forfeited_by_collision", forfeit},
+          {"credited_m3", r.earned->credited_m3},
+          {"falsely_free_m3", r.earned->falsely_free_m3},
+          {"unseen_m3", r.earned->unseen_m3},
+          {"box_free_m3", r.box_free_m3},
+          {"time_outside_box_s", r.time_outside_box_s}};
+}
+
 // metrics.json → collision: where, what it hit and how it looks to the front end, the audit.
 nlohmann::json collisionJson(const FlightResult& f, const MissionResult& r, const WorldTruth* truth) {
   if (!f.collision) return nullptr;
@@ -140,6 +158,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   j["duration_s"] = spec.flight.duration_s;
   j["sim_time_s"] = f.sim_time_s;
   j["coverage"] = coverageJson(r);
+  j["score"] = scoreJson(r);
   j["collision"] = collisionJson(f, r, truth);
   // The front-end error profile and the final map's accuracy (truth side; core/eval).
   if (r.frontend) j["frontend_profile"] = frontEndProfileJson(*r.frontend);
@@ -172,11 +191,11 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
 
 std::string coverageCsv(const std::vector<CoverageSample>& samples) {
   std::ostringstream o;
-  o << "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share,area_verified_m2\n";
-  char line[200];
+  o << "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share,area_verified_m2,score_earned_m3\n";
+  char line[240];
   for (const auto& c : samples) {
-    std::snprintf(line, sizeof(line), "%.3f,%.2f,%.2f,%.2f,%.3f,%.4f,%.2f\n", c.t_s, c.area_m2, c.area_box_m2,
-                  c.area_gt_m2, c.distance_m, c.box_share, c.area_verified_m2);
+    std::snprintf(line, sizeof(line), "%.3f,%.2f,%.2f,%.2f,%.3f,%.4f,%.2f,%.3f\n", c.t_s, c.area_m2, c.area_box_m2,
+                  c.area_gt_m2, c.distance_m, c.box_share, c.area_verified_m2, c.score_earned_m3);
     o << line;
   }
   return o.str();

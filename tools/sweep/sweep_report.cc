@@ -44,7 +44,8 @@ std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
       {"area_true_frame_m2", &CoverageSample::area_gt_m2},
       {"distance_m", &CoverageSample::distance_m},
       {"box_share", &CoverageSample::box_share},
-      {"area_verified_m2", &CoverageSample::area_verified_m2}};
+      {"area_verified_m2", &CoverageSample::area_verified_m2},
+      {"score_earned_m3", &CoverageSample::score_earned_m3}};
   for (size_t n = 2; std::getline(in, line); ++n) {
     std::istringstream row(line);
     CoverageSample c;
@@ -54,9 +55,9 @@ std::vector<CoverageSample> readCoverageCsv(const fs::path& file) {
       double x = 0;
       std::string why;
       if (!parseNumber(v, &x, &why)) throw bad(n, "column '" + names[k] + "': " + why);
-      // Times, areas and distances are never negative; a share is at most 1.
-      if (x < 0 || (names[k] == "box_share" && x > 1) ||
-          (names[k] != "t_s" && names[k] != "box_share" && x > kMaxAreaM2))
+      // Times, areas and distances are never negative (the earned score may be); a share is at most 1.
+      if ((x < 0 && names[k] != "score_earned_m3") || (names[k] == "box_share" && x > 1) ||
+          (names[k] != "t_s" && names[k] != "box_share" && std::abs(x) > kMaxAreaM2))
         throw bad(n, "column '" + names[k] + "': " + v + " is out of range");
       if (const auto f = fields.find(names[k]); f != fields.end()) c.*(f->second) = x;
     }
@@ -293,6 +294,9 @@ void addVerified(ReportRow& row, const nlohmann::json& m, double area) {
     add(row.verified_area_m2, number(cov, "verified_area_m2"));
     if (area > 0) add(row.verified_share, number(cov, "verified_area_m2") / area);
   }
+  if (m.contains("score") && m["score"].is_object() && m["score"].contains("earned") &&
+      m["score"]["earned"].is_number())
+    add(row.earned_m3, m["score"]["earned"].get<double>());
   if (!m.contains("map_accuracy") || !m["map_accuracy"].is_object()) return;
   const nlohmann::json& a = m["map_accuracy"];
   if (a.contains("falsely_free_volume_share") && a["falsely_free_volume_share"].is_number())
@@ -376,18 +380,23 @@ std::string tableHead(const SweepResults& results, const std::vector<std::string
   return head + "\n" + rule + "\n";
 }
 
-// A sweep that is not Table I: rows ranked by verified A (what a method earned; docs/metrics.md),
-// the claim beside it. Rows without a verified figure (records from before it) come last.
+// A sweep that is not Table I: rows ranked by the earned score (docs/metrics.md), then by verified
+// A, the claim beside them. Rows without the figures (records from before them) come last.
 std::string rankedResultsSection(const SweepResults& results, std::vector<ReportRow> rows) {
   std::stable_sort(rows.begin(), rows.end(), [](const ReportRow& a, const ReportRow& b) {
-    const double va = a.verified_area_m2.count ? a.verified_area_m2.mean : -1.0;
-    const double vb = b.verified_area_m2.count ? b.verified_area_m2.mean : -1.0;
-    return va > vb;
+    const auto key = [](const ReportRow& r) {
+      return std::make_tuple(r.earned_m3.count > 0, r.earned_m3.count ? r.earned_m3.mean : 0.0,
+                             r.verified_area_m2.count ? r.verified_area_m2.mean : -1.0);
+    };
+    return key(a) > key(b);
   });
   std::ostringstream o;
-  o << "## Results\n\nRanked by verified A: the columns a method's free space earned (truly free and seen by the "
-       "camera; docs/metrics.md, \"Verified coverage\"), not the columns it claims. Means with their 95 % "
-       "bootstrap interval over the row's seeds (percentile, "
+  o << "## Results\n\nRanked by the earned score: the truly free volume of the box a method declared where its "
+       "camera, inside the box, came within 10 m, less what it declared inside obstacles or where its camera "
+       "never looked; a run that ends in a collision earns 0 (docs/metrics.md, \"The earned score\"). Then "
+       "verified A: the columns its free space earned (truly free and seen by the camera; \"Verified "
+       "coverage\"), not the columns it claims. Means with their 95 % bootstrap interval over the row's seeds "
+       "(percentile, "
     << stats::kDraws
     << " resamples, fixed seed); with fewer than 3 runs, {min, max}: a range, not an interval. ⚠: verified / "
        "claimed below "
@@ -395,15 +404,15 @@ std::string rankedResultsSection(const SweepResults& results, std::vector<Report
     << ". Crashes: runs ended by a collision, k/n with the Wilson 95 % interval of the rate. Not a Table I sweep "
        "(not every run is a Table I row flown for the paper's 1200 s): the paper's figures and findings are not "
        "shown.\n\n"
-    << tableHead(results, {"method type", "runs", "verified A (m²)", "A, claimed (m²)", "verified / claimed",
-                           "crashes [95 % CI]"});
+    << tableHead(results, {"method type", "runs", "earned (m³)", "verified A (m²)", "A, claimed (m²)",
+                           "verified / claimed", "crashes [95 % CI]"});
   for (const ReportRow& r : rows) {
     const bool low = r.verified_share.count > 0 && r.verified_share.mean < kFlagVerifiedShare;
     o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
     if (r.complete < r.runs) o << " of " << r.runs;
-    o << " | " << intervalCell(r.verified_area_m2, r.complete, 0) << " | " << intervalCell(r.area_m2, r.complete, 0)
-      << " | " << intervalCell(r.verified_share, r.complete, 2) << (low ? " ⚠" : "") << " | "
-      << (r.complete ? collisionCell(r) : "—") << " |\n";
+    o << " | " << intervalCell(r.earned_m3, r.complete, 0) << " | " << intervalCell(r.verified_area_m2, r.complete, 0)
+      << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << intervalCell(r.verified_share, r.complete, 2)
+      << (low ? " ⚠" : "") << " | " << (r.complete ? collisionCell(r) : "—") << " |\n";
   }
   return o.str();
 }
@@ -419,14 +428,14 @@ std::string tableOneSection(const SweepResults& results, const std::vector<Repor
        "a collision, k/n with the Wilson 95 % interval of the rate"
     << "; the paper's count where §V-C gives it, with Fisher's exact p of the two counts.\n\n";
   o << tableHead(results, {"method type", "runs", "mean A (m²) [95 % CI]", "max A (m²)", "paper mean A", "paper max A",
-                           "crashes [95 % CI]", "paper crashes (p)"});
+                           "earned (m³)", "crashes [95 % CI]", "paper crashes (p)"});
   for (const ReportRow& r : rows) {
     o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
     if (r.complete < r.runs) o << " of " << r.runs;
     o << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—")
       << " | " << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | "
-      << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—") << " | " << (r.complete ? collisionCell(r) : "—") << " | "
-      << paperCollisionCell(r) << " |\n";
+      << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—") << " | " << intervalCell(r.earned_m3, r.complete, 0)
+      << " | " << (r.complete ? collisionCell(r) : "—") << " | " << paperCollisionCell(r) << " |\n";
   }
   return o.str();
 }

@@ -64,6 +64,7 @@ struct ReportRow {
   MeanOf fe_median_m[3];                    ///< front-end profile: median SLAM-point error at 0-5, 5-10, 10-20 m
   MeanOf fe_wrong_share, fe_moved_share;    ///< points over 2 m off a surface; tracks that moved > 0.3 m
   MeanOf verified_area_m2, verified_share;  ///< verified A, and verified A / the paper's A (runs that have it)
+  MeanOf earned_m3;                         ///< the earned score, score.earned (runs that have it)
   MeanOf falsely_free_volume, falsely_free_elements;  ///< map accuracy over the final map's free elements
   std::vector<uint64_t> area_seeds;                   ///< the seed of each value of area_m2 (pairing across rows)
   double max_area_m2 = 0.0;

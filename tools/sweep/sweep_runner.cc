@@ -116,7 +116,11 @@ std::string csvRow(const SweepRun& r, const RunState& s, const std::vector<std::
     << "," << (m.is_object() ? num(m["wall_time_s"]) : "") << ","
     << (m.is_object() ? m.value("determinism_hash", "") : "") << "," << s.exit_code << "," << s.signal << ","
     << (m.is_object() ? num(m["coverage"]["verified_area_m2"]) : "") << ","
-    << (m.is_object() ? num(m["coverage"]["verified_box_share"]) : "") << "\n";
+    << (m.is_object() ? num(m["coverage"]["verified_box_share"]) : "") << ","
+    << (m.is_object() && m.contains("score") && m["score"].is_object()
+            ? num(m["score"].value("earned", nlohmann::json()))
+            : "")
+    << "\n";
   return o.str();
 }
 
@@ -127,7 +131,7 @@ void writeIndex(const fs::path& dir, const SweepPlan& plan, const std::vector<Ru
   for (const auto& a : plan.axes) csv += "," + a;
   csv +=
       ",seed,status,run_status,area_m2,box_share,sim_time_s,wall_time_s,determinism_hash,exit_code,signal,"
-      "verified_area_m2,verified_box_share\n";
+      "verified_area_m2,verified_box_share,score_earned_m3\n";
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const SweepRun& r = plan.runs[i];
     const RunState& s = states[i];

@@ -53,13 +53,27 @@ def test_a_claimed_60_m_disk_earns_no_more_than_the_camera_saw_from_take_off():
     assert acc["falsely_free_element_share"] == 1.0
 
 
+def test_a_claimed_60_m_disk_earns_less_than_nothing():
+    # The earned score (docs/metrics.md): the disk buys the free space the camera crossed within
+    # 10 m of take-off and pays for everything behind what it saw; declaring nothing earns 0.
+    m = msbench.Mission(msbench.Scenario.load(SCENARIO, set=fast_sets(duration_s=5)), method=Claim)
+    m.run(progress=False)
+    score = m.result()["score"]
+    print(score)
+    assert score["unit"] == "m3"
+    assert score["credited_m3"] > 0
+    assert score["unseen_m3"] > score["credited_m3"]
+    assert score["earned"] < 0
+
+
 def test_the_verified_area_is_over_time_in_coverage_csv(tmp_path):
     m = msbench.Mission(msbench.Scenario.load(SCENARIO, set=fast_sets(duration_s=4)), method=Claim)
     m.run(progress=False)
     out = m.write(str(tmp_path / "run"))
     lines = open(os.path.join(out, "coverage.csv")).read().splitlines()
-    assert lines[0].split(",")[-1] == "area_verified_m2"
-    assert float(lines[-1].split(",")[-1]) == m.result()["coverage"]["verified_area_m2"]
+    assert lines[0].split(",")[-2:] == ["area_verified_m2", "score_earned_m3"]
+    assert float(lines[-1].split(",")[-2]) == m.result()["coverage"]["verified_area_m2"]
+    assert float(lines[-1].split(",")[-1]) == round(m.result()["score"]["before_forfeit"], 3)
 
 
 def run_config(config_dir, tmp_path, name):

@@ -130,7 +130,7 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   // The Markdown names every row and the failed run; the CSV has a line per row.
   const std::string md = reportMarkdown(s, rows);
   // Two runs (600, 800): the bootstrap means are 600, 700, 800 with probabilities 1/4, 1/2, 1/4.
-  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 700 {600, 800} | 800 | 4919 | 6081 | 1/2 [0.09, 0.91] | "
+  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 700 {600, 800} | 800 | 4919 | 6081 | — | 1/2 [0.09, 0.91] | "
                     "2/6 (p = 1.00) |"),
             std::string::npos)
       << md;
@@ -159,6 +159,38 @@ TEST(SweepReport, ThePublishedCodesSwitchesNameTheRowAndKeepThePapersRow) {
   EXPECT_EQ(paperRowNamed("urban", "monospheres -dbof +published")->mean_area_m2, 2308.0);
 }
 
+TEST(SweepReport, ACustomSweepRanksByTheEarnedScoreBeforeVerifiedA) {
+  // A blanket claim that verified A would put first (880 m² against 450: it paid for sight) pays
+  // for what it never looked at: the earned score puts it last.
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  for (int seed = 1; seed <= 3; ++seed) {
+    ReportRun blanket = madeRun("urban-blanket-s" + std::to_string(seed), "urban", "blanket", 900, "completed");
+    blanket.metrics["method"] = "python";
+    blanket.metrics["duration_s"] = 60.0;
+    blanket.metrics["coverage"]["verified_area_m2"] = 880.0;
+    blanket.metrics["score"] = {{"earned", -7000.0 - seed}, {"unit", "m3"}};
+    blanket.record = missionRecordOf(blanket.metrics, blanket.id + "/metrics.json").record;
+    ReportRun ms = madeRun("urban-ms-s" + std::to_string(seed), "urban", "ms", 500, "completed");
+    ms.metrics["duration_s"] = 60.0;
+    ms.metrics["coverage"]["verified_area_m2"] = 450.0;
+    ms.metrics["score"] = {{"earned", 2900.0 + seed}, {"unit", "m3"}};
+    ms.record = missionRecordOf(ms.metrics, ms.id + "/metrics.json").record;
+    s.runs.push_back(blanket);
+    s.runs.push_back(ms);
+  }
+  const std::string md = reportMarkdown(s, reportRows(s));
+  const size_t results_at = md.find("## Results");
+  ASSERT_NE(results_at, std::string::npos) << md;
+  EXPECT_NE(md.find("Ranked by the earned score"), std::string::npos) << md;
+  const size_t ms_at = md.find("| urban | ms |", results_at), blanket_at = md.find("| urban | blanket |", results_at);
+  ASSERT_NE(ms_at, std::string::npos) << md;
+  ASSERT_NE(blanket_at, std::string::npos) << md;
+  EXPECT_LT(ms_at, blanket_at) << md;
+  EXPECT_NE(md.find("| 3 | 2902 [", ms_at), std::string::npos) << md;
+}
+
 TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
   // A custom sweep: a row that is no Table I row (a method of the user's), and 40-second runs
   // of MonoSpheres beside it — no collision in four runs, which must not "hold" the paper's
@@ -171,10 +203,12 @@ TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
     mine.metrics["method"] = "python";
     mine.metrics["duration_s"] = 40.0;
     mine.metrics["coverage"]["verified_area_m2"] = 120.0;
+    mine.metrics["score"] = {{"earned", -40.0}, {"unit", "m3"}};
     mine.record = missionRecordOf(mine.metrics, mine.id + "/metrics.json").record;
     ReportRun ms = madeRun("urban-ms-s" + std::to_string(seed), "urban", "ms", 500, "completed");
     ms.metrics["duration_s"] = 40.0;
     ms.metrics["coverage"]["verified_area_m2"] = 450.0;
+    ms.metrics["score"] = {{"earned", 1800.0}, {"unit", "m3"}};
     ms.record = missionRecordOf(ms.metrics, ms.id + "/metrics.json").record;
     s.runs.push_back(mine);
     s.runs.push_back(ms);
@@ -196,7 +230,9 @@ TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
   ASSERT_NE(ms_at, std::string::npos) << md;
   ASSERT_NE(mine_at, std::string::npos) << md;
   EXPECT_LT(ms_at, mine_at) << md;
-  EXPECT_NE(md.find("| 2 | 120 {120, 120} | 300 {300, 300} | 0.40 {0.40, 0.40} ⚠ |", mine_at), std::string::npos) << md;
+  EXPECT_NE(md.find("| 2 | -40 {-40, -40} | 120 {120, 120} | 300 {300, 300} | 0.40 {0.40, 0.40} ⚠ |", mine_at),
+            std::string::npos)
+      << md;
   EXPECT_NE(md.find("{min, max}: a range, not an interval"), std::string::npos) << md;
   EXPECT_NE(md.find("Each row's mean verified A over its world's first row's"), std::string::npos) << md;
   EXPECT_NE(md.find("| urban | ms / mine |"), std::string::npos) << md;
@@ -333,9 +369,13 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   fs::rename(d / "coverage.csv.away", out / "runs" / "full-s1" / "coverage.csv");
   const std::string csv = readText(out / "runs" / "full-s1" / "coverage.csv");
   const std::string header = csv.substr(0, csv.find('\n') + 1);
-  ASSERT_EQ(header, "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share,area_verified_m2\n");
-  for (const auto& [row, column] : std::vector<std::pair<std::string, std::string>>{
-           {"0x1p3,0,0,0,0,0,0", "t_s"}, {"1,-5,0,0,0,0,0", "area_m2"}, {"1,5,0,0,0,1.5,0", "box_share"}}) {
+  ASSERT_EQ(header,
+            "t_s,area_m2,area_box_m2,area_true_frame_m2,distance_m,box_share,area_verified_m2,score_earned_m3\n");
+  for (const auto& [row, column] :
+       std::vector<std::pair<std::string, std::string>>{{"0x1p3,0,0,0,0,0,0,0", "t_s"},
+                                                        {"1,-5,0,0,0,0,0,0", "area_m2"},
+                                                        {"1,5,0,0,0,1.5,0,0", "box_share"},
+                                                        {"1,5,0,0,0,0.5,0,-1e300", "score_earned_m3"}}) {
     { std::ofstream(out / "runs" / "full-s1" / "coverage.csv") << header << row << "\n"; }
     editMetrics(out / "runs" / "full-s1", [](nlohmann::json&) {});  // sealed with this coverage.csv
     EXPECT_EQ(run("report '" + out.string() + "'", d / "log_badcov"), 0) << readText(d / "log_badcov");

@@ -268,7 +268,8 @@ TEST(Sweep, ARecordChangedAfterMsbenchWroteItIsNotCounted) {
   ASSERT_EQ(run("sweep '" + f.string() + "' --out '" + out.string() + "'", d / "log"), 0) << readText(d / "log");
   // runs.csv carries the verified figures beside the paper's A.
   const std::string csv = readText(out / "runs.csv");
-  EXPECT_NE(csv.find(",exit_code,signal,verified_area_m2,verified_box_share\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",exit_code,signal,verified_area_m2,verified_box_share,score_earned_m3\n"), std::string::npos)
+      << csv;
   auto m = nlohmann::json::parse(readText(out / "runs" / "s1" / "metrics.json"));
   ASSERT_TRUE(m.contains("record_digest"));
   m["coverage"]["area_m2"] = 7777.0;

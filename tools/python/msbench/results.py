@@ -37,8 +37,10 @@ def load_run(run_dir):
     return frame
 
 
-# runs.csv's figures (verified_* since the runs.csv of 2026-11-28; absent in older sweeps).
-_NUMERIC_COLUMNS = ("area_m2", "box_share", "sim_time_s", "wall_time_s", "verified_area_m2", "verified_box_share")
+# runs.csv's figures (verified_* since the runs.csv of 2026-11-28, score_earned_m3 since the earned
+# score; absent in older sweeps).
+_NUMERIC_COLUMNS = ("area_m2", "box_share", "sim_time_s", "wall_time_s", "verified_area_m2", "verified_box_share",
+                    "score_earned_m3")
 
 
 def load_sweep(sweep_dir):
