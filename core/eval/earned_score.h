@@ -68,8 +68,8 @@ class EarnedScore {
   };
   bool inBox(const ColumnIndex& c) const;
   Vec3 samplePoint(const ColumnIndex& c, int k) const;
-  ColumnState& bits(const ColumnIndex& c);   // creates it (no truth read yet)
-  ColumnState& state(const ColumnIndex& c);  // creates it, reading its truth on first use
+  ColumnState& bits(const ColumnIndex& c);          // creates it (no truth read yet)
+  ColumnState& state(const ColumnIndex& c);         // creates it, reading its truth on first use
   void seeAlong(const Vec3& from, const Vec3& to);  // marks the samples a stretch crosses
 
   const WorldTruth& truth_;
