@@ -327,6 +327,11 @@ void ClosedLoop::abandon() {
   ended_ = true;
 }
 
+bool ClosedLoop::abandonWithin(std::chrono::milliseconds limit) {
+  ended_ = true;
+  return !pipeline_ || pipeline_->abandonWithin(limit);
+}
+
 bool ClosedLoop::usePerception() {
   const PerceptionJob* due = nullptr;
   try {

@@ -134,6 +134,13 @@ class ClosedLoop {
   /// Ends the run where it is (an interrupt, an error): the perception not yet started is
   /// dropped, a job running on the second thread completes, no result in flight is used.
   void abandon();
+  /// abandon() that waits at most `limit` for the second thread (PerceptionPipeline::abandonWithin):
+  /// false if its job is stuck, and then the loop must never be destroyed.
+  bool abandonWithin(std::chrono::milliseconds limit);
+  /// Called while the loop waits for its second thread (PerceptionPipeline::setWaitHook).
+  void setWaitHook(std::function<void()> hook) {
+    if (pipeline_) pipeline_->setWaitHook(std::move(hook));
+  }
 
   /// The result so far (status, trajectory rows, distance).
   const FlightResult& result() const { return result_; }

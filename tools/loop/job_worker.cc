@@ -27,7 +27,17 @@ uint64_t JobWorker::submit(std::function<void()> task) {
 
 void JobWorker::wait(uint64_t id) {
   std::unique_lock<std::mutex> lock(mutex_);
-  finished_.wait(lock, [&] { return done_ >= id; });
+  if (!hook_) return finished_.wait(lock, [&] { return done_ >= id; });
+  while (!finished_.wait_for(lock, kHookPeriod, [&] { return done_ >= id; })) {
+    lock.unlock();
+    hook_();
+    lock.lock();
+  }
+}
+
+bool JobWorker::waitAllFor(std::chrono::milliseconds limit) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return finished_.wait_for(lock, limit, [&] { return done_ >= submitted_; });
 }
 
 void JobWorker::waitAll() {

@@ -4,6 +4,7 @@
 // thread timing.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -24,10 +25,17 @@ class JobWorker {
 
   /// Queues `task`; returns its number (1, 2, ... in submission order).
   uint64_t submit(std::function<void()> task);
-  /// Blocks until task number `id` (and every task before it) has run.
+  /// Blocks until task number `id` (and every task before it) has run; calls the wait hook every
+  /// `kHookPeriod` meanwhile (what it throws leaves wait()).
   void wait(uint64_t id);
-  /// Blocks until every submitted task has run.
+  /// Blocks until every submitted task has run (no hook).
   void waitAll();
+  /// Waits up to `limit` for every submitted task; false if one is still running then.
+  bool waitAllFor(std::chrono::milliseconds limit);
+  /// Sets the hook wait() calls while it waits (e.g. to look for interrupts; empty: none).
+  void setWaitHook(std::function<void()> hook) { hook_ = std::move(hook); }
+  /// How often wait() calls the hook.
+  static constexpr std::chrono::milliseconds kHookPeriod{100};
   /// Drops the tasks not yet started (they count as run for wait()); a running one completes.
   void cancelPending();
 
@@ -39,7 +47,8 @@ class JobWorker {
   std::deque<std::function<void()>> queue_;
   uint64_t submitted_ = 0, done_ = 0;
   bool stop_ = false;
-  std::thread thread_;  // last: started once the members above exist
+  std::function<void()> hook_;  // called by wait() every kHookPeriod, outside the lock
+  std::thread thread_;          // last: started once the members above exist
 };
 
 }  // namespace msb

@@ -4,6 +4,8 @@
 // print progress between ticks without callbacks; runMission() steps it to the end.
 #pragma once
 
+#include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -99,6 +101,11 @@ class Mission {
   void sync() { loop_->sync(); }
   /// Ends the run where it is, dropping the perception in flight (ClosedLoop::abandon).
   void abandon() { loop_->abandon(); }
+  /// abandon() that waits at most `limit` for a method stuck on the loop's second thread: false
+  /// if it is still running, and then the mission must never be destroyed (ClosedLoop::abandonWithin).
+  bool abandonWithin(std::chrono::milliseconds limit) { return loop_->abandonWithin(limit); }
+  /// Called while the loop waits for its second thread: an in-process Python method's interrupts.
+  void setWaitHook(std::function<void()> hook) { loop_->setWaitHook(std::move(hook)); }
   /// Explored area so far (VIO frame, m²).
   double areaM2() const { return coverage_.columns().areaM2(); }
   /// Explored columns so far (VIO frame).

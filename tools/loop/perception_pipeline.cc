@@ -85,6 +85,15 @@ void PerceptionPipeline::abandon() {
   jobs_.clear();
 }
 
+bool PerceptionPipeline::abandonWithin(std::chrono::milliseconds limit) {
+  if (worker_) {
+    worker_->cancelPending();
+    if (!worker_->waitAllFor(limit)) return false;
+  }
+  jobs_.clear();
+  return true;
+}
+
 void PerceptionPipeline::rethrowPending() {
   for (auto& job : jobs_)
     if (job->error) std::rethrow_exception(std::exchange(job->error, nullptr));

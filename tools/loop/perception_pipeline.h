@@ -8,6 +8,7 @@
 // "Change when the map updates" is this file and its test (tests/tools/loop/closed_loop_test.cc).
 #pragma once
 
+#include <chrono>
 #include <deque>
 #include <exception>
 #include <functional>
@@ -78,6 +79,14 @@ class PerceptionPipeline {
   void sync();
   /// Drops the jobs not started; a job running on the worker completes; none is used.
   void abandon();
+  /// abandon() that waits at most `limit` for a job running on the worker; false if it is still
+  /// running (stuck): the pipeline, the worker and what the job uses must then never be freed.
+  bool abandonWithin(std::chrono::milliseconds limit);
+  /// Called every JobWorker::kHookPeriod while the loop waits for the worker (e.g. to look for
+  /// interrupts: what it throws leaves the wait; the caller then abandons).
+  void setWaitHook(std::function<void()> hook) {
+    if (worker_) worker_->setWaitHook(std::move(hook));
+  }
   /// Rethrows the first error among the jobs still in flight (once).
   void rethrowPending();
   /// Milliseconds the loop thread waited for the worker (records only).

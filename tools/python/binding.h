@@ -124,6 +124,19 @@ class MethodProcessError : public MethodError {
 /// it is, and the mission ends as interrupted (nothing recorded).
 void rethrowIfInterrupt(py::error_already_set& e);
 
+/// While it lives (the GIL held), a Python method's or goal chooser's call runs on this thread:
+/// an interrupt the waiting loop thread sees is raised here too (interruptMethodCall).
+struct MethodCallNote {
+  MethodCallNote();
+  ~MethodCallNote();
+  MethodCallNote(const MethodCallNote&) = delete;
+  MethodCallNote& operator=(const MethodCallNote&) = delete;
+};
+
+/// Raises KeyboardInterrupt in the method call running on another thread, if any (the GIL
+/// held): a busy loop stops at its next bytecode; a call blocked in C stops when it returns.
+void interruptMethodCall();
+
 /// The SLAM-points frame a Python method observes (arrays read-only).
 struct SlamFrameView {
   int64_t tick = 0;

@@ -60,6 +60,7 @@ ViewpointRequestView viewpointRequestView(const ViewpointRequest& q) {
 template <class F>
 auto callChooser(F&& f) -> decltype(f()) {
   py::gil_scoped_acquire gil;
+  const MethodCallNote note;
   try {
     return f();
   } catch (py::error_already_set& e) {

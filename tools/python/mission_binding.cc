@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -23,14 +24,20 @@ namespace binding {
 
 namespace {
 
+/// How long an interrupted mission waits for a method call stuck on the loop's second thread
+/// before it gives the thread up (the mission is then never freed).
+constexpr std::chrono::milliseconds kStuckMethodWait{500};
+
 /// At scope exit, waits for the pipelined loop's perception in flight; when unwinding (a
-/// KeyboardInterrupt, an error) drops what has not started, so no method call follows.
+/// KeyboardInterrupt, an error) drops what has not started, so no method call follows, and
+/// waits at most kStuckMethodWait for the one running (`stuck` when it is still running).
 struct SyncAtExit {
   Mission& mission;
+  bool& stuck;
   int exceptions = std::uncaught_exceptions();
   ~SyncAtExit() {
     if (std::uncaught_exceptions() > exceptions)
-      mission.abandon();
+      stuck = !mission.abandonWithin(kStuckMethodWait);
     else
       mission.sync();
   }
@@ -42,6 +49,17 @@ struct SyncAtExit {
 void checkSignals() {
   py::gil_scoped_acquire gil;
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+}
+
+/// The loop's wait hook (Mission::setWaitHook): while the loop thread waits for a Python method
+/// on the second thread, Python's signal handlers run here every 100 ms; a KeyboardInterrupt
+/// is raised in the method's call too and thrown here (the step then abandons the mission).
+void checkSignalsWhileWaiting() {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) {
+    interruptMethodCall();
+    throw py::error_already_set();
+  }
 }
 
 /// A mission of a scenario, stepped from Python.
@@ -112,6 +130,13 @@ class PyMission {
   // chooser on the loop's second thread takes the GIL): nothing runs on that thread once Python
   // code continues or the mission goes.
   ~PyMission() {
+    if (stuck_) {
+      // A method call still runs on the loop's second thread, in the mission's objects: they are
+      // never freed (the thread ends with the process).
+      (void)mission_.release();
+      (void)world_.release();
+      return;
+    }
     if (mission_) {
       py::gil_scoped_release release;
       mission_->sync();
@@ -137,8 +162,9 @@ class PyMission {
     std::optional<SlamPointsFrame> points;
     bool new_frame = false;
     guarded([&] {
+      mission_->setWaitHook(checkSignalsWhileWaiting);
       py::gil_scoped_release release;
-      const SyncAtExit sync{*mission_, std::uncaught_exceptions()};
+      const SyncAtExit sync{*mission_, stuck_, std::uncaught_exceptions()};
       const int64_t hz = mission_->physicsHz();
       startVideo();
       for (int64_t i = 0; i < n && mission_->running(); ++i) {
@@ -162,8 +188,9 @@ class PyMission {
     const auto wall_start = WallClock::now();
     while (running()) {
       guarded([&] {
+        mission_->setWaitHook(checkSignalsWhileWaiting);
         py::gil_scoped_release release;
-        const SyncAtExit sync{*mission_, std::uncaught_exceptions()};
+        const SyncAtExit sync{*mission_, stuck_, std::uncaught_exceptions()};
         startVideo();
         for (int64_t i = 0; i < chunk && mission_->running(); ++i) {
           const TickRecord& r = mission_->step();
@@ -393,6 +420,7 @@ class PyMission {
   std::optional<std::string> error_;            // the run ended with an error (a Python method raised)
   RunStatus error_status_ = RunStatus::kError;  // or its process failed (method_timeout, method_exited)
   bool interrupted_ = false;                    // a KeyboardInterrupt ended it: nothing to write
+  bool stuck_ = false;                          // interrupted with a method call still running
   int64_t last_tick_ = 0;
   double last_t_s_ = 0.0;
 };

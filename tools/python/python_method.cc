@@ -1,6 +1,7 @@
 // Methods written in Python: the Explorer over a Python object, its errors and the types it sees.
 #include "tools/python/binding.h"
 
+#include <atomic>
 #include <cmath>
 
 #include "core/common/rng.h"
@@ -26,6 +27,18 @@ std::string pythonErrorText(py::error_already_set& e) {
 /// it is, and the mission ends as interrupted (nothing recorded).
 void rethrowIfInterrupt(py::error_already_set& e) {
   if (e.matches(PyExc_KeyboardInterrupt)) throw;
+}
+
+namespace {
+std::atomic<unsigned long> method_call_thread{0};  // the thread inside a method's call (0: none)
+}  // namespace
+
+MethodCallNote::MethodCallNote() { method_call_thread = PyThread_get_thread_ident(); }
+MethodCallNote::~MethodCallNote() { method_call_thread = 0; }
+
+void interruptMethodCall() {
+  const unsigned long t = method_call_thread;
+  if (t != 0 && t != PyThread_get_thread_ident()) PyThreadState_SetAsyncExc(t, PyExc_KeyboardInterrupt);
 }
 
 namespace {
@@ -196,6 +209,7 @@ class PyExplorer final : public Explorer {
   template <class F>
   void call(F&& f) const {
     py::gil_scoped_acquire gil;
+    const MethodCallNote note;
     try {
       f();
     } catch (py::error_already_set& e) {
