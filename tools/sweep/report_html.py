@@ -89,7 +89,7 @@ def figures_html(report_dir):
 
 
 def run_row(run, final_dir):
-    """One run's row: id, world, series, status, claimed and verified A, pictures, video."""
+    """One run's row: id, world, series, status, claimed and verified A, earned score, pictures, video."""
     run_dir = os.path.abspath(run["dir"])
     rel = os.path.relpath(run_dir, final_dir)
     # The areas msbench read from the run's checked record (report_runs.csv); a run's own files
@@ -103,6 +103,8 @@ def run_row(run, final_dir):
     cells.append("" if verified is None else f"{verified:.0f}")
     share_text = "" if share is None else f"{share:.2f}" + (" ⚑ claims more than verified" if flagged else "")
     cells.append(share_text)
+    earned = run.get("score_earned_m3")  # absent from reports before the earned score
+    cells.append(f"{float(earned):.0f}" if earned else "")
     pic = os.path.join(run_dir, "topdown.png")
     cells.append(f'<a href="{html.escape(rel)}/topdown.png"><img class="thumb" loading="lazy" alt="top-down" '
                  f'src="{html.escape(rel)}/topdown.png"></a>' if os.path.isfile(pic) else "")
@@ -119,7 +121,8 @@ def runs_html(report_dir, final_dir):
     if not runs:
         return ""
     head = "".join(f"<th>{h}</th>" for h in ("run", "world", "series", "status", "A claimed (m²)",
-                                              "verified A (m²)", "verified / claimed", "top-down", "video"))
+                                              "verified A (m²)", "verified / claimed", "earned (m³)", "top-down",
+                                              "video"))
     rows = "\n".join(run_row(r, final_dir) for r in runs)
     return ("<h2>Run pictures</h2>\n<p>Each run's top-down map and video where its directory has them "
             f"(<code>msbench video RUN</code> adds one); ⚑: verified area below {VERIFIED_FLAG_SHARE:.0%} of the "

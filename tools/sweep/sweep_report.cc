@@ -739,7 +739,7 @@ std::string reportTableCsv(const SweepResults& results, const std::vector<Report
 
 std::string reportRunsCsv(const SweepResults& results) {
   std::ostringstream o;
-  o << "id,world,series,status,run_status,dir,area_m2,verified_area_m2\n";
+  o << "id,world,series,status,run_status,dir,area_m2,verified_area_m2,score_earned_m3\n";
   for (const ReportRun& r : results.runs) {
     const std::string world = r.metrics.is_object() ? r.metrics.value("world", std::string("?")) : "";
     // The series: the run's labels except the one naming its world (one line per method/variant).
@@ -751,16 +751,19 @@ std::string reportRunsCsv(const SweepResults& results) {
     }
     if (series.empty()) series = r.metrics.is_object() ? reportMethodName(r.metrics) : "run";
     // The claimed and verified areas of a complete run (its record, checked when loaded).
-    std::string claimed, verified;
+    std::string claimed, verified, earned;
     if (r.status == "complete" && r.metrics.is_object() && r.metrics.contains("coverage")) {
       const nlohmann::json& cov = r.metrics["coverage"];
       if (cov.contains("area_m2") && cov["area_m2"].is_number()) claimed = fixed(cov["area_m2"].get<double>(), 1);
       if (cov.contains("verified_area_m2") && cov["verified_area_m2"].is_number())
         verified = fixed(cov["verified_area_m2"].get<double>(), 1);
+      const nlohmann::json* score = r.metrics.contains("score") ? &r.metrics["score"] : nullptr;
+      if (score && score->is_object() && score->contains("earned") && (*score)["earned"].is_number())
+        earned = fixed((*score)["earned"].get<double>(), 1);
     }
     o << r.id << "," << world << "," << series << "," << r.status << ","
       << (r.metrics.is_object() ? r.metrics.value("status", std::string()) : "") << ","
-      << (results.dir / "runs" / r.id).string() << "," << claimed << "," << verified << "\n";
+      << (results.dir / "runs" / r.id).string() << "," << claimed << "," << verified << "," << earned << "\n";
   }
   return o.str();
 }
