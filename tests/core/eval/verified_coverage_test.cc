@@ -6,23 +6,13 @@
 #include <cmath>
 
 #include "core/eval/mission_coverage.h"
+#include "tests/core/eval/truth_shapes.h"
 
 namespace msb {
 namespace {
 
-Shape ground() {
-  Shape s;
-  s.type = ShapeType::kHalfSpace;
-  return s;
-}
-
-Shape wall(const Vec3& centre, const Vec3& half) {
-  Shape s;
-  s.type = ShapeType::kBox;
-  s.pose = poseFromXyzYaw(centre, 0.0);
-  s.size = half;
-  return s;
-}
+using test::ground;
+Shape wall(const Vec3& centre, const Vec3& half) { return test::block(centre, half); }
 
 // The camera at (0, 0, 2) looking along +x (optical z = world x, optical x = world −y, optical y
 // = world −z).
