@@ -1,5 +1,5 @@
-"""The earned score on Table I's committed runs (issue 71): re-runs of a sweep's runs (SWEEP_DIR,
-from table1_seeds12.yaml) against results/table1's records — the hash of each must be the
+"""The earned score on Table I's committed runs (issue 71): a sweep of table1_seeds12.yaml (SWEEP_DIR;
+published as results/earned_table1) against results/table1's records — the hash of each must be the
 committed one (scoring is beside the loop), and per world the order of MonoSpheres and Grid under
 the earned score (with and without the collision forfeit) is printed beside the paper's A.
     python3 tools/measure/earned_check/compare.py SWEEP_DIR [results/table1]"""
