@@ -26,7 +26,8 @@ namespace {
 const std::string kUrban = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/urban.yaml";
 
 // Hovers at `hover` facing `yaw` until `hover_s`, then flies to `through` (beyond a wall). Its
-// map is every SLAM point it observed (obstacles only); its counters say which frame it saw last.
+// map is every SLAM point it observed and a 1 m ball of free space about the hover point (for
+// the earned score); its counters say which frame it saw last.
 class KamikazeExplorer final : public Explorer {
  public:
   KamikazeExplorer(const Vec3& hover, double yaw, const Vec3& through, double hover_s)
@@ -43,6 +44,9 @@ class KamikazeExplorer final : public Explorer {
   ExplorerSnapshot snapshot() const override {
     ExplorerSnapshot s;
     s.obstacles = points_;
+    FreeSpaceElement ball;
+    ball.id = 1, ball.centre = hover_, ball.radius = 1.0;
+    s.free_space.push_back(ball);
     return s;
   }
   std::map<std::string, double> counters() const override {
@@ -240,6 +244,19 @@ TEST(MissionChecks, VerifiedCoverageSeesFromTheLatestRenderedFrameAtEachSample) 
     EXPECT_EQ(f->result.seen_columns, f->seen_latest_frame) << "latency " << f->latency;
   }
   EXPECT_NE(underDefaults().seen_perceived_frame, underDefaults().seen_latest_frame);
+}
+
+TEST(MissionChecks, TheEarnedScoreCreditsWhatTheCameraLookedAtUnderTheMissionDefaults) {
+  // docs/metrics.md, "The earned score": the hover ball (4.2 m³) is free and inside the box; the
+  // part of it in front of the camera's latest frames (the fisheye sees no farther back than
+  // sideways) is credited, at both latencies, and the running figure is coverage.csv's last.
+  for (const Flown* f : {&underDefaults(), &atLatency0()}) {
+    ASSERT_TRUE(f->result.earned) << "latency " << f->latency;
+    EXPECT_GT(f->result.earned->credited_m3, 0.5) << "latency " << f->latency;
+    EXPECT_LT(f->result.earned->credited_m3, 4.5) << "latency " << f->latency;
+    EXPECT_EQ(f->result.earned->falsely_free_m3, 0.0) << "latency " << f->latency;
+    EXPECT_DOUBLE_EQ(f->result.coverage.back().score_earned_m3, f->result.earned->earnedM3());
+  }
 }
 
 TEST(MissionChecks, TheFinalMapHoldsThePerceptionStillInFlight) {
