@@ -5,19 +5,7 @@
 
 namespace msb {
 
-void GridExplorerConfig::validate(ConfigChecker& c) const {
-  c.nested("map", map);
-  c.nested("planner", planner);
-  c.positive("goal_period_s", goal_period_s);
-  c.positive("goal_timeout_s", goal_timeout_s);
-  c.positive("goal_square_m", goal_square_m);
-  c.nonNegative("goal_min_altitude_m", goal_min_altitude_m);
-  c.nonNegative("goal_ceiling_margin_m", goal_ceiling_margin_m);
-  c.positive("replan_period_s", replan_period_s);
-  c.positive("reach_distance_m", reach_distance_m);
-  validatePathCheck(c);
-  validateTakeoff(c);
-}
+void GridExplorerConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 GridExplorer::GridExplorer(const GridExplorerConfig& config, const ExplorerContext& context)
     : config_(checkValid(config)),

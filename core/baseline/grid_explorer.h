@@ -47,6 +47,22 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
   double replan_period_s = 1.0;        ///< path re-planned this often (reference code: 1 s; paper: 0.2 s)
   double reach_distance_m = 1.0;       ///< a goal this close counts as reached
 
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.group("map", s.map);
+    v.group("planner", s.planner);
+    v.key("goal_period_s", s.goal_period_s, Limits::positive());
+    v.key("goal_timeout_s", s.goal_timeout_s, Limits::positive());
+    v.key("goal_square_m", s.goal_square_m, Limits::positive());
+    v.key("goal_min_altitude_m", s.goal_min_altitude_m, Limits::nonNegative());
+    v.key("goal_ceiling_margin_m", s.goal_ceiling_margin_m, Limits::nonNegative());
+    v.key("replan_period_s", s.replan_period_s, Limits::positive());
+    v.key("reach_distance_m", s.reach_distance_m, Limits::positive());
+    PathCheckConfig::fields(s, v);
+    TakeoffConfig::fields(s, v);
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
   /// The OctoMap leaf size: the authors' evaluation rule for OctoMap maps (BUG-11) scores the

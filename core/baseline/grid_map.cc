@@ -19,18 +19,7 @@ Vec3 toVec(const octomap::point3d& p) { return Vec3(p.x(), p.y(), p.z()); }
 
 }  // namespace
 
-void GridMapConfig::validate(ConfigChecker& c) const {
-  c.inRange("resolution_m", resolution_m, 0.05, 5.0);
-  c.positive("max_range_m", max_range_m);
-  c.positive("free_ray_length_m", free_ray_length_m);
-  c.inRange("prob_hit", prob_hit, 0.5, 1.0);
-  c.inRange("prob_miss", prob_miss, 0.0, 0.5);
-  c.inRange("clamp_min", clamp_min, 0.0, 0.5);
-  c.inRange("clamp_max", clamp_max, 0.5, 1.0);
-  c.require(insertion == "standard" || insertion == "confidence_weighted", "insertion",
-            "must be standard or confidence_weighted (got '" + insertion + "')");
-  c.nonNegative("confidence_depth_gain_per_m", confidence_depth_gain_per_m);
-}
+void GridMapConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 double extrinsicQuality(const Vec3& a, const Vec3& b, const Vec3& d) {
   const double na = a.norm(), nb = b.norm(), nd = d.norm();

@@ -26,7 +26,7 @@
 #include <octomap/OcTree.h>
 
 #include "core/common/aabb.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "core/explorer/snapshot.h"
 
@@ -49,6 +49,20 @@ struct GridMapConfig {
 
   /// True for confidence-weighted insertion.
   bool weighted() const { return insertion == "confidence_weighted"; }
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("resolution_m", s.resolution_m, Limits::range(0.05, 5.0));
+    v.key("max_range_m", s.max_range_m, Limits::positive());
+    v.key("free_ray_length_m", s.free_ray_length_m, Limits::positive());
+    v.key("prob_hit", s.prob_hit, Limits::range(0.5, 1.0));
+    v.key("prob_miss", s.prob_miss, Limits::range(0.0, 0.5));
+    v.key("clamp_min", s.clamp_min, Limits::range(0.0, 0.5));
+    v.key("clamp_max", s.clamp_max, Limits::range(0.5, 1.0));
+    v.key("insertion", s.insertion, Choices{"standard", "confidence_weighted"});
+    v.key("confidence_depth_gain_per_m", s.confidence_depth_gain_per_m, Limits::nonNegative());
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };

@@ -7,12 +7,9 @@
 namespace msb {
 
 void GridPlannerConfig::validate(ConfigChecker& c) const {
-  c.nonNegative("clearance_m", clearance_m);
-  c.nonNegative("escape_clearance_m", escape_clearance_m);
+  checkFields(*this, c);
   c.require(unknown_clearance_m >= 0.0 || unknown_clearance_m == -1.0, "unknown_clearance_m",
-            "must be ≥ 0 (or -1: the same as clearance_m)");
-  c.nonNegative("escape_radius_m", escape_radius_m);
-  c.inRange("max_expansions", max_expansions, 1000, 100000000);
+            "must be >= 0 (or -1: the same as clearance_m)");
 }
 
 GridPathPlanner::GridPathPlanner(const GridPlannerConfig& config, const Aabb& box, double resolution_m)

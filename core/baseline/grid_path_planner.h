@@ -20,7 +20,7 @@
 
 #include "core/baseline/grid_map.h"
 #include "core/common/aabb.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 
 namespace msb {
 
@@ -33,6 +33,17 @@ struct GridPlannerConfig {
   double escape_radius_m = 2.0;       ///< from a blocked start, blocked cells this close are passable ...
   double escape_clearance_m = 0.75;   ///< ... unless this close to an occupied cell
   int max_expansions = 500000;        ///< A* node budget per search
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("clearance_m", s.clearance_m, Limits::nonNegative());
+    v.key("unknown_is_occupied", s.unknown_is_occupied);
+    v.key("escape_radius_m", s.escape_radius_m, Limits::nonNegative());
+    v.key("escape_clearance_m", s.escape_clearance_m, Limits::nonNegative());
+    v.key("unknown_clearance_m", s.unknown_clearance_m, Limits::range(-1.0, std::numeric_limits<double>::infinity()));
+    v.key("max_expansions", s.max_expansions, Limits::range(1000, 100000000));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

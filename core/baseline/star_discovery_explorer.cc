@@ -7,23 +7,7 @@
 
 namespace msb {
 
-void StarDiscoveryConfig::validate(ConfigChecker& c) const {
-  c.nested("map", map);
-  c.nested("planner", planner);
-  c.inRange("rays", rays, 3, 64);
-  c.inRange("heights", heights, 1, 9);
-  c.nonNegative("height_step_m", height_step_m);
-  c.positive("max_ray_m", max_ray_m);
-  c.nonNegative("min_ray_m", min_ray_m);
-  c.inRange("candidates", candidates, 1, 1000);
-  c.positive("los_range_m", los_range_m);
-  c.inRange("look_around_step_deg", look_around_step_deg, 10.0, 180.0);
-  c.positive("replan_period_s", replan_period_s);
-  c.positive("transit_timeout_s", transit_timeout_s);
-  c.positive("retry_period_s", retry_period_s);
-  validatePathCheck(c);
-  validateTakeoff(c);
-}
+void StarDiscoveryConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 Star planStar(const GridPathPlanner& planner, const Vec3& origin, const StarDiscoveryConfig& config) {
   Star best;

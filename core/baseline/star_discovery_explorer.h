@@ -53,6 +53,26 @@ struct StarDiscoveryConfig : TakeoffConfig, PathCheckConfig {  // take-off and p
   double transit_timeout_s = 60.0;     ///< a target not reached by then is given up
   double retry_period_s = 5.0;         ///< with no reachable candidate: hold, look again after this
 
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.group("map", s.map);
+    v.group("planner", s.planner);
+    v.key("rays", s.rays, Limits::range(3, 64));
+    v.key("heights", s.heights, Limits::range(1, 9));
+    v.key("height_step_m", s.height_step_m, Limits::nonNegative());
+    v.key("max_ray_m", s.max_ray_m, Limits::positive());
+    v.key("min_ray_m", s.min_ray_m, Limits::nonNegative());
+    v.key("candidates", s.candidates, Limits::range(1, 1000));
+    v.key("los_range_m", s.los_range_m, Limits::positive());
+    v.key("look_around_step_deg", s.look_around_step_deg, Limits::range(10.0, 180.0));
+    v.key("replan_period_s", s.replan_period_s, Limits::positive());
+    v.key("transit_timeout_s", s.transit_timeout_s, Limits::positive());
+    v.key("retry_period_s", s.retry_period_s, Limits::positive());
+    PathCheckConfig::fields(s, v);
+    TakeoffConfig::fields(s, v);
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };

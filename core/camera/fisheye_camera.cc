@@ -5,20 +5,13 @@
 namespace msb {
 
 void FisheyeCameraConfig::validate(ConfigChecker& c) const {
-  c.inRange("clip_far_m", clip_far_m, 1.0, 100000.0);
-  // Bounded: every frame is rendered, remapped and tracked at this size.
-  c.inRange("width_px", width_px, 16, 4096);
-  c.inRange("height_px", height_px, 16, 4096);
-  c.positive("fx_px", fx_px);
-  c.positive("fy_px", fy_px);
-  c.inRange("cx_px", cx_px, 0.0, width_px);
-  c.inRange("cy_px", cy_px, 0.0, height_px);
-  c.inRange("fov_deg", fov_deg, 10.0, 200.0);
+  checkFields(*this, c);
+  c.require(cx_px <= width_px, "cx_px", "must not exceed width_px");
+  c.require(cy_px <= height_px, "cy_px", "must not exceed height_px");
   c.require(scale == 1.0 || scale == 0.5 || scale == 0.25, "scale", "must be 1, 0.5 or 0.25");
   // The camera sits on the vehicle: its centre within a metre of the body origin.
-  c.require(mount_position_B_m.allFinite() && mount_position_B_m.norm() <= 1.0, "mount_position_B_m",
+  c.require(mount_position_B_m.norm() <= 1.0, "mount_position_B_m",
             "must lie within 1 m of the body origin (the camera is mounted on the vehicle)");
-  c.inRange("mount_pitch_down_deg", mount_pitch_down_deg, -90.0, 90.0);
 }
 
 FisheyeCamera::FisheyeCamera(const FisheyeCameraConfig& config)

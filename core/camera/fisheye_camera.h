@@ -17,7 +17,7 @@
 #include <array>
 #include <optional>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/types.h"
 
 namespace msb {
@@ -39,6 +39,23 @@ struct FisheyeCameraConfig {
   /// reference's Gazebo wide-angle camera clips its faces) is drawn; the sky colour shows
   /// instead. The reference's camera clips at 40 m (docs/perception.md).
   double clip_far_m = 40.0;
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("width_px", s.width_px, Limits::range(16, 4096));
+    v.key("height_px", s.height_px, Limits::range(16, 4096));
+    v.key("fx_px", s.fx_px, Limits::positive());
+    v.key("fy_px", s.fy_px, Limits::positive());
+    v.key("cx_px", s.cx_px, Limits::nonNegative());
+    v.key("cy_px", s.cy_px, Limits::nonNegative());
+    v.key("k", s.k, Limits::any());
+    v.key("fov_deg", s.fov_deg, Limits::range(10.0, 200.0));
+    v.key("scale", s.scale, Limits{0.25, 1.0, false, false});
+    v.key("mount_position_B_m", s.mount_position_B_m, Limits::range(-1.0, 1.0));
+    v.key("mount_pitch_down_deg", s.mount_pitch_down_deg, Limits::range(-90.0, 90.0));
+    v.key("clip_far_m", s.clip_far_m, Limits::range(1.0, 100000.0));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -15,16 +15,6 @@ PathCommand sendPath(const VehicleState& vehicle, std::vector<Waypoint> waypoint
   return cmd;
 }
 
-void TakeoffConfig::validateTakeoff(ConfigChecker& c) const {
-  c.inRange("takeoff_altitude_m", takeoff_altitude_m, 0.3, 50.0);
-  c.nonNegative("start_forward_m", start_forward_m);
-}
-
-void PathCheckConfig::validatePathCheck(ConfigChecker& c) const {
-  c.nonNegative("check_ahead_m", check_ahead_m);
-  c.nonNegative("check_clearance_m", check_clearance_m);
-}
-
 TakeoffSequence::TakeoffSequence(const Pose& start, double altitude_m, double forward_m)
     : start_(start.translation()), yaw_(yawOf(start.linear())), altitude_m_(altitude_m), forward_m_(forward_m) {}
 

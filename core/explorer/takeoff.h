@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "core/explorer/explorer.h"
 
@@ -18,16 +18,13 @@ struct TakeoffConfig {
   double takeoff_altitude_m = 3.0;  ///< climb to this height above the start (the reference's 3 m)
   double start_forward_m = 4.0;     ///< then fly this far straight ahead (the reference's goforward5m.sh: 4 m)
 
-  /// Records invalid fields (a derived config calls it from its own validate()).
-  void validateTakeoff(ConfigChecker& c) const;
+  /// The take-off keys (a derived config's table includes them: `TakeoffConfig::fields(s, v)`).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("takeoff_altitude_m", s.takeoff_altitude_m, Limits::range(0.3, 50.0));
+    v.key("start_forward_m", s.start_forward_m, Limits::nonNegative());
+  }
 };
-
-/// The take-off keys for a method's keys function (any visitor with field(name, value)).
-template <class Keys>
-void takeoffKeys(Keys& k, TakeoffConfig& c) {
-  k.field("takeoff_altitude_m", c.takeoff_altitude_m);
-  k.field("start_forward_m", c.start_forward_m);
-}
 
 /// The predicted-path check every method flies with: stop and re-plan when the first
 /// `check_ahead_m` of the path sent pass within `check_clearance_m` of a mapped obstacle. Shared
@@ -36,16 +33,13 @@ struct PathCheckConfig {
   double check_ahead_m = 5.0;      ///< predicted-path check length ...
   double check_clearance_m = 1.0;  ///< ... and clearance from mapped obstacles
 
-  /// Records invalid fields (a derived config calls it from its own validate()).
-  void validatePathCheck(ConfigChecker& c) const;
+  /// The path-check keys (a derived config's table includes them: `PathCheckConfig::fields(s, v)`).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("check_ahead_m", s.check_ahead_m, Limits::nonNegative());
+    v.key("check_clearance_m", s.check_clearance_m, Limits::nonNegative());
+  }
 };
-
-/// The path-check keys for a method's keys function.
-template <class Keys>
-void pathCheckKeys(Keys& k, PathCheckConfig& c) {
-  k.field("check_ahead_m", c.check_ahead_m);
-  k.field("check_clearance_m", c.check_clearance_m);
-}
 
 /// Take-off phases, stepped once per planning step.
 class TakeoffSequence {

@@ -4,17 +4,7 @@
 
 namespace msb {
 
-void OpenAreaDepthConfig::validate(ConfigChecker& c) const {
-  c.inRange("grid", grid, 1, 50);
-  c.inRange("central_fraction", central_fraction, 0.05, 1.0);
-  c.positive("range_m", range_m);
-  c.inRange("max_poses", max_poses, 1, 1000);
-  c.nonNegative("min_translation_m", min_translation_m);
-  c.inRange("min_rotation_deg", min_rotation_deg, 0.0, 180.0);
-  c.positive("min_parallax_rad", min_parallax_rad);
-  c.require(visibility == "recent_run" || visibility == "whole_buffer", "visibility",
-            "must be recent_run or whole_buffer (is '" + visibility + "')");
-}
+void OpenAreaDepthConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 OpenAreaDepth::OpenAreaDepth(const OpenAreaDepthConfig& config, const FisheyeCamera& camera)
     : config_(checkValid(config)), camera_(camera) {}

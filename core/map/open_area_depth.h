@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/types.h"
 
 namespace msb {
@@ -35,6 +35,19 @@ struct OpenAreaDepthConfig {
   /// p_k and also at previous poses p_{k-n}, ..., p_{k-1}");
   /// "recent_run" — only the unbroken run back from now, of any length (msbench before 2026-11-25).
   std::string visibility = "whole_buffer";
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("grid", s.grid, Limits::range(1, 50));
+    v.key("central_fraction", s.central_fraction, Limits::range(0.05, 1.0));
+    v.key("range_m", s.range_m, Limits::positive());
+    v.key("max_poses", s.max_poses, Limits::range(1, 1000));
+    v.key("min_translation_m", s.min_translation_m, Limits::nonNegative());
+    v.key("min_rotation_deg", s.min_rotation_deg, Limits::range(0.0, 180.0));
+    v.key("min_parallax_rad", s.min_parallax_rad, Limits::positive());
+    v.key("visibility", s.visibility, Choices{"recent_run", "whole_buffer"});
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

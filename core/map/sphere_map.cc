@@ -13,27 +13,9 @@
 namespace msb {
 
 void SphereMapConfig::validate(ConfigChecker& c) const {
-  c.inRange("dbof_alpha", dbof_alpha, 0.0, 10.0);
-  c.inRange("dbof_age_per_m", dbof_age_per_m, 0.0, 10.0);
-  c.require(r_max_m > r_min_m && r_min_m > 0, "r_max_m", "needs 0 < r_min_m < r_max_m");
-  c.inRange("new_sphere_samples", new_sphere_samples, 0, 100000);
-  c.positive("max_sample_range_m", max_sample_range_m);
-  c.positive("max_point_range_m", max_point_range_m);
-  c.positive("obstacle_spacing_m", obstacle_spacing_m);
-  c.inRange("sparsify_factor", sparsify_factor, 0.0, 2.0);
-  c.inRange("min_points", min_points, 3, 100000);
-  c.positive("max_point_depth_std_m", max_point_depth_std_m);
-  c.inRange("max_view_angle_deg", max_view_angle_deg, 1.0, 89.0);
-  c.nested("ovde_params", ovde_params);
-  c.inRange("frontier_surface_samples", frontier_surface_samples, 0, 100000);
-  c.inRange("frontier_shell_samples", frontier_shell_samples, 0, 100000);
-  c.nonNegative("frontier_jitter_m", frontier_jitter_m);
-  c.require(shell_max_m > shell_min_m && shell_min_m >= 0, "shell_max_m", "needs 0 <= shell_min_m < shell_max_m");
-  c.nonNegative("frontier_spacing_m", frontier_spacing_m);
-  c.nonNegative("frontier_obstacle_gap_m", frontier_obstacle_gap_m);
-  c.positive("frontier_range_m", frontier_range_m);
-  c.inRange("frontier_min_normal_z", frontier_min_normal_z, -1.0, 1.0);
-  c.inRange("frontier_min_balance", frontier_min_balance, 0.0, 1.0);
+  checkFields(*this, c);
+  c.require(r_max_m > r_min_m, "r_max_m", "must exceed r_min_m");
+  c.require(shell_max_m > shell_min_m, "shell_max_m", "must exceed shell_min_m");
 }
 
 namespace {

@@ -41,7 +41,7 @@
 #include <vector>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "core/common/rng.h"
 #include "core/map/open_area_depth.h"
@@ -88,6 +88,34 @@ struct SphereMapConfig {
   double frontier_range_m = 20.0;        ///< shell sampling around spheres within this range
   double frontier_min_normal_z = -0.5;   ///< reject normals pointing down harder than this
   double frontier_min_balance = 0.3;     ///< |mean direction| needed for a one-sided frontier
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.group("ovde_params", s.ovde_params);
+    v.key("dbof_alpha", s.dbof_alpha, Limits::range(0.0, 10.0));
+    v.key("dbof_age_per_m", s.dbof_age_per_m, Limits::range(0.0, 10.0));
+    v.key("r_max_m", s.r_max_m, Limits::positive());
+    v.key("max_point_depth_std_m", s.max_point_depth_std_m, Limits::positive());
+    v.key("r_min_m", s.r_min_m, Limits::positive());
+    v.key("new_sphere_samples", s.new_sphere_samples, Limits::range(0, 100000));
+    v.key("max_sample_range_m", s.max_sample_range_m, Limits::positive());
+    v.key("max_point_range_m", s.max_point_range_m, Limits::positive());
+    v.key("obstacle_spacing_m", s.obstacle_spacing_m, Limits::positive());
+    v.key("sparsify_factor", s.sparsify_factor, Limits::range(0.0, 2.0));
+    v.key("min_points", s.min_points, Limits::range(3, 100000));
+    v.key("max_view_angle_deg", s.max_view_angle_deg, Limits::range(1.0, 89.0));
+    v.key("frontier_surface_samples", s.frontier_surface_samples, Limits::range(0, 100000));
+    v.key("frontier_shell_samples", s.frontier_shell_samples, Limits::range(0, 100000));
+    v.key("frontier_jitter_m", s.frontier_jitter_m, Limits::nonNegative());
+    v.key("shell_min_m", s.shell_min_m, Limits::nonNegative());
+    v.key("shell_max_m", s.shell_max_m, Limits::positive());
+    v.key("frontier_spacing_m", s.frontier_spacing_m, Limits::nonNegative());
+    v.key("frontier_obstacle_gap_m", s.frontier_obstacle_gap_m, Limits::nonNegative());
+    v.key("frontier_range_m", s.frontier_range_m, Limits::positive());
+    v.key("frontier_min_normal_z", s.frontier_min_normal_z, Limits::range(-1.0, 1.0));
+    v.key("frontier_min_balance", s.frontier_min_balance, Limits::range(0.0, 1.0));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

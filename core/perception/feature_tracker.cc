@@ -11,19 +11,8 @@
 namespace msb {
 
 void FeatureTrackerConfig::validate(ConfigChecker& c) const {
-  c.inRange("max_tracks", max_tracks, 1, 5000);
-  c.inRange("grid_cols", grid_cols, 1, 50);
-  c.inRange("grid_rows", grid_rows, 1, 50);
-  c.inRange("fast_threshold", fast_threshold, 1, 255);
-  c.nonNegative("min_distance_px", min_distance_px);
-  c.require(klt_window_px >= 5 && klt_window_px % 2 == 1, "klt_window_px", "must be odd and >= 5");
-  c.inRange("klt_pyramid_levels", klt_pyramid_levels, 0, 6);
-  c.inRange("klt_max_iterations", klt_max_iterations, 1, 200);
-  c.positive("fb_max_error_px", fb_max_error_px);
-  c.inRange("border_px", border_px, 0, 100);
-  c.positive("ransac_threshold_px", ransac_threshold_px);
-  c.inRange("ransac_max_angle_deg", ransac_max_angle_deg, 1.0, 89.0);
-  c.inRange("ransac_min_pairs", ransac_min_pairs, 5, 10000);
+  checkFields(*this, c);
+  c.require(klt_window_px % 2 == 1, "klt_window_px", "must be odd");
 }
 
 void dropOutsideWindowRange(const std::vector<cv::Point2f>& points, cv::Size window, cv::Size image,

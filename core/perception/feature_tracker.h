@@ -16,7 +16,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "core/perception/frontend_degradation.h"
 
@@ -76,6 +76,27 @@ struct FeatureTrackerConfig {
   double ransac_threshold_px = 1.0;    ///< epipolar error threshold (pixels at the image centre)
   double ransac_max_angle_deg = 80.0;  ///< bearings used for the estimate (normalised coords)
   int ransac_min_pairs = 10;           ///< fewer usable pairs: no rejection this frame
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("max_tracks", s.max_tracks, Limits::range(1, 5000));
+    v.key("grid_cols", s.grid_cols, Limits::range(1, 50));
+    v.key("grid_rows", s.grid_rows, Limits::range(1, 50));
+    v.key("fast_threshold", s.fast_threshold, Limits::range(1, 255));
+    v.key("min_distance_px", s.min_distance_px, Limits::nonNegative());
+    v.key("klt_window_px", s.klt_window_px, Limits::range(5, 1001));
+    v.key("klt_pyramid_levels", s.klt_pyramid_levels, Limits::range(0, 6));
+    v.key("klt_max_iterations", s.klt_max_iterations, Limits::range(1, 200));
+    v.key("forward_backward_check", s.forward_backward_check);
+    v.key("fb_max_error_px", s.fb_max_error_px, Limits::positive());
+    v.key("ransac", s.ransac);
+    v.key("ransac_threshold_px", s.ransac_threshold_px, Limits::positive());
+    v.key("ransac_max_angle_deg", s.ransac_max_angle_deg, Limits::range(1.0, 89.0));
+    v.key("ransac_min_pairs", s.ransac_min_pairs, Limits::range(5, 10000));
+    v.key("border_px", s.border_px, Limits::range(0, 100));
+    v.key("equalize_histogram", s.equalize_histogram);
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -10,15 +10,7 @@ bool FrontendDegradationConfig::degrades() const {
   return image_noise_sigma > 0.0 || mistrack_share > 0.0 || landmark_jitter_inv_depth > 0.0 || drift_scale != 1.0;
 }
 
-void FrontendDegradationConfig::validate(ConfigChecker& c) const {
-  c.require(image_noise_sigma >= 0.0 && image_noise_sigma <= 50.0, "image_noise_sigma",
-            "must be in [0, 50] grey levels");
-  c.require(mistrack_share >= 0.0 && mistrack_share <= 0.5, "mistrack_share", "must be in [0, 0.5]");
-  c.require(mistrack_px > 0.0 && mistrack_px <= 20.0, "mistrack_px", "must be in (0, 20] pixels");
-  c.require(landmark_jitter_inv_depth >= 0.0 && landmark_jitter_inv_depth <= 0.2, "landmark_jitter_inv_depth",
-            "must be in [0, 0.2] 1/m");
-  c.require(drift_scale >= 0.0 && drift_scale <= 20.0, "drift_scale", "must be in [0, 20]");
-}
+void FrontendDegradationConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 namespace {
 

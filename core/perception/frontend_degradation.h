@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "core/common/rng.h"
 
@@ -33,6 +33,16 @@ struct FrontendDegradationConfig {
 
   /// True if any axis differs from the faithful front end.
   bool degrades() const;
+  /// The keys, each once with the values it accepts (`preset` is read in tools/config).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("image_noise_sigma", s.image_noise_sigma, Limits::range(0.0, 50.0));
+    v.key("mistrack_share", s.mistrack_share, Limits::range(0.0, 0.5));
+    v.key("mistrack_px", s.mistrack_px, Limits{0.0, 20.0, true, false});
+    v.key("landmark_jitter_inv_depth", s.landmark_jitter_inv_depth, Limits::range(0.0, 0.2));
+    v.key("drift_scale", s.drift_scale, Limits::range(0.0, 20.0));
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };

@@ -5,15 +5,7 @@
 
 namespace msb {
 
-void OracleFeatureConfig::validate(ConfigChecker& c) const {
-  c.inRange("max_tracks", max_tracks, 1, 100000);
-  c.nonNegative("min_distance_px", min_distance_px);
-  c.nonNegative("pixel_noise_px", pixel_noise_px);
-  c.inRange("landmark_spacing_m", landmark_spacing_m, 0.1, 100.0);
-  c.positive("max_range_m", max_range_m);
-  c.nonNegative("ground_margin_m", ground_margin_m);
-  c.inRange("border_px", border_px, 0, 1000);
-}
+void OracleFeatureConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 OracleFeatureSource::OracleFeatureSource(const OracleFeatureConfig& config, const FisheyeCamera& camera,
                                          const WorldTruth& truth, uint64_t seed)

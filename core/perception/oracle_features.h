@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/rng.h"
 #include "core/geometry/world_truth.h"
 #include "core/perception/feature_tracker.h"
@@ -33,6 +33,20 @@ struct OracleFeatureConfig {
   int border_px = 8;                   ///< no features this close to the image or FoV border
   bool textureless_landmarks = false;  ///< landmarks on textureless surfaces too (a perfect front end)
   bool thin_landmarks = false;         ///< landmarks on thin rods too
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("max_tracks", s.max_tracks, Limits::range(1, 100000));
+    v.key("min_distance_px", s.min_distance_px, Limits::nonNegative());
+    v.key("pixel_noise_px", s.pixel_noise_px, Limits::nonNegative());
+    v.key("landmark_spacing_m", s.landmark_spacing_m, Limits::range(0.1, 100.0));
+    v.key("max_range_m", s.max_range_m, Limits::positive());
+    v.key("ground_margin_m", s.ground_margin_m, Limits::nonNegative());
+    v.key("border_px", s.border_px, Limits::range(0, 1000));
+    v.key("textureless_landmarks", s.textureless_landmarks);
+    v.key("thin_landmarks", s.thin_landmarks);
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

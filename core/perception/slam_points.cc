@@ -7,18 +7,8 @@
 namespace msb {
 
 void SlamPointsConfig::validate(ConfigChecker& c) const {
-  c.inRange("max_clones", max_clones, 2, 100);
-  c.positive("reference_rate_hz", reference_rate_hz);
-  c.nonNegative("dt_slam_delay_s", dt_slam_delay_s);
-  c.inRange("max_slam_in_update", max_slam_in_update, 1, 100000);
-  c.inRange("max_slam", max_slam, 1, 100000);
-  c.require(max_dist_m > min_dist_m && min_dist_m > 0, "max_dist_m", "needs 0 < min_dist_m < max_dist_m");
-  c.positive("max_baseline", max_baseline);
-  c.positive("max_cond_number", max_cond_number);
-  c.positive("pixel_sigma_px", pixel_sigma_px);
-  c.positive("max_reprojection_rms_px", max_reprojection_rms_px);
-  c.inRange("max_observations", max_observations, 2, 1000);
-  c.inRange("max_iterations", max_iterations, 1, 100);
+  checkFields(*this, c);
+  c.require(max_dist_m > min_dist_m, "max_dist_m", "must exceed min_dist_m");
 }
 
 SlamPointEstimator::SlamPointEstimator(const SlamPointsConfig& config, const FisheyeCamera& camera,

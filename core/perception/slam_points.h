@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/perception/feature_tracker.h"
 
 namespace msb {
@@ -52,6 +52,24 @@ struct SlamPointsConfig {
   double max_reprojection_rms_px = 2.0;  ///< χ² stand-in at initialisation and refinement
   int max_observations = 20;             ///< kept per SLAM feature for refinement (its window + most recent)
   int max_iterations = 10;               ///< Gauss–Newton iterations
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("max_clones", s.max_clones, Limits::range(2, 100));
+    v.key("reference_rate_hz", s.reference_rate_hz, Limits::positive());
+    v.key("dt_slam_delay_s", s.dt_slam_delay_s, Limits::nonNegative());
+    v.key("max_slam_in_update", s.max_slam_in_update, Limits::range(1, 100000));
+    v.key("max_slam", s.max_slam, Limits::range(1, 100000));
+    v.key("min_dist_m", s.min_dist_m, Limits::positive());
+    v.key("max_dist_m", s.max_dist_m, Limits::positive());
+    v.key("max_baseline", s.max_baseline, Limits::positive());
+    v.key("max_cond_number", s.max_cond_number, Limits::positive());
+    v.key("pixel_sigma_px", s.pixel_sigma_px, Limits::positive());
+    v.key("max_reprojection_rms_px", s.max_reprojection_rms_px, Limits::positive());
+    v.key("max_observations", s.max_observations, Limits::range(2, 1000));
+    v.key("max_iterations", s.max_iterations, Limits::range(1, 100));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

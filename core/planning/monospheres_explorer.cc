@@ -33,43 +33,10 @@ std::vector<Waypoint> cutAt(const Vec3& from, const std::vector<Waypoint>& w, do
 }
 }  // namespace
 
-void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const {
-  c.positive("fff_turn_rate_rad_per_m", fff_turn_rate_rad_per_m);
-  c.inRange("align_before_route_deg", align_before_route_deg, 0.0, 180.0);
-  c.nested("viewpoints", viewpoints);
-  c.nested("safety", safety);
-  c.nonNegative("start_max_outside_m", start_max_outside_m);
-  c.positive("local_radius_m", local_radius_m);
-  c.inRange("local_misses_before_global", local_misses_before_global, 0, 1000);
-  c.inRange("max_goal_candidates", max_goal_candidates, 1, 10000);
-  c.positive("carrot_distance_m", carrot_distance_m);
-  c.positive("replan_period_s", replan_period_s);
-  validatePathCheck(c);
-  c.inRange("max_blocked_steps", max_blocked_steps, 1, 10000);
-  c.inRange("max_route_repairs", max_route_repairs, 1, 1000);
-  c.positive("blocked_edge_timeout_s", blocked_edge_timeout_s);
-  c.inRange("escape_margin_m", escape_margin_m, 0.0, 5.0);
-  c.inRange("bridge_below_reachable", bridge_below_reachable, 0, 1000000);
-  c.positive("bridge_range_m", bridge_range_m);
-  c.positive("bridge_after_idle_s", bridge_after_idle_s);
-  c.nonNegative("link_gap_m", link_gap_m);
-  c.nonNegative("link_trail_radius_m", link_trail_radius_m);
-  c.nonNegative("link_trail_max_m", link_trail_max_m);
-  c.positive("trail_spacing_m", trail_spacing_m);
-  c.inRange("link_tests_per_pair", link_tests_per_pair, 0, 1000);
-  c.positive("return_range_m", return_range_m);
-  c.nonNegative("shortcut_depth_m", shortcut_depth_m);
-  c.positive("reach_distance_m", reach_distance_m);
-  c.inRange("reach_angle_deg", reach_angle_deg, 0.0, 180.0);
-  c.positive("no_progress_timeout_s", no_progress_timeout_s);
-  validateTakeoff(c);
-  c.inRange("idle_turn_deg", idle_turn_deg, 0.0, 180.0);
-  c.positive("idle_turn_period_s", idle_turn_period_s);
-}
+void MonoSpheresPlannerConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 void MonoSpheresConfig::validate(ConfigChecker& c) const {
-  c.nested("map", map);
-  c.nested("planner", planner);
+  checkFields(*this, c);
   c.require(planner.safety.r_safe_m > map.r_min_m, "planner.safety.r_safe_m", "must be larger than map.r_min_m");
 }
 

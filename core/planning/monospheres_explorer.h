@@ -31,6 +31,7 @@
 #pragma once
 
 #include <array>
+#include "core/common/config_fields.h"
 
 #include <memory>
 
@@ -85,6 +86,43 @@ struct MonoSpheresPlannerConfig : TakeoffConfig, PathCheckConfig {  // take-off 
   double idle_turn_deg = 90.0;             ///< without goals, turn in place by this much ...
   double idle_turn_period_s = 3.0;         ///< ... this often
 
+  /// The keys, each once with the values it accepts (the switch fff is read under method.switches).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.group("viewpoints", s.viewpoints);
+    v.group("safety", s.safety);
+    v.key("fff_turn_rate_rad_per_m", s.fff_turn_rate_rad_per_m, Limits::positive());
+    v.key("align_before_route_deg", s.align_before_route_deg, Limits::range(0.0, 180.0));
+    v.key("start_max_outside_m", s.start_max_outside_m, Limits::nonNegative());
+    v.key("local_radius_m", s.local_radius_m, Limits::positive());
+    v.key("local_misses_before_global", s.local_misses_before_global, Limits::range(0, 1000));
+    v.key("max_goal_candidates", s.max_goal_candidates, Limits::range(1, 10000));
+    v.key("carrot_distance_m", s.carrot_distance_m, Limits::positive());
+    v.key("replan_period_s", s.replan_period_s, Limits::positive());
+    PathCheckConfig::fields(s, v);
+    v.key("allow_moving_away", s.allow_moving_away);
+    v.key("max_blocked_steps", s.max_blocked_steps, Limits::range(1, 10000));
+    v.key("max_route_repairs", s.max_route_repairs, Limits::range(1, 1000));
+    v.key("blocked_edge_timeout_s", s.blocked_edge_timeout_s, Limits::positive());
+    v.key("escape_margin_m", s.escape_margin_m, Limits::range(0.0, 5.0));
+    v.key("bridge_below_reachable", s.bridge_below_reachable, Limits::range(0, 1000000));
+    v.key("bridge_range_m", s.bridge_range_m, Limits::positive());
+    v.key("bridge_after_idle_s", s.bridge_after_idle_s, Limits::positive());
+    v.key("link_gap_m", s.link_gap_m, Limits::nonNegative());
+    v.key("link_trail_radius_m", s.link_trail_radius_m, Limits::nonNegative());
+    v.key("link_trail_max_m", s.link_trail_max_m, Limits::nonNegative());
+    v.key("trail_spacing_m", s.trail_spacing_m, Limits::positive());
+    v.key("link_tests_per_pair", s.link_tests_per_pair, Limits::range(0, 1000));
+    v.key("return_range_m", s.return_range_m, Limits::positive());
+    v.key("shortcut_depth_m", s.shortcut_depth_m, Limits::nonNegative());
+    v.key("reach_distance_m", s.reach_distance_m, Limits::positive());
+    v.key("reach_angle_deg", s.reach_angle_deg, Limits::range(0.0, 180.0));
+    v.key("no_progress_timeout_s", s.no_progress_timeout_s, Limits::positive());
+    TakeoffConfig::fields(s, v);
+    v.key("idle_turn_deg", s.idle_turn_deg, Limits::range(0.0, 180.0));
+    v.key("idle_turn_period_s", s.idle_turn_period_s, Limits::positive());
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
@@ -107,6 +145,13 @@ struct MonoSpheresConfig {
   SphereMapConfig map;
   MonoSpheresPlannerConfig planner;
   ReferenceCodeConfig reference_code;  ///< the published code's defects (all off: the intended method)
+  /// The mapper's and the planner's tables (the switches and reference_code are read in tools/config).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.group("map", s.map);
+    v.group("planner", s.planner);
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
   /// The paper's four ablation switches (OVDE, DBOF, FFF, VPB) by name, for reports.

@@ -8,7 +8,7 @@
 namespace msb {
 
 void SafetyCostConfig::validate(ConfigChecker& c) const {
-  c.nonNegative("weight", weight);
+  checkFields(*this, c);
   c.positive("r_min_m", r_min_m);
   c.require(r_safe_m > r_min_m, "r_safe_m", "must be larger than r_min_m");
 }

@@ -12,7 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/map/sphere_map.h"
 
 namespace msb {
@@ -27,6 +27,14 @@ struct SafetyCostConfig {
   /// The published code's cost (method.reference_code.safety_cost_inverted; not a key of its
   /// own): u(r) = ((max(r, r_min) − r_min)/(r_safe − r_min))², 0 above r_safe.
   bool inverted = false;
+
+  /// The keys, each once with the values it accepts (r_min_m is the map's).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("weight", s.weight, Limits::nonNegative());
+    v.moved("r_min_m", "method.map.r_min_m (the minimum sphere radius)");
+    v.key("r_safe_m", s.r_safe_m, Limits::positive());
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

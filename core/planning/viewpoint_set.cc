@@ -10,17 +10,8 @@ namespace msb {
 namespace {}
 
 void ViewpointConfig::validate(ConfigChecker& c) const {
-  // Bounded: each candidate is valued every planning step (5 Hz).
-  c.inRange("candidates", candidates, 1, 100000);
-  c.inRange("frontier_range_m", frontier_range_m, 0.1, 1000.0);
-  c.inRange("fov_half_angle_deg", fov_half_angle_deg, 1.0, 100.0);
-  c.inRange("min_value", min_value, 1, 100000);
-  c.require(relaxed_min_value >= 1 && relaxed_min_value <= min_value, "relaxed_min_value", "must be in [1, min_value]");
-  c.nonNegative("block_distance_m", block_distance_m);
-  c.inRange("block_angle_deg", block_angle_deg, 0.0, 180.0);
-  c.nonNegative("blacklist_radius_m", blacklist_radius_m);
-  c.nonNegative("blacklist_duration_s", blacklist_duration_s);
-  c.inRange("frontier_view_limit", frontier_view_limit, 0, 1000);  // 0 = off
+  checkFields(*this, c);
+  c.require(relaxed_min_value <= min_value, "relaxed_min_value", "must not exceed min_value");
   c.require(
       frontier_view_limit == 0 || !vpb_new_frontiers, "frontier_view_limit",
       "cannot be combined with vpb_new_frontiers (both replace pose blocking); set it to 0 to use vpb_new_frontiers");

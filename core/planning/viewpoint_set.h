@@ -12,7 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/rng.h"
 #include "core/map/sphere_map.h"
 
@@ -52,6 +52,22 @@ struct ViewpointConfig {
   /// a frontier counts only where the pinhole K projects it inside the image. Off: the cone of
   /// fov_half_angle_deg.
   PinholeFrustum pinhole_view;
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("candidates", s.candidates, Limits::range(1, 100000));
+    v.key("frontier_range_m", s.frontier_range_m, Limits::range(0.1, 1000.0));
+    v.key("fov_half_angle_deg", s.fov_half_angle_deg, Limits::range(1.0, 100.0));
+    v.key("min_value", s.min_value, Limits::range(1, 100000));
+    v.key("relaxed_min_value", s.relaxed_min_value, Limits::range(1, 100000));
+    v.key("block_distance_m", s.block_distance_m, Limits::nonNegative());
+    v.key("block_angle_deg", s.block_angle_deg, Limits::range(0.0, 180.0));
+    v.key("blacklist_radius_m", s.blacklist_radius_m, Limits::nonNegative());
+    v.key("blacklist_duration_s", s.blacklist_duration_s, Limits::nonNegative());
+    v.key("vpb_new_frontiers", s.vpb_new_frontiers);
+    v.key("frontier_view_limit", s.frontier_view_limit, Limits::range(0, 1000));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -7,14 +7,9 @@
 namespace msb {
 
 void QuadrotorConfig::validate(ConfigChecker& c) const {
-  c.positive("mass_kg", mass_kg);
-  c.require(inertia_kgm2.minCoeff() > 0.0, "inertia_kgm2", "all components must be > 0");
-  c.inRange("arm_length_m", arm_length_m, 0.05, 2.0);
-  c.inRange("rotor_radius_m", rotor_radius_m, 0.01, 1.0);
+  checkFields(*this, c);
   c.require(max_thrust_n * 4.0 > 1.5 * mass_kg * kGravity, "max_thrust_n",
             "four motors must lift at least 1.5x the weight");
-  c.nonNegative("yaw_torque_per_thrust_m", yaw_torque_per_thrust_m);
-  c.inRange("motor_time_constant_s", motor_time_constant_s, 0.004, 0.5);
 }
 
 std::array<Vec3, 4> QuadrotorConfig::rotorPositions() const {

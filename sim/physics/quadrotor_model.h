@@ -5,7 +5,7 @@
 #include <array>
 #include <string>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/types.h"
 
 namespace msb {
@@ -19,6 +19,18 @@ struct QuadrotorConfig {
   double max_thrust_n = 13.0;                     ///< per motor
   double yaw_torque_per_thrust_m = 0.0201;        ///< reaction torque coefficient, N·m/N
   double motor_time_constant_s = 0.03;            ///< first-order motor lag
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("mass_kg", s.mass_kg, Limits::positive());
+    v.key("inertia_kgm2", s.inertia_kgm2, Limits::positive());
+    v.key("arm_length_m", s.arm_length_m, Limits::range(0.05, 2.0));
+    v.key("rotor_radius_m", s.rotor_radius_m, Limits::range(0.01, 1.0));
+    v.key("max_thrust_n", s.max_thrust_n, Limits::positive());
+    v.key("yaw_torque_per_thrust_m", s.yaw_torque_per_thrust_m, Limits::nonNegative());
+    v.key("motor_time_constant_s", s.motor_time_constant_s, Limits::range(0.004, 0.5));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -12,11 +12,7 @@
 
 namespace msb {
 
-void PhysicsConfig::validate(ConfigChecker& c) const {
-  c.inRange("physics_hz", physics_hz, 100, 5000);
-  c.nested("vehicle", vehicle);
-  c.nonNegative("takeoff_clearance_m", takeoff_clearance_m);
-}
+void PhysicsConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "sim/physics/contact_gate.h"
 #include "sim/physics/quadrotor_model.h"
@@ -28,6 +28,15 @@ struct PhysicsConfig {
   double takeoff_clearance_m = 0.15;  ///< ground contact is allowed until first this high
   bool contact_gate = true;           ///< skip collision detection in steps where no contact is
                                       ///< possible (ContactGate; the same states and contacts)
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("physics_hz", s.physics_hz, Limits::range(100, 5000));
+    v.key("takeoff_clearance_m", s.takeoff_clearance_m, Limits::nonNegative());
+    v.key("contact_gate", s.contact_gate);
+    v.group("vehicle", s.vehicle);
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -5,13 +5,7 @@
 
 namespace msb {
 
-void Se3ControllerConfig::validate(ConfigChecker& c) const {
-  c.require(k_position.minCoeff() > 0, "k_position", "all gains must be > 0");
-  c.require(k_velocity.minCoeff() > 0, "k_velocity", "all gains must be > 0");
-  c.require(k_attitude.minCoeff() > 0, "k_attitude", "all gains must be > 0");
-  c.require(k_rate.minCoeff() > 0, "k_rate", "all gains must be > 0");
-  c.inRange("max_tilt_deg", max_tilt_deg, 5.0, 80.0);
-}
+void Se3ControllerConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 namespace {
 Vec3 vee(const Mat3& S) { return Vec3(S(2, 1), S(0, 2), S(1, 0)); }

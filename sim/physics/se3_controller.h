@@ -13,7 +13,7 @@
 // roll and pitch are served.
 #pragma once
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "sim/physics/quadrotor_model.h"
 
@@ -26,6 +26,16 @@ struct Se3ControllerConfig {
   Vec3 k_attitude = Vec3(8.0, 5.5, 0.6);   ///< N·m/rad (yaw: ω_n ≈ 3 rad/s)
   Vec3 k_rate = Vec3(0.75, 0.5, 0.3);      ///< N·m·s/rad
   double max_tilt_deg = 40.0;              ///< limit on the commanded tilt
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("k_position", s.k_position, Limits::positive());
+    v.key("k_velocity", s.k_velocity, Limits::positive());
+    v.key("k_attitude", s.k_attitude, Limits::positive());
+    v.key("k_rate", s.k_rate, Limits::positive());
+    v.key("max_tilt_deg", s.max_tilt_deg, Limits::range(5.0, 80.0));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

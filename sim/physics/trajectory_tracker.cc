@@ -11,20 +11,10 @@ TrajectoryLimits TrajectoryLimits::preset(const std::string& name) {
   throw ConfigError("limits", "unknown preset '" + name + "' (expected medium or fast)");
 }
 
-void TrajectoryLimits::validate(ConfigChecker& c) const {
-  c.inRange("max_speed_mps", max_speed_mps, 0.1, 30.0);
-  c.inRange("max_accel_mps2", max_accel_mps2, 0.1, 20.0);
-  c.inRange("max_jerk_mps3", max_jerk_mps3, 0.5, 200.0);
-  c.inRange("max_yaw_rate_radps", max_yaw_rate_radps, 0.05, 10.0);
-}
+void TrajectoryLimits::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 void TrajectoryTrackerConfig::validate(ConfigChecker& c) const {
-  c.nested("limits", limits);
-  c.positive("corner_cut_m", corner_cut_m);
-  c.positive("lookahead_base_m", lookahead_base_m);
-  c.nonNegative("lookahead_per_speed_s", lookahead_per_speed_s);
-  c.positive("velocity_gain_per_s", velocity_gain_per_s);
-  c.positive("yaw_gain_per_s", yaw_gain_per_s);
+  checkFields(*this, c);
   c.nonNegative("heading_min_speed_mps", heading_min_speed_mps);
   c.positive("arrive_tolerance_m", arrive_tolerance_m);
 }

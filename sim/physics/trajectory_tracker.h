@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 
 namespace msb {
@@ -24,6 +24,15 @@ struct TrajectoryLimits {
   /// The named preset ("medium": 4 m/s, 2 m/s², 1 rad/s; "fast": 8 m/s, 4 m/s², 2 rad/s).
   /// Throws ConfigError for an unknown name.
   static TrajectoryLimits preset(const std::string& name);
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("max_speed_mps", s.max_speed_mps, Limits::range(0.1, 30.0));
+    v.key("max_accel_mps2", s.max_accel_mps2, Limits::range(0.1, 20.0));
+    v.key("max_jerk_mps3", s.max_jerk_mps3, Limits::range(0.5, 200.0));
+    v.key("max_yaw_rate_radps", s.max_yaw_rate_radps, Limits::range(0.05, 10.0));
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
@@ -38,6 +47,17 @@ struct TrajectoryTrackerConfig {
   double yaw_gain_per_s = 2.0;          ///< heading error to yaw rate
   double heading_min_speed_mps = 0.5;   ///< below this speed the heading is held
   double arrive_tolerance_m = 0.05;     ///< path is finished within this distance at rest
+
+  /// The keys, each once with the values it accepts (heading_min_speed_mps and arrive_tolerance_m are fixed: no keys).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.group("limits", s.limits);
+    v.key("corner_cut_m", s.corner_cut_m, Limits::positive());
+    v.key("lookahead_base_m", s.lookahead_base_m, Limits::positive());
+    v.key("lookahead_per_speed_s", s.lookahead_per_speed_s, Limits::nonNegative());
+    v.key("velocity_gain_per_s", s.velocity_gain_per_s, Limits::positive());
+    v.key("yaw_gain_per_s", s.yaw_gain_per_s, Limits::positive());
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -15,14 +15,7 @@
 namespace msb {
 
 void FisheyeRendererConfig::validate(ConfigChecker& c) const {
-  c.inRange("face_focal_ratio", face_focal_ratio, 0.25, 2.0);
-  c.inRange("ambient", ambient, 0.05, 1.0);
-  c.inRange("sun_ambient", sun_ambient, 0.0, 1.0);
-  c.inRange("tessellation_slices", tessellation_slices, 4, 100);
-  c.inRange("tessellation_stacks", tessellation_stacks, 4, 100);
-  c.nonNegative("plane_grid_m", plane_grid_m);
-  c.inRange("near_clip_m", near_clip_m, 1e-4, 1.0);
-  c.inRange("max_visible_geom_group", max_visible_geom_group, 0, mjNGROUP - 1);
+  checkFields(*this, c);
   c.nested("conditions", conditions);
 }
 

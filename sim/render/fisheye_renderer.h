@@ -43,7 +43,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "sim/render/fixed_point_remap.h"
 #include "sim/render/frame_renderer.h"
@@ -80,6 +80,27 @@ struct FisheyeRendererConfig {
                                            ///< MuJoCo's clear covers a whole buffer (fast in llvmpipe)
   bool single_channel_framebuffer = true;  ///< with framebuffer_per_face, a one-channel colour
                                            ///< buffer when the model renders grey (same pixels)
+
+  /// The keys, each once with the values it accepts (`conditions` is a section of its own in a flight).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("face_focal_ratio", s.face_focal_ratio, Limits::range(0.25, 2.0));
+    v.key("ambient", s.ambient, Limits::range(0.05, 1.0));
+    v.key("tessellation_slices", s.tessellation_slices, Limits::range(4, 100));
+    v.key("tessellation_stacks", s.tessellation_stacks, Limits::range(4, 100));
+    v.key("plane_grid_m", s.plane_grid_m, Limits::nonNegative());
+    v.key("near_clip_m", s.near_clip_m, Limits::range(1e-4, 1.0));
+    v.key("read_red_channel_only", s.read_red_channel_only);
+    v.key("max_visible_geom_group", s.max_visible_geom_group, Limits::range(0, mjNGROUP - 1));
+    v.key("sky", s.sky);
+    v.key("sun", s.sun);
+    v.key("sun_ambient", s.sun_ambient, Limits::range(0.0, 1.0));
+    v.key("cull_per_face", s.cull_per_face);
+    v.key("trilinear_textures", s.trilinear_textures);
+    v.key("framebuffer_per_face", s.framebuffer_per_face);
+    v.key("single_channel_textures", s.single_channel_textures);
+    v.key("single_channel_framebuffer", s.single_channel_framebuffer);
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

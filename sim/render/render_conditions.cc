@@ -9,20 +9,7 @@ bool RenderConditions::changesAnything() const {
 }
 
 void RenderConditions::validate(ConfigChecker& c) const {
-  auto optionalRange = [&](const char* key, double v, double lo, double hi) {
-    if (!std::isnan(v)) c.inRange(key, v, lo, hi);
-  };
-  optionalRange("sun_elevation_deg", sun_elevation_deg, 0.5, 90.0);
-  optionalRange("sun_azimuth_deg", sun_azimuth_deg, -360.0, 360.0);
-  optionalRange("sun_intensity", sun_intensity, 0.0, 1.5);
-  optionalRange("ambient", ambient, 0.0, 1.0);
-  optionalRange("sky_brightness", sky_brightness, 0.0, 1.0);
-  for (int k = 0; k < 3; ++k) {
-    c.inRange("sun_colour", sun_colour[k], 0.0, 1.0);
-    c.inRange("fog_colour", fog_colour[k], 0.0, 1.0);
-  }
-  c.nonNegative("fog_start_m", fog_start_m);
-  c.nonNegative("fog_end_m", fog_end_m);
+  checkFields(*this, c);
   c.require(fog_end_m == 0.0 || fog_end_m > fog_start_m, "fog_end_m", "must exceed fog_start_m (or be 0: no fog)");
 }
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 
 namespace msb {
 
@@ -31,6 +31,21 @@ struct RenderConditions {
 
   /// True if anything differs from the world's own lighting.
   bool changesAnything() const;
+  /// The keys, each once with the values it accepts (NaN: unset, the world keeps its own; `preset` is read in
+  /// tools/config).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("sun_elevation_deg", s.sun_elevation_deg, Limits::range(0.5, 90.0).orUnset());
+    v.key("sun_azimuth_deg", s.sun_azimuth_deg, Limits::range(-360.0, 360.0).orUnset());
+    v.key("sun_intensity", s.sun_intensity, Limits::range(0.0, 1.5).orUnset());
+    v.key("sun_colour", s.sun_colour, Limits::range(0.0, 1.0));
+    v.key("ambient", s.ambient, Limits::range(0.0, 1.0).orUnset());
+    v.key("sky_brightness", s.sky_brightness, Limits::range(0.0, 1.0).orUnset());
+    v.key("fog_start_m", s.fog_start_m, Limits::nonNegative());
+    v.key("fog_end_m", s.fog_end_m, Limits::nonNegative());
+    v.key("fog_colour", s.fog_colour, Limits::range(0.0, 1.0));
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };

@@ -4,13 +4,7 @@
 
 namespace msb {
 
-void ImuConfig::validate(ConfigChecker& c) const {
-  c.inRange("rate_hz", rate_hz, 1.0, 2000.0);
-  c.nonNegative("accel_noise_density", accel_noise_density);
-  c.nonNegative("accel_random_walk", accel_random_walk);
-  c.nonNegative("gyro_noise_density", gyro_noise_density);
-  c.nonNegative("gyro_random_walk", gyro_random_walk);
-}
+void ImuConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 ImuModel::ImuModel(const ImuConfig& config, uint64_t seed) : config_(checkValid(config)), rng_(seed, "imu") {}
 

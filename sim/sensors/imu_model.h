@@ -7,7 +7,7 @@
 // Noise comes from the component's own RNG stream ("imu"); MuJoCo's sensor noise is not used.
 #pragma once
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "core/common/rng.h"
 
@@ -20,6 +20,16 @@ struct ImuConfig {
   double accel_random_walk = 3.0e-3;      ///< m/s³/√Hz
   double gyro_noise_density = 1.6968e-4;  ///< rad/s/√Hz
   double gyro_random_walk = 1.9393e-5;    ///< rad/s²/√Hz
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("rate_hz", s.rate_hz, Limits::range(1.0, 2000.0));
+    v.key("accel_noise_density", s.accel_noise_density, Limits::nonNegative());
+    v.key("accel_random_walk", s.accel_random_walk, Limits::nonNegative());
+    v.key("gyro_noise_density", s.gyro_noise_density, Limits::nonNegative());
+    v.key("gyro_random_walk", s.gyro_random_walk, Limits::nonNegative());
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -7,17 +7,7 @@
 
 namespace msb {
 
-void VioDriftConfig::validate(ConfigChecker& c) const {
-  c.inRange("position_drift_fraction", position_drift_fraction, 0.0, 0.5);
-  c.nonNegative("drift_rate_wander_per_sqrt_m", drift_rate_wander_per_sqrt_m);
-  c.nonNegative("position_random_walk_m_per_sqrt_m", position_random_walk_m_per_sqrt_m);
-  c.inRange("yaw_random_walk_deg_per_sqrt_m", yaw_random_walk_deg_per_sqrt_m, 0.0, 10.0);
-  c.nonNegative("frame_position_noise_m", frame_position_noise_m);
-  c.nonNegative("frame_yaw_noise_deg", frame_yaw_noise_deg);
-  c.inRange("nominal_tracks", nominal_tracks, 1, 10000);
-  c.inRange("few_tracks_gain", few_tracks_gain, 0.0, 100.0);
-  c.inRange("yaw_error_per_turn_deg_per_rad", yaw_error_per_turn_deg_per_rad, 0.0, 90.0);
-}
+void VioDriftConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 void VioDriftModel::setTrackedFeatures(int tracked) {
   shortfall_ = 1.0 - std::clamp(double(tracked) / config_.nominal_tracks, 0.0, 1.0);

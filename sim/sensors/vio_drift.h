@@ -19,7 +19,7 @@
 // handed to perception (not to the controller's state).
 #pragma once
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "core/common/rng.h"
 
@@ -37,6 +37,21 @@ struct VioDriftConfig {
   int nominal_tracks = 100;                          ///< tracked features at (and above) which drift is nominal
   double few_tracks_gain = 4.0;                      ///< drift growth at zero tracked features: × (1 + gain)
   double yaw_error_per_turn_deg_per_rad = 2.0;       ///< yaw error σ per radian turned, at zero tracked features
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("enabled", s.enabled);
+    v.key("position_drift_fraction", s.position_drift_fraction, Limits::range(0.0, 0.5));
+    v.key("drift_rate_wander_per_sqrt_m", s.drift_rate_wander_per_sqrt_m, Limits::nonNegative());
+    v.key("position_random_walk_m_per_sqrt_m", s.position_random_walk_m_per_sqrt_m, Limits::nonNegative());
+    v.key("yaw_random_walk_deg_per_sqrt_m", s.yaw_random_walk_deg_per_sqrt_m, Limits::range(0.0, 10.0));
+    v.key("frame_position_noise_m", s.frame_position_noise_m, Limits::nonNegative());
+    v.key("frame_yaw_noise_deg", s.frame_yaw_noise_deg, Limits::nonNegative());
+    v.key("nominal_tracks", s.nominal_tracks, Limits::range(1, 10000));
+    v.key("few_tracks_gain", s.few_tracks_gain, Limits::range(0.0, 100.0));
+    v.key("yaw_error_per_turn_deg_per_rad", s.yaw_error_per_turn_deg_per_rad, Limits::range(0.0, 90.0));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -1,4 +1,5 @@
 #include "tools/config/method_table.h"
+#include "tools/config/field_keys.h"
 
 #include <stdexcept>
 
@@ -12,108 +13,6 @@
 namespace msb {
 
 namespace {
-
-template <class Keys>
-void ovdeKeys(Keys r, OpenAreaDepthConfig& c) {
-  r.field("grid", c.grid);
-  r.field("central_fraction", c.central_fraction);
-  r.field("range_m", c.range_m);
-  r.field("max_poses", c.max_poses);
-  r.field("min_translation_m", c.min_translation_m);
-  r.field("min_rotation_deg", c.min_rotation_deg);
-  r.field("min_parallax_rad", c.min_parallax_rad);
-  r.field("visibility", c.visibility);
-  r.finish();
-}
-
-template <class Keys>
-void sphereMapKeys(Keys& r, SphereMapConfig& c) {
-  if (r.has("ovde_params")) ovdeKeys(r.sub("ovde_params"), c.ovde_params);
-  r.field("dbof_alpha", c.dbof_alpha);
-  r.field("dbof_age_per_m", c.dbof_age_per_m);
-  r.field("r_max_m", c.r_max_m);
-  r.field("max_point_depth_std_m", c.max_point_depth_std_m);
-  r.field("r_min_m", c.r_min_m);
-  r.field("new_sphere_samples", c.new_sphere_samples);
-  r.field("max_sample_range_m", c.max_sample_range_m);
-  r.field("max_point_range_m", c.max_point_range_m);
-  r.field("obstacle_spacing_m", c.obstacle_spacing_m);
-  r.field("sparsify_factor", c.sparsify_factor);
-  r.field("min_points", c.min_points);
-  r.field("max_view_angle_deg", c.max_view_angle_deg);
-  r.field("frontier_surface_samples", c.frontier_surface_samples);
-  r.field("frontier_shell_samples", c.frontier_shell_samples);
-  r.field("frontier_jitter_m", c.frontier_jitter_m);
-  r.field("shell_min_m", c.shell_min_m);
-  r.field("shell_max_m", c.shell_max_m);
-  r.field("frontier_spacing_m", c.frontier_spacing_m);
-  r.field("frontier_obstacle_gap_m", c.frontier_obstacle_gap_m);
-  r.field("frontier_range_m", c.frontier_range_m);
-  r.field("frontier_min_normal_z", c.frontier_min_normal_z);
-  r.field("frontier_min_balance", c.frontier_min_balance);
-}
-
-template <class Keys>
-void viewpointsKeys(Keys r, ViewpointConfig& c) {
-  r.field("candidates", c.candidates);
-  r.field("frontier_range_m", c.frontier_range_m);
-  r.field("fov_half_angle_deg", c.fov_half_angle_deg);
-  r.field("min_value", c.min_value);
-  r.field("relaxed_min_value", c.relaxed_min_value);
-  r.field("block_distance_m", c.block_distance_m);
-  r.field("block_angle_deg", c.block_angle_deg);
-  r.field("blacklist_radius_m", c.blacklist_radius_m);
-  r.field("blacklist_duration_s", c.blacklist_duration_s);
-  r.field("vpb_new_frontiers", c.vpb_new_frontiers);
-  r.field("frontier_view_limit", c.frontier_view_limit);
-  r.finish();
-}
-
-template <class Keys>
-void safetyKeys(Keys r, SafetyCostConfig& c) {
-  r.field("weight", c.weight);
-  r.refuse("r_min_m", "not a key of its own: the minimum sphere radius is method.map.r_min_m");
-  r.field("r_safe_m", c.r_safe_m);
-  r.finish();
-}
-
-// Planner parameters; the switches fff/vpb live under `switches`.
-template <class Keys>
-void plannerKeys(Keys r, MonoSpheresPlannerConfig& c) {
-  if (r.has("viewpoints")) viewpointsKeys(r.sub("viewpoints"), c.viewpoints);
-  if (r.has("safety")) safetyKeys(r.sub("safety"), c.safety);
-  r.field("fff_turn_rate_rad_per_m", c.fff_turn_rate_rad_per_m);
-  r.field("align_before_route_deg", c.align_before_route_deg);
-  r.field("start_max_outside_m", c.start_max_outside_m);
-  r.field("local_radius_m", c.local_radius_m);
-  r.field("local_misses_before_global", c.local_misses_before_global);
-  r.field("max_goal_candidates", c.max_goal_candidates);
-  r.field("carrot_distance_m", c.carrot_distance_m);
-  r.field("replan_period_s", c.replan_period_s);
-  pathCheckKeys(r, c);
-  r.field("allow_moving_away", c.allow_moving_away);
-  r.field("max_blocked_steps", c.max_blocked_steps);
-  r.field("max_route_repairs", c.max_route_repairs);
-  r.field("blocked_edge_timeout_s", c.blocked_edge_timeout_s);
-  r.field("escape_margin_m", c.escape_margin_m);
-  r.field("bridge_below_reachable", c.bridge_below_reachable);
-  r.field("bridge_range_m", c.bridge_range_m);
-  r.field("bridge_after_idle_s", c.bridge_after_idle_s);
-  r.field("link_gap_m", c.link_gap_m);
-  r.field("link_trail_radius_m", c.link_trail_radius_m);
-  r.field("link_trail_max_m", c.link_trail_max_m);
-  r.field("trail_spacing_m", c.trail_spacing_m);
-  r.field("link_tests_per_pair", c.link_tests_per_pair);
-  r.field("return_range_m", c.return_range_m);
-  r.field("shortcut_depth_m", c.shortcut_depth_m);
-  r.field("reach_distance_m", c.reach_distance_m);
-  r.field("reach_angle_deg", c.reach_angle_deg);
-  r.field("no_progress_timeout_s", c.no_progress_timeout_s);
-  takeoffKeys(r, c);
-  r.field("idle_turn_deg", c.idle_turn_deg);
-  r.field("idle_turn_period_s", c.idle_turn_period_s);
-  r.finish();
-}
 
 // Validates a method's config with its keys named under `method.` (before methodChoice()
 // validates it again without the prefix).
@@ -166,93 +65,14 @@ void monoSpheresKeys(Keys& m, MonoSpheresConfig& c) {
     w.field("vpb", c.planner.viewpoints.vpb);
     w.finish();
   }
-  if (m.has("map")) {
-    auto r = m.sub("map");
-    sphereMapKeys(r, c.map);
-    r.finish();
-  }
-  if (m.has("planner")) plannerKeys(m.sub("planner"), c.planner);
-}
-
-// The OctoMap map and grid planner keys shared by the grid-based methods.
-template <class Keys>
-void gridMapAndPlannerKeys(Keys& m, GridMapConfig& map, GridPlannerConfig& planner) {
-  if (m.has("map")) {
-    auto r = m.sub("map");
-    r.field("resolution_m", map.resolution_m);
-    r.field("max_range_m", map.max_range_m);
-    r.field("free_ray_length_m", map.free_ray_length_m);
-    r.field("prob_hit", map.prob_hit);
-    r.field("prob_miss", map.prob_miss);
-    r.field("clamp_min", map.clamp_min);
-    r.field("clamp_max", map.clamp_max);
-    r.field("insertion", map.insertion);
-    r.field("confidence_depth_gain_per_m", map.confidence_depth_gain_per_m);
-    r.finish();
-  }
-  if (m.has("planner")) {
-    auto r = m.sub("planner");
-    r.field("clearance_m", planner.clearance_m);
-    r.field("unknown_is_occupied", planner.unknown_is_occupied);
-    r.field("escape_radius_m", planner.escape_radius_m);
-    r.field("escape_clearance_m", planner.escape_clearance_m);
-    r.field("unknown_clearance_m", planner.unknown_clearance_m);
-    r.field("max_expansions", planner.max_expansions);
-    r.finish();
-  }
-}
-
-// Star discovery: the grid map and planner, the star and global-step parameters.
-template <class Keys>
-void starDiscoveryKeys(Keys& m, StarDiscoveryConfig& c) {
-  gridMapAndPlannerKeys(m, c.map, c.planner);
-  m.field("rays", c.rays);
-  m.field("heights", c.heights);
-  m.field("height_step_m", c.height_step_m);
-  m.field("max_ray_m", c.max_ray_m);
-  m.field("min_ray_m", c.min_ray_m);
-  m.field("candidates", c.candidates);
-  m.field("los_range_m", c.los_range_m);
-  m.field("look_around_step_deg", c.look_around_step_deg);
-  m.field("replan_period_s", c.replan_period_s);
-  m.field("transit_timeout_s", c.transit_timeout_s);
-  m.field("retry_period_s", c.retry_period_s);
-  pathCheckKeys(m, c);
-  takeoffKeys(m, c);
-}
-
-// The grid baseline: OctoMap insertion, A*, goals.
-template <class Keys>
-void gridRandomKeys(Keys& m, GridExplorerConfig& c) {
-  gridMapAndPlannerKeys(m, c.map, c.planner);
-  m.field("goal_period_s", c.goal_period_s);
-  m.field("goal_timeout_s", c.goal_timeout_s);
-  m.field("goal_square_m", c.goal_square_m);
-  m.field("goal_min_altitude_m", c.goal_min_altitude_m);
-  m.field("goal_ceiling_margin_m", c.goal_ceiling_margin_m);
-  m.field("replan_period_s", c.replan_period_s);
-  m.field("reach_distance_m", c.reach_distance_m);
-  pathCheckKeys(m, c);
-  takeoffKeys(m, c);
-}
-
-// The example method (core/baseline/hover_turn).
-template <class Keys>
-void hoverTurnKeys(Keys& m, HoverTurnConfig& c) {
-  m.field("takeoff_altitude_m", c.takeoff_altitude_m);
-  m.field("turn_step_deg", c.turn_step_deg);
-  m.field("land_altitude_m", c.land_altitude_m);
-  m.field("max_radius_m", c.max_radius_m);
-  m.field("margin_m", c.margin_m);
+  fieldKeys(m, c);  // map, planner
 }
 
 // A Python method's keys: entry and path, and `params`, a map passed through to its factory
 // (which validates it) — read as YAML text, written back as the same map.
 template <class Keys>
 void pythonMethodKeys(Keys& m, PythonMethodConfig& c) {
-  m.field("entry", c.entry);
-  m.field("path", c.path);
-  m.field("call_budget_s", c.call_budget_s);
+  fieldKeys(m, c);
   if constexpr (Keys::kReading) {
     if (m.has("params")) c.params_yaml = m.flowMap("params", "the method's own keys");
   } else {
@@ -311,7 +131,7 @@ MethodEntry methodEntry(const char* type, const char* summary, KeysFn keys, std:
 
 }  // namespace
 
-void readSphereMapKeys(MapReader& r, SphereMapConfig& c) { sphereMapKeys(r, c); }
+void readSphereMapKeys(MapReader& r, SphereMapConfig& c) { fieldKeys(r, c); }
 
 const std::vector<MethodEntry>& methodTable() {
   // One entry per method: explorer and config types, `method.type`, summary, keys, Table I rows.
@@ -332,7 +152,7 @@ const std::vector<MethodEntry>& methodTable() {
            {"urban", "vpb", 3697, 4175, 3}}),
       methodEntry<GridExplorer, GridExplorerConfig>(
           "grid_random", "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)",
-          [](auto& k, GridExplorerConfig& c) { gridRandomKeys(k, c); }, {"leaves", "goals_reached", "goals_chosen"},
+          [](auto& k, GridExplorerConfig& c) { fieldKeys(k, c); }, {"leaves", "goals_reached", "goals_chosen"},
           // Collisions (§V-C): one of the six urban runs (a metal rod); none in the cave.
           {{"urban", "", 1911, 2306, 6, 1},
            {"cave", "", 3171, 3375, 3, 0},
@@ -340,11 +160,11 @@ const std::vector<MethodEntry>& methodTable() {
            {"sparse", "", 2108, 2168, 3}}),
       methodEntry<StarDiscoveryExplorer, StarDiscoveryConfig>(
           "star_discovery", "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
-          [](auto& k, StarDiscoveryConfig& c) { starDiscoveryKeys(k, c); },
+          [](auto& k, StarDiscoveryConfig& c) { fieldKeys(k, c); },
           {"leaves", "stars", "interesting_cells", "goals_reached"}),
       methodEntry<HoverTurnExplorer, HoverTurnConfig>(
           "hover_turn", "example method: take off, turn once, descend (a template for new methods)",
-          [](auto& k, HoverTurnConfig& c) { hoverTurnKeys(k, c); }, {"turn_steps", "points_seen"}),
+          [](auto& k, HoverTurnConfig& c) { fieldKeys(k, c); }, {"turn_steps", "points_seen"}),
       methodEntry<PythonMethodStub, PythonMethodConfig>(
           kPythonMethodType, "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)",
           [](auto& k, PythonMethodConfig& c) { pythonMethodKeys(k, c); }, {}),
@@ -376,7 +196,7 @@ void writeMethod(MapWriter& w, const MethodChoice& method) {
   e->write(method.config, w);
 }
 
-std::string methodDefaultsYaml(const std::string& type) {
+std::string methodDefaultsYaml(const std::string& type, std::shared_ptr<MapWriter::KeyLog> log) {
   // A `method:` section that names only the type: every other key takes its default.
   struct MethodSection {
     MethodChoice choice;
@@ -389,7 +209,7 @@ std::string methodDefaultsYaml(const std::string& type) {
     s.choice = readMethod(r.sub("method"));
     r.finish();
   });
-  MapWriter w{YAML::Node(YAML::NodeType::Map)};
+  MapWriter w{YAML::Node(YAML::NodeType::Map), std::move(log)};
   MapWriter m = w.sub("method");
   writeMethod(m, section.choice);
   return yamlText(w.node());

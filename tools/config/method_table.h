@@ -9,6 +9,7 @@
 
 #include <any>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,8 @@ void writeMethod(MapWriter& w, const MethodChoice& method);
 
 /// Every key of method `type` with its default, as the YAML of a scenario's `method:` section
 /// (`msbench methods`). Throws ConfigError for an unknown type (naming the known ones).
-std::string methodDefaultsYaml(const std::string& type);
+/// With `log`, each key's accepted values are also recorded there (paths "method.KEY").
+std::string methodDefaultsYaml(const std::string& type, std::shared_ptr<MapWriter::KeyLog> log = nullptr);
 
 /// The MonoSpheres mapper keys (shared with map-replay's --set map.KEY=VALUE); the caller
 /// finishes the reader.

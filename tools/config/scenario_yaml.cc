@@ -8,6 +8,7 @@
 
 #include "core/common/config_check.h"
 #include "core/common/rng.h"
+#include "tools/config/field_keys.h"
 #include "tools/config/flight_keys.h"
 #include "tools/config/flight_yaml.h"
 #include "tools/config/method_table.h"
@@ -189,23 +190,10 @@ void checkPresetSet(const YAML::Node& files, const std::string& kv, const std::v
                      ", which would override the preset's values; give them with --set too, or remove them");
 }
 
-template <class Keys>
-void missionKeys(Keys r, MissionSettings& m) {
-  r.field("map_rate_hz", m.map_rate_hz);
-  r.field("planning_rate_hz", m.planning_rate_hz);
-  r.field("metric_rate_hz", m.metric_rate_hz);
-  r.field("trajectory_rate_hz", m.trajectory_rate_hz);
-  r.field("write_map_ply", m.write_map_ply);
-  r.field("progress", m.progress);
-  r.finish();
-}
-
-template <class Keys>
-void videoKeys(Keys r, VideoSettings& v) {
-  r.field("enabled", v.enabled);
-  r.field("speedup", v.speedup);
-  r.field("fps", v.fps);
-  r.field("height", v.height);
+// The mission and video sections: their tables.
+template <class Keys, class Section>
+void sectionKeys(Keys r, Section& section) {
+  fieldKeys(r, section);
   r.finish();
 }
 
@@ -232,8 +220,8 @@ void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
     b.finish();
     s.exploration_box = box;
   }
-  if (r.has("mission")) missionKeys(r.sub("mission"), s.mission);
-  if (r.has("video")) videoKeys(r.sub("video"), s.video);
+  if (r.has("mission")) sectionKeys(r.sub("mission"), s.mission);
+  if (r.has("video")) sectionKeys(r.sub("video"), s.video);
   if (r.has("goals")) s.goals = readGoals(r.sub("goals"));
   r.finish();
 }
@@ -307,8 +295,8 @@ SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets) {
   });
 }
 
-std::string effectiveScenarioYaml(const ScenarioSpec& spec) {
-  MapWriter w{YAML::Node(YAML::NodeType::Map)};
+std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapWriter::KeyLog> log) {
+  MapWriter w{YAML::Node(YAML::NodeType::Map), std::move(log)};
   w.field("name", spec.name);
   writeFlightKeys(w, spec.flight, !spec.start_from_world);
   MapWriter m = w.sub("method");
@@ -319,9 +307,9 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec) {
     b.field("max", spec.exploration_box->max);
   }
   MissionSettings mission = spec.mission;
-  missionKeys(w.sub("mission"), mission);
+  sectionKeys(w.sub("mission"), mission);
   VideoSettings video = spec.video;
-  videoKeys(w.sub("video"), video);
+  sectionKeys(w.sub("video"), video);
   if (spec.goals) {
     MapWriter g = w.sub("goals");
     g.field("entry", spec.goals->entry);

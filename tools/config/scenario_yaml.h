@@ -4,10 +4,12 @@
 // types and bad values fail with the file and the key named.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/map/sphere_map.h"
+#include "tools/config/yaml_writer.h"
 #include "tools/loop/scenario_spec.h"
 
 namespace msb {
@@ -25,7 +27,8 @@ SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets);
 /// loading the text gives the same ScenarioSpec (and running it the same run). The world is
 /// written as named (a world name, or the MJCF file with its absolute path); `start` only if
 /// the scenario gave one (else the generated world's start applies).
-std::string effectiveScenarioYaml(const ScenarioSpec& spec);
+/// With `log`, each key's accepted values are also recorded there (`msbench keys`).
+std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapWriter::KeyLog> log = nullptr);
 
 /// The benchmark's side of a scenario (docs/metrics.md, "Fixed settings"): the effective YAML
 /// without what a method or a run chooses — `name`, `seed`, `method`, `goals`, `video`,

@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <string>
 #include <type_traits>
 
@@ -33,6 +35,18 @@ class MapWriter {
 
   explicit MapWriter(YAML::Node node) : node_(std::move(node)) {}
 
+  /// What one key accepts: the rule's text ("> 0", "in [1, 50]", "klt or oracle") and a YAML
+  /// value it refuses ("" if it refuses none of its type).
+  struct KeyRule {
+    std::string accepts;
+    std::string refused_value;
+  };
+  /// Each key's rule by its dotted path ("method.map.r_max_m").
+  using KeyLog = std::map<std::string, KeyRule>;
+  /// A writer that also logs the accepted values of the keys written through key tables.
+  MapWriter(YAML::Node node, std::shared_ptr<KeyLog> log, std::string path = "")
+      : node_(std::move(node)), log_(std::move(log)), path_(std::move(path)) {}
+
   bool has(const std::string&) const { return true; }
   template <class T>
   bool field(const std::string& key, const T& value) {
@@ -44,7 +58,11 @@ class MapWriter {
   /// The writer of the nested map at `key` (created).
   MapWriter sub(const std::string& key) {
     node_[key] = YAML::Node(YAML::NodeType::Map);
-    return MapWriter(node_[key]);
+    return MapWriter(node_[key], log_, path_ + key + ".");
+  }
+  /// Logs what `key` accepts (a key table's Limits or Choices), if this writer keeps a log.
+  void noteRule(const std::string& key, KeyRule rule) {
+    if (log_) (*log_)[path_ + key] = std::move(rule);
   }
   void refuse(const std::string&, const std::string&) const {}
   /// The key as named in messages (a writer has no path prefix).
@@ -67,6 +85,8 @@ class MapWriter {
  private:
   static YAML::Node numbers(const double* v, size_t n);
   YAML::Node node_;
+  std::shared_ptr<KeyLog> log_;  // null: no log
+  std::string path_;             // "a.b." of this map, for the log
 };
 
 /// The text of a written tree (block style, lists of numbers in flow style).

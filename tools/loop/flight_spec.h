@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/common/messages.h"
 #include "core/perception/feature_tracker.h"
 #include "core/perception/frontend_degradation.h"
@@ -30,6 +30,15 @@ struct CameraStreamConfig {
   double rate_hz = 15.0;             ///< render rate (first tick at or after each period)
   int save_every_n = 15;             ///< write every N-th rendered frame as PNG (0 = none)
 
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("enabled", s.enabled);
+    v.key("rate_hz", s.rate_hz, Limits::range(0.1, 500.0));
+    v.key("save_every_n", s.save_every_n, Limits::nonNegative());
+    v.key("renderer", s.renderer, Choices{"fisheye", "blank"});
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
@@ -49,6 +58,18 @@ struct PerceptionConfig {
   /// second thread while the loop renders the next frame. Same results either way (the latency
   /// fixes when results are used); needs latency_frames ≥ 1.
   int threads = 1;
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("enabled", s.enabled);
+    v.key("source", s.source, Choices{"klt", "oracle"});
+    v.group("oracle", s.oracle);
+    v.key("lost_min_tracks", s.lost_min_tracks, Limits::range(0, 10000));
+    v.key("lost_after_s", s.lost_after_s, Limits::positive());
+    v.key("latency_frames", s.latency_frames, Limits::range(0, 30));
+    v.key("threads", s.threads, Limits::range(1, 2));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
@@ -77,6 +98,29 @@ struct FlightSpec {
   FeatureTrackerConfig tracker;              ///< feature tracker
   SlamPointsConfig slam_points;              ///< triangulation
   FrontendDegradationConfig frontend;        ///< degradation axes of the front end (off by default)
+
+  /// The keys of a flight's sections, each once with the values it accepts (`world`, `start` and `trajectory.waypoints`
+  /// are read in tools/config).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("seed", s.seed, Limits::nonNegative());
+    v.key("duration_s", s.duration_s, Limits::range(0.01, 36000.0));
+    v.key("hold_after_s", s.hold_after_s, Limits::nonNegative());
+    v.key("controller_hz", s.controller_hz, Limits::range(50.0, 5000.0));
+    v.group("trajectory", s.trajectory);
+    v.group("physics", s.physics);
+    v.group("controller", s.controller);
+    v.group("imu", s.imu);
+    v.group("camera", s.camera);
+    v.group("render", s.render);
+    v.group("conditions", s.render.conditions);
+    v.group("camera_stream", s.camera_stream);
+    v.group("vio_drift", s.vio_drift);
+    v.group("perception", s.perception);
+    v.group("tracker", s.tracker);
+    v.group("slam_points", s.slam_points);
+    v.group("frontend", s.frontend);
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

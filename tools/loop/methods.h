@@ -14,7 +14,7 @@
 #include <utility>
 
 #include "core/camera/fisheye_camera.h"
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/explorer/explorer.h"
 #include "core/planning/monospheres_explorer.h"
 
@@ -81,13 +81,22 @@ struct PythonMethodConfig {
   std::string params_yaml = "{}";  ///< the method's own keys (a YAML map), the factory's keyword arguments
   double call_budget_s = 60.0;     ///< wall-clock seconds each call of its process may take (a method only)
 
+  /// A method's keys, each once (`params` is read in tools/config; a goal chooser reads entry,
+  /// path and params only).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("entry", s.entry);
+    v.key("path", s.path);
+    v.key("call_budget_s", s.call_budget_s, Limits::range(0.1, 86400.0));
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const {
+    checkFields(*this, c);
     const auto colon = entry.find(':');
     c.require(colon != std::string::npos && colon > 0 && colon + 1 < entry.size() &&
                   entry.find(':', colon + 1) == std::string::npos,
               "entry", "must be \"package.module:factory\", got '" + entry + "'");
-    c.require(call_budget_s >= 0.1 && call_budget_s <= 86400.0, "call_budget_s", "must be in [0.1, 86400] s");
   }
 };
 

@@ -16,17 +16,10 @@ FlightSpec missionFlightDefaults() {
   return f;
 }
 
-void MissionSettings::validate(ConfigChecker& c) const {
-  c.inRange("map_rate_hz", map_rate_hz, 0.1, 100.0);
-  c.inRange("planning_rate_hz", planning_rate_hz, 0.1, 100.0);
-  c.inRange("metric_rate_hz", metric_rate_hz, 0.01, 100.0);
-  c.inRange("trajectory_rate_hz", trajectory_rate_hz, 0.1, 500.0);
-}
+void MissionSettings::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 void VideoSettings::validate(ConfigChecker& c) const {
-  c.inRange("speedup", speedup, 0.1, 1000.0);
-  c.inRange("fps", fps, 1, 60);
-  c.inRange("height", height, 240, 2160);
+  checkFields(*this, c);
   c.require(height % 2 == 0, "height", "must be even (the encoder's 4:2:0 chroma), got " + std::to_string(height));
 }
 

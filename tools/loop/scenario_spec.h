@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/common/aabb.h"
+#include "core/common/config_fields.h"
 #include "tools/loop/flight_spec.h"
 #include "tools/loop/methods.h"
 
@@ -23,6 +24,17 @@ struct MissionSettings {
   bool write_map_ply = true;         ///< final map as map.ply
   bool progress = true;              ///< progress line on stderr
 
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("map_rate_hz", s.map_rate_hz, Limits::range(0.1, 100.0));
+    v.key("planning_rate_hz", s.planning_rate_hz, Limits::range(0.1, 100.0));
+    v.key("metric_rate_hz", s.metric_rate_hz, Limits::range(0.01, 100.0));
+    v.key("trajectory_rate_hz", s.trajectory_rate_hz, Limits::range(0.1, 500.0));
+    v.key("write_map_ply", s.write_map_ply);
+    v.key("progress", s.progress);
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
@@ -34,6 +46,15 @@ struct VideoSettings {
   double speedup = 10;   ///< simulated seconds per second of video
   int fps = 10;          ///< frames per second of video
   int height = 720;      ///< frame height in pixels (even; the width follows the box)
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("enabled", s.enabled);
+    v.key("speedup", s.speedup, Limits::range(0.1, 1000.0));
+    v.key("fps", s.fps, Limits::range(1, 60));
+    v.key("height", s.height, Limits::range(240, 2160));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "tools/config/key_reference.h"
 #include "tools/config/method_table.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
@@ -50,6 +51,16 @@ int runMethodsCommand(int argc, char** argv) {
     return kExitOk;
   }
   for (const MethodEntry& e : methodTable()) printMethod(e, args.has("keys"));
+  return kExitOk;
+}
+
+int runKeysCommand(int argc, char** argv) {
+  ArgParser args("msbench keys",
+                 "Every configuration key a scenario may set (flight, sensors, front end, mission, video,\n"
+                 "and each method's method: section), its default and the values it accepts, as the\n"
+                 "Markdown of docs/keys.md. Generated from the key tables that validate, read and write them.");
+  if (!args.parse(argc, argv)) return kExitOk;
+  std::fputs(keyReferenceMarkdown().c_str(), stdout);
   return kExitOk;
 }
 

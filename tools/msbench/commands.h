@@ -8,6 +8,8 @@ namespace msb {
 int runRunCommand(int argc, char** argv);
 /// `msbench methods [--type T] [--keys]`: the registered methods and their keys.
 int runMethodsCommand(int argc, char** argv);
+/// msbench keys: every configuration key with its default and accepted values (docs/keys.md).
+int runKeysCommand(int argc, char** argv);
 /// `msbench video RUN`: the video of a finished run, from a replay of its config.yaml.
 int runVideoCommand(int argc, char** argv);
 /// `msbench sweep SWEEP.yaml --out DIR [--jobs N]`: many runs in parallel processes, resumable.

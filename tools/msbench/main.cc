@@ -28,6 +28,7 @@ constexpr Command kCommands[] = {
     {"run", msb::runRunCommand, "run one exploration mission from a scenario; write results"},
     {"video", msb::runVideoCommand, "add video.mp4 to a finished run (replays it; the hash must match)"},
     {"methods", msb::runMethodsCommand, "the registered exploration methods, their Table I rows and keys"},
+    {"keys", msb::runKeysCommand, "every configuration key, its default and the values it accepts"},
     {"sweep", msb::runSweepCommand, "run a sweep file's runs (axes x seeds) in parallel processes; resumable"},
     {"report", msb::runReportCommand, "Table I layout, CSV and figures of a sweep directory"},
     {"regress", msb::runRegressCommand, "compare a sweep with a golden (exact on the same machine, else a band)"},

@@ -5,13 +5,7 @@
 
 namespace msb {
 
-void HoverTurnConfig::validate(ConfigChecker& c) const {
-  c.inRange("takeoff_altitude_m", takeoff_altitude_m, 0.3, 50.0);
-  c.inRange("turn_step_deg", turn_step_deg, 1.0, 180.0);
-  c.inRange("land_altitude_m", land_altitude_m, 0.1, 50.0);
-  c.positive("max_radius_m", max_radius_m);
-  c.nonNegative("margin_m", margin_m);
-}
+void HoverTurnConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
 
 HoverTurnExplorer::HoverTurnExplorer(const HoverTurnConfig& config, const ExplorerContext& context)
     : config_(checkValid(config)),

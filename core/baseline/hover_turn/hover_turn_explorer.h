@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/explorer/counters.h"
 #include "core/explorer/explorer.h"
 
@@ -26,6 +26,16 @@ struct HoverTurnConfig {
   double land_altitude_m = 0.3;     ///< final hover height above the start
   double max_radius_m = 5.0;        ///< cap of the free-space sphere
   double margin_m = 0.5;            ///< kept between the sphere and the nearest point
+
+  /// The keys, each once with the values it accepts (core/common/config_fields.h).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("takeoff_altitude_m", s.takeoff_altitude_m, Limits::range(0.3, 50.0));
+    v.key("turn_step_deg", s.turn_step_deg, Limits::range(1.0, 180.0));
+    v.key("land_altitude_m", s.land_altitude_m, Limits::range(0.1, 50.0));
+    v.key("max_radius_m", s.max_radius_m, Limits::positive());
+    v.key("margin_m", s.margin_m, Limits::nonNegative());
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -32,12 +32,12 @@ TEST(Takeoff, ClimbsThenFliesAheadOncePerLegAndWaitsForEach) {
 TEST(Takeoff, ConfigValidationNamesEachBadKey) {
   TakeoffConfig c;
   ConfigChecker ok("takeoff");
-  c.validateTakeoff(ok);
+  checkFields(c, ok);
   EXPECT_TRUE(ok.issues().empty());
   c.takeoff_altitude_m = 0.1;  // below the 0.3 m floor
   c.start_forward_m = -1.0;
   ConfigChecker bad("takeoff");
-  c.validateTakeoff(bad);
+  checkFields(c, bad);
   EXPECT_EQ(bad.issues().size(), 2u);
 }
 
