@@ -48,8 +48,7 @@ bool Choices::holds(const std::string& word) const {
 
 std::string Choices::text() const {
   std::string t;
-  for (size_t i = 0; i < words.size(); ++i)
-    t += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+  for (size_t i = 0; i < words.size(); ++i) t += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
   return t;
 }
 

@@ -124,6 +124,29 @@ TEST(Architecture, TheExampleMethodUsesTheInterfaceAlone) {
   for (const auto& [path, text] : cmakeFiles(dir)) EXPECT_FALSE(std::regex_search(text, link)) << path;
 }
 
+// A method is its folder: the example method registers itself from core/baseline/hover_turn/
+// (hover_turn_method.cc), so no code outside the folder names it — no central table, no
+// CMake list (comments aside).
+TEST(Architecture, NoCodeOutsideTheExampleMethodsFolderNamesIt) {
+  const std::regex named(R"(^\s*[^/\s].*(HoverTurn|"hover_turn"))");
+  EXPECT_TRUE(std::regex_search("  methodEntry<HoverTurnExplorer, HoverTurnConfig>(", named));
+  EXPECT_FALSE(std::regex_search("//   registerMethod<HoverTurnExplorer, HoverTurnConfig>(", named));
+  const fs::path folder = fs::path(MSB_SOURCE_DIR) / "core" / "baseline" / "hover_turn";
+  int files = 0;
+  for (const char* top : {"core", "sim", "tools"}) {
+    for (const auto& hit : matchingLines(fs::path(MSB_SOURCE_DIR) / top, named, &files)) {
+      if (hit.rfind(folder.string(), 0) != 0) ADD_FAILURE() << hit;
+    }
+  }
+  EXPECT_GT(files, 100);
+  for (const char* top : {"core", "sim", "tools", "cmake"}) {
+    for (const auto& [path, text] : cmakeFiles(fs::path(MSB_SOURCE_DIR) / top)) {
+      if (path.string().rfind(folder.string(), 0) == 0) continue;
+      EXPECT_EQ(text.find("hover_turn"), std::string::npos) << path;
+    }
+  }
+}
+
 TEST(Architecture, SimHasNoMappingOrPlanningAndTheLoopNoYaml) {
   const std::regex mapping(R"(^\s*#\s*include\s*"core/(map|planning|perception|eval)/)");
   for (const auto& hit : matchingLines(fs::path(MSB_SOURCE_DIR) / "sim", mapping)) ADD_FAILURE() << hit;

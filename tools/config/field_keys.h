@@ -61,7 +61,8 @@ class FieldKeys {
     if constexpr (std::is_same_v<T, Vec2>) return "[" + one + ", " + one + "]";
     if constexpr (std::is_same_v<T, Vec3> || std::is_same_v<T, std::array<double, 3>>)
       return "[" + one + ", " + one + ", " + one + "]";
-    if constexpr (std::is_same_v<T, std::array<double, 4>>) return "[" + one + ", " + one + ", " + one + ", " + one + "]";
+    if constexpr (std::is_same_v<T, std::array<double, 4>>)
+      return "[" + one + ", " + one + ", " + one + ", " + one + "]";
     return one;
   }
   Keys& k_;

@@ -112,8 +112,9 @@ std::string keyReferenceMarkdown() {
   for (const KeyRow& r : keyReference()) {
     if (r.section != section) {
       section = r.section;
-      out += "\n## " + (section == "scenario" ? std::string("Scenario (flight, sensors, front end, mission, video)")
-                                              : "`" + section + "`") +
+      out += "\n## " +
+             (section == "scenario" ? std::string("Scenario (flight, sensors, front end, mission, video)")
+                                    : "`" + section + "`") +
              "\n\n| key | default | accepts |\n| --- | --- | --- |\n";
     }
     out += "| `" + r.key + "` | " + (r.default_value.empty() ? "" : "`" + r.default_value + "`") + " | " +

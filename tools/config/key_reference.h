@@ -11,12 +11,12 @@ namespace msb {
 
 /// One key of the reference.
 struct KeyRow {
-  std::string section;         ///< "scenario" or "method.type: TYPE"
-  std::string key;             ///< dotted path, e.g. "physics.vehicle.mass_kg", "method.map.r_max_m"
-  std::string default_value;   ///< as written in config.yaml ("" for keys without a default)
-  std::string accepts;         ///< the values it accepts ("" if no rule says: a number without one)
-  std::string refused_value;   ///< a YAML value the key refuses ("" if none of its type is)
-  bool from_table = true;      ///< false: read outside the key tables (a name, a list, a preset)
+  std::string section;        ///< "scenario" or "method.type: TYPE"
+  std::string key;            ///< dotted path, e.g. "physics.vehicle.mass_kg", "method.map.r_max_m"
+  std::string default_value;  ///< as written in config.yaml ("" for keys without a default)
+  std::string accepts;        ///< the values it accepts ("" if no rule says: a number without one)
+  std::string refused_value;  ///< a YAML value the key refuses ("" if none of its type is)
+  bool from_table = true;     ///< false: read outside the key tables (a name, a list, a preset)
 };
 
 /// Every key: the scenario's (flight, mission, video), then each registered method's.

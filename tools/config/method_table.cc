@@ -6,8 +6,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/baseline/grid_explorer.h"
-#include "core/baseline/hover_turn/hover_turn_explorer.h"
 #include "core/baseline/star_discovery_explorer.h"
+#include "core/explorer/method_registry.h"
 #include "core/planning/monospheres_explorer.h"
 
 namespace msb {
@@ -129,6 +129,66 @@ MethodEntry methodEntry(const char* type, const char* summary, KeysFn keys, std:
   return e;
 }
 
+// A registered method's key table over a MapReader or MapWriter (through the virtual visitor).
+template <class Keys>
+class YamlKeyVisitor final : public KeyVisitor {
+ public:
+  explicit YamlKeyVisitor(Keys& k) : k_(k), f_(k) {}
+  void key(const char* n, double& v, const Limits& l) override { f_.key(n, v, l); }
+  void key(const char* n, int& v, const Limits& l) override { f_.key(n, v, l); }
+  void key(const char* n, uint64_t& v, const Limits& l) override { f_.key(n, v, l); }
+  void key(const char* n, Vec2& v, const Limits& l) override { f_.key(n, v, l); }
+  void key(const char* n, Vec3& v, const Limits& l) override { f_.key(n, v, l); }
+  void key(const char* n, std::array<double, 3>& v, const Limits& l) override { f_.key(n, v, l); }
+  void key(const char* n, std::array<double, 4>& v, const Limits& l) override { f_.key(n, v, l); }
+  void key(const char* n, bool& v) override { f_.key(n, v); }
+  void key(const char* n, std::string& v) override { f_.key(n, v); }
+  void key(const char* n, std::string& v, const Choices& c) override { f_.key(n, v, c); }
+  void group(const char* n, const std::function<void(KeyVisitor&)>& body) override {
+    if (!k_.has(n)) return;
+    auto sub = k_.sub(n);
+    YamlKeyVisitor<decltype(sub)> inner(sub);
+    body(inner);
+    sub.finish();
+  }
+  void moved(const char* n, const char* where) override { f_.moved(n, where); }
+
+ private:
+  Keys& k_;
+  FieldKeys<Keys> f_;
+};
+
+// The method-table entry of a method that registered itself from its folder: its keys through
+// its config's table, validated with their `method.` names, its explorer from the registration.
+MethodEntry registeredEntry(const MethodRegistration& reg) {
+  MethodEntry e;
+  e.type = reg.info.type.c_str();
+  e.summary = reg.info.summary.c_str();
+  e.progress_counters = reg.info.progress_counters;
+  e.read = [&reg](MapReader& m) {
+    std::any config = reg.default_config();
+    YamlKeyVisitor<MapReader> v(m);
+    reg.keys(config, v);
+    m.finish();
+    ConfigChecker checker("method.");
+    reg.validate(config, checker);
+    if (!checker.issues().empty()) throw ConfigError(checker.issues());
+    MethodChoice choice;
+    choice.type = reg.info.type;
+    choice.config = config;
+    choice.make = [&reg, config](const FisheyeCamera& camera, const ExplorerContext& context) {
+      return reg.make(config, camera, context);
+    };
+    return choice;
+  };
+  e.write = [&reg](const std::any& config, MapWriter& w) {
+    std::any c = config;
+    YamlKeyVisitor<MapWriter> v(w);
+    reg.keys(c, v);
+  };
+  return e;
+}
+
 }  // namespace
 
 void readSphereMapKeys(MapReader& r, SphereMapConfig& c) { fieldKeys(r, c); }
@@ -162,14 +222,24 @@ const std::vector<MethodEntry>& methodTable() {
           "star_discovery", "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
           [](auto& k, StarDiscoveryConfig& c) { fieldKeys(k, c); },
           {"leaves", "stars", "interesting_cells", "goals_reached"}),
-      methodEntry<HoverTurnExplorer, HoverTurnConfig>(
-          "hover_turn", "example method: take off, turn once, descend (a template for new methods)",
-          [](auto& k, HoverTurnConfig& c) { fieldKeys(k, c); }, {"turn_steps", "points_seen"}),
       methodEntry<PythonMethodStub, PythonMethodConfig>(
           kPythonMethodType, "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)",
           [](auto& k, PythonMethodConfig& c) { pythonMethodKeys(k, c); }, {}),
   };
-  return table;
+  // Then every method registered from its own folder (core/explorer/method_registry.h), by type;
+  // the registrations outlive the table, which points into them.
+  static const std::vector<MethodRegistration> registered = registeredMethods();
+  static const std::vector<MethodEntry> all = [] {
+    std::vector<MethodEntry> t = table;
+    for (const auto& reg : registered) {
+      for (const auto& built_in : table)
+        if (reg.info.type == built_in.type)
+          throw std::logic_error("method type '" + reg.info.type + "' is registered twice");
+      t.push_back(registeredEntry(reg));
+    }
+    return t;
+  }();
+  return all;
 }
 
 const MethodEntry* findMethod(const std::string& type) {

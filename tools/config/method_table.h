@@ -3,8 +3,9 @@
 // function serves both; strict: keys of another method are unknown keys), the factory (through
 // methodChoice<Explorer>() of tools/loop/methods.h) and the Table I rows it answers to. How a
 // method's free space is drawn and scored comes from its free-space geometry, not its name.
-// Adding a method: its folder (core/baseline/<method>/ with a CMakeLists.txt calling
-// msb_add_method) and one entry in method_table.cc (docs/architecture.md, "Adding a method").
+// The paper's methods and `python` are listed here; any other method registers itself from its
+// own folder (core/explorer/method_registry.h) and is appended to the table by type
+// (docs/architecture.md, "How to add an exploration method").
 #pragma once
 
 #include <any>

@@ -34,12 +34,12 @@ TEST(KeyReference, ListsTheKeysOfEverySectionAndEveryMethod) {
     keys.insert(r.key);
     sections.insert(r.section);
   }
-  for (const char* k : {"duration_s", "physics.vehicle.mass_kg", "trajectory.limits.max_speed_mps", "camera.fx_px",
-                        "conditions.fog_end_m", "frontend.mistrack_px", "perception.oracle.max_tracks",
-                        "mission.map_rate_hz", "video.fps", "method.map.ovde_params.grid",
-                        "method.planner.safety.r_safe_m", "method.planner.check_ahead_m", "method.switches.ovde",
-                        "method.reference_code.path_resend_8s", "method.goal_period_s", "method.turn_step_deg",
-                        "method.call_budget_s", "world", "exploration_box.min"})
+  for (const char* k :
+       {"duration_s", "physics.vehicle.mass_kg", "trajectory.limits.max_speed_mps", "camera.fx_px",
+        "conditions.fog_end_m", "frontend.mistrack_px", "perception.oracle.max_tracks", "mission.map_rate_hz",
+        "video.fps", "method.map.ovde_params.grid", "method.planner.safety.r_safe_m", "method.planner.check_ahead_m",
+        "method.switches.ovde", "method.reference_code.path_resend_8s", "method.goal_period_s", "method.turn_step_deg",
+        "method.call_budget_s", "world", "exploration_box.min"})
     EXPECT_TRUE(keys.count(k)) << k;
   for (const char* s : {"scenario", "method.type: monospheres", "method.type: grid_random",
                         "method.type: star_discovery", "method.type: hover_turn", "method.type: python"})
