@@ -276,7 +276,10 @@ void evaluateCollisionsLate(const Finding& f, const SweepResults& results, const
   for (const ReportRun& run : results.runs) {
     const nlohmann::json& m = run.metrics;
     if (!run.record || run.record->world != f.world) continue;
-    if (std::find(f.methods.begin(), f.methods.end(), reportMethodName(m)) == f.methods.end()) continue;
+    // The method as named with its switches, the published code's label ("+published") aside:
+    // the finding is about the method under either code.
+    const std::string name = reportMethodName(m);
+    if (std::find(f.methods.begin(), f.methods.end(), name.substr(0, name.find(" +"))) == f.methods.end()) continue;
     ++runs;
     if (run.record->status != RunStatus::kCollided) continue;
     ++crashes;

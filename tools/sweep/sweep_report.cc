@@ -427,15 +427,21 @@ std::string tableOneSection(const SweepResults& results, const std::vector<Repor
     << " resamples, fixed seed; docs/sweeps.md, \"Intervals and verdicts\"). Crashes: runs ended by "
        "a collision, k/n with the Wilson 95 % interval of the rate"
     << "; the paper's count where §V-C gives it, with Fisher's exact p of the two counts.\n\n";
-  o << tableHead(results, {"method type", "runs", "mean A (m²) [95 % CI]", "max A (m²)", "paper mean A", "paper max A",
-                           "earned (m³)", "crashes [95 % CI]", "paper crashes (p)"});
+  // The earned score beside A when the runs recorded it (runs before it existed: no column).
+  const bool earned = std::any_of(rows.begin(), rows.end(), [](const ReportRow& r) { return r.earned_m3.count > 0; });
+  std::vector<std::string> head = {"method type", "runs",         "mean A (m²) [95 % CI]",
+                                   "max A (m²)",  "paper mean A", "paper max A"};
+  if (earned) head.push_back("earned (m³)");
+  head.insert(head.end(), {"crashes [95 % CI]", "paper crashes (p)"});
+  o << tableHead(results, head);
   for (const ReportRow& r : rows) {
     o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
     if (r.complete < r.runs) o << " of " << r.runs;
     o << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—")
       << " | " << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | "
-      << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—") << " | " << intervalCell(r.earned_m3, r.complete, 0)
-      << " | " << (r.complete ? collisionCell(r) : "—") << " | " << paperCollisionCell(r) << " |\n";
+      << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "—") << " | "
+      << (earned ? intervalCell(r.earned_m3, r.complete, 0) + " | " : "") << (r.complete ? collisionCell(r) : "—")
+      << " | " << paperCollisionCell(r) << " |\n";
   }
   return o.str();
 }

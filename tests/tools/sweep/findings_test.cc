@@ -196,6 +196,16 @@ TEST(Findings, MonoSpheresUrbanCollisionsAfterTheMajorityOfTheBox) {
             "against the paper's p = 1.000");
 }
 
+TEST(Findings, CollisionsLateCountsTheMethodUnderThePublishedCodeToo) {
+  ReportRun published = madeRun("urban", "monospheres", "", 4000, "textureless", 0.7);
+  published.metrics["reference_code"] = {{"path_resend_8s", true}, {"pinhole_rays", true}};
+  published.record = missionRecordOf(published.metrics, published.id + "/metrics.json").record;
+  const auto r = check("urban_collisions_late", {published, madeRun("urban", "monospheres", "", 4000)});
+  EXPECT_EQ(r.status, "holds");
+  ReportRun ablated = madeRun("urban", "monospheres", "vpb", 4000, "textureless", 0.2);
+  EXPECT_EQ(check("urban_collisions_late", {ablated}).status, "n/a");  // an ablation is not the method
+}
+
 TEST(Findings, TheMarkdownAndCsvCarryEveryFinding) {
   SweepResults s;
   s.axes = {"world", "method"};
