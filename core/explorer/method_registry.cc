@@ -15,8 +15,7 @@ std::vector<MethodRegistration>& registry() {
 
 void addMethodRegistration(MethodRegistration r) {
   for (const auto& m : registry())
-    if (m.info.type == r.info.type)
-      throw std::logic_error("method type '" + r.info.type + "' is registered twice");
+    if (m.info.type == r.info.type) throw std::logic_error("method type '" + r.info.type + "' is registered twice");
   registry().push_back(std::move(r));
 }
 

@@ -76,8 +76,8 @@ struct MethodInfo {
 /// A registered method: its info and its config and explorer, type-erased.
 struct MethodRegistration {
   MethodInfo info;
-  std::function<std::any()> default_config;                         ///< the config with its defaults
-  std::function<void(std::any& config, KeyVisitor& keys)> keys;     ///< visits the config's key table
+  std::function<std::any()> default_config;                                ///< the config with its defaults
+  std::function<void(std::any& config, KeyVisitor& keys)> keys;            ///< visits the config's key table
   std::function<void(const std::any& config, ConfigChecker& c)> validate;  ///< the config's validate()
   /// Builds the explorer from a (validated) config.
   std::function<std::unique_ptr<Explorer>(const std::any& config, const FisheyeCamera& camera,

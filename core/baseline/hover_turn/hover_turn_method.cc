@@ -7,7 +7,8 @@ namespace msb {
 
 /// Registered before main() (the library is linked whole: docs/architecture.md).
 const MethodRegistrar kHoverTurnMethod = registerMethod<HoverTurnExplorer, HoverTurnConfig>(
-    {"hover_turn", "example method: take off, turn once, descend (a template for new methods)",
+    {"hover_turn",
+     "example method: take off, turn once, descend (a template for new methods)",
      {"turn_steps", "points_seen"}});
 
 }  // namespace msb

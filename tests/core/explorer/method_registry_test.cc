@@ -47,7 +47,9 @@ class Recorder final : public KeyVisitor {
   void key(const char* n, std::array<double, 4>&, const Limits& l) override { seen[n] = l.text(); }
   void key(const char* n, bool&) override { seen[n] = "flag"; }
   void key(const char* n, std::string&) override { seen[n] = "text"; }
-  void key(const char* n, std::string& v, const Choices& c) override { seen[n] = c.text(), v = std::string("b"); }  // (not = "b": GCC 12 -Wrestrict)
+  void key(const char* n, std::string& v, const Choices& c) override {
+    seen[n] = c.text(), v = std::string("b");
+  }  // (not = "b": GCC 12 -Wrestrict)
   void group(const char* n, const std::function<void(KeyVisitor&)>& body) override {
     seen[n] = "group";
     body(*this);
