@@ -20,6 +20,7 @@ struct OutsideKey {
 };
 const OutsideKey kOutsideKeys[] = {
     {"name", "text (default: the file's name)"},
+    {"suite", "a directory of published runs the run is for, e.g. results/table1 (docs/sweeps.md, \"Suites\")"},
     {"base", "a scenario file whose keys this file overrides (relative to this file)"},
     {"world", "a world name (msbench world list) or an MJCF file (.xml, relative to this file)"},
     {"start.position", "[x, y, z] in m (default: the world's start)"},

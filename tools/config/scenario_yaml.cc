@@ -209,6 +209,7 @@ PythonMethodConfig readGoals(MapReader g) {
 
 void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
   r.read("name", s.name);
+  r.read("suite", s.suite);
   s.start_from_world = !r.has("start");
   readFlightKeys(r, dir, s.flight);
   if (r.has("method")) s.method = readMethod(r.sub("method"));
@@ -265,6 +266,7 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
   // Names and paths end up in metrics.json (JSON is UTF-8): checked now, not after the mission.
   if (!isValidUtf8(path)) throw FileConfigError(path + ": the file name is not valid UTF-8");
   if (!isValidUtf8(spec.name)) throw FileConfigError(label + ": key 'name': not valid UTF-8");
+  if (!isValidUtf8(spec.suite)) throw FileConfigError(label + ": key 'suite': not valid UTF-8");
   return spec;
 }
 
@@ -298,6 +300,7 @@ SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets) {
 std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapWriter::KeyLog> log) {
   MapWriter w{YAML::Node(YAML::NodeType::Map), std::move(log)};
   w.field("name", spec.name);
+  if (!spec.suite.empty()) w.field("suite", spec.suite);  // only when set: older runs' text stays as it was
   writeFlightKeys(w, spec.flight, !spec.start_from_world);
   MapWriter m = w.sub("method");
   writeMethod(m, spec.method);
@@ -321,7 +324,7 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapW
 
 std::string fixedSettingsYaml(const ScenarioSpec& spec) {
   YAML::Node tree = YAML::Load(effectiveScenarioYaml(spec));
-  for (const char* key : {"name", "seed", "method", "goals", "video"}) tree.remove(key);
+  for (const char* key : {"name", "suite", "seed", "method", "goals", "video"}) tree.remove(key);
   if (tree["mission"]) {
     tree["mission"].remove("progress");
     tree["mission"].remove("write_map_ply");

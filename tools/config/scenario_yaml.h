@@ -31,7 +31,7 @@ SphereMapConfig loadMapOverrides(const std::vector<std::string>& sets);
 std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapWriter::KeyLog> log = nullptr);
 
 /// The benchmark's side of a scenario (docs/metrics.md, "Fixed settings"): the effective YAML
-/// without what a method or a run chooses — `name`, `seed`, `method`, `goals`, `video`,
+/// without what a method or a run chooses — `name`, `suite`, `seed`, `method`, `goals`, `video`,
 /// `mission.progress`, `mission.write_map_ply`. Two runs with the same text flew the same world,
 /// duration, vehicle, speed set, camera, front end, rates and box.
 std::string fixedSettingsYaml(const ScenarioSpec& spec);

@@ -68,7 +68,11 @@ FlightSpec missionFlightDefaults();
 /// Everything `msbench run` needs. Default-constructed, it is a valid mission once it names a
 /// world (`flight.world_path` or `flight.world_name`).
 struct ScenarioSpec {
-  std::string name;                             ///< run name (defaults to the file's stem)
+  std::string name;  ///< run name (defaults to the file's stem)
+  /// The benchmark suite the run is for (docs/sweeps.md, "Suites"): a directory of published runs,
+  /// e.g. results/table1 ("" = none). Recorded in metrics.json; `msbench report` checks the run
+  /// against it. Not a fixed setting.
+  std::string suite;
   FlightSpec flight = missionFlightDefaults();  ///< world, seed, duration, start, vehicle, sensors
   bool start_from_world = true;                 ///< take start pose from the generated world unless `start` is given
   std::optional<Aabb> exploration_box;          ///< overrides the world's box

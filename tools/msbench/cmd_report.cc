@@ -103,7 +103,8 @@ int runReportCommand(int argc, char** argv) {
   args.positional("DIR", "sweep directory (from msbench sweep)")
       .option("out", "", "report directory (default DIR/report; an earlier report there is replaced)")
       .option("suite", "",
-              "published runs whose settings the runs must share (e.g. results/table1); others are set aside")
+              "published runs whose settings the runs must share (e.g. results/table1; default: the suite the runs "
+              "name); others are set aside")
       .flag("no-figures", "write the Markdown and CSV files only");
   if (!args.parse(argc, argv)) return kExitOk;
   const fs::path dir = args.get("DIR");
@@ -111,7 +112,13 @@ int runReportCommand(int argc, char** argv) {
   SweepResults results;
   try {
     results = loadSweepResults(dir);
-    if (!args.get("suite").empty()) applySuite(results, args.get("suite"));
+    // The suite given, else the one the runs were made for (their scenario's `suite:`).
+    const std::string suite = args.get("suite").empty() ? suiteNamedByRuns(results) : args.get("suite");
+    if (!suite.empty() && !fs::is_directory(suite))
+      throw std::runtime_error("the suite " + suite + " is not a directory from here (" +
+                               (args.get("suite").empty() ? "named by the runs" : "--suite") +
+                               "): run from the repository, or give --suite PATH");
+    if (!suite.empty()) applySuite(results, suite);
   } catch (const std::runtime_error& e) {
     throw UsageError(e.what());
   }

@@ -155,6 +155,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   j["replayable"] = spec.method.not_replayable.empty();
   j["method_confinement"] = spec.method.confinement.empty() ? "compiled into msbench" : spec.method.confinement;
   if (!spec.fixed_settings_hash.empty()) j["fixed_settings_hash"] = spec.fixed_settings_hash;
+  if (!spec.suite.empty()) j["suite"] = spec.suite;
   j["duration_s"] = spec.flight.duration_s;
   j["sim_time_s"] = f.sim_time_s;
   j["coverage"] = coverageJson(r);

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 #include "core/common/config_check.h"
@@ -32,6 +33,16 @@ RegressionTolerance toleranceOf(const nlohmann::json& golden) {
   return t;
 }
 
+namespace {
+// The run's earned score (metrics.json score.earned, m³), if it recorded one.
+std::optional<double> earnedOf(const ReportRun& r) {
+  if (!r.metrics.contains("score") || !r.metrics["score"].is_object()) return std::nullopt;
+  const auto& e = r.metrics["score"].value("earned", nlohmann::json());
+  if (!e.is_number()) return std::nullopt;
+  return e.get<double>();
+}
+}  // namespace
+
 nlohmann::json goldenFromSweep(const SweepResults& results, const RegressionTolerance& tolerance) {
   std::string missing;
   nlohmann::json runs = nlohmann::json::array();
@@ -48,6 +59,7 @@ nlohmann::json goldenFromSweep(const SweepResults& results, const RegressionTole
                     {"sim_time_s", r.record->sim_time_s},
                     {"determinism_hash", r.record->determinism_hash},
                     {"machine_id", r.record->machine_id}});
+    if (const auto earned = earnedOf(r)) runs.back()["score_earned_m3"] = *earned;
   }
   if (!missing.empty()) throw std::runtime_error("not every run is complete: " + missing);
   return {{"kind", kGoldenKind},
@@ -96,6 +108,8 @@ nlohmann::json readGolden(const std::filesystem::path& file) {
       throw FileConfigError(file.string() + ": key '" + key +
                             ".area_m2': " + (r.contains("area_m2") ? "expected a number" : "missing"));
     checkGoldenRange(file, key + ".area_m2", r["area_m2"], 0.0, kMaxAreaM2);
+    if (r.contains("score_earned_m3"))
+      checkGoldenRange(file, key + ".score_earned_m3", r["score_earned_m3"], -1e7, 1e7);
     if (!isHex16(r["determinism_hash"].get<std::string>()))
       throw FileConfigError(file.string() + ": key '" + key + ".determinism_hash': expected 16 hexadecimal digits");
   }
@@ -122,6 +136,26 @@ bool isGoldenFile(const std::filesystem::path& file) {
     if (k != "machine" && k != "tolerance" && k != "runs") return false;
   return g.contains("runs") && g["runs"].is_array();
 }
+
+namespace {
+// The earned score against the golden's, when the golden has one: exactly in exact mode, else
+// within the relative band (at least kEarnedBandM3).
+constexpr double kEarnedBandM3 = 250.0;
+void compareEarned(const ReportRun& run, const nlohmann::json& g, bool exact, const RegressionTolerance& tolerance,
+                   RegressionOutcome& out) {
+  if (!g.contains("score_earned_m3")) return;
+  const double golden = g["score_earned_m3"].get<double>();
+  const auto earned = earnedOf(run);
+  if (!earned) {
+    out.regressions.push_back(run.id + ": no earned score (golden " + f0(golden) + " m³)");
+    return;
+  }
+  const double band = exact ? 0.0 : std::max(tolerance.relative * std::fabs(golden), kEarnedBandM3);
+  if (std::fabs(*earned - golden) > band)
+    out.regressions.push_back(run.id + ": earned " + f0(*earned) + " m³, golden " + f0(golden) + " m³" +
+                              (exact ? " (exact mode)" : " ± " + f0(band) + " (band mode)"));
+}
+}  // namespace
 
 RegressionOutcome compareWithGolden(const SweepResults& results, const nlohmann::json& golden,
                                     const RegressionTolerance& tolerance) {
@@ -173,6 +207,7 @@ RegressionOutcome compareWithGolden(const SweepResults& results, const nlohmann:
         out.regressions.push_back(id + ": A " + f0(area) + " m², golden " + f0(g_area) + " m² ± " + f0(band) +
                                   " (band mode: " + (tolerance.band_only ? "asked for" : "another machine") + ")");
     }
+    compareEarned(*it, g, !tolerance.band_only && (same_machine || same_run), tolerance, out);
   }
   for (const ReportRun& r : results.runs) {
     const bool known = std::any_of(golden["runs"].begin(), golden["runs"].end(),

@@ -59,4 +59,18 @@ void applySuite(SweepResults& results, const fs::path& suite_dir) {
   }
 }
 
+std::string suiteNamedByRuns(const SweepResults& results) {
+  std::set<std::string> named;
+  for (const ReportRun& r : results.runs) {
+    if (!r.record) continue;
+    const auto it = r.metrics.find("suite");
+    named.insert(it != r.metrics.end() && it->is_string() ? it->get<std::string>() : "");
+  }
+  named.erase("");
+  if (named.size() > 1)
+    throw std::runtime_error("the runs name " + std::to_string(named.size()) + " suites (" + *named.begin() + ", " +
+                             *std::next(named.begin()) + ", ...): give --suite");
+  return named.empty() ? "" : *named.begin();
+}
+
 }  // namespace msb

@@ -16,4 +16,8 @@ namespace msb {
 /// why. Throws std::runtime_error when the suite has no readable run.
 void applySuite(SweepResults& results, const std::filesystem::path& suite_dir);
 
+/// The suite the complete runs name (metrics.json `suite`, from the scenario's `suite:` key):
+/// "" if none names one; throws std::runtime_error if they name different suites.
+std::string suiteNamedByRuns(const SweepResults& results);
+
 }  // namespace msb

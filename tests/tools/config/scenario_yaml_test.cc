@@ -52,13 +52,19 @@ TEST(ScenarioYaml, TheFixedSettingsHashIgnoresTheMethodAndTheRunAndSeesTheRest) 
   const std::string h = loadScenario(s).fixed_settings_hash;
   EXPECT_EQ(h.size(), 16u);
   EXPECT_EQ(h, fixedSettingsHash(loadScenario(s)));
-  for (const char* same : {"method.switches.fff=false", "seed=9", "name=other", "video.enabled=true",
-                           "mission.progress=false", "method.planner.local_radius_m=15", "mission.write_map_ply=false"})
+  for (const char* same :
+       {"method.switches.fff=false", "seed=9", "name=other", "suite=results/table1", "video.enabled=true",
+        "mission.progress=false", "method.planner.local_radius_m=15", "mission.write_map_ply=false"})
     EXPECT_EQ(loadScenario(s, {same}).fixed_settings_hash, h) << same;
   for (const char* other : {"duration_s=60", "trajectory.limits=fast", "camera.clip_far_m=150",
                             "mission.map_rate_hz=2.5", "perception.latency_frames=1"})
     EXPECT_NE(loadScenario(s, {other}).fixed_settings_hash, h) << other;
   EXPECT_EQ(fixedSettingsYaml(loadScenario(s)).find("method"), std::string::npos);
+  // The suite a run is for: read, written back only when set (older runs' config.yaml unchanged).
+  const ScenarioSpec for_suite = loadScenario(s, {"suite=results/table1"});
+  EXPECT_EQ(for_suite.suite, "results/table1");
+  EXPECT_NE(effectiveScenarioYaml(for_suite).find("suite: results/table1"), std::string::npos);
+  EXPECT_EQ(effectiveScenarioYaml(loadScenario(s)).find("suite:"), std::string::npos);
 }
 
 TEST(ScenarioYaml, BaseChainOverridesAndSwitches) {

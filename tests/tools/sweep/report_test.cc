@@ -92,6 +92,19 @@ TEST(SweepReport, ASuiteSetsAsideRunsWithOtherSettings) {
   EXPECT_THROW(applySuite(s, d / "nothing"), std::runtime_error);
 }
 
+TEST(SweepReport, TheSuiteIsTheOneTheRunsRecord) {
+  SweepResults s;
+  s.runs = {madeRun("urban-mine-s1", "urban", "mine", 800, "completed"),
+            madeRun("cave-mine-s1", "cave", "mine", 500, "completed")};
+  EXPECT_EQ(suiteNamedByRuns(s), "");  // runs made for no suite
+  s.runs[0].metrics["suite"] = "results/table1";
+  EXPECT_EQ(suiteNamedByRuns(s), "results/table1");
+  s.runs[1].metrics["suite"] = "results/table1";
+  EXPECT_EQ(suiteNamedByRuns(s), "results/table1");
+  s.runs[1].metrics["suite"] = "results/other";
+  EXPECT_THROW(suiteNamedByRuns(s), std::runtime_error);  // two suites: the report asks for --suite
+}
+
 TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   SweepResults s;
   s.dir = "/nowhere";
@@ -484,6 +497,57 @@ TEST(SweepReport, TheVerifiedSectionFlagsARowThatClaimsWhatItDidNotEarn) {
   EXPECT_NE(cheat.find("0.08 ⚠"), std::string::npos) << cheat;
   EXPECT_NE(cheat.find("0.500 ⚠"), std::string::npos) << cheat;
   EXPECT_NE(md.find("⚠: verified / claimed below 0.75"), std::string::npos) << md;
+}
+
+}  // namespace
+}  // namespace msb
+
+namespace msb {
+namespace {
+
+// A complete urban run as the report reads it, with an earned score (m³).
+ReportRun earnedRun(double earned) {
+  ReportRun r;
+  r.id = "urban-monospheres-s1";
+  r.status = "complete";
+  r.metrics = {{"world", "urban"},
+               {"method", "monospheres"},
+               {"status", "completed"},
+               {"sim_time_s", 60.0},
+               {"duration_s", 60.0},
+               {"determinism_hash", "0123456789abcdef"},
+               {"machine", {{"id", "1111111111111111"}}},
+               {"coverage", {{"area_m2", 1000.0}}},
+               {"score", {{"earned", earned}, {"unit", "m3"}}}};
+  r.record = missionRecordOf(r.metrics, "metrics.json").record;
+  return r;
+}
+
+TEST(Regression, TheEarnedScoreIsKeptInTheGoldenAndComparedExactlyOrInABand) {
+  SweepResults same;
+  same.runs = {earnedRun(3000.0)};
+  const nlohmann::json golden = goldenFromSweep(same, RegressionTolerance{});
+  EXPECT_EQ(golden["runs"][0]["score_earned_m3"].get<double>(), 3000.0);
+  EXPECT_TRUE(compareWithGolden(same, golden, {}).regressions.empty());
+  // Exact mode (the same machine): any change is a regression, named.
+  SweepResults moved;
+  moved.runs = {earnedRun(3001.0)};
+  const auto exact = compareWithGolden(moved, golden, {});
+  ASSERT_EQ(exact.regressions.size(), 1u);
+  EXPECT_EQ(exact.regressions[0], "urban-monospheres-s1: earned 3001.0 m³, golden 3000.0 m³ (exact mode)");
+  // Band mode: within 25 % (at least 250 m³) passes, beyond fails.
+  RegressionTolerance band;
+  band.band_only = true;
+  EXPECT_TRUE(compareWithGolden(moved, golden, band).regressions.empty());
+  SweepResults far;
+  far.runs = {earnedRun(4000.0)};
+  const auto banded = compareWithGolden(far, golden, band);
+  ASSERT_EQ(banded.regressions.size(), 1u);
+  EXPECT_NE(banded.regressions[0].find("earned 4000.0 m³, golden 3000.0 m³ ± 750.0"), std::string::npos);
+  // A golden without the score (taken before it existed) compares A alone.
+  nlohmann::json old = golden;
+  old["runs"][0].erase("score_earned_m3");
+  EXPECT_TRUE(compareWithGolden(far, old, {}).regressions.empty());
 }
 
 }  // namespace
