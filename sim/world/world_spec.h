@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/common/config_check.h"
+#include "core/common/config_fields.h"
 #include "core/geometry/world_truth.h"
 
 namespace msb {
@@ -39,6 +39,23 @@ struct ObjectGroupSpec {
   /// region — rods as reinforcement bars standing out of the ruins and their rubble.
   std::string near;
 
+  /// The keys, each once with the values it accepts (`at`, `region`, `yaw_deg` and `size` are
+  /// read in tools/config: optional or shorthand).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("kind", s.kind);
+    v.key("count", s.count, Limits::range(1, 1000));
+    v.key("size_min", s.size_min, Limits::nonNegative());
+    v.key("size_max", s.size_max, Limits::nonNegative());
+    v.key("variant", s.variant);
+    v.key("texture", s.texture);
+    v.key("tilt_max_deg", s.tilt_max_deg, Limits::range(0.0, 60.0));
+    v.key("burned_fraction", s.burned_fraction, Limits::range(0.05, 0.95));
+    v.key("burned_texture", s.burned_texture);
+    v.key("base_z_m", s.base_z_m, Limits::any());
+    v.key("near", s.near, Choices{"", "ruins"});
+  }
+
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
@@ -47,6 +64,16 @@ struct ObjectGroupSpec {
 struct CaveChamberSpec {
   Vec2 min = Vec2::Zero(), max = Vec2::Zero();
   double ceiling_m = 8.0;
+
+  /// The keys, each once with the values it accepts.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("min", s.min, Limits::any());
+    v.key("max", s.max, Limits::any());
+    v.key("ceiling_m", s.ceiling_m, Limits{2.0, 1000.0, true, false});
+  }
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
 };
 
 /// A straight tunnel of a cave between two points.
@@ -54,6 +81,17 @@ struct CaveTunnelSpec {
   Vec2 from = Vec2::Zero(), to = Vec2::Zero();
   double width_m = 6.0;
   double ceiling_m = 6.0;
+
+  /// The keys, each once with the values it accepts.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("from", s.from, Limits::any());
+    v.key("to", s.to, Limits::any());
+    v.key("width_m", s.width_m, Limits::range(2.0, 1000.0));
+    v.key("ceiling_m", s.ceiling_m, Limits{2.0, 1000.0, true, false});
+  }
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const { checkFields(*this, c); }
 };
 
 /// An enclosed cave: everything inside [min, max] is rock except chambers and tunnels.
@@ -64,6 +102,19 @@ struct CaveSpec {
   std::vector<CaveChamberSpec> chambers;
   std::vector<CaveTunnelSpec> tunnels;
   std::string texture = "rock";
+
+  /// The keys, each once with the values it accepts (the lists `chambers` and `tunnels` are read
+  /// in tools/config, each element by its own table).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("min", s.min, Limits::any());
+    v.key("max", s.max, Limits::any());
+    v.key("rock_top_m", s.rock_top_m, Limits::positive());
+    v.key("cell_m", s.cell_m, Limits::range(0.5, 10.0));
+    v.key("texture", s.texture);
+  }
+  /// Records invalid fields (with each chamber's and tunnel's).
+  void validate(ConfigChecker& c) const;
 };
 
 /// A whole world.
@@ -82,6 +133,19 @@ struct WorldSpec {
   int texture_px = 512;                      ///< texture resolution
   std::vector<ObjectGroupSpec> objects;
   std::optional<CaveSpec> cave;
+
+  /// The top-level keys, each once with the values it accepts (`ground`, `start`,
+  /// `exploration_box`, `objects` and `cave` are read in tools/config).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("name", s.name);
+    v.key("description", s.description);
+    v.key("seed", s.seed, Limits::nonNegative());
+    v.key("start_clearance_m", s.start_clearance_m, Limits::nonNegative());
+    v.key("start_corridor_m", s.start_corridor_m, Limits::nonNegative());
+    v.key("start_corridor_half_width_m", s.start_corridor_half_width_m, Limits::positive());
+    v.key("texture_px", s.texture_px, Limits::range(128, 1024));
+  }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

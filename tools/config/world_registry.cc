@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/common/config_check.h"
+#include "tools/config/field_keys.h"
 #include "tools/config/flight_yaml.h"
 #include "tools/config/yaml_reader.h"
 
@@ -24,9 +25,15 @@ std::string worldCacheDir() {
 
 namespace {
 
+// Throws "is required" for each of `keys` missing from `r` (a key a table reads as optional).
+void requireKeys(const MapReader& r, std::initializer_list<const char*> keys) {
+  for (const char* k : keys)
+    if (!r.has(k)) throw ConfigError(r.keyName(k), "is required");
+}
+
+// An object group: its table, then the optional and shorthand keys.
 void readObject(MapReader& r, ObjectGroupSpec& o) {
-  r.read("kind", o.kind);
-  r.read("count", o.count);
+  fieldKeys(r, o);
   if (r.has("at")) {
     Vec2 at;
     readVec2(r, "at", at);
@@ -43,41 +50,31 @@ void readObject(MapReader& r, ObjectGroupSpec& o) {
   double yaw;
   if (r.read("yaw_deg", yaw)) o.yaw_deg = yaw;
   Vec3 size;
-  if (r.read("size", size)) o.size_min = o.size_max = size;
-  r.read("size_min", o.size_min);
-  r.read("size_max", o.size_max);
-  r.read("variant", o.variant);
-  r.read("texture", o.texture);
-  r.read("tilt_max_deg", o.tilt_max_deg);
-  r.read("burned_fraction", o.burned_fraction);
-  r.read("burned_texture", o.burned_texture);
-  r.read("base_z_m", o.base_z_m);
-  r.read("near", o.near);
+  // `size` sets both ends of the range unless size_min / size_max are given.
+  if (r.read("size", size)) {
+    if (!r.has("size_min")) o.size_min = size;
+    if (!r.has("size_max")) o.size_max = size;
+  }
   r.finish();
 }
 
+// The cave: its table, and its lists of chambers and tunnels, each element by its own table.
 void readCave(MapReader r, CaveSpec& c) {
-  readVec2(r, "min", c.min);
-  readVec2(r, "max", c.max);
-  r.read("rock_top_m", c.rock_top_m);
-  r.read("cell_m", c.cell_m);
-  r.read("texture", c.texture);
+  requireKeys(r, {"min", "max"});
+  fieldKeys(r, c);
   if (r.has("chambers"))
     r.forEachInList("chambers", [&](MapReader& m) {
+      requireKeys(m, {"min", "max"});
       CaveChamberSpec ch;
-      readVec2(m, "min", ch.min);
-      readVec2(m, "max", ch.max);
-      m.read("ceiling_m", ch.ceiling_m);
+      fieldKeys(m, ch);
       m.finish();
       c.chambers.push_back(ch);
     });
   if (r.has("tunnels"))
     r.forEachInList("tunnels", [&](MapReader& m) {
+      requireKeys(m, {"from", "to"});
       CaveTunnelSpec t;
-      readVec2(m, "from", t.from);
-      readVec2(m, "to", t.to);
-      m.read("width_m", t.width_m);
-      m.read("ceiling_m", t.ceiling_m);
+      fieldKeys(m, t);
       m.finish();
       c.tunnels.push_back(t);
     });
@@ -85,9 +82,7 @@ void readCave(MapReader r, CaveSpec& c) {
 }
 
 void readWorld(MapReader& r, WorldSpec& s) {
-  r.read("name", s.name);
-  r.read("description", s.description);
-  r.read("seed", s.seed);
+  fieldKeys(r, s);
   if (r.has("ground")) {
     MapReader g = r.sub("ground");
     if (g.has("size_m")) readVec2(g, "size_m", s.ground_size_m);
@@ -106,10 +101,6 @@ void readWorld(MapReader& r, WorldSpec& s) {
     b.read("max", s.exploration_box.max);
     b.finish();
   }
-  r.read("start_clearance_m", s.start_clearance_m);
-  r.read("start_corridor_m", s.start_corridor_m);
-  r.read("start_corridor_half_width_m", s.start_corridor_half_width_m);
-  r.read("texture_px", s.texture_px);
   if (r.has("objects"))
     r.forEachInList("objects", [&](MapReader& m) {
       ObjectGroupSpec o;

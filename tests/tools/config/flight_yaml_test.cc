@@ -1,11 +1,15 @@
 // The YAML layer: every error class names the file and the key, and valid files load fully.
 #include "tools/config/flight_yaml.h"
+#include "core/common/config_fields.h"
 #include "tools/config/world_registry.h"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace msb {
 namespace {
@@ -137,6 +141,81 @@ TEST(YamlConfig, WorldSpecErrorsNameFileAndKey) {
   // The shipped specs load.
   for (const char* w : {"urban", "cave", "rooftops", "sparse"})
     EXPECT_NO_THROW(loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/" + w + "/spec.yaml")) << w;
+}
+
+// Collects a key table's keys with a YAML value each refuses ("" when none of its type is).
+struct TableKeys {
+  std::vector<std::pair<std::string, std::string>> keys;
+  template <class T>
+  void key(const char* name, T&) {
+    keys.push_back({name, ""});
+  }
+  void key(const char* name, std::string&, const Choices& c) { keys.push_back({name, c.outside()}); }
+  template <class T>
+  void key(const char* name, T&, const Limits& l) {
+    const double v = l.outside();
+    std::ostringstream os;
+    os << v;  // shortest form: "0", "-1", "127", "-0.5" (an integer key reads it as an integer)
+    std::string text = std::isnan(v) ? "" : os.str();
+    if constexpr (std::is_same_v<T, Vec2>) text = text.empty() ? "" : "[" + text + ", " + text + "]";
+    if constexpr (std::is_same_v<T, Vec3>) text = text.empty() ? "" : "[" + text + ", " + text + ", " + text + "]";
+    keys.push_back({name, text});
+  }
+};
+
+template <class Spec>
+std::vector<std::pair<std::string, std::string>> tableKeys() {
+  Spec spec;
+  TableKeys t;
+  Spec::fields(spec, t);
+  return t.keys;
+}
+
+// Every key of the world specs' tables is documented in docs/worlds.md and refuses a value
+// outside its rule through the real reader, naming the key.
+TEST(YamlConfig, EveryWorldSpecKeyIsDocumentedAndChecked) {
+  std::ifstream in(fs::path(MSB_SOURCE_DIR) / "docs/worlds.md");
+  const std::string docs((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const fs::path dir = tempDir();
+  const std::string cave =
+      "cave: {min: [-20, -20], max: [20, 20], chambers: [{min: [-5, -5], max: [5, 5]}], "
+      "tunnels: [{from: [0, 0], to: [10, 0]}]}\n";
+  const std::string base = "name: w\nexploration_box: {min: [0, 0, 0], max: [10, 10, 5]}\n";
+  const std::string object = "objects: [{kind: rock, at: [1, 1], size: [1, 1, 1]}]\n";
+  std::ofstream(dir / "spec.yaml") << base << object << cave;
+  ASSERT_NO_THROW(loadWorldSpec((dir / "spec.yaml").string()));
+  int probed = 0;
+  // (a table, how a value of one of its keys is put into the spec)
+  const std::vector<std::pair<std::vector<std::pair<std::string, std::string>>, std::string>> tables = {
+      {tableKeys<WorldSpec>(), ""},
+      {tableKeys<ObjectGroupSpec>(), "objects[0]."},
+      {tableKeys<CaveSpec>(), "cave."},
+      {tableKeys<CaveChamberSpec>(), "cave.chambers[0]."},
+      {tableKeys<CaveTunnelSpec>(), "cave.tunnels[0]."}};
+  for (const auto& [keys, prefix] : tables) {
+    for (const auto& [name, refused] : keys) {
+      EXPECT_NE(docs.find(name), std::string::npos) << prefix << name << " is not in docs/worlds.md";
+      if (refused.empty()) continue;
+      YAML::Node spec = YAML::LoadFile((dir / "spec.yaml").string());
+      YAML::Node at = prefix.empty()                  ? spec
+                      : prefix == "objects[0]."       ? spec["objects"][0]
+                      : prefix == "cave."             ? spec["cave"]
+                      : prefix == "cave.chambers[0]." ? spec["cave"]["chambers"][0]
+                                                      : spec["cave"]["tunnels"][0];
+      at[name] = YAML::Load(refused);
+      YAML::Emitter e;
+      e << spec;
+      std::ofstream(dir / "probe.yaml") << e.c_str();
+      try {
+        loadWorldSpec((dir / "probe.yaml").string());
+        ADD_FAILURE() << prefix << name << ": " << refused << " was accepted";
+      } catch (const FileConfigError& err) {
+        EXPECT_NE(std::string(err.what()).find(prefix + name), std::string::npos) << err.what();
+      }
+      ++probed;
+    }
+  }
+  EXPECT_GE(probed, 16);
 }
 
 }  // namespace

@@ -83,27 +83,33 @@ TEST(PublishedTable, TheTablesReadmeIsTheReportsRowForRow) {
 }
 
 TEST(PublishedTable, TheReadmesShortTableIsTheReports) {
-  // README: "| world | MonoSpheres (paper) | Grid (paper) | MonoSpheres box share |", each cell
-  // "mean (paper's mean)"; the report's rows give both.
+  // README: "| world | MonoSpheres (paper) | box share | published code | Grid (paper) |", the
+  // paper-bearing cells "mean (paper's mean)"; results/table1's report gives MonoSpheres, the box
+  // share and the grid, results/table1_published's the published code's MonoSpheres mean.
   const auto report = readLines(kSource + "/results/table1/report.md");
   const auto layout = tableAfter(report, "| world | method | method type |");
   const auto beyond = tableAfter(report, "| world | method | box share |");
+  const auto published =
+      tableAfter(readLines(kSource + "/results/table1_published/report.md"), "| world | method | method type |");
   const auto table = tableAfter(readLines(kSource + "/README.md"), "| world | MonoSpheres (paper) |");
   ASSERT_EQ(table.size(), 4u);
   const auto first = [](const std::string& c) { return c.substr(0, c.find(' ')); };
-  for (const auto& md : table)
-    for (const auto& [col, method] : {std::pair<size_t, std::string>{1, "monospheres"}, {2, "grid"}}) {
-      const auto rep =
-          std::find_if(layout.begin(), layout.end(), [&](const auto& r) { return r[0] == md[0] && r[1] == method; });
+  const auto row = [](const std::vector<std::vector<std::string>>& rows, const std::string& world,
+                      const std::string& method) {
+    return std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r[0] == world && r[1] == method; });
+  };
+  for (const auto& md : table) {
+    for (const auto& [col, method] : {std::pair<size_t, std::string>{1, "monospheres"}, {4, "grid"}}) {
+      const auto rep = row(layout, md[0], method);
       ASSERT_NE(rep, layout.end()) << md[0] << " " << method;
       EXPECT_EQ(md[col], first((*rep)[4]) + " (" + (*rep)[6] + ")") << md[0] << " " << method;
     }
-  for (const auto& md : table) {
-    for (const auto& r : beyond) {
-      if (r[0] == md[0] && r[1] == "monospheres") {
-        EXPECT_EQ(md[3], first(r[2])) << md[0];
-      }
-    }
+    const auto pub = row(published, md[0], "monospheres");
+    ASSERT_NE(pub, published.end()) << md[0];
+    EXPECT_EQ(md[3], first((*pub)[4])) << md[0];
+    const auto b = row(beyond, md[0], "monospheres");
+    ASSERT_NE(b, beyond.end()) << md[0];
+    EXPECT_EQ(md[2], first((*b)[2])) << md[0];
   }
 }
 
