@@ -26,7 +26,9 @@ class FieldKeys {
   template <class T, class... Rule>
   void key(const char* name, T& value, const Rule&... rule) {
     k_.field(name, value);
-    if constexpr (sizeof...(Rule) == 1 && !Keys::kReading) k_.noteRule(name, {rule.text()..., refused<T>(rule...)});
+    // The rule's texts are made only for a writer that keeps a log (`msbench keys`).
+    if constexpr (sizeof...(Rule) == 1 && !Keys::kReading)
+      if (k_.keepsLog()) k_.noteRule(name, {rule.text()..., refused<T>(rule...)});
   }
   /// A nested group: its own table under its key (read if present, written always; unknown keys
   /// refused), or the reader given by custom().

@@ -60,6 +60,8 @@ class MapWriter {
     node_[key] = YAML::Node(YAML::NodeType::Map);
     return MapWriter(node_[key], log_, path_ + key + ".");
   }
+  /// True if this writer keeps a key log.
+  bool keepsLog() const { return log_ != nullptr; }
   /// Logs what `key` accepts (a key table's Limits or Choices), if this writer keeps a log.
   void noteRule(const std::string& key, KeyRule rule) {
     if (log_) (*log_)[path_ + key] = std::move(rule);

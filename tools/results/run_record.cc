@@ -85,9 +85,11 @@ MissionRecordRead missionRecordOf(const nlohmann::json& m, const std::filesystem
       if (!v->is_number() || !(v->get<double>() >= 0.0 && v->get<double>() <= 1.0))
         return problem(std::string("coverage.") + key, "expected a number in [0, 1] or null");
   // The earned score (signed, m³): absent, null, or a finite number within the area bound.
-  if (const nlohmann::json* v = at(m, "score.earned"); v && !v->is_null())
+  if (const nlohmann::json* v = at(m, "score.earned"); v && !v->is_null()) {
     if (!v->is_number() || !(std::abs(v->get<double>()) <= kMaxAreaM2))
       return problem("score.earned", "expected a number in [-1e7, 1e7] m³ or null");
+    rec.earned_m3 = v->get<double>();
+  }
   rec.sim_time_s = m["sim_time_s"].get<double>();
   rec.determinism_hash = m["determinism_hash"].get<std::string>();
   if (!isHex16(rec.determinism_hash)) return problem("determinism_hash", "expected 16 hexadecimal digits");

@@ -23,6 +23,7 @@ struct MissionRecord {
   RunStatus status = RunStatus::kCompleted;
   double area_m2 = 0.0;             ///< coverage.area_m2
   std::optional<double> box_share;  ///< coverage.box_share (null: no exploration box)
+  std::optional<double> earned_m3;  ///< score.earned (m³; null or absent: not scored)
   double sim_time_s = 0.0;
   std::string determinism_hash;  ///< 16 hex digits
   std::string machine_id;        ///< machine.id ("" in records written before it existed)

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <stdexcept>
 
 #include "core/common/config_check.h"
@@ -33,16 +32,6 @@ RegressionTolerance toleranceOf(const nlohmann::json& golden) {
   return t;
 }
 
-namespace {
-// The run's earned score (metrics.json score.earned, m³), if it recorded one.
-std::optional<double> earnedOf(const ReportRun& r) {
-  if (!r.metrics.contains("score") || !r.metrics["score"].is_object()) return std::nullopt;
-  const auto& e = r.metrics["score"].value("earned", nlohmann::json());
-  if (!e.is_number()) return std::nullopt;
-  return e.get<double>();
-}
-}  // namespace
-
 nlohmann::json goldenFromSweep(const SweepResults& results, const RegressionTolerance& tolerance) {
   std::string missing;
   nlohmann::json runs = nlohmann::json::array();
@@ -59,7 +48,7 @@ nlohmann::json goldenFromSweep(const SweepResults& results, const RegressionTole
                     {"sim_time_s", r.record->sim_time_s},
                     {"determinism_hash", r.record->determinism_hash},
                     {"machine_id", r.record->machine_id}});
-    if (const auto earned = earnedOf(r)) runs.back()["score_earned_m3"] = *earned;
+    if (r.record->earned_m3) runs.back()["score_earned_m3"] = *r.record->earned_m3;
   }
   if (!missing.empty()) throw std::runtime_error("not every run is complete: " + missing);
   return {{"kind", kGoldenKind},
@@ -145,7 +134,7 @@ void compareEarned(const ReportRun& run, const nlohmann::json& g, bool exact, co
                    RegressionOutcome& out) {
   if (!g.contains("score_earned_m3")) return;
   const double golden = g["score_earned_m3"].get<double>();
-  const auto earned = earnedOf(run);
+  const auto earned = run.record->earned_m3;
   if (!earned) {
     out.regressions.push_back(run.id + ": no earned score (golden " + f0(golden) + " m³)");
     return;

@@ -288,15 +288,14 @@ std::optional<double> timeToBoxShare(const std::vector<CoverageSample>& coverage
 }
 
 // Verified coverage and map accuracy of a run (metrics.json; older records have neither).
-void addVerified(ReportRow& row, const nlohmann::json& m, double area) {
+void addVerified(ReportRow& row, const nlohmann::json& m, const MissionRecord& record) {
+  const double area = record.area_m2;
   const nlohmann::json& cov = m["coverage"];
   if (cov.contains("verified_area_m2") && cov["verified_area_m2"].is_number()) {
     add(row.verified_area_m2, number(cov, "verified_area_m2"));
     if (area > 0) add(row.verified_share, number(cov, "verified_area_m2") / area);
   }
-  if (m.contains("score") && m["score"].is_object() && m["score"].contains("earned") &&
-      m["score"]["earned"].is_number())
-    add(row.earned_m3, m["score"]["earned"].get<double>());
+  if (record.earned_m3) add(row.earned_m3, *record.earned_m3);
   if (!m.contains("map_accuracy") || !m["map_accuracy"].is_object()) return;
   const nlohmann::json& a = m["map_accuracy"];
   if (a.contains("falsely_free_volume_share") && a["falsely_free_volume_share"].is_number())
@@ -344,7 +343,7 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     }
     row.vio_lost += run.record->status == RunStatus::kVioLost;
     addFrontEndProfile(row, m);
-    addVerified(row, m, a);
+    addVerified(row, m, *run.record);
     if (const auto t = timeToBoxShare(run.coverage, 0.5)) add(row.t50_s, *t);
     if (const auto t = timeToBoxShare(run.coverage, 0.9)) add(row.t90_s, *t);
     const double flown = number(m, "distance_flown_m");
