@@ -209,6 +209,9 @@ void buildObject(const ObjectGroupSpec& g, const std::string& id, const Vec2& xy
     buildRock(o);
   else if (k == "gazebo")
     buildGazebo(o);
+  else if (k == "dumpster")  // a closed bin: one box of its size, grimy painted metal
+    b.addBox(id, id, local(base, Vec3(0, 0, 0.5 * s.z())), 0.5 * s, ObstacleKind::kTextured,
+             Look::textured(pick(g.texture, "concrete")));
 }
 
 // Carves the cave: solid rock everywhere in the footprint except chambers and tunnels, and a
@@ -361,8 +364,8 @@ class ObjectPlacer {
         heading_(std::cos(spec.start_yaw_deg * kDeg), std::sin(spec.start_yaw_deg * kDeg)),
         placement_(spec.seed, "world_gen_" + spec.name) {}
 
-  // Builds every object of group `gi`, counting them by kind in `counts`.
-  void placeGroup(size_t gi, std::map<std::string, int>& counts) {
+  // Builds every object of group `gi`, counting them by kind in `counts` and listing them in `placed`.
+  void placeGroup(size_t gi, std::map<std::string, int>& counts, std::vector<PlacedObject>& placed) {
     const ObjectGroupSpec& g = spec_.objects[gi];
     // Sizes and details depend on the spec only (not on the seed).
     RngStream sizes(0, "world_sizes_" + spec_.name + "_" + std::to_string(gi));
@@ -383,8 +386,11 @@ class ObjectPlacer {
         placeInRegion(g, gi, id, r, &xy, &yaw);
       }
       const size_t shapes_before = b_.shapes().size();
-      buildObject(g, id, xy, yaw, size, detail, b_);
-      recordRuin(g, id, xy, yaw, size);
+      // The solid's centre: `offset` in the object's frame from its position (zero for most specs).
+      const Vec2 centre = xy + Eigen::Rotation2Dd(yaw) * g.offset;
+      buildObject(g, id, centre, yaw, size, detail, b_);
+      placed.push_back({id, g.kind, g.name, xy, yaw / kDeg});
+      recordRuin(g, id, centre, yaw, size);
       if (g.at) checkFixedObjectClearsStart(gi, id, xy, shapes_before);
     }
   }
@@ -535,7 +541,7 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
   }
   // The objects, group by group.
   ObjectPlacer placer(spec, b);
-  for (size_t gi = 0; gi < spec.objects.size(); ++gi) placer.placeGroup(gi, out.object_counts);
+  for (size_t gi = 0; gi < spec.objects.size(); ++gi) placer.placeGroup(gi, out.object_counts, out.objects);
   // The world's files and facts.
   out.mjcf = b.mjcf();
   out.textures.assign(b.texturesUsed().begin(), b.texturesUsed().end());

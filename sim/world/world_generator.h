@@ -12,6 +12,14 @@
 
 namespace msb {
 
+/// One object as placed: its id (kind_n), kind, source name (may be empty) and pose on the ground
+/// (position before any `offset`, heading in degrees).
+struct PlacedObject {
+  std::string id, kind, name;
+  Vec2 xy = Vec2::Zero();
+  double yaw_deg = 0.0;
+};
+
 /// A generated world, before its files are written.
 struct GeneratedWorld {
   std::string name;
@@ -21,6 +29,7 @@ struct GeneratedWorld {
   Pose start = Pose::Identity();      ///< vehicle start pose
   Aabb exploration_box;
   std::map<std::string, int> object_counts;  ///< objects per kind
+  std::vector<PlacedObject> objects;         ///< every object, in build order
   int collision_geoms = 0, visual_geoms = 0;
 };
 

@@ -7,9 +7,9 @@
 namespace msb {
 
 const std::vector<std::string>& worldObjectKinds() {
-  static const std::vector<std::string> kinds = {"building", "tower",      "house",     "car",    "suv",
-                                                 "bus",      "fire_truck", "ambulance", "tree",   "rod",
-                                                 "pole",     "wall",       "rock",      "gazebo", "pillar"};
+  static const std::vector<std::string> kinds = {"building",   "tower",     "house",  "car",     "suv",  "bus",
+                                                 "fire_truck", "ambulance", "tree",   "rod",     "pole", "wall",
+                                                 "rock",       "gazebo",    "pillar", "dumpster"};
   return kinds;
 }
 
@@ -24,6 +24,8 @@ void ObjectGroupSpec::validate(ConfigChecker& c) const {
       "at",
       near.empty() ? "give either 'at' or 'region' (min and max)" : "'near' places the objects: no 'at' or 'region'");
   c.require(!at || count == 1, "count", "must be 1 with a fixed position 'at'");
+  c.require(at || name.empty(), "name", "names a fixed object: give 'at'");
+  c.require(at || offset.isZero(), "offset", "moves a fixed object's solid from 'at': give 'at'");
   if (region_min && region_max)
     c.require((region_max->array() > region_min->array()).all(), "region", "max must exceed min");
   c.require((size_max.array() >= size_min.array()).all() && size_max.maxCoeff() > 0, "size",

@@ -19,13 +19,19 @@ const std::vector<std::string>& worldObjectKinds();
 /// A group of objects of one kind.
 struct ObjectGroupSpec {
   std::string kind;  ///< building, tower, car, suv, bus, fire_truck, ambulance, tree, rod, pole, wall, rock, gazebo,
-                     ///< house, pillar
-  int count = 1;     ///< number of objects
+                     ///< house, pillar, dumpster
+  /// The source's name of a fixed object (e.g. the Gazebo model "House 1_clone" of the authors'
+  /// world file); listed by `msbench world show`. Empty: the id alone (kind_n).
+  std::string name;
+  int count = 1;                   ///< number of objects
   std::optional<Vec2> at;          ///< fixed position (count must be 1)
   std::optional<Vec2> region_min;  ///< random placement region (with region_max)
   std::optional<Vec2> region_max;
   std::optional<double> yaw_deg;  ///< fixed yaw; default random (region) or 0 (at)
-  Vec3 size_min = Vec3::Zero();   ///< size range (kind-specific meaning, see docs/worlds.md)
+  /// Where the solid's centre lies in the object's frame (x along its heading) from `at`: a
+  /// source model whose origin is not its footprint's centre keeps its own pose in `at`.
+  Vec2 offset = Vec2::Zero();
+  Vec3 size_min = Vec3::Zero();  ///< size range (kind-specific meaning, see docs/worlds.md)
   Vec3 size_max = Vec3::Zero();
   std::string variant;           ///< kind-specific: building burned|collapsed|collapsed_burned, ...
   std::string texture;           ///< texture override (default per kind)
@@ -44,7 +50,9 @@ struct ObjectGroupSpec {
   template <class Self, class V>
   static void fields(Self& s, V& v) {
     v.key("kind", s.kind);
+    v.key("name", s.name);
     v.key("count", s.count, Limits::range(1, 1000));
+    v.key("offset", s.offset, Limits::range(-100.0, 100.0));
     v.key("size_min", s.size_min, Limits::nonNegative());
     v.key("size_max", s.size_max, Limits::nonNegative());
     v.key("variant", s.variant);

@@ -165,6 +165,14 @@ int worldBuild(int argc, char** argv) {
   return kExitOk;
 }
 
+// One line per object: id, source name, position and heading.
+void printPlacedObjects(const std::vector<PlacedObject>& objects) {
+  std::printf("%-14s %-34s %9s %9s %8s\n", "object", "name", "x (m)", "y (m)", "yaw (°)");
+  for (const PlacedObject& o : objects)
+    std::printf("%-14s %-34s %9.3f %9.3f %8.2f\n", o.id.c_str(), o.name.empty() ? "-" : o.name.c_str(), o.xy.x(),
+                o.xy.y(), o.yaw_deg);
+}
+
 // msbench world show NAME --out DIR: top-down map, start views, explorable columns.
 int worldShow(int argc, char** argv) {
   ArgParser args("msbench world show", "Write a top-down map and fisheye views of a world.");
@@ -203,8 +211,15 @@ int worldShow(int argc, char** argv) {
                       {"box_columns", total},
                       {"explorable_columns", columns.size()},
                       {"explorable_area_m2", 6.25 * columns.size()}};
+  // Every object with its source's name and pose (the authors' model names in their worlds).
+  nlohmann::json placed = nlohmann::json::array();
+  for (const PlacedObject& o : w.generated.objects)
+    placed.push_back(
+        {{"id", o.id}, {"kind", o.kind}, {"name", o.name}, {"x", o.xy.x()}, {"y", o.xy.y()}, {"yaw_deg", o.yaw_deg}});
+  j["placed"] = placed;
   writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
   out.commit();
+  printPlacedObjects(w.generated.objects);
   std::printf("world %s: %zu of %d columns of the exploration box explorable (%.0f m2) -> %s\n",
               w.generated.name.c_str(), columns.size(), total, 6.25 * columns.size(), out.finalDir().c_str());
   return kExitOk;
