@@ -36,6 +36,7 @@ std::optional<double> firstRoot(double a, double b, double c) {
 }  // namespace
 
 double Shape::signedDistance(const Vec3& p) const {
+  if (type == ShapeType::kConvex) return polytope->signedDistance(p);
   const Vec3 q = pose.linear().transpose() * (p - pose.translation());
   switch (type) {
     case ShapeType::kBox: {
@@ -51,11 +52,14 @@ double Shape::signedDistance(const Vec3& p) const {
       return q.norm() - size.x();
     case ShapeType::kHalfSpace:
       return q.z();
+    case ShapeType::kConvex:
+      break;
   }
   return std::numeric_limits<double>::infinity();
 }
 
 std::optional<double> Shape::raycast(const Vec3& o_w, const Vec3& d_w) const {
+  if (type == ShapeType::kConvex) return polytope->raycast(o_w, d_w);
   const Mat3 Rt = pose.linear().transpose();
   const Vec3 o = Rt * (o_w - pose.translation()), d = Rt * d_w;
   switch (type) {
@@ -107,12 +111,15 @@ std::optional<double> Shape::raycast(const Vec3& o_w, const Vec3& d_w) const {
       if (d.z() >= 0.0) return std::nullopt;
       return -o.z() / d.z();
     }
+    case ShapeType::kConvex:
+      break;
   }
   return std::nullopt;
 }
 
 std::pair<Vec3, Vec3> Shape::bounds() const {
   if (type == ShapeType::kHalfSpace) return {Vec3::Constant(-1e9), Vec3::Constant(1e9)};
+  if (type == ShapeType::kConvex) return polytope->bounds();
   Vec3 half;
   const Mat3 A = pose.linear().cwiseAbs();
   switch (type) {

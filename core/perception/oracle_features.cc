@@ -46,6 +46,9 @@ void OracleFeatureSource::sampleLandmarks(RngStream& rng) {
       case ShapeType::kHalfSpace:
         samplePlane(s, lo, hi, rng);
         break;
+      case ShapeType::kConvex:
+        sampleConvex(s, rng);
+        break;
     }
   }
 }
@@ -105,6 +108,21 @@ void OracleFeatureSource::sampleSphere(const Shape& s, RngStream& rng) {
     if (d.norm() < 1e-9) d = Vec3::UnitZ();
     d.normalize();
     addLandmark(s, r * d, d);
+  }
+}
+
+void OracleFeatureSource::sampleConvex(const Shape& s, RngStream& rng) {
+  // Each surface triangle, uniformly (world frame: the pose is the identity).
+  const ConvexPolytope& P = *s.polytope;
+  for (const auto& t : P.triangles) {
+    const Vec3 &a = P.vertices[t[0]], &b = P.vertices[t[1]], &c = P.vertices[t[2]];
+    const Vec3 cross = (b - a).cross(c - a);
+    const int n = landmarkCount(0.5 * cross.norm(), rng);
+    for (int i = 0; i < n; ++i) {
+      double u = rng.uniform(), v = rng.uniform();
+      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+      landmarks_.push_back({a + u * (b - a) + v * (c - a), cross.normalized()});
+    }
   }
 }
 

@@ -78,6 +78,7 @@ class OracleFeatureSource final : public FeatureSource {
   void sampleBox(const Shape& s, RngStream& rng);
   void sampleCylinder(const Shape& s, RngStream& rng);
   void sampleSphere(const Shape& s, RngStream& rng);
+  void sampleConvex(const Shape& s, RngStream& rng);
   void samplePlane(const Shape& s, const Vec3& lo, const Vec3& hi, RngStream& rng);
   bool visible(const Landmark& l, const Pose& T_W_C, Vec2* pixel) const;
 

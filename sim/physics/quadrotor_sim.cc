@@ -1,4 +1,5 @@
 #include "sim/physics/quadrotor_sim.h"
+#include "sim/world/mjcf_world_builder.h"  // kGroundConaffinityBit (a constant: no link dependency)
 
 #include "sim/physics/mjcf_files.h"
 #include "sim/physics/mujoco_messages.h"
@@ -143,6 +144,13 @@ std::vector<GroundPlane> QuadrotorSim::groundPlanes() const {
   return out;
 }
 
+bool QuadrotorSim::hasGround() const {
+  if (!groundPlanes().empty()) return true;
+  for (int g = 0; g < m_->ngeom; ++g)
+    if (m_->geom_bodyid[g] != body_id_ && (m_->geom_conaffinity[g] & kGroundConaffinityBit)) return true;
+  return false;
+}
+
 std::string QuadrotorSim::outsideTheWorld(const Vec3& p) const {
   char text[256];
   for (const GroundPlane& g : groundPlanes()) {
@@ -225,8 +233,10 @@ std::optional<CollisionEvent> QuadrotorSim::checkContacts() const {
     if (v1 == v2) continue;  // not a vehicle–world pair
     const int vg = v1 ? c.geom1 : c.geom2;
     const int wg = v1 ? c.geom2 : c.geom1;
-    // Resting on the ground before take-off is not a collision.
-    if (!airborne_ && m_->geom_type[wg] == mjGEOM_PLANE) continue;
+    // Resting on the ground (a plane, or an imported terrain's piece) before take-off is not a
+    // collision.
+    const bool ground = m_->geom_type[wg] == mjGEOM_PLANE || (m_->geom_conaffinity[wg] & kGroundConaffinityBit);
+    if (!airborne_ && ground) continue;
     CollisionEvent ev;
     ev.tick = tick_;
     ev.t_s = timeSeconds();

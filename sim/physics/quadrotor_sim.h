@@ -100,6 +100,9 @@ class QuadrotorSim {
   bool diverged() const;
   /// The world's ground planes.
   std::vector<GroundPlane> groundPlanes() const;
+  /// True if the world has a ground to take off from: a ground plane, or the pieces of an
+  /// imported terrain (world geoms with the ground conaffinity bit, sim/world/mjcf_world_builder.h).
+  bool hasGround() const;
   /// Why `p` lies outside the world ("is below the ground plane 'ground' (z = 0)", "is outside
   /// the world (its ground ... spans ...)"), or "" if it lies within it.
   std::string outsideTheWorld(const Vec3& p) const;

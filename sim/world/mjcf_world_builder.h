@@ -31,6 +31,11 @@ inline constexpr int kCollisionOnly = 4;  ///< collision geoms hidden from the c
 inline constexpr int kSky = 5;            ///< sky planes (drawn with the renderer's `sky` switch)
 }  // namespace geom_groups
 
+/// A world geom with this conaffinity bit is ground (an imported terrain's pieces): before
+/// take-off, resting on it is no collision, as on a ground plane. The vehicle's contype (2)
+/// does not meet it, so contacts still come from the world's contype 1.
+inline constexpr int kGroundConaffinityBit = 4;
+
 /// How a solid looks.
 struct Look {
   enum Type { kTextured, kFlat, kCube, kHidden } type = kFlat;
@@ -72,6 +77,19 @@ class MjcfWorldBuilder {
   /// A visual-only textured box (no collision, no ground-truth shape), e.g. the skin of a
   /// larger collision solid whose hidden faces need not be drawn.
   void addVisualSlab(const std::string& name, const Pose& T, const Vec3& half, const std::string& texture);
+  /// A convex piece (world frame) as a hidden collision mesh geom (MuJoCo collides its convex
+  /// hull, which is the piece) and a ground-truth shape; `ground` marks it as ground to rest on.
+  void addConvex(const std::string& name, const std::string& object, ConvexPolytope piece, ObstacleKind kind,
+                 bool ground);
+  /// A visual-only mesh (no collision, no shape) with texture coordinates, drawn with `texture`:
+  /// a pattern name, or an image added with addImageTexture.
+  void addTexturedMesh(const std::string& name, const std::vector<Vec3>& v, const std::vector<Vec2>& uv,
+                       const std::vector<std::array<int, 3>>& faces, const std::string& texture);
+  /// A visual-only mesh in one flat grey.
+  void addFlatMesh(const std::string& name, const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& faces,
+                   double grey);
+  /// Declares an image texture (written as textures/<name>.png by the cache, not generated).
+  void addImageTexture(const std::string& name) { image_textures_.insert(name); }
   /// An outdoor sky: five inward-facing planes (a lid and four walls) well beyond the ground,
   /// flat and self-lit (no collision, no ground-truth shape), and a world-fixed sun. Worlds
   /// without it (caves) have neither.
@@ -103,7 +121,7 @@ class MjcfWorldBuilder {
 
   std::string model_name_;
   std::vector<Shape> shapes_;
-  std::set<std::string> textures_, cube_textures_;
+  std::set<std::string> textures_, cube_textures_, image_textures_;
   std::map<int, std::string> flat_materials_;  // grey level (0..255) -> material
   std::ostringstream assets_, bodies_;
   struct MergedMesh {

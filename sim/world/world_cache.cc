@@ -42,6 +42,7 @@ std::string shapesCsv(const std::vector<Shape>& shapes) {
     const char* type = sh.type == ShapeType::kBox        ? "box"
                        : sh.type == ShapeType::kCylinder ? "cylinder"
                        : sh.type == ShapeType::kSphere   ? "sphere"
+                       : sh.type == ShapeType::kConvex   ? "convex"
                                                          : "halfspace";
     std::snprintf(line, sizeof(line), "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
                   sh.name.c_str(), sh.object.c_str(), obstacleKindName(sh.kind), type, sh.pose.translation().x(),
@@ -75,6 +76,7 @@ void writeWorldDirectory(const GeneratedWorld& g, int texture_px, const fs::path
     fs::create_directories(tmp / "textures");
     for (const auto& t : g.textures)
       writeBytes(tmp / "textures" / (t + ".png"), encodePng(viewOf(makeTexture(t, texture_px, 0))));
+    for (const auto& [name, png] : g.image_textures) writeBytes(tmp / "textures" / (name + ".png"), png);
     writeBytes(tmp / "shapes.csv", shapesCsv(g.shapes));
     writeBytes(tmp / "world.xml", g.mjcf);
   } catch (const std::exception& e) {

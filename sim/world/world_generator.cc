@@ -531,10 +531,11 @@ class ObjectPlacer {
 GeneratedWorld generateWorld(const WorldSpec& spec) {
   checkValid(spec);
   MjcfWorldBuilder b(spec.name);
-  b.setGround(spec.ground_size_m, spec.ground_texture);
+  if (spec.ground_enabled) b.setGround(spec.ground_size_m, spec.ground_texture);
   if (!spec.cave) b.setOutdoorSky(spec.ground_size_m);  // caves: no sky, no sun
   GeneratedWorld out;
   out.name = spec.name;
+  out.meshes = buildMeshes(spec, b, out.image_textures);
   if (spec.cave) {
     buildCave(*spec.cave, b);
     out.object_counts["cave_box"] = b.collisionGeoms() - 1;

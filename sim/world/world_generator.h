@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/geometry/world_truth.h"
+#include "sim/world/mesh_world.h"
 #include "sim/world/world_spec.h"
 
 namespace msb {
@@ -23,10 +24,12 @@ struct PlacedObject {
 /// A generated world, before its files are written.
 struct GeneratedWorld {
   std::string name;
-  std::string mjcf;                   ///< world.xml text
-  std::vector<std::string> textures;  ///< pattern names to write as textures/<name>.png
-  std::vector<Shape> shapes;          ///< ground truth, same names as the collision geoms
-  Pose start = Pose::Identity();      ///< vehicle start pose
+  std::string mjcf;                                   ///< world.xml text
+  std::vector<std::string> textures;                  ///< pattern names to write as textures/<name>.png
+  std::map<std::string, std::string> image_textures;  ///< imported images: name → PNG bytes (textures/<name>.png)
+  std::vector<MeshBuildReport> meshes;                ///< what each imported mesh became
+  std::vector<Shape> shapes;                          ///< ground truth, same names as the collision geoms
+  Pose start = Pose::Identity();                      ///< vehicle start pose
   Aabb exploration_box;
   std::map<std::string, int> object_counts;  ///< objects per kind
   std::vector<PlacedObject> objects;         ///< every object, in build order
@@ -40,5 +43,6 @@ GeneratedWorld generateWorld(const WorldSpec& spec);
 /// Version of the generator; part of the cache key so cached worlds rebuild when it changes.
 inline constexpr int kWorldGeneratorVersion =
     5;  // 2: skybox texture, 3: sun light, 4: sky planes, outdoor sun only, vehicles, 5: burned texture
+        // (imported meshes need no new version: their vertices and image hashes are in the MJCF)
 
 }  // namespace msb

@@ -61,6 +61,21 @@ void CaveSpec::validate(ConfigChecker& c) const {
   c.require(isTextureName(texture), "texture", "unknown texture '" + texture + "'");
 }
 
+void SourceSpec::validate(ConfigChecker& c) const {
+  checkFields(*this, c);
+  c.require(!repository.empty(), "repository", "is required (e.g. owner/name)");
+  c.require(!commit.empty(), "commit", "is required (the commit the files were taken from)");
+}
+
+void MeshSpec::validate(ConfigChecker& c) const {
+  checkFields(*this, c);
+  // A path inside the checkout: relative, without '..'.
+  const bool inside = !file.empty() && file[0] != '/' && file.find("..") == std::string::npos;
+  c.require(inside, "file", "must be a path inside the source checkout (relative, no '..'), got '" + file + "'");
+  c.require(missing_texture.empty() || isTextureName(missing_texture), "missing_texture",
+            "unknown texture '" + missing_texture + "'");
+}
+
 void WorldSpec::validate(ConfigChecker& c) const {
   checkFields(*this, c);
   c.require(!name.empty(), "name", "is required");
@@ -95,6 +110,9 @@ void WorldSpec::validate(ConfigChecker& c) const {
               "must be no larger than the ground plane");
   }
   if (cave) c.nested("cave", *cave);
+  c.require(meshes.empty() || source.has_value(), "source", "is required with meshes (where they come from)");
+  if (source) c.nested("source", *source);
+  for (size_t i = 0; i < meshes.size(); ++i) c.nested("meshes[" + std::to_string(i) + "]", meshes[i]);
 }
 
 }  // namespace msb

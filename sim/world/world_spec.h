@@ -125,6 +125,56 @@ struct CaveSpec {
   void validate(ConfigChecker& c) const;
 };
 
+/// Where a world's imported files come from: a public repository at a commit. The files are
+/// copied from a checkout by `msbench world import NAME --from CHECKOUT` into the world cache
+/// (`sources/NAME/`), where generation reads them; msbench ships none of them.
+struct SourceSpec {
+  std::string repository;  ///< e.g. ctu-mrs/monospheres
+  std::string commit;      ///< e.g. 43fca1f
+
+  /// The keys, each once with the values it accepts.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("repository", s.repository);
+    v.key("commit", s.commit);
+  }
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
+/// A mesh from the world's source, placed as its Gazebo model places it (docs/worlds.md,
+/// "Imported meshes"): collision and ground truth from convex pieces, looks from its materials.
+struct MeshSpec {
+  std::string file;               ///< path inside the source checkout
+  std::string name;               ///< the source's name for it (e.g. the Gazebo model's)
+  Vec3 at = Vec3::Zero();         ///< position of the mesh's origin
+  double yaw_deg = 0.0;           ///< heading of the mesh's frame
+  Vec3 scale = Vec3::Ones();      ///< the model's mesh scale
+  std::string kind = "textured";  ///< ground-truth kind of its parts (terrain parts are ground)
+  double slab_thickness_m =
+      0.3;  ///< thickness of the slab under each triangle of a part that is neither convex nor terrain
+  /// A procedural texture drawn (in world metres) where an image the mesh names is not in the
+  /// imported source; empty: such a mesh is an error.
+  std::string missing_texture;
+  int max_texture_px = 2048;  ///< images are scaled down to this side (grey, as the camera sees)
+
+  /// The keys, each once with the values it accepts.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("file", s.file);
+    v.key("name", s.name);
+    v.key("at", s.at, Limits::range(-1e4, 1e4));
+    v.key("yaw_deg", s.yaw_deg, Limits::range(-360.0, 360.0));
+    v.key("scale", s.scale, Limits::range(1e-6, 1e4));
+    v.key("kind", s.kind, Choices{"textured", "textureless"});
+    v.key("slab_thickness_m", s.slab_thickness_m, Limits::range(0.01, 10.0));
+    v.key("missing_texture", s.missing_texture);
+    v.key("max_texture_px", s.max_texture_px, Limits::range(16, 8192));
+  }
+  /// Records invalid fields.
+  void validate(ConfigChecker& c) const;
+};
+
 /// A whole world.
 struct WorldSpec {
   std::string name;                     ///< world name (folder under worlds/)
@@ -141,6 +191,12 @@ struct WorldSpec {
   int texture_px = 512;                      ///< texture resolution
   std::vector<ObjectGroupSpec> objects;
   std::optional<CaveSpec> cave;
+  bool ground_enabled = true;        ///< a ground plane (false: an imported terrain is the ground)
+  std::optional<SourceSpec> source;  ///< where `meshes` come from
+  std::vector<MeshSpec> meshes;      ///< imported meshes
+  /// Not a key: the directory the imported files are read from (the world cache's
+  /// sources/NAME/, set where the spec is resolved).
+  std::string source_dir;
 
   /// The top-level keys, each once with the values it accepts (`ground`, `start`,
   /// `exploration_box`, `objects` and `cave` are read in tools/config).

@@ -23,6 +23,8 @@ std::string worldCacheDir() {
   return env && *env ? std::string(env) : (fs::path(worldsDir()) / ".cache").string();
 }
 
+std::string worldSourcesDir(const std::string& name) { return (fs::path(worldCacheDir()) / "sources" / name).string(); }
+
 namespace {
 
 // Throws "is required" for each of `keys` missing from `r` (a key a table reads as optional).
@@ -87,6 +89,7 @@ void readWorld(MapReader& r, WorldSpec& s) {
     MapReader g = r.sub("ground");
     if (g.has("size_m")) readVec2(g, "size_m", s.ground_size_m);
     g.read("texture", s.ground_texture);
+    g.read("enabled", s.ground_enabled);
     g.finish();
   }
   if (r.has("start")) {
@@ -112,6 +115,22 @@ void readWorld(MapReader& r, WorldSpec& s) {
     readCave(r.sub("cave"), c);
     s.cave = c;
   }
+  // Imported meshes and where they come from, each by its own table.
+  if (r.has("source")) {
+    MapReader src = r.sub("source");
+    SourceSpec so;
+    fieldKeys(src, so);
+    src.finish();
+    s.source = so;
+  }
+  if (r.has("meshes"))
+    r.forEachInList("meshes", [&](MapReader& m) {
+      requireKeys(m, {"file"});
+      MeshSpec ms;
+      fieldKeys(m, ms);
+      m.finish();
+      s.meshes.push_back(ms);
+    });
   r.finish();
 }
 
@@ -159,6 +178,7 @@ ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed)
     }
     WorldSpec spec = loadWorldSpec(w.path);
     if (seed) spec.seed = *seed;
+    spec.source_dir = worldSourcesDir(spec.name);
     try {
       out.built = buildWorld(spec, worldCacheDir());
     } catch (const ConfigError& e) {

@@ -57,8 +57,9 @@ ClosedLoop::ClosedLoop(const FlightSpec& spec, const LoopSetup& setup)
   if (spec.frontend.landmark_jitter_inv_depth > 0.0)
     jitter_.emplace(spec.frontend.landmark_jitter_inv_depth, spec.seed);
   // A flight needs a ground to take off from and to stay above.
-  if (sim_.groundPlanes().empty())
-    throw ConfigError("world", spec.world_path + ": the world has no ground (a colliding plane facing up)");
+  if (!sim_.hasGround())
+    throw ConfigError(
+        "world", spec.world_path + ": the world has no ground (a colliding plane facing up, or an imported terrain)");
   if (renderer_) result_.gl_description = renderer_->description();
   if (!setup_.explorer) {
     // A scripted path stays inside the world (above its ground, within its extent).

@@ -1,4 +1,5 @@
 // msbench world list | build | show: the benchmark worlds, their cache and previews.
+#include <unistd.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,7 +9,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/common/png.h"
+#include "core/common/rng.h"
 #include "core/common/wall_time.h"
+#include "sim/physics/mjcf_files.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/render/fisheye_renderer.h"
 #include "tools/config/strict_number.h"
@@ -79,10 +82,12 @@ cv::Mat renderTopDown(const BuiltWorld& w, double m_per_px) {
   for (int v = 0; v < H; ++v)
     for (int u = 0; u < W; ++u) {
       const Vec3 o(lo.x() + (u + 0.5) * m_per_px, hi.y() - (v + 0.5) * m_per_px, z_top);
-      const auto hit = truth.raycast(o, Vec3(0, 0, -1), z_top + 1.0);
+      // Down to 1 m below the box (its floor is the ground, or an imported terrain's low point).
+      const double z_low = g.exploration_box.min.z();
+      const auto hit = truth.raycast(o, Vec3(0, 0, -1), z_top - z_low + 1.0);
       if (!hit || g.shapes[hit->shape].type == ShapeType::kHalfSpace) continue;  // open ground
-      const double height = z_top - hit->distance_m;
-      const double shade = 0.55 + 0.45 * std::clamp(height / z_top, 0.0, 1.0);
+      const double height = z_top - hit->distance_m - z_low;
+      const double shade = 0.55 + 0.45 * std::clamp(height / (z_top - z_low), 0.0, 1.0);
       const cv::Vec3b c = kindColour(g.shapes[hit->shape].kind);
       img.at<cv::Vec3b>(v, u) = cv::Vec3b(uchar(c[0] * shade), uchar(c[1] * shade), uchar(c[2] * shade));
     }
@@ -145,6 +150,74 @@ int worldList(int argc, char** argv) {
   return kExitOk;
 }
 
+// What each imported mesh of a world became: nodes and their pieces, images, stand-ins.
+void printMeshReports(const std::vector<MeshBuildReport>& meshes) {
+  for (const MeshBuildReport& m : meshes) {
+    std::printf("  mesh %s: %zu triangles\n", m.file.c_str(), m.triangles);
+    for (const auto& [node, what] : m.nodes) std::printf("    %-24s %s\n", node.c_str(), what.c_str());
+    for (const std::string& i : m.images) std::printf("    image %s\n", i.c_str());
+    for (const std::string& i : m.stand_ins)
+      std::printf("    image %s: absent from the imported source, drawn as the spec's missing_texture\n", i.c_str());
+  }
+}
+
+// The spec of a generated world named `name` (a usage error otherwise).
+WorldSpec generatedWorldSpec(const std::string& name) {
+  for (const auto& w : listWorlds())
+    if (w.name == name) {
+      if (!w.generated) throw UsageError("world '" + name + "' is a hand-written MJCF world: it imports nothing");
+      return loadWorldSpec(w.path);
+    }
+  throw UsageError("world '" + name + "': no world of that name in " + worldsDir());
+}
+
+// msbench world import NAME --from CHECKOUT: copies the files a world's meshes need (and the
+// images they name) from a checkout of its source into the cache's sources/NAME/, after checking
+// that the world builds from them; nothing is written if it does not.
+int worldImport(int argc, char** argv) {
+  ArgParser args("msbench world import",
+                 "Copy a world's meshes and their images from a checkout of its source into the world cache.");
+  args.positional("NAME", "world name").option("from", "", "the checkout (a clone of the spec's source)", true);
+  if (!args.parse(argc - 1, argv + 1)) return kExitOk;
+  const std::string name = args.get("NAME"), checkout = args.get("from");
+  WorldSpec spec = generatedWorldSpec(name);
+  if (spec.meshes.empty()) throw UsageError("world '" + name + "' imports nothing (its spec has no meshes)");
+  if (!fs::is_directory(checkout)) throw UsageError("--from " + checkout + ": not a directory");
+  std::vector<std::string> missing;
+  const std::vector<std::string> files = meshSourceFiles(spec, checkout, missing);
+  // Staged beside the target, checked by building the world from it, then renamed in place.
+  const fs::path target = worldSourcesDir(name);
+  const fs::path staging = target.parent_path() / (".tmp-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(staging);
+  try {
+    nlohmann::json list = nlohmann::json::array();
+    for (const std::string& f : files) {
+      fs::create_directories((staging / f).parent_path());
+      fs::copy_file(fs::path(checkout) / f, staging / f);
+      list.push_back({{"file", f}, {"bytes", fs::file_size(staging / f)}});
+    }
+    spec.source_dir = staging.string();
+    const GeneratedWorld g = generateWorld(spec);
+    const nlohmann::json record = {{"repository", spec.source->repository},
+                                   {"commit", spec.source->commit},
+                                   {"from", fs::absolute(checkout).string()},
+                                   {"files", list},
+                                   {"absent_images", missing}};
+    writeFileAtomic(staging / "imported.json", record.dump(2) + "\n");
+    throwIfInterrupted();
+    fs::remove_all(target);
+    fs::rename(staging, target);
+    printMeshReports(g.meshes);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(staging, ec);
+    throw;
+  }
+  std::printf("world %s: %zu files imported from %s -> %s\n", name.c_str(), files.size(), checkout.c_str(),
+              target.c_str());
+  return kExitOk;
+}
+
 // msbench world build NAME: generate (or reuse) and compile once in MuJoCo.
 int worldBuild(int argc, char** argv) {
   ArgParser args("msbench world build", "Generate a world (MJCF, textures, shapes) into the cache.");
@@ -162,7 +235,50 @@ int worldBuild(int argc, char** argv) {
               w.generated.name.c_str(), w.directory.c_str(), w.reused ? "cached" : "built", secs,
               w.generated.collision_geoms, w.generated.visual_geoms, sim.geomCount());
   for (const auto& [kind, n] : w.generated.object_counts) std::printf("  %-10s %d\n", kind.c_str(), n);
+  printMeshReports(w.generated.meshes);
+  // The surface under the start (the spec's start z should lie on it: the vehicle rests there).
+  const Vec3 start = w.generated.start.translation();
+  const WorldTruth truth(w.generated.shapes);
+  if (const auto hit = truth.raycast(start + Vec3(0, 0, 100), Vec3(0, 0, -1), 300.0))
+    std::printf("  the surface under the start (%g, %g) is at z = %.3f (the start's z: %g)\n", start.x(), start.y(),
+                start.z() + 100 - hit->distance_m, start.z());
   return kExitOk;
+}
+
+// The ground truth against MuJoCo: 1000 random rays from free points of the exploration box
+// (seeded: the same rays every time), each first hit compared. Rays that leave the world (no hit
+// within 150 m in both, or MuJoCo's finite ground plane) are not compared.
+struct RayAgreement {
+  int compared = 0, disagree = 0;  ///< rays compared; those differing by more than 1 cm
+  double max_diff_m = 0.0;
+};
+
+RayAgreement truthAgainstMuJoCo(const BuiltWorld& w) {
+  const WorldTruth truth(w.generated.shapes);
+  QuadrotorSim sim(PhysicsConfig{}, w.world_xml, w.generated.start);
+  const int vehicle = mj_name2id(sim.model(), mjOBJ_BODY, mjcf_names::kVehicleBody);
+  const mjtByte groups[mjNGROUP] = {1, 0, 0, 0, 1, 0};  // collision geoms: drawn (0) and hidden (4)
+  RngStream rng(11, "world_show_rays");
+  const Aabb& box = w.generated.exploration_box;
+  RayAgreement out;
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 o(rng.uniform(box.min.x(), box.max.x()), rng.uniform(box.min.y(), box.max.y()),
+                 rng.uniform(box.min.z() + 0.3, box.max.z()));
+    const Vec3 d = Vec3(rng.normal(), rng.normal(), rng.normal()).normalized();
+    if (truth.distance(o) < 0.2) continue;
+    const auto hit = truth.raycast(o, d, 150.0);
+    int geom = -1;
+    double t = mj_ray(sim.model(), sim.data(), o.data(), d.data(), groups, 1, vehicle, &geom);
+    const char* name = geom >= 0 ? mj_id2name(sim.model(), mjOBJ_GEOM, geom) : nullptr;
+    if ((name && std::string(name).rfind("sky_", 0) == 0) || t > 150.0) t = -1.0;
+    if (hit && w.generated.shapes[hit->shape].type == ShapeType::kHalfSpace) continue;  // MuJoCo's plane is finite
+    if (!hit && t < 0) continue;
+    const double diff = hit && t >= 0 ? std::abs(t - hit->distance_m) : 1e9;
+    ++out.compared;
+    out.disagree += diff > 0.01;
+    out.max_diff_m = std::max(out.max_diff_m, std::min(diff, 1e9));
+  }
+  return out;
 }
 
 // One line per object: id, source name, position and heading.
@@ -217,9 +333,15 @@ int worldShow(int argc, char** argv) {
     placed.push_back(
         {{"id", o.id}, {"kind", o.kind}, {"name", o.name}, {"x", o.xy.x()}, {"y", o.xy.y()}, {"yaw_deg", o.yaw_deg}});
   j["placed"] = placed;
+  const RayAgreement rays = truthAgainstMuJoCo(w);
+  j["truth_vs_mujoco"] = {
+      {"rays_compared", rays.compared}, {"beyond_1cm", rays.disagree}, {"max_diff_m", rays.max_diff_m}};
   writeFileAtomic(out.staging() / "summary.json", j.dump(2) + "\n");
   out.commit();
   printPlacedObjects(w.generated.objects);
+  printMeshReports(w.generated.meshes);
+  std::printf("world %s: ground truth against MuJoCo: %d rays compared, %d differ by more than 1 cm (largest %.4f m)\n",
+              w.generated.name.c_str(), rays.compared, rays.disagree, rays.max_diff_m);
   std::printf("world %s: %zu of %d columns of the exploration box explorable (%.0f m2) -> %s\n",
               w.generated.name.c_str(), columns.size(), total, 6.25 * columns.size(), out.finalDir().c_str());
   return kExitOk;
@@ -231,16 +353,19 @@ int runWorldCommand(int argc, char** argv) {
   const std::string sub = argc > 0 ? argv[0] : "";
   if (sub.empty() || sub == "--help" || sub == "-h") {
     std::printf(
-        "usage: msbench world list | build NAME [--seed S] | show NAME --out DIR [--seed S]\n\n"
-        "  list   worlds under %s\n  build  generate into the cache (%s)\n"
-        "  show   top-down map and fisheye views from the start pose\n",
+        "usage: msbench world list | build NAME [--seed S] | show NAME --out DIR [--seed S] |\n"
+        "       import NAME --from CHECKOUT\n\n"
+        "  list    worlds under %s\n  build   generate into the cache (%s)\n"
+        "  show    top-down map and fisheye views from the start pose\n"
+        "  import  copy a world's meshes from a checkout of its source into the cache\n",
         worldsDir().c_str(), worldCacheDir().c_str());
     return sub.empty() ? kExitUsage : kExitOk;
   }
   if (sub == "list") return worldList(argc, argv);
   if (sub == "build") return worldBuild(argc, argv);
   if (sub == "show") return worldShow(argc, argv);
-  throw UsageError("unknown world sub-command '" + sub + "' (list, build, show)");
+  if (sub == "import") return worldImport(argc, argv);
+  throw UsageError("unknown world sub-command '" + sub + "' (list, build, show, import)");
 }
 
 }  // namespace msb

@@ -13,11 +13,13 @@ namespace {
 // Ground-truth obstacles (not the ground) as faint footprints, coloured by kind: textured grey,
 // textureless orange, thin magenta (drawn at least 2 px wide so rods stay visible).
 // The convex xy footprint of a shape in pixels: a box's corners, a cylinder's rims, a sphere's
-// equator.
+// equator, a convex piece's vertices.
 template <class ToPixel>
 std::vector<cv::Point> footprintHull(const Shape& sh, ToPixel px) {
   std::vector<cv::Point> outline;
-  if (sh.type == ShapeType::kBox) {
+  if (sh.type == ShapeType::kConvex) {
+    for (const Vec3& v : sh.polytope->vertices) outline.push_back(px(v));
+  } else if (sh.type == ShapeType::kBox) {
     for (int k = 0; k < 8; ++k) {
       const Vec3 corner((k & 1 ? 1 : -1) * sh.size.x(), (k & 2 ? 1 : -1) * sh.size.y(), (k & 4 ? 1 : -1) * sh.size.z());
       outline.push_back(px(sh.pose * corner));

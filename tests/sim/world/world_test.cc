@@ -206,7 +206,7 @@ TEST(Worlds, StartPosesKeepTheirSpecsClearance) {
 struct ReferenceModel {
   std::string name, model;
   Vec2 xy;
-  double yaw_deg;
+  double z, yaw_deg;
 };
 
 std::vector<ReferenceModel> referencePoses(const std::string& world) {
@@ -220,35 +220,48 @@ std::vector<ReferenceModel> referencePoses(const std::string& world) {
     for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
     if (f.size() != 8) ADD_FAILURE() << world << ": bad row " << line;
     if (f.size() != 8) continue;
-    out.push_back({f[0], f[1], Vec2(std::stod(f[2]), std::stod(f[3])), std::stod(f[7]) / kDeg});
+    out.push_back({f[0], f[1], Vec2(std::stod(f[2]), std::stod(f[3])), std::stod(f[4]), std::stod(f[7]) / kDeg});
   }
   return out;
 }
 
-// rooftops and sparse as the authors flew them: every model of suburb3.world and sparse1.world
-// (the poses of their saved world state, committed as reference_poses.csv) is an object of the
-// msbench world at that position and heading, named as in the file, with its solids around that
-// position; no named object is missing from the file; the model counts are the files'.
+// The worlds as the authors flew them: every model of suburb3.world, sparse1.world and
+// lushcave_morelights.sdf (the poses of their saved world state, committed as
+// reference_poses.csv) is an object of the msbench world at that position, height and heading
+// (msbench's fire truck is long along x, the model along y: 90° more), named as in the file, with
+// its solids around that position; no named object is missing from the file; the model counts are
+// the files'. lushcave's mesh (imported, not in the repository) is left out here: MeshImport.*
+// tests the import.
 TEST(Worlds, TheAuthorsWorldsPlaceEveryModelAtItsSavedPose) {
   const std::map<std::string, std::map<std::string, int>> counts = {
       {"suburb3", {{"house_1", 7}, {"house_2", 4}, {"house_3", 9}, {"tree_simple", 9}, {"suv", 3}, {"gazebo", 1}}},
-      {"sparse1", {{"hatchback", 10}, {"tree_simple", 8}, {"grey_wall", 4}, {"suv", 3}, {"dumpster", 2}}}};
+      {"sparse1", {{"hatchback", 10}, {"tree_simple", 8}, {"grey_wall", 4}, {"suv", 3}, {"dumpster", 2}}},
+      {"lushcave", {{"", 1}, {"tree_simple", 16}, {"grey_wall", 7}, {"fire_truck", 3}}}};
+  const std::map<std::string, double> yaw_offset_deg = {{"fire_truck", 90.0}};
   for (const auto& [world, want] : counts) {
     const auto reference = referencePoses(world);
-    const GeneratedWorld g = generateWorld(spec(world));
+    WorldSpec ws = spec(world);
+    ws.meshes.clear();
+    ws.ground_enabled = true;
+    const GeneratedWorld g = generateWorld(ws);
     std::map<std::string, int> models;
     std::set<std::string> names;
     for (const ReferenceModel& m : reference) {
       ++models[m.model];
       names.insert(m.name);
+      if (m.model.empty()) continue;  // the imported mesh
+      const double yaw_off = yaw_offset_deg.count(m.model) ? yaw_offset_deg.at(m.model) : 0.0;
       int found = 0;
       for (const PlacedObject& o : g.objects) {
         if (o.name != m.name) continue;
         ++found;
         EXPECT_LT((o.xy - m.xy).norm(), 1e-4) << world << ": " << m.name;
-        EXPECT_NEAR(std::remainder(o.yaw_deg - m.yaw_deg, 360.0), 0.0, 1e-3) << world << ": " << m.name;
+        EXPECT_NEAR(std::remainder(o.yaw_deg - m.yaw_deg - yaw_off, 360.0), 0.0, 1e-3) << world << ": " << m.name;
       }
       EXPECT_GE(found, 1) << world << ": no object named " << m.name;
+      for (const ObjectGroupSpec& o : ws.objects)
+        if (o.name == m.name)  // 2 mm: sparse1's dumpsters had settled 1.3 mm in the saved state
+          EXPECT_NEAR(o.base_z_m, m.z, 2e-3) << world << ": " << m.name;
       // The model's origin lies within the horizontal bounds of its solids.
       Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
       for (const PlacedObject& o : g.objects)

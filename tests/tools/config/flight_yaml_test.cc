@@ -182,7 +182,8 @@ TEST(YamlConfig, EveryWorldSpecKeyIsDocumentedAndChecked) {
       "tunnels: [{from: [0, 0], to: [10, 0]}]}\n";
   const std::string base = "name: w\nexploration_box: {min: [0, 0, 0], max: [10, 10, 5]}\n";
   const std::string object = "objects: [{kind: rock, at: [1, 1], size: [1, 1, 1]}]\n";
-  std::ofstream(dir / "spec.yaml") << base << object << cave;
+  const std::string meshes = "source: {repository: a/b, commit: c0ffee}\nmeshes: [{file: m/terrain.dae}]\n";
+  std::ofstream(dir / "spec.yaml") << base << object << cave << meshes;
   ASSERT_NO_THROW(loadWorldSpec((dir / "spec.yaml").string()));
   int probed = 0;
   // (a table, how a value of one of its keys is put into the spec)
@@ -191,7 +192,9 @@ TEST(YamlConfig, EveryWorldSpecKeyIsDocumentedAndChecked) {
       {tableKeys<ObjectGroupSpec>(), "objects[0]."},
       {tableKeys<CaveSpec>(), "cave."},
       {tableKeys<CaveChamberSpec>(), "cave.chambers[0]."},
-      {tableKeys<CaveTunnelSpec>(), "cave.tunnels[0]."}};
+      {tableKeys<CaveTunnelSpec>(), "cave.tunnels[0]."},
+      {tableKeys<SourceSpec>(), "source."},
+      {tableKeys<MeshSpec>(), "meshes[0]."}};
   for (const auto& [keys, prefix] : tables) {
     for (const auto& [name, refused] : keys) {
       EXPECT_NE(docs.find(name), std::string::npos) << prefix << name << " is not in docs/worlds.md";
@@ -201,6 +204,8 @@ TEST(YamlConfig, EveryWorldSpecKeyIsDocumentedAndChecked) {
                       : prefix == "objects[0]."       ? spec["objects"][0]
                       : prefix == "cave."             ? spec["cave"]
                       : prefix == "cave.chambers[0]." ? spec["cave"]["chambers"][0]
+                      : prefix == "source."           ? spec["source"]
+                      : prefix == "meshes[0]."        ? spec["meshes"][0]
                                                       : spec["cave"]["tunnels"][0];
       at[name] = YAML::Load(refused);
       YAML::Emitter e;
@@ -215,7 +220,7 @@ TEST(YamlConfig, EveryWorldSpecKeyIsDocumentedAndChecked) {
       ++probed;
     }
   }
-  EXPECT_GE(probed, 16);
+  EXPECT_GE(probed, 22);
 }
 
 }  // namespace

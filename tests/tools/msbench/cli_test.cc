@@ -34,7 +34,9 @@ TEST(Cli, HelpAndUsageErrors) {
   EXPECT_NE(readText(d / "log").find("unknown option --bogus"), std::string::npos);
   EXPECT_EQ(run("render-probe --out x.png --pose 1,2", d / "log"), 2);
   EXPECT_EQ(run("render-probe --out x.png --world nowhere", d / "log"), 2);
-  EXPECT_NE(readText(d / "log").find("available: burned_probe, cave, rooftops, sparse, test, urban"), std::string::npos)
+  EXPECT_NE(readText(d / "log").find(
+                "available: burned_probe, cave, lushcave, rooftops, sparse, sparse1, suburb3, test, urban"),
+            std::string::npos)
       << readText(d / "log");
 }
 
