@@ -65,6 +65,14 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
+  /// The authors' grid session (tmux_scripts/*_octomap_random_explorer of ctu-mrs/monospheres):
+  /// its planner's `unknown_is_occupied: False` (octomap_planner.yaml) and mrs_octomap_server's
+  /// map, pruned as it updates. Applied by `method.reference_code: published` before the keys a
+  /// scenario names (docs/baseline.md, "The published configuration").
+  void applyPublishedSettings() {
+    planner.unknown_is_occupied = false;
+    map.prune = true;
+  }
   /// The OctoMap leaf size: the authors' evaluation rule for OctoMap maps (BUG-11) scores the
   /// grid baseline's free cells beside msbench's squares (coverage.area_published_rule_m2).
   double octreeResolutionM() const { return map.resolution_m; }

@@ -109,19 +109,21 @@ GridUpdateStats GridMap::insertScan(const Vec3& origin, const std::vector<Vec3>&
     if (j < occupied_keys.size() && occupied_keys[j].first == f.first) continue;
     only_free.push_back(f);
   }
-  // Standard: OctoMap's own hit/miss update; weighted: the log-odds scaled by the weight.
+  // Standard: OctoMap's own hit/miss update; weighted: the log-odds scaled by the weight. Lazy
+  // (no pruning) unless the map prunes as it updates.
   const float l_hit = octomap::logodds(config_.prob_hit), l_miss = octomap::logodds(config_.prob_miss);
+  const bool lazy = !config_.prune;
   for (const auto& [k, w] : only_free) {
     if (config_.weighted())
-      tree_->updateNode(unpackKey(k), float(w) * l_miss, true);
+      tree_->updateNode(unpackKey(k), float(w) * l_miss, lazy);
     else
-      tree_->updateNode(unpackKey(k), false, true);
+      tree_->updateNode(unpackKey(k), false, lazy);
   }
   for (const auto& [k, w] : occupied_keys) {
     if (config_.weighted())
-      tree_->updateNode(unpackKey(k), float(w) * l_hit, true);
+      tree_->updateNode(unpackKey(k), float(w) * l_hit, lazy);
     else
-      tree_->updateNode(unpackKey(k), true, true);
+      tree_->updateNode(unpackKey(k), true, lazy);
   }
   tree_->updateInnerOccupancy();
   // Watched misses of cells this scan also hit were not made (occupied wins within a scan).

@@ -46,6 +46,10 @@ struct GridMapConfig {
   double clamp_max = 0.7;
   std::string insertion = "standard";        ///< standard | confidence_weighted
   double confidence_depth_gain_per_m = 5.0;  ///< a of Eq. 10 (confidence 0 at 2σ = 100/a m)
+  /// Prune the octree as it updates (OctoMap's non-lazy update: eight equal sibling leaves become
+  /// one cell twice the size), as the reference's mapper keeps its map; msbench's default keeps
+  /// every 0.5 m leaf.
+  bool prune = false;
 
   /// True for confidence-weighted insertion.
   bool weighted() const { return insertion == "confidence_weighted"; }
@@ -61,6 +65,7 @@ struct GridMapConfig {
     v.key("clamp_max", s.clamp_max, Limits::range(0.5, 1.0));
     v.key("insertion", s.insertion, Choices{"standard", "confidence_weighted"});
     v.key("confidence_depth_gain_per_m", s.confidence_depth_gain_per_m, Limits::nonNegative());
+    v.key("prune", s.prune);
   }
 
   /// Records invalid fields.

@@ -79,9 +79,11 @@ class MissionCoverage {
   /// real box the mission has seen, with each free-space element placed where it truly was.
   size_t trueFrameExploredExplorableColumns() const;
 
- private:
-  double publishedRuleRadius(double half_side_m) const;  // a cell's disk radius under EVAL's rule
+  /// The disk radius the authors' evaluation rule gives a free OctoMap cell of half side
+  /// `half_side_m` (0.5·(k + 1) for a cell 2^k leaves wide; enablePublishedOctomapRule first).
+  double publishedRuleRadius(double half_side_m) const;
 
+ private:
   Aabb box_;
   std::set<ColumnIndex> box_explorable_;
   ColumnCoverage columns_, columns_gt_;

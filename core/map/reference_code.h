@@ -54,6 +54,11 @@ struct ReferenceCodeConfig {
   /// path, which restarts the 8 s re-send timer, and the goal is dropped (not failed, not
   /// blacklisted). msbench's own blocked-route hold is not used.
   bool hardstop_drops_goal = false;
+  /// With FFF off (the ablation: `fix_heading_at_path_start: True`), the published heading path
+  /// still looks for where to start turning to the goal's heading and gives up on a goal whose
+  /// turn does not fit at max_heading_change_per_m (LNM ~310-322, "cant find good index to start
+  /// turning"): the turn-feasibility check stays. msbench skips it without FFF.
+  bool turn_check_without_fff = false;
 
   /// Every switch on: the published code as far as msbench models it.
   static ReferenceCodeConfig published() {
@@ -62,8 +67,8 @@ struct ReferenceCodeConfig {
     return c;
   }
   /// The switches by name with their member, in documentation order.
-  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 10>& switches() {
-    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 10> kSwitches = {{
+  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 11>& switches() {
+    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 11> kSwitches = {{
         {"path_resend_8s", &ReferenceCodeConfig::path_resend_8s},
         {"safety_cost_inverted", &ReferenceCodeConfig::safety_cost_inverted},
         {"heading_check_signed", &ReferenceCodeConfig::heading_check_signed},
@@ -74,6 +79,7 @@ struct ReferenceCodeConfig {
         {"early_return_stale", &ReferenceCodeConfig::early_return_stale},
         {"planning_gate_two_updates", &ReferenceCodeConfig::planning_gate_two_updates},
         {"hardstop_drops_goal", &ReferenceCodeConfig::hardstop_drops_goal},
+        {"turn_check_without_fff", &ReferenceCodeConfig::turn_check_without_fff},
     }};
     return kSwitches;
   }

@@ -71,11 +71,12 @@ bool GoalChoice::noteBlocked(double t_s) {
 
 std::optional<uint64_t> GoalChoice::pickFeasible(const VehicleState& s, const SphereCostField& field,
                                                  const std::vector<std::pair<double, uint64_t>>& list) const {
-  // The first of the cheapest max_goal_candidates whose route FFF can fly.
+  // The first of the cheapest max_goal_candidates whose route FFF can fly (any, without FFF,
+  // unless the published turn check stays).
   int tries = 0;
   for (const auto& [cost, id] : list) {
     if (tries++ >= config_.max_goal_candidates) break;
-    if (!config_.fff) return id;
+    if (!config_.fff && !config_.turn_check_without_fff) return id;
     const Viewpoint& v = viewpoints_.viewpoints().at(id);
     const auto pts = route_(s.reference.position_m, field.pathTo(v.sphere), v.position);
     if (assignHeadings(pts, v.yaw_rad, true, config_.fff_turn_rate_rad_per_m).feasible) return id;

@@ -39,6 +39,9 @@ struct GoalChoiceConfig {
   /// The published heading test (method.reference_code.heading_check_signed): the difference
   /// goal − current, wrapped to [−π, π), passes when below reach_angle_deg, without abs().
   bool heading_check_signed = false;
+  /// The published code's turn-feasibility check without FFF
+  /// (method.reference_code.turn_check_without_fff): goals are skipped as with FFF.
+  bool turn_check_without_fff = false;
 };
 
 /// A reachable viewpoint as a goal chooser sees it.

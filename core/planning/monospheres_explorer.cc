@@ -80,7 +80,8 @@ GoalChoiceConfig goalChoiceConfig(const MonoSpheresPlannerConfig& p, const Refer
           p.reach_angle_deg,
           p.no_progress_timeout_s,
           p.max_blocked_steps,
-          rc.heading_check_signed};
+          rc.heading_check_signed,
+          rc.turn_check_without_fff};
 }
 }  // namespace
 

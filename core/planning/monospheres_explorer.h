@@ -160,6 +160,15 @@ struct MonoSpheresConfig {
   }
   /// The published code's switches by name, for the run's record.
   std::map<std::string, bool> referenceCode() const { return reference_code.values(); }
+  /// The authors' values where their simulation config (monospheres/config/mrs_sim.yaml of
+  /// ctu-mrs/monospheres) differs from msbench's defaults: `min_sphere_rad: 1.6` for map and
+  /// planning (msbench 1.4, docs/deviations.md) and `max_heading_change_per_m: 0.314159` (msbench
+  /// 0.314). Applied by `method.reference_code: published` before the keys a scenario names, so a
+  /// key named beside it wins (docs/deviations.md, "The published configuration").
+  void applyPublishedSettings() {
+    map.r_min_m = 1.6;
+    planner.fff_turn_rate_rad_per_m = 0.314159;
+  }
 };
 
 /// Spheres, obstacle points and frontiers of a map as a snapshot (drawing, map.ply, hashing).

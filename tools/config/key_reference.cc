@@ -35,6 +35,10 @@ const OutsideKey kOutsideKeys[] = {
     {"goals.path", "a directory put first on sys.path"},
     {"goals.params", "a map: the chooser factory's keyword arguments"},
     {"method.type", "a registered method (msbench methods)"},
+    {"method.reference_code",
+     "published or intended (MonoSpheres and the grid): `published` takes the authors' configuration before the "
+     "keys named beside it (docs/deviations.md, \"The published configuration\"); MonoSpheres also takes a map "
+     "of its switches"},
 };
 
 // True if `text` reads as a number (a number without a rule is an unchecked key).

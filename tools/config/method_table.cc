@@ -29,17 +29,19 @@ void validateMethod(const Config& c) {
 //   reference_code: {published: true, heading_check_signed: false}
 // In a map `published: true` turns every switch on first; switches named beside it then set
 // their own value. Written back as the full map of switches.
+// Returns true when the whole published code is named (`published`, or `published: true` in a
+// map): the authors' settings then apply too (MonoSpheresConfig::applyPublishedSettings).
 template <class Keys>
-void referenceCodeKeys(Keys& m, ReferenceCodeConfig& c) {
+bool referenceCodeKeys(Keys& m, ReferenceCodeConfig& c) {
   if constexpr (Keys::kReading) {
-    if (!m.has("reference_code")) return;
+    if (!m.has("reference_code")) return false;
     const YAML::Node n = m.raw("reference_code");
     const std::string key = m.keyName("reference_code");
     if (n.IsScalar()) {
       if (n.Scalar() != "published" && n.Scalar() != "intended")
         throw ConfigError(key, "expected published, intended or a map of switches, got '" + n.Scalar() + "'");
       c = n.Scalar() == "published" ? ReferenceCodeConfig::published() : ReferenceCodeConfig{};
-      return;
+      return n.Scalar() == "published";
     }
     MapReader r(n, key + ".");
     bool all = false;
@@ -47,16 +49,19 @@ void referenceCodeKeys(Keys& m, ReferenceCodeConfig& c) {
     if (all) c = ReferenceCodeConfig::published();
     for (const auto& [name, member] : ReferenceCodeConfig::switches()) r.field(name, c.*member);
     r.finish();
+    return all;
   } else {
     auto w = m.sub("reference_code");
     for (const auto& [name, member] : ReferenceCodeConfig::switches()) w.field(name, c.*member);
+    return false;
   }
 }
 
-// MonoSpheres: switches, the published code's switches, mapper and planner keys.
+// MonoSpheres: switches, the published code's switches (and with the whole published code, the
+// authors' settings, before the keys named beside it), mapper and planner keys.
 template <class Keys>
 void monoSpheresKeys(Keys& m, MonoSpheresConfig& c) {
-  referenceCodeKeys(m, c.reference_code);
+  if (referenceCodeKeys(m, c.reference_code)) c.applyPublishedSettings();
   if (m.has("switches")) {
     auto w = m.sub("switches");
     w.field("ovde", c.map.ovde);
@@ -66,6 +71,23 @@ void monoSpheresKeys(Keys& m, MonoSpheresConfig& c) {
     w.finish();
   }
   fieldKeys(m, c);  // map, planner
+}
+
+// The grid: `reference_code: published` (the authors' grid session's settings, applied before the
+// keys named beside it; not written back: the keys it set are) or `intended`, then its table.
+template <class Keys>
+void gridKeys(Keys& m, GridExplorerConfig& c) {
+  if constexpr (Keys::kReading) {
+    if (m.has("reference_code")) {
+      const YAML::Node n = m.raw("reference_code");
+      if (!n.IsScalar() || (n.Scalar() != "published" && n.Scalar() != "intended"))
+        throw ConfigError(m.keyName("reference_code"),
+                          "expected published or intended (the grid has no switches), got '" +
+                              (n.IsScalar() ? n.Scalar() : std::string("a map")) + "'");
+      if (n.Scalar() == "published") c.applyPublishedSettings();
+    }
+  }
+  fieldKeys(m, c);
 }
 
 // A Python method's keys: entry and path, and `params`, a map passed through to its factory
@@ -212,7 +234,7 @@ const std::vector<MethodEntry>& methodTable() {
            {"urban", "vpb", 3697, 4175, 3}}),
       methodEntry<GridExplorer, GridExplorerConfig>(
           "grid_random", "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)",
-          [](auto& k, GridExplorerConfig& c) { fieldKeys(k, c); }, {"leaves", "goals_reached", "goals_chosen"},
+          [](auto& k, GridExplorerConfig& c) { gridKeys(k, c); }, {"leaves", "goals_reached", "goals_chosen"},
           // Collisions (§V-C): one of the six urban runs (a metal rod); none in the cave.
           {{"urban", "", 1911, 2306, 6, 1},
            {"cave", "", 3171, 3375, 3, 0},

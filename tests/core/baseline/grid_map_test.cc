@@ -195,5 +195,35 @@ TEST(GridMap, CoverageFromFreeLeavesIsExactAlsoAfterPruning) {
   EXPECT_EQ(cov.columns(), expected);
 }
 
+// A fan of rays from one origin to a 6 x 6 m wall of points 12 m away, inserted `scans` times.
+GridMap fannedMap(bool prune, int scans) {
+  GridMapConfig c;
+  c.prune = prune;
+  GridMap map(c);
+  std::vector<Vec3> wall;
+  for (double y = -3.0; y <= 3.0; y += 0.2)
+    for (double z = 0.0; z <= 6.0; z += 0.2) wall.emplace_back(12.1, y + 0.05, z + 0.05);
+  for (int i = 0; i < scans; ++i) map.insertScan(Vec3(0.1, 0.05, 3.05), wall);
+  return map;
+}
+
+// The reference's mapper prunes its map as it updates (method.map.prune, the published profile):
+// repeated scans saturate the free cells near the origin at the clamp, eight equal siblings
+// become one cell of 1 m and more; the map means the same everywhere (each point's occupancy is
+// the unpruned map's), only its cells are larger.
+TEST(GridMap, APrunedMapHoldsLargerCellsAndTheSameOccupancy) {
+  const GridMap lazy = fannedMap(false, 8), pruned = fannedMap(true, 8);
+  double largest_lazy = 0, largest_pruned = 0;
+  for (const GridLeaf& l : lazy.leaves(false)) largest_lazy = std::max(largest_lazy, l.size_m);
+  for (const GridLeaf& l : pruned.leaves(false)) largest_pruned = std::max(largest_pruned, l.size_m);
+  EXPECT_DOUBLE_EQ(largest_lazy, 0.5);
+  EXPECT_GE(largest_pruned, 1.0);
+  EXPECT_LT(pruned.leaves(false).size(), lazy.leaves(false).size());
+  for (double x = 0.25; x < 13; x += 0.5)
+    for (double y = -3.75; y < 4; y += 0.5)
+      for (double z = 0.25; z < 6.5; z += 0.5)
+        ASSERT_EQ(pruned.occupancy(Vec3(x, y, z)), lazy.occupancy(Vec3(x, y, z))) << x << " " << y << " " << z;
+}
+
 }  // namespace
 }  // namespace msb

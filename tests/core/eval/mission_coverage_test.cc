@@ -87,5 +87,26 @@ TEST(MissionCoverage, ThePublishedOctomapRuleScoresACellAsADiskOfItsDepthIndex) 
   EXPECT_EQ(cov.publishedRuleColumns()->count(), 6u);
 }
 
+// The rule on a pruned map's cells (the reference's mapper prunes; method.map.prune): cells of
+// 1, 2, 4 and 8 m (k = 1...4) count as disks of radius 1, 1.5, 2 and 2.5 m about their centres.
+// Centred on nodes, they take 1, 1, 1 and 5 nodes; their squares take 1, 1, 1 and 9.
+TEST(MissionCoverage, ThePublishedOctomapRuleScoresPrunedCellsOf1To8Metres) {
+  const Aabb box{Vec3(-10, -10, 0), Vec3(40, 10, 5)};
+  std::vector<FreeSpaceElement> cells;
+  uint64_t id = 1;
+  for (const auto& [x, half] : std::vector<std::pair<double, double>>{{0, 0.5}, {10, 1.0}, {20, 2.0}, {30, 4.0}})
+    cells.push_back({id++, Vec3(x, 0, 1), half, FreeSpaceElement::Footprint::kSquare});
+  MissionCoverage cov(box, {});
+  cov.enablePublishedOctomapRule(0.5);
+  EXPECT_DOUBLE_EQ(cov.publishedRuleRadius(0.5), 1.0);
+  EXPECT_DOUBLE_EQ(cov.publishedRuleRadius(1.0), 1.5);
+  EXPECT_DOUBLE_EQ(cov.publishedRuleRadius(2.0), 2.0);
+  EXPECT_DOUBLE_EQ(cov.publishedRuleRadius(4.0), 2.5);
+  cov.columns().markFreeSpace(cells);
+  cov.sample(1.0, 0.0, cells);
+  EXPECT_EQ(cov.publishedRuleColumns()->count(), 8u);
+  EXPECT_EQ(cov.columns().count(), 12u);
+}
+
 }  // namespace
 }  // namespace msb

@@ -96,6 +96,13 @@ TEST(GoalChoice, FffSkipsGoalsWhoseTurnDoesNotFit) {
   GoalChoice without_fff(c, s.viewpoints, s.map, straight);
   ASSERT_TRUE(without_fff.takeNew(at(v.position + dir, v.yaw_rad, 1.0), s.field, &global));
   EXPECT_EQ(without_fff.goal(), s.cheapest());
+  // The published code keeps the turn check without FFF (reference_code.turn_check_without_fff).
+  c.turn_check_without_fff = true;
+  GoalChoice published(c, s.viewpoints, s.map, straight);
+  if (published.takeNew(at(v.position + dir, v.yaw_rad, 1.0), s.field, &global)) {
+    EXPECT_NE(published.goal(), s.cheapest());
+  }
+  c.turn_check_without_fff = false;
   c.fff = true;
   GoalChoice before(c, s.viewpoints, s.map, straight);
   ASSERT_TRUE(before.takeNew(at(v.position - 8.0 * dir, v.yaw_rad, 1.0), s.field, &global));

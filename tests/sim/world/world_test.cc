@@ -260,8 +260,9 @@ TEST(Worlds, TheAuthorsWorldsPlaceEveryModelAtItsSavedPose) {
       }
       EXPECT_GE(found, 1) << world << ": no object named " << m.name;
       for (const ObjectGroupSpec& o : ws.objects)
-        if (o.name == m.name)  // 2 mm: sparse1's dumpsters had settled 1.3 mm in the saved state
+        if (o.name == m.name) {  // 2 mm: sparse1's dumpsters had settled 1.3 mm in the saved state
           EXPECT_NEAR(o.base_z_m, m.z, 2e-3) << world << ": " << m.name;
+        }
       // The model's origin lies within the horizontal bounds of its solids.
       Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
       for (const PlacedObject& o : g.objects)

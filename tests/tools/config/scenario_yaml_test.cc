@@ -146,8 +146,8 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
               {"bad.yaml", "method.reference_code.path_resend_8s", "true or false"});
   expectError("base: base.yaml\nmethod: {reference_code: paper}\n",
               {"bad.yaml", "method.reference_code", "published, intended or a map"});
-  expectError("world: world.xml\nmethod: {type: grid_random, reference_code: published}\n",
-              {"bad.yaml", "method.reference_code", "unknown key"});
+  expectError("world: world.xml\nmethod: {type: grid_random, reference_code: {published: true}}\n",
+              {"bad.yaml", "method.reference_code", "published or intended"});
   // Keys of one method are unknown keys for another.
   expectError("world: world.xml\nmethod: {type: grid_random, switches: {vpb: false}}\n",
               {"method.switches", "unknown key"});
@@ -209,6 +209,40 @@ TEST(ScenarioYaml, ThePublishedCodeSwitches) {
   const std::string text = effectiveScenarioYaml(m);
   EXPECT_NE(text.find("heading_check_signed: false"), std::string::npos) << text;
   EXPECT_NE(text.find("path_resend_8s: true"), std::string::npos) << text;
+}
+
+// The published configuration (docs/deviations.md): `reference_code: published` also takes the
+// authors' settings — MonoSpheres r_min 1.6 m and FFF's 0.314159 rad/m (mrs_sim.yaml), the grid
+// unknown space traversable and a pruned OctoMap (the grid session) — before the keys named beside
+// it, which win; the intended method keeps msbench's; the written configuration reads back the same.
+TEST(ScenarioYaml, ThePublishedConfigurationTakesTheAuthorsSettingsAndNamedKeysWin) {
+  const fs::path d = tempDir();
+  write(d / "base.yaml", kBase);
+  write(d / "published.yaml", "base: base.yaml\nmethod: {reference_code: published}\n");
+  const ScenarioSpec p = loadScenario((d / "published.yaml").string());
+  EXPECT_DOUBLE_EQ(mono(p).map.r_min_m, 1.6);
+  EXPECT_DOUBLE_EQ(mono(p).planner.fff_turn_rate_rad_per_m, 0.314159);
+  EXPECT_DOUBLE_EQ(mono(p).planner.local_radius_m, 12.0);  // the base's key still applies
+  const ScenarioSpec named = loadScenario((d / "published.yaml").string(), {"method.map.r_min_m=1.4"});
+  EXPECT_DOUBLE_EQ(mono(named).map.r_min_m, 1.4);
+  EXPECT_DOUBLE_EQ(mono(loadScenario((d / "base.yaml").string())).map.r_min_m, 1.4);
+  // Switch by switch (no `published`), the settings stay msbench's.
+  const ScenarioSpec one = loadScenario((d / "base.yaml").string(), {"method.reference_code.path_resend_8s=true"});
+  EXPECT_DOUBLE_EQ(mono(one).map.r_min_m, 1.4);
+  // config.yaml reads back to the same configuration.
+  write(d / "effective.yaml", effectiveScenarioYaml(p));
+  EXPECT_EQ(effectiveScenarioYaml(loadScenario((d / "effective.yaml").string())), effectiveScenarioYaml(p));
+  // The grid.
+  write(d / "grid.yaml", "world: world.xml\nmethod: {type: grid_random, reference_code: published}\n");
+  const ScenarioSpec g = loadScenario((d / "grid.yaml").string());
+  const auto& gc = std::any_cast<const GridExplorerConfig&>(g.method.config);
+  EXPECT_FALSE(gc.planner.unknown_is_occupied);
+  EXPECT_TRUE(gc.map.prune);
+  const ScenarioSpec gi = loadScenario((d / "grid.yaml").string(), {"method.reference_code=intended"});
+  EXPECT_TRUE(std::any_cast<const GridExplorerConfig&>(gi.method.config).planner.unknown_is_occupied);
+  const ScenarioSpec gn = loadScenario((d / "grid.yaml").string(), {"method.planner.unknown_is_occupied=true"});
+  EXPECT_TRUE(std::any_cast<const GridExplorerConfig&>(gn.method.config).planner.unknown_is_occupied);
+  EXPECT_TRUE(std::any_cast<const GridExplorerConfig&>(gn.method.config).map.prune);
 }
 
 // The message of the FileConfigError loading `path` throws ("" and a test failure if none).
