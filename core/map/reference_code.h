@@ -59,6 +59,12 @@ struct ReferenceCodeConfig {
   /// turn does not fit at max_heading_change_per_m (LNM ~310-322, "cant find good index to start
   /// turning"): the turn-feasibility check stays. msbench skips it without FFF.
   bool turn_check_without_fff = false;
+  /// DBOF and the protected set use the OVDE-extended free-space polyhedron: the virtual points
+  /// are appended before P_f is triangulated (SBM ~560-667), so old points inside the extended
+  /// P_f are deleted when seen again from closer, else protected and capping sphere radii — over
+  /// open ground too. msbench applies DBOF to the real points' P_f (the paper: virtual free
+  /// space "cannot erase existing obstacle points").
+  bool dbof_on_ovde_polyhedron = false;
 
   /// Every switch on: the published code as far as msbench models it.
   static ReferenceCodeConfig published() {
@@ -67,8 +73,8 @@ struct ReferenceCodeConfig {
     return c;
   }
   /// The switches by name with their member, in documentation order.
-  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 11>& switches() {
-    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 11> kSwitches = {{
+  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 12>& switches() {
+    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 12> kSwitches = {{
         {"path_resend_8s", &ReferenceCodeConfig::path_resend_8s},
         {"safety_cost_inverted", &ReferenceCodeConfig::safety_cost_inverted},
         {"heading_check_signed", &ReferenceCodeConfig::heading_check_signed},
@@ -80,6 +86,7 @@ struct ReferenceCodeConfig {
         {"planning_gate_two_updates", &ReferenceCodeConfig::planning_gate_two_updates},
         {"hardstop_drops_goal", &ReferenceCodeConfig::hardstop_drops_goal},
         {"turn_check_without_fff", &ReferenceCodeConfig::turn_check_without_fff},
+        {"dbof_on_ovde_polyhedron", &ReferenceCodeConfig::dbof_on_ovde_polyhedron},
     }};
     return kSwitches;
   }

@@ -228,7 +228,7 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   st.polyhedron_ms = msSince(t0);
 
   // 5.–9. DBOF, spheres (updated, new, sparsified), obstacle points.
-  const std::vector<Vec3> constraints = applyDbof(frame, real_pf, st);
+  const std::vector<Vec3> constraints = applyDbof(frame, config_.published_dbof_on_ovde_pf ? pf : real_pf, st);
   std::vector<uint64_t> touched;
   updateSpheresNear(pf, constraints, touched, st);
   sampleNewSpheres(frame, pf, constraints, touched, st);

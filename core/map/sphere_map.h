@@ -66,6 +66,9 @@ struct SphereMapConfig {
   /// The published early return (method.reference_code.early_return_stale; not a key of its
   /// own): an update without a new sphere inserts no obstacle points and draws no frontiers.
   bool published_early_return = false;
+  /// DBOF on the OVDE-extended P_f (method.reference_code.dbof_on_ovde_polyhedron; not a key of
+  /// its own): old points inside it are deleted or protected, not only those inside the real P_f.
+  bool published_dbof_on_ovde_pf = false;
   double dbof_alpha = 1.1;       ///< deletion factor α
   double dbof_age_per_m = 0.0;   ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
   double r_max_m = 10.0;         ///< sphere radius cap

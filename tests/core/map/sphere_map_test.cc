@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 
 #include "core/map/free_space_polyhedron.h"
 
@@ -487,6 +488,33 @@ TEST(SphereMapRules, ThePublishedEarlyReturnInsertsNoPointsWhenNoNewSpherePasses
   EXPECT_GT(st.new_spheres, 0);
   EXPECT_FALSE(st.returned_early);
   EXPECT_GT(st.inserted_obstacles, 0);
+}
+
+// method.reference_code.dbof_on_ovde_polyhedron (SBM ~560-667): the camera slides sideways past
+// a small wall 5 m ahead until OVDE's virtual points at 15 m are active; an old point 8 m away,
+// 25° off the axis, lies inside the OVDE-extended P_f but outside the real one. The published
+// DBOF takes it (and the earlier walls' points out there) into its protected set, where it caps
+// sphere radii; msbench's DBOF, on the real P_f, does not see them.
+TEST(SphereMapRules, ThePublishedDbofActsOnTheOvdeExtendedPolyhedron) {
+  std::map<bool, int> protected_points;
+  for (const bool published : {false, true}) {
+    SphereMapConfig cfg;
+    cfg.published_dbof_on_ovde_pf = published;
+    SphereMap map(cfg, FisheyeCamera{}, 2);
+    const Vec3 old_point = 8.0 * Vec3(std::sin(25 * M_PI / 180), 0, std::cos(25 * M_PI / 180));
+    MapUpdateStats st;
+    for (int k = 0; k <= 4; ++k) {
+      SlamPointsFrame f = wallFrame(0.5, 5.0, 2);
+      const Vec3 shift(0.35 * k, 0, 0);
+      f.T_W_C.translation() = shift;
+      for (auto& p : f.points) p.p_W += shift;
+      if (k == 4) SphereMapTestSeam::addObstacle(map, old_point + shift, 1.0);
+      st = map.update(f);
+    }
+    ASSERT_GT(st.virtual_points, 0) << "OVDE never activated";
+    protected_points[published] = st.protected_obstacles;
+  }
+  EXPECT_GT(protected_points[true], protected_points[false]);
 }
 
 }  // namespace

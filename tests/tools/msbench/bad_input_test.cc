@@ -245,8 +245,8 @@ TEST(BadInput, MeaninglessValuesThatLoadAreRefused) {
                   {"method.reference_code.path_resend_8s", "true or false"});
   t.expectRefused(run_s + "--set method.reference_code=paper", {"method.reference_code", "published, intended"});
   t.write("g.yaml", "base: " + kSrc + "/scenarios/missions/grid_random.yaml\nworld: w.xml\nduration_s: 2\n");
-  t.expectRefused("run " + t.p("g.yaml") + " --out " + t.p("o") + " --set method.reference_code=published",
-                  {"method.reference_code", "unknown key"});
+  t.expectRefused("run " + t.p("g.yaml") + " --out " + t.p("o") + " --set method.reference_code.ovde=true",
+                  {"method.reference_code", "published or intended"});
   // Waypoints mean nothing to a mission: refused, not ignored.
   t.expectRefused(run_s + "--set 'trajectory.waypoints=[[0, 0, 1]]'", {"trajectory.waypoints", "msbench fly"});
   // --set: the key's syntax, and a missing value.
