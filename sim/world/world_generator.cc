@@ -535,6 +535,7 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
   if (!spec.cave) b.setOutdoorSky(spec.ground_size_m);  // caves: no sky, no sun
   GeneratedWorld out;
   out.name = spec.name;
+  out.paper_world = spec.paper_world;
   out.meshes = buildMeshes(spec, b, out.image_textures);
   if (spec.cave) {
     buildCave(*spec.cave, b);

@@ -177,8 +177,12 @@ struct MeshSpec {
 
 /// A whole world.
 struct WorldSpec {
-  std::string name;                     ///< world name (folder under worlds/)
-  std::string description;              ///< one line for `world list`
+  std::string name;         ///< world name (folder under worlds/)
+  std::string description;  ///< one line for `world list`
+  /// The paper's Table I world this world is (the authors' files rebuilt or imported: suburb3 is
+  /// "rooftops"); recorded in metrics.json as `paper_world`, so reports pair its runs with the
+  /// paper's rows. Empty: none (a world named like a Table I world is that row by its name).
+  std::string paper_world;
   uint64_t seed = 1;                    ///< placement seed
   Vec2 ground_size_m = Vec2(120, 120);  ///< ground plane extent, centred on the origin
   std::string ground_texture = "grass";
@@ -204,6 +208,7 @@ struct WorldSpec {
   static void fields(Self& s, V& v) {
     v.key("name", s.name);
     v.key("description", s.description);
+    v.key("paper_world", s.paper_world, Choices{"", "urban", "cave", "rooftops", "sparse"});
     v.key("seed", s.seed, Limits::nonNegative());
     v.key("start_clearance_m", s.start_clearance_m, Limits::nonNegative());
     v.key("start_corridor_m", s.start_corridor_m, Limits::nonNegative());

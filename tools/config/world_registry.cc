@@ -219,6 +219,7 @@ MissionWorld prepareMissionWorld(const std::string& file, ScenarioSpec& spec) {
     }
     w.box = built->generated.exploration_box;
     w.truth.emplace(built->generated.shapes);
+    spec.paper_world = built->generated.paper_world;
   }
   if (spec.exploration_box) w.box = *spec.exploration_box;
   return w;

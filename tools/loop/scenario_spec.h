@@ -73,6 +73,9 @@ struct ScenarioSpec {
   /// e.g. results/table1 ("" = none). Recorded in metrics.json; `msbench report` checks the run
   /// against it. Not a fixed setting.
   std::string suite;
+  /// Not a key: the paper's Table I world the resolved world is (its spec's paper_world), set
+  /// where the world is resolved; metrics.json `paper_world` when not empty.
+  std::string paper_world;
   FlightSpec flight = missionFlightDefaults();  ///< world, seed, duration, start, vehicle, sensors
   bool start_from_world = true;                 ///< take start pose from the generated world unless `start` is given
   std::optional<Aabb> exploration_box;          ///< overrides the world's box

@@ -182,14 +182,19 @@ const PaperRow* paperRowNamed(const std::string& world, const std::string& repor
   return paperRow(world, type, switches);
 }
 
+// The Table I world a run answers to: its world's paper_world (the authors' worlds), else its world.
+std::string paperWorldOf(const nlohmann::json& m) {
+  if (m.contains("paper_world") && m["paper_world"].is_string()) return m["paper_world"].get<std::string>();
+  return m.value("world", std::string("?"));
+}
+
 bool isTableOneSweep(const SweepResults& results) {
   bool any = false;
   for (const ReportRun& run : results.runs) {
     if (!run.record) continue;
     const nlohmann::json& m = run.metrics;
     if (number(m, "duration_s", -1.0) != kPaperDurationS) return false;
-    if (!paperRow(m.value("world", std::string()), m.value("method", std::string()),
-                  m.value("switches", nlohmann::json())))
+    if (!paperRow(paperWorldOf(m), m.value("method", std::string()), m.value("switches", nlohmann::json())))
       return false;
     any = true;
   }
@@ -323,7 +328,7 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     const nlohmann::json& m = run.metrics;
     ++row.complete;
     if (row.world.empty()) {
-      row.world = m.value("world", std::string("?"));
+      row.world = paperWorldOf(m);
       row.method = reportMethodName(m);
       if (const PaperRow* p =
               table_one ? paperRow(row.world, m.value("method", std::string()), m.value("switches", nlohmann::json()))

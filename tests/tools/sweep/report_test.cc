@@ -159,6 +159,25 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   EXPECT_EQ(paperRowNamed("urban", "monospheres -ovde -dbof"), nullptr);
 }
 
+// A run in one of the authors' worlds (suburb3, recorded with paper_world rooftops) answers to
+// the paper's rooftops row; without paper_world, suburb3 is no Table I world.
+TEST(SweepReport, TheAuthorsWorldsAnswerToThePapersRowsByTheirPaperWorld) {
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  s.runs = {madeRun("rooftops-full-s1", "suburb3", "full", 900, "completed")};
+  ASSERT_TRUE(s.runs[0].record.has_value());
+  EXPECT_FALSE(isTableOneSweep(s));
+  s.runs[0].metrics["paper_world"] = "rooftops";
+  s.runs[0].record = missionRecordOf(s.runs[0].metrics, "rooftops-full-s1/metrics.json").record;
+  ASSERT_TRUE(isTableOneSweep(s));
+  const auto rows = reportRows(s);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].world, "rooftops");
+  ASSERT_TRUE(rows[0].paper_mean_m2.has_value());
+  EXPECT_DOUBLE_EQ(*rows[0].paper_mean_m2, 3760.0);
+}
+
 TEST(SweepReport, ThePublishedCodesSwitchesNameTheRowAndKeepThePapersRow) {
   // "+published" when every switch is on, "+name" for each one on, nothing for the intended
   // method; the paper's row is the same (the switches model how its runs were made).
