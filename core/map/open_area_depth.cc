@@ -1,5 +1,6 @@
 #include "core/map/open_area_depth.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace msb {
@@ -66,6 +67,61 @@ std::vector<Vec3> OpenAreaDepth::update(const Pose& T_W_C, OvdePoseBuffer& poses
     if (parallax) active.push_back(X);
   }
   return active;
+}
+
+std::vector<Vec3> OpenAreaDepth::updatePublished(const Pose& T_W_C, OvdePoseBuffer& poses,
+                                                 std::vector<bool>& active) const {
+  // The egocentric points: pinhole rays through a grid × grid lattice of the central image,
+  // its edges included (trim = the margin outside the central fraction), at range_m.
+  const double trim = 0.5 * (1.0 - config_.central_fraction), W = camera_.width(), H = camera_.height();
+  const int n = config_.grid;
+  std::vector<Vec3> ego;
+  for (int x = 0; x < n; ++x)
+    for (int y = 0; y < n; ++y) {
+      const double u = trim * W + x * (1.0 - 2.0 * trim) * W / std::max(n - 1, 1);
+      const double v = trim * H + y * (1.0 - 2.0 * trim) * H / std::max(n - 1, 1);
+      ego.push_back(config_.range_m *
+                    Vec3((u - camera_.cx()) / camera_.fx(), (v - camera_.cy()) / camera_.fy(), 1.0).normalized());
+    }
+  active.resize(ego.size(), false);
+  auto activePoints = [&] {
+    std::vector<Vec3> out;
+    for (size_t k = 0; k < ego.size(); ++k)
+      if (active[k]) out.push_back(T_W_C * ego[k]);
+    return out;
+  };
+  // Buffer the pose when it moved or its optical axis turned enough; otherwise nothing changes.
+  bool add = poses.empty();
+  if (!add) {
+    const Pose& last = poses.back();
+    const double axis_turn = std::acos(std::clamp(T_W_C.linear().col(2).dot(last.linear().col(2)), -1.0, 1.0));
+    add = (T_W_C.translation() - last.translation()).norm() > config_.min_translation_m ||
+          axis_turn > config_.min_rotation_deg * M_PI / 180.0;
+  }
+  if (!add) return activePoints();
+  poses.push_back(T_W_C);
+  if (int(poses.size()) > config_.max_poses) poses.pop_front();
+  if (poses.size() < 2) return activePoints();
+  // Each point against every older buffered pose, oldest first.
+  for (size_t k = 0; k < ego.size(); ++k) {
+    bool parallax_in_run = false;
+    for (size_t i = 0; i + 1 < poses.size(); ++i) {
+      const Pose T_rel = poses[i].inverse() * T_W_C;
+      const Vec3 there = T_rel * ego[k];
+      // Visible there: the pinhole projection inside the central image (no test of the depth's
+      // sign, as published); the run ends at the first pose that does not see the point.
+      const Vec2 px(camera_.fx() * there.x() / there.z() + camera_.cx(),
+                    camera_.fy() * there.y() / there.z() + camera_.cy());
+      const bool visible =
+          px.x() >= trim * W && px.x() <= (1 - trim) * W && px.y() >= trim * H && px.y() <= (1 - trim) * H;
+      if (!visible) break;
+      const Vec3 moved = ego[k] + T_rel.translation();
+      const double cos = ego[k].dot(moved) / (ego[k].norm() * there.norm());
+      parallax_in_run = parallax_in_run || std::acos(std::clamp(cos, -1.0, 1.0)) >= config_.min_parallax_rad;
+    }
+    active[k] = parallax_in_run;
+  }
+  return activePoints();
 }
 
 }  // namespace msb

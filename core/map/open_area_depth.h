@@ -68,6 +68,17 @@ class OpenAreaDepth {
   std::vector<Vec3> update(const Pose& T_W_C, OvdePoseBuffer& poses) const;
   /// All virtual points of a pose (active or not), world frame.
   std::vector<Vec3> candidates(const Pose& T_W_C) const;
+  /// The published activation (method.reference_code.ovde_parallax_frames; SBM
+  /// `ofs_freespace_update` ~1039-1140, `init_ofs_freespace_pts` ~1149-1180): the grid's points
+  /// are the pinhole K's rays through the central image (edges included) at range_m; a pose is
+  /// buffered after min_translation_m or a turn of the optical axis by min_rotation_deg, and only
+  /// then is `active` (one flag per point, kept between calls) recomputed: a point is active when
+  /// some buffered pose, within the run of poses that see it (pinhole, inside the central image)
+  /// counted from the *oldest*, gives a parallax angle ≥ min_parallax_rad, that angle taken
+  /// between the current egocentric point and that point moved by the relative translation
+  /// expressed in the old pose's frame (the published code mixes the two frames). Returns the
+  /// active points, world frame.
+  std::vector<Vec3> updatePublished(const Pose& T_W_C, OvdePoseBuffer& poses, std::vector<bool>& active) const;
 
  private:
   bool inCentralView(const Pose& T_W_C, const Vec3& p_W) const;

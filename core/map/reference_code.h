@@ -65,6 +65,12 @@ struct ReferenceCodeConfig {
   /// open ground too. msbench applies DBOF to the real points' P_f (the paper: virtual free
   /// space "cannot erase existing obstacle points").
   bool dbof_on_ovde_polyhedron = false;
+  /// OVDE's activation as published (SBM `ofs_freespace_update`, ~1039-1140): the virtual points
+  /// are the pinhole K's rays; visibility in past poses is the pinhole projection; the parallax
+  /// angle mixes the current and the old frame; the run of poses that see a point is counted
+  /// from the oldest; the flags are recomputed only when a pose is buffered
+  /// (OpenAreaDepth::updatePublished).
+  bool ovde_parallax_frames = false;
 
   /// Every switch on: the published code as far as msbench models it.
   static ReferenceCodeConfig published() {
@@ -73,8 +79,8 @@ struct ReferenceCodeConfig {
     return c;
   }
   /// The switches by name with their member, in documentation order.
-  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 12>& switches() {
-    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 12> kSwitches = {{
+  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 13>& switches() {
+    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 13> kSwitches = {{
         {"path_resend_8s", &ReferenceCodeConfig::path_resend_8s},
         {"safety_cost_inverted", &ReferenceCodeConfig::safety_cost_inverted},
         {"heading_check_signed", &ReferenceCodeConfig::heading_check_signed},
@@ -87,6 +93,7 @@ struct ReferenceCodeConfig {
         {"hardstop_drops_goal", &ReferenceCodeConfig::hardstop_drops_goal},
         {"turn_check_without_fff", &ReferenceCodeConfig::turn_check_without_fff},
         {"dbof_on_ovde_polyhedron", &ReferenceCodeConfig::dbof_on_ovde_polyhedron},
+        {"ovde_parallax_frames", &ReferenceCodeConfig::ovde_parallax_frames},
     }};
     return kSwitches;
   }

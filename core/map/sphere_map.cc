@@ -205,7 +205,9 @@ MapUpdateStats SphereMap::update(const SlamPointsFrame& frame_in) {
   st.input_points = int(input.size());
   // The OVDE pose buffer follows every frame, also those skipped below.
   const std::vector<Vec3> virtual_candidates =
-      config_.ovde ? ovde_.update(frame.T_W_C, state_.ovde_poses) : std::vector<Vec3>{};
+      !config_.ovde                       ? std::vector<Vec3>{}
+      : config_.published_ovde_activation ? ovde_.updatePublished(frame.T_W_C, state_.ovde_poses, state_.ovde_active)
+                                          : ovde_.update(frame.T_W_C, state_.ovde_poses);
   if (st.input_points < config_.min_points) {
     st.skipped = true;
     return st;

@@ -69,6 +69,9 @@ struct SphereMapConfig {
   /// DBOF on the OVDE-extended P_f (method.reference_code.dbof_on_ovde_polyhedron; not a key of
   /// its own): old points inside it are deleted or protected, not only those inside the real P_f.
   bool published_dbof_on_ovde_pf = false;
+  /// OVDE's activation as published (method.reference_code.ovde_parallax_frames; not a key of its
+  /// own): OpenAreaDepth::updatePublished instead of the paper's rule.
+  bool published_ovde_activation = false;
   double dbof_alpha = 1.1;       ///< deletion factor α
   double dbof_age_per_m = 0.0;   ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
   double r_max_m = 10.0;         ///< sphere radius cap
@@ -173,6 +176,7 @@ struct SphereMapState {
 
   RngStream rng;                                     ///< the "map_sampling" stream
   OvdePoseBuffer ovde_poses;                         ///< OVDE's past camera poses
+  std::vector<bool> ovde_active;                     ///< the published OVDE's kept activation flags
   std::map<uint64_t, Sphere> spheres;                ///< by id
   std::map<uint64_t, std::set<uint64_t>> adjacency;  ///< overlapping spheres, both ways
   std::map<uint64_t, ObstaclePoint> obstacles;       ///< by id

@@ -55,6 +55,7 @@ MonoSpheresConfig withSharedKeys(MonoSpheresConfig c, const FisheyeCamera& camer
   c.map.published_worked_mask = rc.worked_mask_scalar;
   c.map.published_early_return = rc.early_return_stale;
   c.map.published_dbof_on_ovde_pf = rc.dbof_on_ovde_polyhedron;
+  c.map.published_ovde_activation = rc.ovde_parallax_frames;
   return c;
 }
 // The graph repair's parameters from the planner's keys.

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace msb {
 namespace {
 
@@ -82,6 +85,40 @@ TEST(OpenAreaDepth, WholeBufferNeedsEveryBufferedPoseToHaveSeenThePoint) {
   for (int k = 0; k <= 6; ++k) ra = a.update(camera(0.4 * k, M_PI / 2)), rb = b.update(camera(0.4 * k, M_PI / 2));
   EXPECT_EQ(ra.size(), rb.size());
   EXPECT_GE(rb.size(), 18u);
+}
+
+// method.reference_code.ovde_parallax_frames (SBM ofs_freespace_update): the published points
+// are the pinhole K's rays through the central 60 % of the image, edges included (the corner
+// ray 51.5° off the axis under K, where the fisheye's central cells reach 57°); after sideways
+// flight they activate; a frame that adds no pose (it neither moved 0.3 m nor turned its axis
+// 45°) keeps the flags, even turned 30° away, where the paper's rule (every buffered pose must
+// see the point) recomputes them and keeps fewer.
+TEST(OpenAreaDepth, ThePublishedActivationUsesPinholeRaysAndKeepsItsFlagsBetweenPoses) {
+  const FisheyeCamera cam;
+  const OpenAreaDepth ovde(OpenAreaDepthConfig{}, cam);
+  OvdePoseBuffer poses;
+  std::vector<bool> flags;
+  std::vector<Vec3> active;
+  for (int k = 0; k <= 6; ++k) active = ovde.updatePublished(camera(0.4 * k, M_PI / 2), poses, flags);
+  ASSERT_EQ(flags.size(), 36u);
+  EXPECT_GE(active.size(), 12u);
+  const Pose now = camera(2.4, M_PI / 2);
+  const double corner = std::atan(std::hypot(0.3 * cam.width() / cam.fx(), 0.3 * cam.height() / cam.fy()));
+  double widest = 0.0;
+  for (const Vec3& v : active) {
+    const Vec3 c = now.inverse() * v;
+    EXPECT_NEAR(c.norm(), 15.0, 1e-9);
+    widest = std::max(widest, std::atan2(c.head<2>().norm(), c.z()));
+  }
+  EXPECT_LE(widest, corner + 1e-9);
+  // Turned 30° at the same place: no pose is added, the same points stay active.
+  const Pose turned = camera(2.4, M_PI / 2 + 30 * M_PI / 180);
+  const std::vector<Vec3> kept = ovde.updatePublished(turned, poses, flags);
+  EXPECT_EQ(kept.size(), active.size());
+  EXPECT_EQ(poses.size(), 7u);
+  Ovde paper(OpenAreaDepthConfig{}, cam);
+  for (int k = 0; k <= 6; ++k) paper.update(camera(0.4 * k, M_PI / 2));
+  EXPECT_LT(paper.update(turned).size(), kept.size());
 }
 
 TEST(OpenAreaDepth, UnknownVisibilityRuleIsAConfigError) {
