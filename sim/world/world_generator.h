@@ -24,7 +24,7 @@ struct PlacedObject {
 /// A generated world, before its files are written.
 struct GeneratedWorld {
   std::string name;
-  std::string paper_world;            ///< the spec's paper_world ("" if none)
+  std::string paper_world;                            ///< the spec's paper_world ("" if none)
   std::string mjcf;                                   ///< world.xml text
   std::vector<std::string> textures;                  ///< pattern names to write as textures/<name>.png
   std::map<std::string, std::string> image_textures;  ///< imported images: name → PNG bytes (textures/<name>.png)
