@@ -71,6 +71,12 @@ struct ReferenceCodeConfig {
   /// from the oldest; the flags are recomputed only when a pose is buffered
   /// (OpenAreaDepth::updatePublished).
   bool ovde_parallax_frames = false;
+  /// DBOF's "inside the triangulation" test as published (SBM 604-606, 630-637): old points are
+  /// projected with the pinhole K, without distortion, and tested against the triangulation of
+  /// the frame's points projected *with* the fisheye distortion; a point off the axis lands
+  /// farther out than its true image, so DBOF neither deletes nor protects it beyond about 55°
+  /// from the axis.
+  bool dbof_pinhole_projection = false;
 
   /// Every switch on: the published code as far as msbench models it.
   static ReferenceCodeConfig published() {
@@ -79,8 +85,8 @@ struct ReferenceCodeConfig {
     return c;
   }
   /// The switches by name with their member, in documentation order.
-  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 13>& switches() {
-    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 13> kSwitches = {{
+  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 14>& switches() {
+    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 14> kSwitches = {{
         {"path_resend_8s", &ReferenceCodeConfig::path_resend_8s},
         {"safety_cost_inverted", &ReferenceCodeConfig::safety_cost_inverted},
         {"heading_check_signed", &ReferenceCodeConfig::heading_check_signed},
@@ -94,6 +100,7 @@ struct ReferenceCodeConfig {
         {"turn_check_without_fff", &ReferenceCodeConfig::turn_check_without_fff},
         {"dbof_on_ovde_polyhedron", &ReferenceCodeConfig::dbof_on_ovde_polyhedron},
         {"ovde_parallax_frames", &ReferenceCodeConfig::ovde_parallax_frames},
+        {"dbof_pinhole_projection", &ReferenceCodeConfig::dbof_pinhole_projection},
     }};
     return kSwitches;
   }

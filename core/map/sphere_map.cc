@@ -265,6 +265,14 @@ std::vector<Vec3> SphereMap::pointsInView(const SlamPointsFrame& frame) const {
   return input;
 }
 
+bool SphereMap::pinholeImageInside(const FreeSpacePolyhedron& pf, const Pose& T_W_C, const Vec3& p_C) const {
+  // The published test: the point's undistorted pinhole pixel, read as a fisheye pixel (the
+  // frame's triangulation is in distorted pixels), must lie in the image of P_f's surface.
+  if (p_C.z() <= 0.0) return false;
+  const Vec2 px(camera_.fx() * p_C.x() / p_C.z() + camera_.cx(), camera_.fy() * p_C.y() / p_C.z() + camera_.cy());
+  return pf.surfaceRange(T_W_C.linear() * camera_.unproject(px)).has_value();
+}
+
 std::vector<Vec3> SphereMap::applyDbof(const SlamPointsFrame& frame, const FreeSpacePolyhedron& real_pf,
                                        MapUpdateStats& st) {
   // DBOF: delete points seen again from close enough inside P_f; protect the others. Every
@@ -277,9 +285,11 @@ std::vector<Vec3> SphereMap::applyDbof(const SlamPointsFrame& frame, const FreeS
   std::vector<Vec3> constraints;
   constraints.reserve(frame.points.size());
   for (const auto& p : frame.points) constraints.push_back(p.p_W);
+  const Pose T_C_W = frame.T_W_C.inverse();
   for (uint64_t id : state_.obstacle_grid.inBox(real_lo, real_hi)) {
     const ObstaclePoint& o = state_.obstacles.at(id);
     if (!real_pf.contains(o.position)) continue;
+    if (config_.published_dbof_pinhole && !pinholeImageInside(real_pf, frame.T_W_C, T_C_W * o.position)) continue;
     const double d_eff = o.d_min + config_.dbof_age_per_m * (state_.flown_m - o.flown_at_m);
     if ((o.position - cam).norm() < alpha * d_eff) {
       eraseObstacle(id);

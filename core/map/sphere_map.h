@@ -72,6 +72,10 @@ struct SphereMapConfig {
   /// OVDE's activation as published (method.reference_code.ovde_parallax_frames; not a key of its
   /// own): OpenAreaDepth::updatePublished instead of the paper's rule.
   bool published_ovde_activation = false;
+  /// DBOF's triangulation test with the pinhole K (method.reference_code.dbof_pinhole_projection;
+  /// not a key of its own): an old point counts only if its pinhole image falls inside P_f's
+  /// fisheye image.
+  bool published_dbof_pinhole = false;
   double dbof_alpha = 1.1;       ///< deletion factor α
   double dbof_age_per_m = 0.0;   ///< DBOF counts a point as measured this much farther per metre flown since (0 = off)
   double r_max_m = 10.0;         ///< sphere radius cap
@@ -276,7 +280,9 @@ class SphereMap {
   // alone when the youngest worked sphere ends below r_min; true if it fired.
   bool publishedStaleGraph(const std::vector<uint64_t>& worked, const std::vector<double>& radii, MapUpdateStats& st);
   // The steps of update() (numbered as there).
-  std::vector<Vec3> pointsInView(const SlamPointsFrame& frame) const;                            // 1
+  std::vector<Vec3> pointsInView(const SlamPointsFrame& frame) const;  // 1
+  // DBOF's published pinhole test (published_dbof_pinhole) on a point in the camera frame.
+  bool pinholeImageInside(const FreeSpacePolyhedron& pf, const Pose& T_W_C, const Vec3& p_C) const;
   std::vector<Vec3> applyDbof(const SlamPointsFrame& frame, const FreeSpacePolyhedron& real_pf,  // 5
                               MapUpdateStats& st);
   void updateSpheresNear(const FreeSpacePolyhedron& pf, const std::vector<Vec3>& constraints,  // 6

@@ -56,6 +56,7 @@ MonoSpheresConfig withSharedKeys(MonoSpheresConfig c, const FisheyeCamera& camer
   c.map.published_early_return = rc.early_return_stale;
   c.map.published_dbof_on_ovde_pf = rc.dbof_on_ovde_polyhedron;
   c.map.published_ovde_activation = rc.ovde_parallax_frames;
+  c.map.published_dbof_pinhole = rc.dbof_pinhole_projection;
   return c;
 }
 // The graph repair's parameters from the planner's keys.

@@ -517,5 +517,28 @@ TEST(SphereMapRules, ThePublishedDbofActsOnTheOvdeExtendedPolyhedron) {
   EXPECT_GT(protected_points[true], protected_points[false]);
 }
 
+// method.reference_code.dbof_pinhole_projection (SBM 604-606, 630-637): a wall 5 m ahead spans
+// ±58° along x; an old point 4 m away 50° off the axis lies inside P_f, so msbench's DBOF
+// protects it; its undistorted pinhole image (f·tan 50°) reads as a fisheye ray about 67° off the
+// axis, outside the wall's image, so the published DBOF neither deletes nor protects it. A point
+// 20° off the axis is protected either way.
+TEST(SphereMapRules, ThePublishedDbofProjectsOldPointsWithThePinholeK) {
+  std::map<bool, int> protected_points;
+  for (const bool published : {false, true}) {
+    SphereMapConfig cfg;
+    cfg.ovde = false;
+    cfg.published_dbof_pinhole = published;
+    SphereMap map(cfg, FisheyeCamera{}, 2);
+    const double a50 = 50 * M_PI / 180, a20 = 20 * M_PI / 180;
+    SphereMapTestSeam::addObstacle(map, 4.0 * Vec3(std::sin(a50), 0, std::cos(a50)), 1.0);
+    SphereMapTestSeam::addObstacle(map, 3.0 * Vec3(std::sin(a20), 0, std::cos(a20)), 1.0);
+    const MapUpdateStats st = map.update(wallFrame(8.0, 5.0, 4));
+    ASSERT_FALSE(st.skipped);
+    protected_points[published] = st.protected_obstacles;
+  }
+  EXPECT_EQ(protected_points[false], 2);
+  EXPECT_EQ(protected_points[true], 1);
+}
+
 }  // namespace
 }  // namespace msb

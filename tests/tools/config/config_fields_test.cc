@@ -102,9 +102,9 @@ TEST(ConfigFields, TheMethodSectionsWriteEveryField) {
   const YAML::Node m = effectiveOf("monospheres");
   EXPECT_EQ(keysAt(m, "method.map.ovde_params"), fieldCount<OpenAreaDepthConfig>());
   // The mapper: its section plus the two switches written under method.switches (ovde, dbof).
-  // and the five that method.reference_code sets (pinhole_rays, worked_mask_scalar,
-  // early_return_stale, dbof_on_ovde_polyhedron, ovde_parallax_frames).
-  EXPECT_EQ(keysAt(m, "method.map") + 2 + 5, fieldCount<SphereMapConfig>());
+  // and the six that method.reference_code sets (pinhole_rays, worked_mask_scalar,
+  // early_return_stale, dbof_on_ovde_polyhedron, ovde_parallax_frames, dbof_pinhole_projection).
+  EXPECT_EQ(keysAt(m, "method.map") + 2 + 6, fieldCount<SphereMapConfig>());
   // The planner: its section plus fff (under method.switches), its take-off and path-check keys
   // counted as one base each; viewpoints plus vpb (a switch); safety plus r_min_m, which is
   // method.map.r_min_m; each plus the published-code switch it takes from method.reference_code.
