@@ -145,8 +145,10 @@ void MjcfWorldBuilder::addMesh(const std::string& name, const std::vector<Vec3>&
                                const std::vector<std::array<int, 3>>& faces, const std::string& mat) {
   assets_ << "    <mesh name=\"" << name << "\" vertex=\"";
   for (size_t i = 0; i < v.size(); ++i) assets_ << (i ? " " : "") << vec(v[i]);
-  assets_ << "\" texcoord=\"";
-  for (size_t i = 0; i < uv.size(); ++i) assets_ << (i ? " " : "") << num(uv[i].x()) << " " << num(uv[i].y());
+  if (!uv.empty()) {  // texture coordinates (none for a flat mesh)
+    assets_ << "\" texcoord=\"";
+    for (size_t i = 0; i < uv.size(); ++i) assets_ << (i ? " " : "") << num(uv[i].x()) << " " << num(uv[i].y());
+  }
   assets_ << "\" face=\"";
   for (size_t i = 0; i < faces.size(); ++i)
     assets_ << (i ? " " : "") << faces[i][0] << " " << faces[i][1] << " " << faces[i][2];
@@ -255,16 +257,7 @@ void MjcfWorldBuilder::addTexturedMesh(const std::string& name, const std::vecto
 
 void MjcfWorldBuilder::addFlatMesh(const std::string& name, const std::vector<Vec3>& v,
                                    const std::vector<std::array<int, 3>>& faces, double grey) {
-  const std::string mat = material(Look::flat(grey));
-  assets_ << "    <mesh name=\"" << name << "\" vertex=\"";
-  for (size_t i = 0; i < v.size(); ++i) assets_ << (i ? " " : "") << vec(v[i]);
-  assets_ << "\" face=\"";
-  for (size_t i = 0; i < faces.size(); ++i)
-    assets_ << (i ? " " : "") << faces[i][0] << " " << faces[i][1] << " " << faces[i][2];
-  assets_ << "\"/>\n";
-  bodies_ << "    <geom name=\"" << name << "\" type=\"mesh\" mesh=\"" << name << "\" material=\"" << mat
-          << "\" contype=\"0\" conaffinity=\"0\" group=\"" << geom_groups::kVisualMesh << "\"/>\n";
-  ++visual_geoms_;
+  addMesh(name, v, {}, faces, material(Look::flat(grey)));
 }
 
 void MjcfWorldBuilder::setGround(const Vec2& size_m, const std::string& texture) {
