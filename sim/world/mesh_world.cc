@@ -21,12 +21,16 @@ namespace fs = std::filesystem;
 namespace {
 
 // Where an image a mesh names lies, relative to the checkout: beside the mesh file (Gazebo's
-// rule), by its file name when the mesh gives an absolute path or a file:// URI.
+// rule), by its file name when the mesh gives an absolute path or a file:// URI. A name that
+// leads out of the checkout ('..' past its root) is never read or copied: it stays inside, by its
+// file name beside the mesh.
 std::string imagePath(const std::string& mesh_file, std::string image) {
   if (image.rfind("file://", 0) == 0) image = image.substr(7);
   const fs::path p(image);
   const fs::path dir = fs::path(mesh_file).parent_path();
-  return (dir / (p.is_absolute() ? p.filename() : p)).lexically_normal().string();
+  const fs::path rel = (dir / (p.is_absolute() ? p.filename() : p)).lexically_normal();
+  if (rel.empty() || *rel.begin() == "..") return (dir / p.filename()).lexically_normal().string();
+  return rel.string();
 }
 
 // The image as grey PNG bytes, its longer side at most max_px; empty if it cannot be decoded.

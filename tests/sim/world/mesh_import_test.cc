@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
+#include <regex>
 
 #include "core/common/config_check.h"
 #include "core/common/png.h"
@@ -203,6 +204,20 @@ TEST(MeshImport, AMissingImageFileOrMeshIsAnErrorNamingTheKey) {
   const GeneratedWorld g = generateWorld(w);
   ASSERT_EQ(g.meshes.size(), 1u);
   EXPECT_EQ(g.meshes[0].stand_ins, std::vector<std::string>{"meshes/grass.png"});
+  // An image named outside the checkout ('..' past its root) is looked for beside the mesh only:
+  // never read or copied from outside (here absent: the stand-in again).
+  std::ofstream(dir / "outside.png") << "not read";
+  std::string mtl;
+  {
+    std::ifstream in(dir / "meshes" / "scene.mtl");
+    mtl.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  std::ofstream(dir / "meshes" / "scene.mtl") << std::regex_replace(mtl, std::regex("grass.png"), "../../outside.png");
+  std::vector<std::string> absent;
+  const auto files = meshSourceFiles(w, dir.string(), absent);
+  EXPECT_EQ(files, std::vector<std::string>{"meshes/scene.obj"});
+  EXPECT_EQ(absent, std::vector<std::string>{"meshes/outside.png"});
+  EXPECT_EQ(generateWorld(w).meshes[0].stand_ins, std::vector<std::string>{"meshes/outside.png"});
   // Not imported: says how to import it.
   w.source_dir = (dir / "nowhere").string();
   expectError(w, "msbench world import mesh_fixture --from");
