@@ -66,6 +66,13 @@ class Explorer {
   virtual std::vector<FreeSpaceElement> freeSpace() const { return snapshot().free_space; }
   /// Counters for metrics.json and the progress line (e.g. spheres, goals reached).
   virtual std::map<std::string, double> counters() const = 0;
+  /// The counters a cost model charges its calls by (`timing.compute: modelled`, docs/compute.md),
+  /// read after every call: the size of what the method works on (points, frontiers, ...). By
+  /// default counters(); a method whose counters() is costly gives the cheap ones here.
+  virtual std::map<std::string, double> workCounters() const { return counters(); }
+  /// CPU seconds, so far, of the processes the method computes in besides the thread that calls
+  /// it (a Python method's own process; `timing.compute: charged`). 0 for a method in-process.
+  virtual double helperCpuSeconds() const { return 0.0; }
 };
 
 /// A path command sent at this planning step: `last_path` becomes the vehicle's reference followed

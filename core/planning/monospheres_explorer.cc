@@ -421,6 +421,16 @@ ExplorerSnapshot MonoSpheresExplorer::snapshot() const {
   return snap;
 }
 
+std::map<std::string, double> MonoSpheresExplorer::workCounters() const {
+  using C = MonoSpheresCounter;
+  Counters<C> c = counters_;
+  c[C::kSpheres] = double(map_.spheres().size());
+  c[C::kObstaclePoints] = double(map_.obstacles().size());
+  c[C::kFrontiers] = double(map_.frontiers().size());
+  c[C::kViewpoints] = double(viewpoints_.viewpoints().size());
+  return c.toMap();
+}
+
 std::map<std::string, double> MonoSpheresExplorer::counters() const {
   using C = MonoSpheresCounter;
   Counters<C> c = counters_;

@@ -270,6 +270,9 @@ class MonoSpheresExplorer : public Explorer {
   std::vector<FreeSpaceElement> freeSpace() const override;
   ExplorerSnapshot snapshot() const override;
   std::map<std::string, double> counters() const override;
+  /// The map's sizes (spheres, obstacle points, frontiers, viewpoints) and the counters kept as
+  /// the method runs, without counters()' reachability pass.
+  std::map<std::string, double> workCounters() const override;
 
   /// The map (tests, tools).
   const SphereMap& map() const { return map_; }

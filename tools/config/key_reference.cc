@@ -35,6 +35,10 @@ const OutsideKey kOutsideKeys[] = {
     {"goals.path", "a directory put first on sys.path"},
     {"goals.params", "a map: the chooser factory's keyword arguments"},
     {"method.type", "a registered method (msbench methods)"},
+    {"timing.map.per",
+     "a map: a method counter, or counters joined by '*', to seconds per unit (>= 0; docs/compute.md)"},
+    {"timing.plan.per", "the same for a planning step"},
+    {"timing.replay", "a compute latency log of an earlier charged run (relative to this file; docs/compute.md)"},
     {"method.reference_code",
      "published or intended (MonoSpheres and the grid): `published` takes the authors' configuration before the "
      "keys named beside it (docs/deviations.md, \"The published configuration\"); MonoSpheres also takes a map "

@@ -207,6 +207,52 @@ PythonMethodConfig readGoals(MapReader g) {
   return c;
 }
 
+// A stage's cost model: base_s from its table, `per` as a map of term → seconds per unit.
+template <class Keys>
+void stageModelKeys(Keys r, StageCostModel& m) {
+  fieldKeys(r, m);
+  if constexpr (Keys::kReading) {
+    if (r.has("per")) {
+      const YAML::Node n = r.raw("per");
+      if (!n.IsMap()) throw ConfigError(r.keyName("per"), "expected a map of term: seconds per unit");
+      MapReader p(n, r.keyName("per") + ".");
+      for (const auto& kv : n) {
+        const std::string term = kv.first.Scalar();
+        p.read(term, m.per[term]);
+      }
+    }
+  } else {
+    MapWriter p = r.sub("per");
+    for (const auto& [term, coef] : m.per) p.field(term, coef);
+  }
+  r.finish();
+}
+
+// The `timing` section (docs/compute.md): the profile named by compute_model first, then the
+// keys named beside it; `replay` is read as a path relative to the file.
+void readTiming(MapReader t, const fs::path& dir, ComputeTiming& timing) {
+  t.read("compute", timing.compute);
+  t.read("compute_model", timing.compute_model);
+  timing.applyProfile();
+  if (t.has("map")) stageModelKeys(t.sub("map"), timing.map);
+  if (t.has("plan")) stageModelKeys(t.sub("plan"), timing.plan);
+  if (t.read("replay", timing.replay) && !timing.replay.empty() && fs::path(timing.replay).is_relative())
+    timing.replay = (dir / timing.replay).lexically_normal().string();
+  t.finish();
+}
+
+void writeTiming(MapWriter t, const ComputeTiming& timing) {
+  ComputeTiming keys = timing;
+  if (timing.compute == "modelled" || t.keepsLog()) {
+    fieldKeys(t, keys);  // compute, compute_model and each stage's base_s, with their rules
+    if (!timing.map.per.empty()) stageModelKeys(t.sub("map"), keys.map);
+    if (!timing.plan.per.empty()) stageModelKeys(t.sub("plan"), keys.plan);
+  } else {
+    t.field("compute", timing.compute);
+  }
+  if (!timing.replay.empty()) t.field("replay", timing.replay);
+}
+
 void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
   r.read("name", s.name);
   r.read("suite", s.suite);
@@ -224,6 +270,7 @@ void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
   if (r.has("mission")) sectionKeys(r.sub("mission"), s.mission);
   if (r.has("video")) sectionKeys(r.sub("video"), s.video);
   if (r.has("goals")) s.goals = readGoals(r.sub("goals"));
+  if (r.has("timing")) readTiming(r.sub("timing"), dir, s.timing);
   r.finish();
 }
 
@@ -313,6 +360,8 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapW
   sectionKeys(w.sub("mission"), mission);
   VideoSettings video = spec.video;
   sectionKeys(w.sub("video"), video);
+  // Only when not free (a free run's text stays as it was), and always in the key reference.
+  if (!spec.timing.free() || w.keepsLog()) writeTiming(w.sub("timing"), spec.timing);
   if (spec.goals) {
     MapWriter g = w.sub("goals");
     g.field("entry", spec.goals->entry);
@@ -325,6 +374,7 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapW
 std::string fixedSettingsYaml(const ScenarioSpec& spec) {
   YAML::Node tree = YAML::Load(effectiveScenarioYaml(spec));
   for (const char* key : {"name", "suite", "seed", "method", "goals", "video"}) tree.remove(key);
+  if (tree["timing"]) tree["timing"].remove("replay");
   if (tree["mission"]) {
     tree["mission"].remove("progress");
     tree["mission"].remove("write_map_ply");

@@ -105,8 +105,15 @@ void ClosedLoop::startPipeline(const FlightSpec& spec, const LoopSetup& setup) {
   }
   const int depth = spec.perception.latency_frames;
   const bool threaded = spec.perception.threads == 2 && depth > 0;
-  PerceptionStages stages{features_.get(), slam_.get(), jitter_ ? &*jitter_ : nullptr, setup.explorer,
-                          [this](const PathCommand& cmd, const VehicleState& vs) { checkWaypoints(cmd, vs); }};
+  PerceptionStages stages{features_.get(),
+                          slam_.get(),
+                          jitter_ ? &*jitter_ : nullptr,
+                          setup.explorer,
+                          [this](const PathCommand& cmd, const VehicleState& vs) { checkWaypoints(cmd, vs); },
+                          setup.compute};
+  stages.compute.physics_hz = spec.physics.physics_hz;
+  stages.compute.frame_ticks =
+      std::max<int64_t>(1, int64_t(double(spec.physics.physics_hz) / spec.camera_stream.rate_hz));
   pipeline_ = std::make_unique<PerceptionPipeline>(depth, threaded, std::move(stages));
   if (threaded) result_.threads = 2;
 }
@@ -134,7 +141,9 @@ const TickRecord& ClosedLoop::step() {
       if (!usePerception()) return record_;
     }
   }
-  // Trajectory reference and controller; records; actuators, integration and the IMU.
+  // Paths whose planning step ended by now (compute in the loop); then the trajectory reference
+  // and controller; records; actuators, integration and the IMU.
+  if (!ending_paths_.empty()) takeEndedPaths();
   trackAndControl();
   recordTick();
   actuateAndSampleImu();
@@ -292,7 +301,11 @@ const FlightResult& ClosedLoop::finish() {
   if (finished_) return result_;
   // The perception in flight completes; its error (once) is the run's.
   sync();
-  if (pipeline_) pipeline_->rethrowPending(), result_.perception_wait_ms = pipeline_->waitMs();
+  if (pipeline_) {
+    pipeline_->rethrowPending();
+    result_.perception_wait_ms = pipeline_->waitMs();
+    result_.compute_calls = pipeline_->computeCalls();
+  }
   finished_ = true;
   result_.ticks = sim_.tick();
   result_.collision_detection_steps = sim_.stepsDetected();
@@ -314,7 +327,9 @@ void ClosedLoop::launchPerception() {
   job->camera_estimate = vio_.noisyCameraPose(frame_->T_W_C);
   if (setup_.explorer) {
     job->map_due = map_schedule_->due(record_.tick);
-    if (plan_schedule_->due(record_.tick)) job->plan_state = vehicleState();
+    job->plan_due = plan_schedule_->due(record_.tick);
+    // A planning step asked for earlier may start on this frame when compute is charged.
+    if (job->plan_due || !setup_.compute.timing.free()) job->plan_state = vehicleState();
   }
   pipeline_->launch(std::move(job));
 }
@@ -353,8 +368,18 @@ bool ClosedLoop::usePerception() {
   record_.timing.planning_ms = j.timing.planning_ms;
   // The frame's results take effect now: the drift rate, its path, tracking loss.
   vio_.setTrackedFeatures(trackedFromPrevious(j.tracks));
-  if (j.cmd) trajectory_.setPath(j.cmd->waypoints), last_path_t_s_ = record_.t_s;
+  if (j.cmd) {
+    ending_paths_.emplace_back(record_.tick + j.cmd_delay_ticks, *j.cmd);
+    takeEndedPaths();
+  }
   return trackingHolds(j.tracks, j.tick);
+}
+
+void ClosedLoop::takeEndedPaths() {
+  while (!ending_paths_.empty() && ending_paths_.front().first <= record_.tick) {
+    trajectory_.setPath(ending_paths_.front().second.waypoints), last_path_t_s_ = record_.t_s;
+    ending_paths_.pop_front();
+  }
 }
 
 }  // namespace msb

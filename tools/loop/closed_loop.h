@@ -26,6 +26,7 @@
 #pragma once
 
 #include <chrono>
+#include <deque>
 #include <exception>
 #include <map>
 #include <memory>
@@ -79,6 +80,7 @@ struct FlightResult {
   std::string gl_description;                  ///< what rendered the frames
   std::map<std::string, int> mujoco_warnings;  ///< MuJoCo's warning counters (non-zero ones)
   uint64_t trajectory_hash = 0;                ///< FNV-1a over the trajectory rows
+  std::vector<ComputeCall> compute_calls;      ///< the explorer's calls with their charged latencies
 
   /// Simulated seconds per wall-clock second.
   double realTimeFactor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
@@ -91,6 +93,9 @@ struct LoopSetup {
   double trajectory_rate_hz = 50.0;   ///< trajectory rows
   double map_rate_hz = 5.0;           ///< explorer map updates (latest SLAM points)
   double planning_rate_hz = 5.0;      ///< explorer planning steps
+  /// How the explorer's calls are charged (timing, replay, machine factor; the loop fills in
+  /// its rates).
+  ComputeSetup compute;
 };
 
 /// What one tick produced; pointers are valid until the next step().
@@ -174,6 +179,8 @@ class ClosedLoop {
   // Throws MethodOutputError for a waypoint that is not finite or lies beyond
   // kMaxWaypointDistanceM of the start (core/explorer/output_limits.h).
   void checkWaypoints(const PathCommand& cmd, const VehicleState& vs) const;
+  // Starts following the paths whose planning step has ended by this tick.
+  void takeEndedPaths();
   void trackAndControl();
   void recordTick();
   void actuateAndSampleImu();
@@ -212,6 +219,7 @@ class ClosedLoop {
   RenderTiming frame_timing_;
   int64_t few_tracks_since_ = -1, finished_tick_ = -1, last_imu_tick_ = 0, err_count_ = 0;
   double err_sq_sum_ = 0.0, last_path_t_s_ = -1.0;
+  std::deque<std::pair<int64_t, PathCommand>> ending_paths_;  // planned paths by the tick they take effect
   Vec3 last_position_;
   bool ended_ = false, finished_ = false;
   TickRecord record_;

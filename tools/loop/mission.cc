@@ -46,6 +46,15 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
   setup.trajectory_rate_hz = spec.mission.trajectory_rate_hz;
   setup.map_rate_hz = spec.mission.map_rate_hz;
   setup.planning_rate_hz = spec.mission.planning_rate_hz;
+  // Compute in the loop: a cost model's terms must be the method's counters; charged latencies
+  // are measured (scaled by this machine's factor) or replayed from a log.
+  setup.compute.timing = spec_.timing;
+  setup.compute.replay = spec_.compute_replay.calls;
+  checkModelTerms(spec_.timing, explorer_->workCounters(), spec_.method.type);
+  if (spec_.timing.compute == "charged")
+    setup.compute.machine_factor =
+        spec_.timing.replay.empty() ? measureMachineFactor() : spec_.compute_replay.machine_factor;
+  machine_factor_ = setup.compute.machine_factor;
   loop_ = std::make_unique<ClosedLoop>(missionFlight(spec), setup);
   // A box with nothing above the ground has nothing to explore.
   for (const GroundPlane& g : loop_->sim().groundPlanes())
@@ -131,6 +140,7 @@ MissionResult Mission::finish() {
   r.stages = stages_;
   r.stage_timeline = stage_timeline_;
   r.map_update_ms = map_update_ms_;
+  r.compute_machine_factor = machine_factor_;
   r.exploration_box = coverage_.box();
   r.box_explorable_columns = coverage_.boxExplorableColumns();
   r.box_explored_explorable_columns = int(coverage_.exploredExplorableColumns());

@@ -58,6 +58,7 @@ struct MissionResult {
   StageTimes stages;
   std::vector<std::pair<double, StageTimes>> stage_timeline;  ///< cumulative, every 10 simulated s
   std::vector<double> map_update_ms;                          ///< wall time of every map update (recorded only)
+  double compute_machine_factor = 0;  ///< charged: the machine factor the latencies were scaled by
   Aabb exploration_box;
   int box_explorable_columns = 0;                      ///< 0 if the world has no ground truth
   int box_explored_explorable_columns = 0;             ///< explored columns among those (box_share numerator)
@@ -126,6 +127,7 @@ class Mission {
   StageTimes stages_;
   std::vector<std::pair<double, StageTimes>> stage_timeline_;
   std::vector<double> map_update_ms_;
+  double machine_factor_ = 1.0;  // charged: reference seconds per CPU second here
   // Truth-side records (worlds with ground truth only).
   const WorldTruth* truth_ = nullptr;
   std::optional<FrontEndProfiler> frontend_;     // the front-end error profile

@@ -1,14 +1,17 @@
 #include "tools/loop/perception_pipeline.h"
 
+#include <cmath>
+#include <stdexcept>
 #include <utility>
 
+#include "core/common/config_fields.h"
 #include "core/common/wall_time.h"
 #include "core/perception/frontend_degradation.h"
 
 namespace msb {
 
 PerceptionPipeline::PerceptionPipeline(int depth, bool second_thread, PerceptionStages stages)
-    : depth_(depth), stages_(std::move(stages)) {
+    : depth_(depth), stages_(std::move(stages)), clock_(stages_.compute.frame_ticks) {
   if (second_thread && depth_ > 0) worker_ = std::make_unique<JobWorker>();
 }
 
@@ -30,22 +33,69 @@ void PerceptionPipeline::run(PerceptionJob& j) {
     j.points = stages_.slam->update(j.tracks, j.camera_estimate);
     if (stages_.jitter) stages_.jitter->apply(j.points);
     j.timing.triangulation_ms = msSince(t0);
-    if (j.map_due) {
-      t0 = WallClock::now();
-      stages_.explorer->observe(j.points);
-      j.timing.map_ms = msSince(t0);
-      j.map_updated = true;
-    }
-    if (j.plan_state) {
-      t0 = WallClock::now();
-      j.cmd = stages_.explorer->plan(*j.plan_state);
-      j.timing.planning_ms = msSince(t0);
-      if (j.cmd) stages_.check_path(*j.cmd, *j.plan_state);
-    }
+    if (stages_.explorer) runMethodCalls(j);
   } catch (...) {
     j.error = std::current_exception();
   }
   j.done = true;
+}
+
+void PerceptionPipeline::runMethodCalls(PerceptionJob& j) {
+  // The calls asked for on this tick join those waiting; each that may start now runs (free:
+  // all of them, map update first, on the frame's tick).
+  if (j.map_due) clock_.ask(ComputeCall::Stage::kMap, j.tick);
+  if (j.plan_due) clock_.ask(ComputeCall::Stage::kPlan, j.tick);
+  const bool charged = stages_.compute.timing.compute == "charged";
+  while (std::optional<ComputeCall> call = clock_.next(j.tick)) {
+    const auto t0 = WallClock::now();
+    const double cpu0 = charged ? threadCpuSeconds() + stages_.explorer->helperCpuSeconds() : 0.0;
+    std::optional<PathCommand> cmd;
+    if (call->stage == ComputeCall::Stage::kMap) {
+      stages_.explorer->observe(j.points);
+      j.timing.map_ms += msSince(t0);
+      j.map_updated = true;
+    } else {
+      cmd = stages_.explorer->plan(*j.plan_state);
+      j.timing.planning_ms += msSince(t0);
+    }
+    const double cpu_s = charged ? threadCpuSeconds() + stages_.explorer->helperCpuSeconds() - cpu0 : 0.0;
+    clock_.charge(*call, latencyTicks(*call, cpu_s));
+    calls_.push_back(*call);
+    if (!cmd) continue;
+    stages_.check_path(*cmd, *j.plan_state);
+    j.cmd = std::move(cmd);
+    j.cmd_delay_ticks = clock_.busyUntil() - j.tick;  // its output when the step ends
+  }
+}
+
+int64_t PerceptionPipeline::latencyTicks(ComputeCall& call, double cpu_s) {
+  const ComputeSetup& c = stages_.compute;
+  const auto ticks = [&](double s) { return int64_t(std::ceil(s * double(c.physics_hz) - 1e-9)); };
+  if (c.timing.compute == "modelled") {
+    const StageCostModel& m = call.stage == ComputeCall::Stage::kMap ? c.timing.map : c.timing.plan;
+    try {
+      return std::max<int64_t>(0, ticks(m.seconds(stages_.explorer->workCounters())));
+    } catch (const std::runtime_error& e) {
+      throw ConfigError(std::string("timing.") + stageName(call.stage) + ".per", e.what());
+    }
+  }
+  if (c.timing.compute != "charged") return 0;
+  if (c.timing.replay.empty()) {
+    call.cpu_ns = int64_t(std::llround(cpu_s * 1e9));
+    return std::max<int64_t>(0, ticks(cpu_s * c.machine_factor));
+  }
+  // A replay: the logged call of this index, which must be the same call.
+  const size_t i = calls_.size();
+  if (i >= c.replay.size())
+    throw std::runtime_error(c.timing.replay + ": the replay asks for call " + std::to_string(i) + ", the log has " +
+                             std::to_string(c.replay.size()) + " (the run went differently)");
+  const ComputeCall& logged = c.replay[i];
+  if (logged.stage != call.stage || logged.start_tick != call.start_tick)
+    throw std::runtime_error(c.timing.replay + ": call " + std::to_string(i) + " is a " + stageName(call.stage) +
+                             " at tick " + std::to_string(call.start_tick) + ", the log's a " +
+                             stageName(logged.stage) + " at tick " + std::to_string(logged.start_tick));
+  call.cpu_ns = logged.cpu_ns;
+  return logged.latency_ticks;
 }
 
 void PerceptionPipeline::complete(PerceptionJob& job) {

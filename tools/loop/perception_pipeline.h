@@ -20,6 +20,7 @@
 #include "core/explorer/explorer.h"
 #include "core/perception/feature_tracker.h"
 #include "core/perception/slam_points.h"
+#include "tools/loop/compute_clock.h"
 #include "tools/loop/job_worker.h"
 #include "tools/loop/records.h"
 
@@ -38,15 +39,26 @@ struct PerceptionJob {
   std::shared_ptr<const CameraFrame> frame;
   Pose camera_estimate;                    ///< the VIO's camera pose of the frame
   bool map_due = false;                    ///< the explorer's map update is due on its tick
-  std::optional<VehicleState> plan_state;  ///< planning is due on its tick: from this state
+  bool plan_due = false;                   ///< its planning step is due on its tick
+  std::optional<VehicleState> plan_state;  ///< the state a planning step starting now plans from
   uint64_t worker_id = 0;                  ///< its task number on the worker
   bool done = false;                       ///< (one thread) it has run
   TrackFrame tracks;                       ///< outputs ...
   SlamPointsFrame points;
   std::optional<PathCommand> cmd;
+  int64_t cmd_delay_ticks = 0;  ///< ticks after its use that `cmd` takes effect (its compute)
   bool map_updated = false;
   TickTiming timing;
   std::exception_ptr error;  ///< what the job threw (rethrown when used)
+};
+
+/// How the method's calls are charged (tools/loop/compute_clock.h).
+struct ComputeSetup {
+  ComputeTiming timing;             ///< the scenario's `timing` section
+  std::vector<ComputeCall> replay;  ///< charged: the latencies to replay (empty: measure)
+  double machine_factor = 1.0;      ///< charged: reference seconds per CPU second here
+  int physics_hz = 500;             ///< ticks per second
+  int64_t frame_ticks = 1;          ///< ticks between camera frames
 };
 
 /// The stages a job runs, borrowed from the loop (they outlive the pipeline).
@@ -57,6 +69,7 @@ struct PerceptionStages {
   Explorer* explorer = nullptr;      ///< null for a scripted flight
   /// Throws for a path the method may not send (core/explorer/output_limits.h).
   std::function<void(const PathCommand&, const VehicleState&)> check_path;
+  ComputeSetup compute;  ///< how the explorer's calls are charged
 };
 
 /// The jobs in flight, their worker and their order (see file comment).
@@ -91,14 +104,22 @@ class PerceptionPipeline {
   void rethrowPending();
   /// Milliseconds the loop thread waited for the worker (records only).
   double waitMs() const { return wait_ms_; }
+  /// The explorer's calls so far with their charged latencies (after sync()).
+  const std::vector<ComputeCall>& computeCalls() const { return calls_; }
 
  private:
   void run(PerceptionJob& j);
+  // The explorer's calls that start on the job's tick (tools/loop/compute_clock.h).
+  void runMethodCalls(PerceptionJob& j);
+  // A call's latency in ticks by the setup's mode; `cpu_s`: its measured CPU time.
+  int64_t latencyTicks(ComputeCall& call, double cpu_s);
   void complete(PerceptionJob& j);
 
   int depth_ = 0;
   PerceptionStages stages_;
   double wait_ms_ = 0;
+  ComputeClock clock_;                               // the method's computer (touched by the job running)
+  std::vector<ComputeCall> calls_;                   // every call, as charged
   std::deque<std::unique_ptr<PerceptionJob>> jobs_;  // launched, not yet used (FIFO)
   std::unique_ptr<PerceptionJob> used_;              // the job whose results were used last
   std::unique_ptr<JobWorker> worker_;                // last: stopped before the rest goes

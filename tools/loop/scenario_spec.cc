@@ -40,6 +40,7 @@ void ScenarioSpec::validate(ConfigChecker& c) const {
   }
   c.nested("mission", mission);
   c.nested("video", video);
+  c.nested("timing", timing);
   if (goals) {
     c.nested("goals", *goals);
     c.require(

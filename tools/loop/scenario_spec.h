@@ -10,6 +10,7 @@
 
 #include "core/common/aabb.h"
 #include "core/common/config_fields.h"
+#include "tools/loop/compute_clock.h"
 #include "tools/loop/flight_spec.h"
 #include "tools/loop/methods.h"
 
@@ -84,7 +85,10 @@ struct ScenarioSpec {
   /// scenario's `goals` section (entry, path, params); runs through the Python module.
   std::optional<PythonMethodConfig> goals;
   MissionSettings mission;
-  VideoSettings video;  ///< off by default; nothing of the run depends on it
+  VideoSettings video;   ///< off by default; nothing of the run depends on it
+  ComputeTiming timing;  ///< how the method's computation is charged (default: free)
+  /// Not a key: the latencies `timing.replay` names (tools/results/compute_log.h reads them).
+  ComputeLog compute_replay;
   /// The files the scenario was read from: the file itself, then its `base:` chain (absolute).
   /// Outputs may not overlap them (checkNoOverlap).
   std::vector<std::string> input_files;

@@ -18,6 +18,7 @@
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
 #include "tools/msbench/interrupt.h"
+#include "tools/results/compute_log.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/input_files.h"
 #include "tools/results/mission_outputs.h"
@@ -137,10 +138,12 @@ int runRunCommand(int argc, char** argv) {
   if (args.given("duration")) all_sets.push_back("duration_s=" + args.get("duration"));
   if (args.has("video")) all_sets.push_back("video.enabled=true");
   ScenarioSpec spec = loadScenario(file, all_sets);
+  loadComputeReplay(spec, file);
   if (spec.video.enabled && findFfmpeg().empty())
     throw UsageError(file + ": video.enabled: the ffmpeg program is not installed (apt-get install ffmpeg)");
   if (spec.method.type == kPythonMethodType || spec.goals) execPythonRun(original_args);
-  const std::string effective_yaml = effectiveScenarioYaml(spec);  // before the world fills in the start
+  const std::string effective_yaml =
+      effectiveScenarioYaml(runOwnComputeLog(spec));  // before the world fills in the start
   MissionWorld world = prepareMissionWorld(file, spec);
   const Aabb& box = world.box;
   std::optional<WorldTruth>& truth = world.truth;
@@ -223,6 +226,7 @@ ScenarioSpec replayableScenario(const fs::path& config, std::vector<std::string>
     throw UsageError(config.string() + ": the run is not replayable (its first line says why)");
   sets.push_back("video.enabled=true");
   ScenarioSpec spec = loadScenario(config.string(), sets);
+  loadComputeReplay(spec, config.string());
   if (spec.method.type == kPythonMethodType || spec.goals)
     throw UsageError(config.string() + ": a method written in Python; its video is not available (docs/video.md)");
   return spec;

@@ -25,6 +25,7 @@
 #include "tools/loop/closed_loop.h"
 #include "tools/loop/records.h"
 #include "tools/loop/scenario_spec.h"
+#include "tools/results/compute_log.h"
 
 namespace py = pybind11;
 
@@ -70,7 +71,8 @@ struct PyScenario {
     s.file = path;
     s.sets = sets;
     s.spec = loadScenario(path, sets);
-    s.effective_yaml = effectiveScenarioYaml(s.spec);
+    loadComputeReplay(s.spec, path);
+    s.effective_yaml = effectiveScenarioYaml(runOwnComputeLog(s.spec));
     return s;
   }
   py::object effective() const { return yamlToPython(YAML::Load(effective_yaml)); }

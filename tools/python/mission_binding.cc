@@ -353,7 +353,7 @@ class PyMission {
       spec.method.switches.clear();
       spec.method.not_replayable = why;
     }
-    scenario_.effective_yaml = effectiveScenarioYaml(spec);
+    scenario_.effective_yaml = effectiveScenarioYaml(runOwnComputeLog(spec));
     scenario_.spec.method.type = spec.method.type;
     scenario_.spec.method.config = spec.method.config;
     scenario_.spec.method.switches = spec.method.switches;

@@ -1,6 +1,8 @@
 // Methods written in Python: the Explorer over a Python object, its errors and the types it sees.
 #include "tools/python/binding.h"
 
+#include <time.h>
+
 #include <atomic>
 #include <cmath>
 
@@ -117,7 +119,13 @@ void addPictures(const py::dict& d, ExplorerSnapshot& snap) {
 /// {name: number}. Each call holds the GIL; a Python exception becomes a MethodError.
 class PyExplorer final : public Explorer {
  public:
-  explicit PyExplorer(py::object method) : method_(std::move(method)) {}
+  explicit PyExplorer(py::object method) : method_(std::move(method)) {
+    // A method in its own process: that process's CPU clock (compute charged, docs/compute.md).
+    if (py::hasattr(method_, "msbench_process_id")) {
+      const pid_t pid = method_.attr("msbench_process_id").cast<pid_t>();
+      if (clockid_t clock; clock_getcpuclockid(pid, &clock) == 0) helper_clock_ = clock;
+    }
+  }
   ~PyExplorer() override {
     py::gil_scoped_acquire gil;
     method_ = py::object();
@@ -194,6 +202,12 @@ class PyExplorer final : public Explorer {
     return snap;
   }
 
+  double helperCpuSeconds() const override {
+    timespec ts{};
+    if (!helper_clock_ || clock_gettime(*helper_clock_, &ts) != 0) return 0.0;
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+  }
+
   std::map<std::string, double> counters() const override {
     std::map<std::string, double> c;
     call([&] {
@@ -226,6 +240,7 @@ class PyExplorer final : public Explorer {
   }
 
   py::object method_;
+  std::optional<clockid_t> helper_clock_;  // the CPU clock of the method's own process
 };
 
 }  // namespace

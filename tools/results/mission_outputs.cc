@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/common/png.h"
+#include "tools/results/compute_log.h"
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
@@ -158,6 +159,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   if (!spec.fixed_settings_hash.empty()) j["fixed_settings_hash"] = spec.fixed_settings_hash;
   if (!spec.suite.empty()) j["suite"] = spec.suite;
   j["duration_s"] = spec.flight.duration_s;
+  j["timing"] = computeTimingJson(spec, r);  // how the method's computation was charged
   j["sim_time_s"] = f.sim_time_s;
   j["coverage"] = coverageJson(r);
   j["score"] = scoreJson(r);
@@ -267,6 +269,9 @@ nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const Scena
   writeFileAtomic(dir / "timing.csv", timingCsv(r));
   if (spec.mission.write_map_ply) writeFileAtomic(dir / "map.ply", mapPly(r.final_map));
   writeTopdown(dir / "topdown.png", r, truth);
+  if (!spec.timing.free())
+    writeFileAtomic(dir / kComputeLogFile, computeLogText(r.flight.compute_calls, msbGitRevision(), spec.timing.compute,
+                                                          r.compute_machine_factor));
   // What finishes after the run's files (its video: on a full disk, they go first) adds its keys
   // before the record is sealed.
   if (extra) metrics.update(extra());

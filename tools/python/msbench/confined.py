@@ -247,6 +247,7 @@ class _Proxy:
 
     def __init__(self, worker):
         self._worker = worker
+        self.msbench_process_id = worker.proc.pid  # its CPU time is charged (timing.compute: charged)
         self.msbench_confinement = (f"own process, Landlock ABI {worker.ready['landlock_abi']}"
                                     if worker.ready["landlock_abi"] else "own process, unconfined (no Landlock)")
         if worker.ready["snapshot"]:

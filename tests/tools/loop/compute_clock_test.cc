@@ -1,0 +1,252 @@
+// Compute in the loop (tools/loop/compute_clock.h): the method's computer serves the calls in the
+// order they were asked for, a call's latency delays the next and the output of a planning step;
+// a charged run replays bit for bit from its latency log; `modelled` is deterministic on one
+// thread or two; `free` is the loop as it was.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/geometry/world_truth.h"
+#include "tools/config/world_registry.h"
+#include "tools/loop/compute_clock.h"
+#include "tools/loop/mission.h"
+
+namespace msb {
+namespace {
+
+using Stage = ComputeCall::Stage;
+
+TEST(ComputeClock, ACallThatTakesLongerThanThePeriodHalvesTheRate) {
+  // Map updates asked every 100 ticks (5 Hz at 500 Hz), each 200 ticks (0.4 s) long; frames
+  // every 33 ticks: the map runs every 200 ticks (2.5 Hz), each start when the last ends.
+  ComputeClock clock(33);
+  std::vector<int64_t> starts;
+  for (int64_t tick = 0; tick <= 2000; tick += 1) {
+    if (tick % 100 == 0) clock.ask(Stage::kMap, tick);
+    if (tick % 33 != 0 && tick % 100 != 0) continue;  // camera ticks (and the ask ticks)
+    while (auto call = clock.next(tick)) {
+      starts.push_back(call->start_tick);
+      clock.charge(*call, 200);
+    }
+  }
+  ASSERT_GE(starts.size(), 10u);
+  for (size_t i = 1; i < starts.size(); ++i) EXPECT_EQ(starts[i] - starts[i - 1], 200) << i;
+}
+
+TEST(ComputeClock, OldestAskFirstMapBeforePlanOnATieAndChainsWithinAFrame) {
+  ComputeClock clock(33);
+  clock.ask(Stage::kMap, 0);
+  clock.ask(Stage::kPlan, 0);
+  auto a = clock.next(0);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->stage, Stage::kMap);
+  clock.charge(*a, 10);  // ends before the next frame: the plan starts when it ends
+  auto b = clock.next(0);
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->stage, Stage::kPlan);
+  EXPECT_EQ(b->start_tick, 10);
+  clock.charge(*b, 100);
+  EXPECT_FALSE(clock.next(0));
+  // Busy until 110: a map asked at 33 waits; the plan asked at 20 (earlier) goes first at 99.
+  clock.ask(Stage::kPlan, 20);
+  clock.ask(Stage::kMap, 33);
+  clock.ask(Stage::kPlan, 66);  // already waiting: keeps its first ask
+  EXPECT_FALSE(clock.next(33));
+  EXPECT_FALSE(clock.next(66));
+  auto c = clock.next(99);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->stage, Stage::kPlan);
+  EXPECT_EQ(c->asked_tick, 20);
+  EXPECT_EQ(c->start_tick, 110);
+}
+
+TEST(ComputeTiming, TheCostModelAddsItsTermsAndRefusesBadCoefficients) {
+  StageCostModel m{0.1, {{"a", 0.5}, {"a*b", 0.25}}};
+  EXPECT_DOUBLE_EQ(m.seconds({{"a", 2}, {"b", 4}}), 0.1 + 1.0 + 2.0);
+  EXPECT_THROW(m.seconds({{"a", 2}}), std::runtime_error);
+  ComputeTiming t;
+  t.compute = "modelled";
+  t.map.per["spheres"] = -1e-6;
+  EXPECT_THROW(checkValid(t), ConfigError);
+  t.map.per["spheres"] = std::nan("");
+  EXPECT_THROW(checkValid(t), ConfigError);
+  t.map.per = {{"a**b", 1.0}};
+  EXPECT_THROW(checkValid(t), ConfigError);
+  // A cost model's words only mean something when the model is used.
+  ComputeTiming charged;
+  charged.compute = "charged";
+  charged.compute_model = "reference_python";
+  EXPECT_THROW(checkValid(charged), ConfigError);
+}
+
+TEST(ComputeLog, RoundTripsAndRefusesTruncatedLogs) {
+  std::vector<ComputeCall> calls = {{Stage::kMap, 0, 0, 1234, 2}, {Stage::kPlan, 0, 2, 99, 7}};
+  const std::string text = computeLogText(calls, "abc123", "charged", 1.25);
+  const ComputeLog log = parseComputeLog(text);
+  EXPECT_EQ(log.build, "abc123");
+  EXPECT_DOUBLE_EQ(log.machine_factor, 1.25);
+  ASSERT_EQ(log.calls.size(), 2u);
+  EXPECT_EQ(log.calls[1].stage, Stage::kPlan);
+  EXPECT_EQ(log.calls[1].start_tick, 2);
+  EXPECT_EQ(log.calls[1].latency_ticks, 7);
+  EXPECT_EQ(log.calls[0].cpu_ns, 1234);
+  // Without its closing line, with a row cut, or a count that disagrees: refused.
+  EXPECT_THROW(parseComputeLog(text.substr(0, text.rfind("# end"))), std::runtime_error);
+  EXPECT_THROW(parseComputeLog(text.substr(0, text.rfind("99,7"))), std::runtime_error);
+  std::string miscounted = text;
+  miscounted.replace(miscounted.rfind("calls 2"), 7, "calls 3");
+  EXPECT_THROW(parseComputeLog(miscounted), std::runtime_error);
+  EXPECT_THROW(parseComputeLog("hello\n"), std::runtime_error);
+}
+
+// The urban town on the null renderer and oracle features (as closed_loop_test.cc).
+const BuiltWorld& urban() {
+  static const BuiltWorld world =
+      buildWorld(loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban_town/spec.yaml"),
+                 std::string(::testing::TempDir()) + "/msb_compute_cache");
+  return world;
+}
+
+ScenarioSpec oracleMission(double duration_s) {
+  ScenarioSpec spec;
+  spec.flight.world_path = urban().world_xml;
+  spec.flight.start_position_m = urban().generated.start.translation() + Vec3(0, 0, 0.05);
+  spec.flight.start_yaw_rad = yawOf(urban().generated.start.linear());
+  spec.flight.duration_s = duration_s;
+  spec.flight.camera_stream.renderer = "blank";
+  spec.flight.perception.source = "oracle";
+  spec.flight.perception.oracle.textureless_landmarks = true;
+  spec.mission.progress = false;
+  return spec;
+}
+
+// A hand-built method: every planning step sends a climb of 0.1 m per step to where it is, and
+// records the tick it planned at; its work counter `unit` is 1 (the cost model's handle); `burn`
+// spends that much CPU per planning step.
+class StepMethod final : public Explorer {
+ public:
+  explicit StepMethod(std::vector<int64_t>* planned, double burn_s = 0) : planned_(planned), burn_s_(burn_s) {}
+  void observe(const SlamPointsFrame&) override { ++observed_; }
+  std::optional<PathCommand> plan(const VehicleState& v) override {
+    planned_->push_back(v.tick);
+    const double t0 = threadCpuSeconds();
+    volatile double x = 0;
+    while (threadCpuSeconds() - t0 < burn_s_) x = x + 1;
+    PathCommand c;
+    c.tick = v.tick;
+    c.waypoints = {{v.T_W_B.translation() + Vec3(0, 0, 0.1 + 0.001 * double(planned_->size())), std::nullopt}};
+    return c;
+  }
+  ExplorerSnapshot snapshot() const override { return {}; }
+  std::map<std::string, double> counters() const override { return {{"unit", 1.0}, {"observed", observed_}}; }
+
+ private:
+  std::vector<int64_t>* planned_;
+  double burn_s_ = 0;
+  double observed_ = 0;
+};
+
+TEST(ComputeInTheLoop, APlanningStepOf04SRunsAt25HzAndItsPathLands04SLater) {
+  const WorldTruth truth(urban().generated.shapes);
+  ScenarioSpec spec = oracleMission(6.0);
+  spec.flight.perception.latency_frames = 0;  // the path's delay is the compute alone
+  spec.flight.perception.threads = 1;
+  spec.timing.compute = "modelled";
+  spec.timing.plan.per = {{"unit", 0.4}};  // every planning step: 0.4 s
+  std::vector<int64_t> planned;
+  Mission m(spec, urban().generated.exploration_box, &truth, std::make_unique<StepMethod>(&planned));
+  std::vector<int64_t> landed;
+  double last = -1;
+  while (m.running()) {
+    const TickRecord& t = m.step();
+    if (m.loop().lastPathTimeS() != last) last = m.loop().lastPathTimeS(), landed.push_back(t.tick);
+  }
+  const MissionResult r = m.finish();
+  // 6 s at 2.5 Hz: the 0th step and one every 0.4 s (200 ticks).
+  ASSERT_GE(planned.size(), 14u);
+  ASSERT_LE(planned.size(), 16u);
+  for (size_t i = 1; i < planned.size(); ++i) EXPECT_EQ(planned[i] - planned[i - 1], 200) << i;
+  ASSERT_GE(landed.size(), planned.size() - 1);
+  for (size_t i = 0; i < landed.size(); ++i) EXPECT_EQ(landed[i] - planned[i], 200) << i;
+  // The method is one computer: the map updates, free themselves, wait for each planning step
+  // and run with it, at 2.5 Hz instead of 5.
+  EXPECT_NEAR(double(r.counters.at("observed")), double(planned.size()), 1.0);
+}
+
+TEST(ComputeInTheLoop, AChargedRunReplaysBitForBitFromItsLog) {
+  const WorldTruth truth(urban().generated.shapes);
+  ScenarioSpec spec = oracleMission(4.0);
+  spec.timing.compute = "charged";
+  std::vector<int64_t> planned;
+  Mission a(spec, urban().generated.exploration_box, &truth, std::make_unique<StepMethod>(&planned, 0.03));
+  while (a.running()) a.step();
+  const MissionResult ra = a.finish();
+  ASSERT_FALSE(ra.flight.compute_calls.empty());
+  int64_t charged = 0;
+  for (const ComputeCall& c : ra.flight.compute_calls) charged += c.latency_ticks;
+  EXPECT_GT(charged, 0);  // 30 ms of CPU per step: at least 15 ticks each
+  // The replay: the log's latencies, not this machine's.
+  ScenarioSpec replay = spec;
+  replay.timing.replay = "log.csv";
+  replay.compute_replay = parseComputeLog(computeLogText(ra.flight.compute_calls, "b", "charged", 1.0));
+  std::vector<int64_t> planned_again;
+  Mission b(replay, urban().generated.exploration_box, &truth, std::make_unique<StepMethod>(&planned_again, 0.0));
+  while (b.running()) b.step();
+  const MissionResult rb = b.finish();
+  EXPECT_EQ(planned_again, planned);
+  EXPECT_EQ(rb.run_hash, ra.run_hash);
+  ASSERT_EQ(rb.flight.compute_calls.size(), ra.flight.compute_calls.size());
+  // A log that ends early is an error of the run, named.
+  replay.compute_replay.calls.resize(3);
+  std::vector<int64_t> p3;
+  Mission c(replay, urban().generated.exploration_box, &truth, std::make_unique<StepMethod>(&p3));
+  EXPECT_THROW(
+      {
+        while (c.running()) c.step();
+        c.finish();
+      },
+      std::runtime_error);
+}
+
+TEST(ComputeInTheLoop, ModelledMonoSpheresIsDeterministicOnOneThreadOrTwo) {
+  const WorldTruth truth(urban().generated.shapes);
+  auto spec = [](int threads) {
+    ScenarioSpec s = oracleMission(20.0);
+    s.flight.perception.latency_frames = 1;
+    s.flight.perception.threads = threads;
+    s.timing.compute = "modelled";
+    s.timing.compute_model = "reference_python";
+    s.timing.applyProfile();
+    return s;
+  };
+  const Aabb box = urban().generated.exploration_box;
+  const MissionResult one = runMission(spec(1), box, &truth), two = runMission(spec(2), box, &truth);
+  EXPECT_EQ(one.run_hash, two.run_hash);
+  EXPECT_EQ(one.flight.compute_calls.size(), two.flight.compute_calls.size());
+  // The reference profile's planning steps are never free; and the run differs from a free one.
+  int64_t plan_ticks = 0;
+  for (const ComputeCall& c : one.flight.compute_calls)
+    if (c.stage == Stage::kPlan) plan_ticks += c.latency_ticks;
+  EXPECT_GT(plan_ticks, 0);
+  ScenarioSpec free = spec(1);
+  free.timing = ComputeTiming{};
+  EXPECT_NE(runMission(free, box, &truth).run_hash, one.run_hash);
+}
+
+TEST(ComputeInTheLoop, AModelTermTheMethodHasNoCounterForIsRefusedBeforeTheRun) {
+  const WorldTruth truth(urban().generated.shapes);
+  ScenarioSpec spec = oracleMission(1.0);
+  spec.timing.compute = "modelled";
+  spec.timing.map.per = {{"frontiers", 1e-3}};
+  std::vector<int64_t> planned;
+  try {
+    Mission m(spec, urban().generated.exploration_box, &truth, std::make_unique<StepMethod>(&planned));
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("timing.map.per.frontiers"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unit"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace msb

@@ -1,0 +1,54 @@
+// A replay's latency log is bad input when it is missing, truncated or another build's: the
+// error names the scenario, the key and the file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "tools/results/compute_log.h"
+#include "tools/results/input_files.h"
+#include "tools/results/provenance.h"
+
+namespace msb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The message of loadComputeReplay for a spec naming `file`, or "" if it loads.
+std::string replayError(const std::string& file) {
+  ScenarioSpec spec;
+  spec.timing.compute = "charged";
+  spec.timing.replay = file;
+  try {
+    loadComputeReplay(spec, "s.yaml");
+    return "";
+  } catch (const InputFileError& e) {
+    return e.what();
+  }
+}
+
+TEST(ComputeLog, AReplayLogThatIsMissingTruncatedOrAnotherBuildsIsBadInput) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "msb_compute_log";
+  fs::create_directories(dir);
+  const std::vector<ComputeCall> calls = {{ComputeCall::Stage::kMap, 0, 0, 10, 1}};
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  };
+  const std::string ours = computeLogText(calls, msbGitRevision(), "charged", 1.0);
+  EXPECT_EQ(replayError(write("ok.csv", ours)), "");
+  for (const auto& [name, text, says] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"cut.csv", ours.substr(0, ours.rfind("# end")), "truncated"},
+           {"other.csv", computeLogText(calls, "0123456789ab", "charged", 1.0), "build 0123456789ab"}}) {
+    const std::string e = replayError(write(name, text));
+    EXPECT_NE(e.find("s.yaml: key 'timing.replay'"), std::string::npos) << e;
+    EXPECT_NE(e.find(name), std::string::npos) << e;
+    EXPECT_NE(e.find(says), std::string::npos) << e;
+  }
+  const std::string missing = replayError((dir / "none.csv").string());
+  EXPECT_NE(missing.find("timing.replay"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("none.csv"), std::string::npos) << missing;
+}
+
+}  // namespace
+}  // namespace msb
