@@ -11,6 +11,7 @@ a flag where the method claims more than msbench could verify. The same inputs g
 """
 import base64
 import csv
+import hashlib
 import html
 import os
 import re
@@ -65,11 +66,41 @@ def data_uri(path):
         return "data:image/png;base64," + base64.b64encode(f.read()).decode("ascii")
 
 
+# Characters that reorder or hide text (bidirectional overrides and isolates, marks, zero-width
+# joiners) and control characters: a name from a file never carries them into the page.
+_HIDDEN = re.compile("[\u0000-\u0008\u000b\u000c\u000e-\u001f\u007f\u200b-\u200f\u202a-\u202e"
+                     "\u2066-\u2069\ufeff]")
+# The elements Markdown makes of msbench's report.md; anything else is shown as text.
+_ALLOWED_TAGS = {"h1", "h2", "h3", "h4", "p", "table", "thead", "tbody", "tr", "th", "td", "ul", "ol", "li", "code",
+                 "pre", "em", "strong", "br", "hr", "blockquote"}
+_TAG = re.compile(r"<(/?)([a-zA-Z][a-zA-Z0-9]*)((?:\s[^<>]*)?)>")
+
+
+def inert(text):
+    """report.md made inert before Markdown: raw HTML shown as text (report.md holds none of its
+    own), hidden characters removed."""
+    return _HIDDEN.sub("", text).replace("<", "&lt;")
+
+
+def allowed_only(body):
+    """Markdown's output with every element outside _ALLOWED_TAGS, and every attribute but a
+    table cell's alignment, shown as text: a link or an image written in Markdown syntax inside a
+    name is never one."""
+    def keep(m):
+        closing, tag, attrs = m.group(1), m.group(2).lower(), m.group(3)
+        if tag not in _ALLOWED_TAGS:
+            return html.escape(m.group(0))
+        if attrs and not re.fullmatch(r'\s+style="text-align: (left|right|center);"', attrs):
+            attrs = ""
+        return f"<{closing}{tag}{attrs}>"
+    return _TAG.sub(keep, body)
+
+
 def body_of_markdown(report_dir):
     """report.md as HTML, its tables with a <tbody> and its verdict cells coloured."""
     with open(os.path.join(report_dir, "report.md"), encoding="utf-8", errors="replace") as f:
         text = f.read()
-    body = markdown.markdown(text, extensions=["tables"], output_format="html")
+    body = allowed_only(markdown.markdown(inert(text), extensions=["tables"], output_format="html"))
     for verdict in ("holds", "fails", "undecided"):
         body = re.sub(r"<td>([✓✗?] %s)</td>" % verdict, r'<td class="%s">\1</td>' % verdict, body)
     return body
@@ -98,7 +129,7 @@ def run_row(run, final_dir):
     verified = float(run["verified_area_m2"]) if run.get("verified_area_m2") else None
     share = verified / claimed if claimed and verified is not None else None
     flagged = share is not None and share < VERIFIED_FLAG_SHARE
-    cells = [html.escape(run[k]) for k in ("id", "world", "series", "run_status")]
+    cells = [html.escape(_HIDDEN.sub("", run[k])) for k in ("id", "world", "series", "run_status")]
     cells.append("" if claimed is None else f"{claimed:.0f}")
     cells.append("" if verified is None else f"{verified:.0f}")
     share_text = "" if share is None else f"{share:.2f}" + (" ⚑ claims more than verified" if flagged else "")
@@ -130,10 +161,20 @@ def runs_html(report_dir, final_dir):
             f"<table><thead><tr>{head}</tr></thead><tbody>\n{rows}\n</tbody></table>")
 
 
+def csp():
+    """The page's Content-Security-Policy: its own style and script (by hash) and nothing else
+    runs; images from beside the page or embedded, videos from beside it."""
+    def sha(text):
+        return "'sha256-" + base64.b64encode(hashlib.sha256(text.encode("utf-8")).digest()).decode("ascii") + "'"
+    return (f"default-src 'none'; style-src {sha(STYLE)}; script-src {sha(SCRIPT)}; img-src 'self' data: file:; "
+            "media-src 'self' file:; base-uri 'none'; form-action 'none'")
+
+
 def page(report_dir, final_dir):
     body = body_of_markdown(report_dir)
     title = re.search(r"<h1>(.*?)</h1>", body)
     return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+            f"<meta http-equiv=\"Content-Security-Policy\" content=\"{csp()}\">\n"
             f"<title>{title.group(1) if title else 'msbench report'}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n"
             f"{body}\n{figures_html(report_dir)}\n{runs_html(report_dir, final_dir)}\n"
             f"<script>{SCRIPT}</script>\n</body>\n</html>\n")

@@ -18,6 +18,55 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A name, id, path or message from a file as Markdown text: inert in report.md and in the page
+// made from it — HTML's < > & as entities; [ ] | * ` and \ escaped (no link, image, table cell,
+// emphasis or code span of its own); characters that reorder or hide text (bidirectional
+// controls, zero-width marks) and control characters removed. Ordinary names are unchanged.
+std::string mdText(const std::string& in) {
+  std::string out;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(in[i]);
+    // U+200B..U+200F, U+202A..U+202E, U+2066..U+2069 (E2 80 8B..8F, E2 80 AA..AE, E2 81 A6..A9), U+FEFF.
+    if (c == 0xE2 && i + 2 < in.size()) {
+      const unsigned char b = static_cast<unsigned char>(in[i + 1]), d = static_cast<unsigned char>(in[i + 2]);
+      if ((b == 0x80 && ((d >= 0x8B && d <= 0x8F) || (d >= 0xAA && d <= 0xAE))) ||
+          (b == 0x81 && d >= 0xA6 && d <= 0xA9)) {
+        i += 2;
+        continue;
+      }
+    }
+    if (c == 0xEF && i + 2 < in.size() && static_cast<unsigned char>(in[i + 1]) == 0xBB &&
+        static_cast<unsigned char>(in[i + 2]) == 0xBF) {
+      i += 2;
+      continue;
+    }
+    if (c < 0x20 || c == 0x7F) continue;
+    switch (c) {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '[':
+      case ']':
+      case '|':
+      case '*':
+      case '`':
+      case '\\':
+        out += '\\';
+        out += char(c);
+        break;
+      default:
+        out += char(c);
+    }
+  }
+  return out;
+}
+
 // coverage.csv rows by column name (older files without box_share read it as 0). Strict: the
 // file present (a complete run writes one), a header with t_s, every row as many numbers as the
 // header has names; else InputFileError naming the file and the line.
@@ -372,14 +421,14 @@ namespace {
 // The row's axis labels as the first cells of a Markdown table line.
 std::string labelCells(const ReportRow& r) {
   std::string s = "|";
-  for (const auto& l : r.labels) s += " " + l + " |";
+  for (const auto& l : r.labels) s.append(" ").append(mdText(l)).append(" |");  // appends: GCC 12 -Wrestrict
   return s;
 }
 
 // A Markdown table head: the axes, then `columns`.
 std::string tableHead(const SweepResults& results, const std::vector<std::string>& columns) {
   std::string head = "|", rule = "|";
-  for (const auto& a : results.axes) head += " " + a + " |", rule += " --- |";
+  for (const auto& a : results.axes) head.append(" ").append(mdText(a)).append(" |"), rule += " --- |";
   for (const auto& c : columns) head += " " + c + " |", rule += " --- |";
   return head + "\n" + rule + "\n";
 }
@@ -412,7 +461,7 @@ std::string rankedResultsSection(const SweepResults& results, std::vector<Report
                            "verified / claimed", "crashes [95 % CI]"});
   for (const ReportRow& r : rows) {
     const bool low = r.verified_share.count > 0 && r.verified_share.mean < kFlagVerifiedShare;
-    o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
+    o << labelCells(r) << " " << (r.method.empty() ? "—" : mdText(r.method)) << " | " << r.complete;
     if (r.complete < r.runs) o << " of " << r.runs;
     o << " | " << intervalCell(r.earned_m3, r.complete, 0) << " | " << intervalCell(r.verified_area_m2, r.complete, 0)
       << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << intervalCell(r.verified_share, r.complete, 2)
@@ -439,7 +488,7 @@ std::string tableOneSection(const SweepResults& results, const std::vector<Repor
   head.insert(head.end(), {"crashes [95 % CI]", "paper crashes (p)"});
   o << tableHead(results, head);
   for (const ReportRow& r : rows) {
-    o << labelCells(r) << " " << (r.method.empty() ? "—" : r.method) << " | " << r.complete;
+    o << labelCells(r) << " " << (r.method.empty() ? "—" : mdText(r.method)) << " | " << r.complete;
     if (r.complete < r.runs) o << " of " << r.runs;
     o << " | " << intervalCell(r.area_m2, r.complete, 0) << " | " << (r.complete ? fixed(r.max_area_m2, 0) : "—")
       << " | " << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "—") << " | "
@@ -546,13 +595,13 @@ std::string saturationSection(const std::vector<ReportRow>& rows) {
   const auto name = [&](const ReportRow& r) {
     const auto same = std::count_if(rows.begin(), rows.end(),
                                     [&](const ReportRow& q) { return q.world == r.world && q.method == r.method; });
-    return same > 1 ? r.method + " [" + rowName(r) + "]" : r.method;
+    return same > 1 ? mdText(r.method) + " [" + mdText(rowName(r)) + "]" : mdText(r.method);
   };
   for (const std::string& w : worlds)
     for (const ReportRow& r : rows)
       if (r.world == w)
-        o << "| " << w << " | " << name(r) << (isSaturated(r) ? " (saturated)" : "") << " | " << r.saturated << "/"
-          << r.complete << " | " << intervalCell(r.t50_s, r.complete, 0) << " | "
+        o << "| " << mdText(w) << " | " << name(r) << (isSaturated(r) ? " (saturated)" : "") << " | " << r.saturated
+          << "/" << r.complete << " | " << intervalCell(r.t50_s, r.complete, 0) << " | "
           << intervalCell(r.t90_s, r.complete, 0) << " |\n";
   return o.str();
 }
@@ -591,7 +640,7 @@ std::string pairedSection(const std::vector<ReportRow>& all_rows, bool verified)
       }
     if (!ref || ref == &r || r.area_m2.count == 0 || !(ref->area_m2.mean > 0)) continue;
     const PairedAreas p = pairedAreas(r, *ref);
-    body << "| " << r.world << " | " << rowName(r) << " / " << rowName(*ref) << " | "
+    body << "| " << mdText(r.world) << " | " << mdText(rowName(r)) << " / " << mdText(rowName(*ref)) << " | "
          << ratioText(stats::bootstrapRatio(r.area_m2.values, ref->area_m2.values)) << " (" << r.area_m2.count << ", "
          << ref->area_m2.count << ") | ";
     if (p.a.size() >= 2 && stats::mean(p.b) > 0) {
@@ -631,7 +680,7 @@ PairedAreas pairedAreas(const ReportRow& a, const ReportRow& b) {
 
 std::string reportMarkdown(const SweepResults& results, const std::vector<ReportRow>& rows) {
   std::ostringstream o;
-  o << "# Sweep report: " << results.dir.string() << "\n\n";
+  o << "# Sweep report: " << mdText(results.dir.string()) << "\n\n";
   int complete = 0, failed = 0, pending = 0, off_suite = 0;
   for (const auto& r : results.runs)
     (r.status == "complete"    ? complete
@@ -639,15 +688,15 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
      : r.status == "off-suite" ? off_suite
                                : pending)++;
   o << results.runs.size() << " runs: " << complete << " complete, " << failed << " failed, " << pending << " not run"
-    << (results.suite.empty() ? "" : ", " + std::to_string(off_suite) + " off the suite " + results.suite)
+    << (results.suite.empty() ? "" : ", " + std::to_string(off_suite) + " off the suite " + mdText(results.suite))
     << ". A = explored 2.5 m columns (m², unbounded, VIO frame, as the paper's Table I).\n\n";
   // Runs whose settings are not the suite's: set aside, said first.
   if (off_suite > 0) {
-    o << "## Off the suite\n\nThese runs flew with settings the suite (" << results.suite
+    o << "## Off the suite\n\nThese runs flew with settings the suite (" << mdText(results.suite)
       << ") does not fix; they are in no row, ranking or finding below (docs/sweeps.md, \"Suites\").\n\n"
          "| run | why |\n| --- | --- |\n";
     for (const ReportRun& r : results.runs)
-      if (r.status == "off-suite") o << "| " << r.id << " | " << r.off_suite << " |\n";
+      if (r.status == "off-suite") o << "| " << mdText(r.id) << " | " << mdText(r.off_suite) << " |\n";
     o << "\n";
   }
   // Failed runs first: a table with a hole in it must say so before anything else.
@@ -658,13 +707,15 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     for (const ReportRun& r : results.runs) {
       if (r.status != "failed") continue;
       const SweepRunFailure f = r.failure.value_or(SweepRunFailure{});
-      auto text = [](const std::string& v) { return v.empty() ? std::string("—") : v; };
+      auto text = [](const std::string& v) { return v.empty() ? std::string("—") : mdText(v); };
       const std::string ended =
           f.signal ? "signal " + std::to_string(f.signal) + (f.signal_name.empty() ? "" : " (" + f.signal_name + ")")
                    : "exit code " + std::to_string(f.exit_code);
-      const std::string why = !f.problem.empty() ? f.problem : !f.limit.empty() ? f.limit : text(f.fatal);
-      o << "| " << r.id << " | " << (!f.problem.empty() ? std::string("unreadable results") : ended) << " | "
-        << text(f.last_progress) << " | " << why << " | logs/" << r.id << ".log |\n";
+      const std::string why = !f.problem.empty() ? mdText(f.problem)
+                              : !f.limit.empty() ? mdText(f.limit)
+                                                 : text(f.fatal);
+      o << "| " << mdText(r.id) << " | " << (!f.problem.empty() ? std::string("unreadable results") : mdText(ended))
+        << " | " << text(f.last_progress) << " | " << why << " | logs/" << mdText(r.id) << ".log |\n";
     }
     o << "\n";
   }
@@ -676,7 +727,7 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
   for (const ReportRun& r : results.runs) {
     const nlohmann::json& m = r.metrics;
     if (!m.is_object()) {
-      o << "| " << r.id << " | " << r.status << " | — | — | — | — | — | — |\n";
+      o << "| " << mdText(r.id) << " | " << mdText(r.status) << " | — | — | — | — | — | — |\n";
       continue;
     }
     std::string hit = "—";
@@ -695,14 +746,14 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
       }
     }
     const auto& cov = m["coverage"];
-    o << "| " << r.id << " | " << m.value("status", std::string("?")) << " | " << fixed(number(cov, "area_m2"), 0)
-      << " | "
+    o << "| " << mdText(r.id) << " | " << mdText(m.value("status", std::string("?"))) << " | "
+      << fixed(number(cov, "area_m2"), 0) << " | "
       << (cov.is_object() && cov.contains("box_share") && cov["box_share"].is_number()
               ? fixed(cov["box_share"].get<double>(), 2)
               : "—")
       << " | " << fixed(number(m, "sim_time_s"), 0) << " | "
       << (m.contains("perception") ? fixed(number(m["perception"], "tracked_mean"), 0) : "—") << " | "
-      << fixed(number(m, "final_drift_m"), 2) << " | " << hit << " |\n";
+      << fixed(number(m, "final_drift_m"), 2) << " | " << mdText(hit) << " |\n";
   }
   return o.str();
 }

@@ -1,11 +1,17 @@
 #!/usr/bin/python3
 """report.html in a real browser (docs/sweeps.md, "The report page"): a small sweep with videos,
 its report, and the page opened in headless Chromium. Checks that the page runs without script
-errors, that every image and every video loads, and that a click on a column heading reorders the
-rows. Exit 77 (ctest: skipped) with a message when Chromium is not installed.
+errors under its Content-Security-Policy, that every image and every video loads, and that a click
+on a column heading reorders the rows. Then a report whose every name carries markup (a script,
+an event handler, a table break, a Markdown link, bidirectional controls) is opened: nothing of
+it runs and the page holds no element it injected. Exit 77 (ctest: skipped) with a message when
+Chromium is not installed.
 
 usage: report_html_browser_test.py MSBENCH SOURCE_DIR WORK_DIR
 """
+import base64
+import csv
+import hashlib
 import json
 import os
 import re
@@ -67,6 +73,87 @@ seeds: [1]
 """
 
 
+# Every user-controlled field of the injection report carries these.
+PAYLOADS = ['<img id="injected" src=x onerror="document.title=\'PWNED\'">',
+            "<script>document.title='PWNED'</script>",
+            "</table><h1 id=\"injected\">x</h1>",
+            "[click](javascript:document.title='PWNED')",
+            "\u202egnp.exe\u202c \u200fmark",
+            "<a href=\"javascript:document.title='PWNED'\" id=\"injected\">a</a>"]
+
+
+# The injection page's probe: at load, what the page holds (the probe's own script and the page's:
+# 2 script elements) and its title then (a payload that ran would have set it).
+INJECTION_PROBE = r"""<script>
+window.__errors = [];
+window.addEventListener('error', e => window.__errors.push(String(e.message || e.type)), true);
+window.addEventListener('load', () => {
+  const all = Array.from(document.querySelectorAll('*'));
+  const text = document.body.innerText;
+  document.title = 'CHECK:' + JSON.stringify({
+    title: document.title,
+    errors: window.__errors,
+    injected: document.querySelectorAll('#injected').length,
+    handlers: all.filter(e => Array.from(e.attributes).some(a => a.name.startsWith('on'))).length,
+    js_links: document.querySelectorAll('a[href^="javascript"], [src^="javascript"]').length,
+    scripts: document.querySelectorAll('script').length,
+    headings1: document.querySelectorAll('h1').length,
+    hidden_chars: /[\u200b-\u200f\u202a-\u202e\u2066-\u2069]/.test(text),
+  });
+});
+</script>"""
+
+
+def with_probe(text, probe):
+    """The page with `probe` first in <head>, its hash added to the page's script-src."""
+    body = probe[len("<script>"):-len("</script>")]
+    digest = "'sha256-" + base64.b64encode(hashlib.sha256(body.encode("utf-8")).digest()).decode("ascii") + "'"
+    if "script-src " not in text:
+        fail("the page has no Content-Security-Policy with a script-src")
+    text = text.replace("script-src ", "script-src " + digest + " ", 1)
+    return text.replace("<head>", "<head>\n" + probe, 1)
+
+
+def dump_dom(chromium, page):
+    return subprocess.run([chromium, "--headless", "--no-sandbox", "--disable-gpu", "--mute-audio",
+                           "--autoplay-policy=no-user-gesture-required", "--virtual-time-budget=30000", "--dump-dom",
+                           "file://" + page], capture_output=True, text=True, timeout=180).stdout
+
+
+def injection_check(chromium, source, work):
+    """A report whose names are payloads, made into a page and opened: nothing ran, nothing injected."""
+    rep = os.path.join(work, "injected_report")
+    os.makedirs(rep)
+    name = " ".join(PAYLOADS)
+    with open(os.path.join(rep, "report.md"), "w", encoding="utf-8") as f:
+        f.write(f"# Sweep report: {name}\n\n| run | status |\n| --- | --- |\n| {name} | {name} |\n\n{name}\n")
+    with open(os.path.join(rep, "report_runs.csv"), "w", encoding="utf-8", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["id", "world", "series", "status", "run_status", "dir", "area_m2", "verified_area_m2",
+                    "score_earned_m3"])
+        w.writerow([name, name, name, "complete", name, os.path.join(work, name.replace("/", "_")), "1", "1", "1"])
+    subprocess.run([sys.executable, os.path.join(source, "tools/sweep/report_html.py"), rep], check=True)
+    page = os.path.join(rep, "report.html")
+    with open(page, encoding="utf-8") as f:
+        text = f.read()
+    probed = os.path.join(rep, "probe.html")
+    with open(probed, "w", encoding="utf-8") as f:
+        f.write(with_probe(text, INJECTION_PROBE))
+    dom = dump_dom(chromium, probed)
+    m = re.search(r"<title>CHECK:(.*?)</title>", dom, re.S)
+    if not m:
+        fail("the injection page's checks did not run:\n" + dom[:2000])
+    r = json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    print(json.dumps(r))
+    if r["title"].strip() == "PWNED" or r["errors"]:
+        fail("a payload ran: %s" % r)
+    if r["injected"] or r["handlers"] or r["js_links"] or r["scripts"] != 2 or r["headings1"] != 1:
+        fail("the page holds injected elements: %s" % r)
+    if r["hidden_chars"]:
+        fail("bidirectional or zero-width characters reached the page: %s" % r)
+    print("ok: a report whose names are payloads renders inert")
+
+
 def find_chromium():
     for name in ("chromium", "chromium-browser", "google-chrome"):
         path = shutil.which(name)
@@ -102,10 +189,8 @@ def main():
         text = f.read()
     probed = os.path.join(sweep, "report", "probe.html")
     with open(probed, "w", encoding="utf-8") as f:
-        f.write(text.replace("<head>", "<head>\n" + PROBE, 1))
-    dom = subprocess.run([chromium, "--headless", "--no-sandbox", "--disable-gpu", "--mute-audio",
-                          "--autoplay-policy=no-user-gesture-required", "--virtual-time-budget=30000", "--dump-dom",
-                          "file://" + probed], capture_output=True, text=True, timeout=180).stdout
+        f.write(with_probe(text, PROBE))
+    dom = dump_dom(chromium, probed)
     m = re.search(r"<title>RESULT:(.*?)</title>", dom, re.S)
     if not m:
         fail("the page's checks did not run (no RESULT in the title):\n" + dom[:2000])
@@ -123,6 +208,7 @@ def main():
         fail("sorting by the first column: before %s, ascending %s, descending %s" % (r["before"], r["asc"], r["desc"]))
     print("ok: report.html renders without errors, %d images and %d videos load, sorting reorders the rows"
           % (r["images"], r["videos"]))
+    injection_check(chromium, source, work)
 
 
 if __name__ == "__main__":

@@ -571,3 +571,52 @@ TEST(Regression, TheEarnedScoreIsKeptInTheGoldenAndComparedExactlyOrInABand) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+// Names from files reach report.md as text: a sweep directory, a suite, axis names and labels,
+// run ids, a failed run's last progress line and a collision's object carrying markup, a link,
+// a table break and bidirectional controls leave no tag, no link and no extra cell.
+TEST(SweepReport, NamesFromFilesAreInertInReportMd) {
+  const std::string payload = "<img src=x onerror=alert(1)></table><h1>x</h1>[a](javascript:alert(1))|\u202Eevil`";
+  SweepResults s;
+  s.dir = "/tmp/" + payload;
+  s.suite = payload;
+  s.axes = {"world", payload};
+  ReportRun ok = madeRun("urban-" + payload + "-s1", "urban", payload, 500, "collided", "textured");
+  ok.labels = {{"world", "urban"}, {payload, payload}};
+  ok.metrics["collision"]["object"] = payload;
+  ok.record = missionRecordOf(ok.metrics, "m.json").record;
+  ReportRun failed;
+  failed.id = payload + "-s2";
+  failed.labels = {{"world", "urban"}, {payload, payload}};
+  failed.status = "failed";
+  SweepRunFailure f;
+  f.exit_code = 1;
+  f.last_progress = payload;
+  failed.failure = f;
+  s.runs = {ok, failed};
+  const std::string md = reportMarkdown(s, reportRows(s));
+  for (const char* bad : {"<img", "</table>", "<h1>", "\u202E"})
+    EXPECT_EQ(md.find(bad), std::string::npos) << bad << "\n" << md;
+  for (size_t at = md.find("](javascript"); at != std::string::npos; at = md.find("](javascript", at + 1))
+    EXPECT_EQ(md[at - 1], '\\') << "a link at " << at << "\n" << md;
+  EXPECT_NE(md.find("&lt;img src=x onerror=alert(1)&gt;"), std::string::npos) << md;
+  // Every line of the runs table keeps its nine cell separators (escaped pipes are not ones).
+  const size_t runs = md.find("## Runs");
+  ASSERT_NE(runs, std::string::npos);
+  std::istringstream lines(md.substr(runs));
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("| ", 0) != 0) continue;
+    int pipes = 0;
+    for (size_t i = 0; i < line.size(); ++i) pipes += line[i] == '|' && (i == 0 || line[i - 1] != '\\');
+    EXPECT_EQ(pipes, 9) << line;
+    ++rows;
+  }
+  EXPECT_GE(rows, 3);
+}
+
+}  // namespace
+}  // namespace msb
