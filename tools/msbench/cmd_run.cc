@@ -56,6 +56,7 @@ double stepToEnd(Mission& mission, const ScenarioSpec& spec, PerceptionLogWriter
   const auto wall_start = WallClock::now();
   const int64_t progress_ticks = 10 * int64_t(mission.physicsHz());
   const int64_t video_ticks = video ? video->periodTicks(mission.physicsHz()) : 0;
+  if (video) video->setWaitHook([] { throwIfInterrupted(); });  // a stuck encoder never blocks a signal
   double video_s = 0;
   while (mission.running()) {
     throwIfInterrupted();
@@ -198,7 +199,19 @@ int runRunCommand(int argc, char** argv) {
       j["video"] = finishRunVideo(*video, r, mission.loop().sharedFrame().get(), video_s, out.finalDir() / "video.mp4");
     return j;
   };
-  const nlohmann::json metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr, extra);
+  nlohmann::json metrics;
+  try {
+    metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr, extra);
+  } catch (const std::exception& e) {
+    // A video that took the room the run's files needed (a full disk) is given up for them:
+    // the run is written again without it, its error saying why.
+    if (!video) throw;
+    const std::string why = std::string("given up for the run's other files: ") + e.what();
+    video->abandon(why);
+    const auto without = [&] { return nlohmann::json{{"video", {{"file", nullptr}, {"error", why}}}}; };
+    metrics = writeMissionOutputs(out.staging(), spec, r, truth ? &*truth : nullptr, without);
+    std::fprintf(stderr, "msbench run: video not written: %s\n", why.c_str());
+  }
   out.commit();
 
   printRunSummary(spec, r, metrics, out.finalDir());
@@ -206,16 +219,6 @@ int runRunCommand(int argc, char** argv) {
 }
 
 namespace {
-
-// A file removed when the scope ends unless kept (the replayed video before its hash check).
-struct RemoveUnlessKept {
-  fs::path file;
-  bool kept = false;
-  ~RemoveUnlessKept() {
-    std::error_code ec;
-    if (!kept) fs::remove(file, ec);
-  }
-};
 
 // The scenario of a finished run, replayable: its config.yaml with `video.enabled` and the
 // video keys given by --set; a Python method's run cannot be replayed here.
@@ -260,9 +263,8 @@ int runVideoCommand(int argc, char** argv) {
   Mission mission = buildNamingFile((run / "config.yaml").string(), [&] { return Mission(spec, world.box, truth); });
 
   // The replay with its video; the video is kept only if the replay is the recorded run.
-  RemoveUnlessKept staged{run / ".video.mp4.replay"};
-  RunVideo video(staged.file, spec.video, spec.name, spec.flight.duration_s, world.box, truth,
-                 mission.loop().camera().width(), mission.loop().camera().height());
+  RunVideo video(file, spec.video, spec.name, spec.flight.duration_s, world.box, truth, mission.loop().camera().width(),
+                 mission.loop().camera().height());
   stepToEnd(mission, spec, nullptr, &video, args.has("quiet") || !spec.mission.progress);
   const MissionResult r = mission.finish();
   video.addFinalFrames(r, mission.loop().sharedFrame().get());
@@ -272,8 +274,8 @@ int runVideoCommand(int argc, char** argv) {
     throw std::runtime_error("the replay of " + run.string() + " is not the recorded run (hash " + hexHash(r.run_hash) +
                              ", recorded " + read.record->determinism_hash +
                              "; another build or machine?); no video written");
-  fs::rename(staged.file, file);
-  staged.kept = true;
+  if (const std::string error = video.commit(); !error.empty())
+    throw std::runtime_error("video " + file.string() + " not written: " + error);
   std::printf("video %s: %d frames of %dx%d at %d fps (%.0fx), replay hash %s matches\n", file.c_str(), video.frames(),
               video.width(), video.height(), spec.video.fps, spec.video.speedup, hexHash(r.run_hash).c_str());
   return kExitOk;

@@ -1,5 +1,6 @@
 // msbench: the command-line entry point. Dispatches to sub-commands; maps errors to exit codes
 // (1 runtime failure, 2 usage or configuration error).
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -66,7 +67,14 @@ int main(int argc, char** argv) {
   for (const auto& c : kCommands) {
     if (std::strcmp(argv[1], c.name) != 0) continue;
     try {
-      return c.run(argc - 2, argv + 2);
+      const int rc = c.run(argc - 2, argv + 2);
+      // What a command printed reached its destination (`msbench keys > /dev/full` is an error).
+      if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        std::fprintf(stderr, "msbench %s: error: cannot write its output to stdout: %s\n", c.name,
+                     std::strerror(errno ? errno : EIO));
+        return rc == msb::kExitOk ? msb::kExitRuntime : rc;
+      }
+      return rc;
     } catch (const msb::Interrupted& e) {
       std::fprintf(stderr, "msbench %s: %s; stopped, no partial results left\n", c.name, e.what());
       return 128 + e.signal();

@@ -222,40 +222,53 @@ bool isMsbenchOutput(const fs::path& dir) {
   return fs::is_directory(dir) && markerTextOf(dir).find("msbench") != std::string::npos;
 }
 
+namespace {
+
+// What an msbench lock file holds: this line, then the holder's pid.
+constexpr char kLockTag[] = "msbench output lock, pid ";
+
+}  // namespace
+
 OutputLock::OutputLock(const fs::path& output, const std::string& flag) : path_(output.string() + ".lock") {
-  // Open, lock, and check the path still names the locked file (a releasing holder removes it
-  // between our open and our lock): otherwise try again.
+  // Open (a new file, or one an msbench lock left: another holder's or a dead one's), lock, and
+  // check the path still names the locked file (a releasing holder removes it between our open
+  // and our lock): otherwise try again.
+  const std::string tag = kLockTag;
   for (int attempt = 0; attempt < 100; ++attempt) {
-    fd_ = open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    bool created = true;
+    fd_ = open(path_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd_ < 0 && errno == EEXIST) created = false, fd_ = open(path_.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
+    if (fd_ < 0 && errno == ENOENT) continue;  // removed between the two opens: again
     if (fd_ < 0)
       throw UsageError(flag + " " + output.string() + ": cannot create its lock file " + path_.string() + ": " +
                        std::strerror(errno));
-    // A file of that name msbench did not write (a lock file holds a pid or nothing) is never
-    // taken, and so never removed.
-    char text[24] = {};
-    const ssize_t got = pread(fd_, text, sizeof(text), 0);
-    if (got < 0 || got > 20 || !std::all_of(text, text + got, [](char c) { return c >= '0' && c <= '9'; })) {
+    // A file of that name msbench did not write (a lock file starts with kLockTag) is never
+    // taken, and so never removed; nor is a link or anything but a regular file.
+    char text[64] = {};
+    const ssize_t got = pread(fd_, text, sizeof(text) - 1, 0);
+    struct stat st {};
+    const bool ours = created || (got >= ssize_t(tag.size()) && tag.compare(0, tag.size(), text, tag.size()) == 0 &&
+                                  fstat(fd_, &st) == 0 && S_ISREG(st.st_mode));
+    if (!ours) {
       close(fd_);
       fd_ = -1;
       throw UsageError(flag + " " + output.string() + ": " + path_.string() +
                        " exists and is not an msbench lock file; remove or rename it first");
     }
     if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      char pid[32] = {};
-      const ssize_t n = pread(fd_, pid, sizeof(pid) - 1, 0);
+      const std::string holder = got > ssize_t(tag.size()) ? std::string(text + tag.size()) : "?";
       close(fd_);
       fd_ = -1;
-      throw UsageError(flag + " " + output.string() + ": another msbench process (pid " +
-                       (n > 0 ? std::string(pid, size_t(n)) : std::string("?")) +
+      throw UsageError(flag + " " + output.string() + ": another msbench process (pid " + holder +
                        ") is writing it; wait for it or choose another output (lock: " + path_.string() + ")");
     }
     struct stat held {
     }, named{};
-    if (fstat(fd_, &held) == 0 && stat(path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+    if (fstat(fd_, &held) == 0 && lstat(path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
         held.st_dev == named.st_dev) {
       // The pid is for a second writer's message only: a failure to note it changes nothing.
-      const std::string pid = std::to_string(getpid());
-      const bool noted = ftruncate(fd_, 0) == 0 && pwrite(fd_, pid.data(), pid.size(), 0) == ssize_t(pid.size());
+      const std::string line = tag + std::to_string(getpid());
+      const bool noted = ftruncate(fd_, 0) == 0 && pwrite(fd_, line.data(), line.size(), 0) == ssize_t(line.size());
       (void)noted;
       return;
     }

@@ -1,6 +1,7 @@
 #include "tools/results/run_video.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/socket.h>
@@ -17,6 +18,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -58,21 +60,17 @@ std::string logTail(const fs::path& log) {
 
 RunVideo::RunVideo(const fs::path& file, const VideoSettings& settings, const std::string& name, double duration_s,
                    const Aabb& box, const WorldTruth* truth, int camera_w, int camera_h)
-    : file_(file),
-      partial_(file.string() + ".partial"),
-      log_(file.string() + ".ffmpeg.log"),
-      settings_(settings),
-      name_(name),
-      duration_s_(duration_s),
-      box_(box),
-      truth_(truth) {
+    : file_(file), settings_(settings), name_(name), duration_s_(duration_s), box_(box), truth_(truth) {
   const std::string ffmpeg = findFfmpeg();
   if (ffmpeg.empty())
     throw std::runtime_error(
         "video: the ffmpeg program is not installed (apt-get install ffmpeg); run without --video");
+  // The encoder's output and log: in a directory of msbench's own beside `file`.
   const fs::path dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-  if (access(dir.c_str(), W_OK) != 0)
+  std::string pattern = (dir / ".msbench-video-XXXXXX").string();
+  if (!mkdtemp(pattern.data()))
     throw std::runtime_error("video: cannot write " + file.string() + ": " + std::strerror(errno));
+  dir_ = pattern, partial_ = dir_ / "video.mp4", log_ = dir_ / "ffmpeg.log";
   // Layout: caption band on top; the fisheye image (its aspect) left of the map (the box's).
   const int panel_h = settings.height - caption_h_;
   camera_panel_w_ = evenPixels(double(std::max(camera_w, 1)) * panel_h / std::max(camera_h, 1), 2);
@@ -105,32 +103,63 @@ RunVideo::RunVideo(const fs::path& file, const VideoSettings& settings, const st
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, sv[1], 0);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, log_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
   const int rc = posix_spawn(&pid_, ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   close(sv[1]);
   if (rc != 0) {
     close(sv[0]);
     pid_ = 0;
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
     throw std::runtime_error("video: cannot start " + ffmpeg + " writing " + file.string() + ": " + std::strerror(rc));
   }
   fd_ = sv[0];
+  fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL) | O_NONBLOCK);  // every wait on it is bounded (waitWritable)
 }
 
 RunVideo::~RunVideo() {
-  if (finished_) return;
-  stopEncoder(/*kill=*/true);
+  if (pid_ > 0) kill(pid_, SIGKILL);
+  if (pid_ > 0) waitpid(pid_, nullptr, 0);  // killed: reaped at once
+  if (fd_ >= 0) close(fd_);
   std::error_code ec;
-  fs::remove(partial_, ec);
-  fs::remove(log_, ec);
+  fs::remove_all(dir_, ec);  // msbench's own directory (what a failed or uncommitted video left)
+}
+
+void RunVideo::waitWritable() {
+  pollfd p{fd_, POLLOUT, 0};
+  poll(&p, 1, 100);
+  if (wait_hook_) wait_hook_();
 }
 
 void RunVideo::stopEncoder(bool kill_it) {
   if (fd_ >= 0) close(fd_), fd_ = -1;
   if (pid_ <= 0) return;
   if (kill_it) kill(pid_, SIGKILL);
+  // Reaped within the stall limit, the wait hook called meanwhile; a stuck encoder is killed.
   int status = 0;
-  while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    const pid_t got = waitpid(pid_, &status, WNOHANG);
+    if (got == pid_ || (got < 0 && errno != EINTR)) break;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > kStallLimitS) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, &status, 0);
+      if (error_.empty())
+        error_ = "the encoder (ffmpeg) did not finish within " + std::to_string(int(kStallLimitS)) + " s";
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (wait_hook_) {
+      try {
+        wait_hook_();
+      } catch (...) {
+        kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+        pid_ = 0;
+        throw;
+      }
+    }
   }
   pid_ = 0;
   if (!kill_it && error_.empty() && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
@@ -180,20 +209,38 @@ void RunVideo::send(const cv::Mat& img) {
   if (fd_ < 0 || !error_.empty()) return;
   const auto* data = img.ptr<uint8_t>(0);
   const size_t n = img.total() * img.elemSize();
+  auto last_progress = std::chrono::steady_clock::now();
   for (size_t off = 0; off < n;) {
     const ssize_t w = ::send(fd_, data + off, n - off, MSG_NOSIGNAL);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) {
-      error_ = std::string("the encoder (ffmpeg) stopped reading frames (") + std::strerror(errno) + ")";
-      stopEncoder(/*kill=*/true);
-      error_ += ": " + logTail(log_);
-      std::error_code ec;
-      fs::remove(partial_, ec);  // its space goes back to the run's other files (a full disk)
-      return;
+    if (w > 0) {
+      off += size_t(w), last_progress = std::chrono::steady_clock::now();
+      continue;
     }
-    off += size_t(w);
+    const bool later = w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
+    const double stalled_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_progress).count();
+    if (later && stalled_s <= kStallLimitS) {
+      try {
+        waitWritable();  // bounded; an interrupt throws out of it
+      } catch (...) {
+        stopEncoder(/*kill=*/true);
+        throw;
+      }
+      continue;
+    }
+    abandon(later ? "the encoder (ffmpeg) read no frame for " + std::to_string(int(kStallLimitS)) + " s"
+                  : std::string("the encoder (ffmpeg) stopped reading frames (") + std::strerror(errno) + ")");
+    return;
   }
   ++frames_;
+}
+
+void RunVideo::abandon(const std::string& why) {
+  if (error_.empty()) error_ = why;
+  const std::string tail = logTail(log_);
+  stopEncoder(/*kill=*/true);
+  if (!tail.empty() && error_.find(tail) == std::string::npos) error_ += ": " + tail;
+  std::error_code ec;
+  fs::remove_all(dir_, ec);  // its space goes back to the run's other files (a full disk)
 }
 
 void RunVideo::addFrame(const Mission& mission) {
@@ -216,21 +263,84 @@ void RunVideo::addFinalFrames(const MissionResult& r, const CameraFrame* last_fr
 std::string RunVideo::finish() {
   stopEncoder(/*kill=*/!error_.empty());
   finished_ = true;
+  // An encoder that exits 0 after a failed write (a full disk, a file-size limit) leaves an MP4
+  // without its index: the file is checked, not the exit status alone.
+  if (error_.empty())
+    if (const std::string problem = mp4Problem(partial_, frames_); !problem.empty())
+      error_ = "the encoder's output is not a whole video (" + problem + ")";
   std::error_code ec;
-  if (error_.empty()) {
-    fs::rename(partial_, file_, ec);
-    if (ec) error_ = "cannot rename " + partial_.string() + " to " + file_.string() + ": " + ec.message();
-  }
-  if (!error_.empty()) fs::remove(partial_, ec);
-  fs::remove(log_, ec);
+  if (!error_.empty()) fs::remove_all(dir_, ec);  // nothing of a failed video stays
   return error_;
+}
+
+std::string RunVideo::commit() {
+  if (!finished_ || !error_.empty()) return error_.empty() ? "not finished" : error_;
+  std::error_code ec;
+  fs::rename(partial_, file_, ec);  // replaces a link at `file_`, never follows it
+  if (ec) error_ = "cannot rename it to " + file_.string() + ": " + ec.message();
+  fs::remove_all(dir_, ec);  // the encoder's log and the directory
+  return error_;
+}
+
+namespace {
+
+// A big-endian unsigned integer of `n` bytes at `p`.
+uint64_t bigEndian(const unsigned char* p, int n) {
+  uint64_t v = 0;
+  for (int i = 0; i < n; ++i) v = (v << 8) | p[i];
+  return v;
+}
+
+// The sample count of the first `stsz` box under [begin, end) of `data`, searching the container
+// boxes on the way (moov, trak, mdia, minf, stbl); -1 if none.
+int64_t stszCount(const std::string& data, size_t begin, size_t end) {
+  for (size_t at = begin; at + 8 <= end;) {
+    const auto* p = reinterpret_cast<const unsigned char*>(data.data() + at);
+    uint64_t size = bigEndian(p, 4);
+    size_t header = 8;
+    if (size == 1 && at + 16 <= end) size = bigEndian(p + 8, 8), header = 16;
+    if (size == 0) size = end - at;
+    if (size < header || at + size > end) return -1;
+    const std::string type = data.substr(at + 4, 4);
+    if (type == "stsz" && size >= header + 12) return int64_t(bigEndian(p + header + 8, 4));
+    if (type == "moov" || type == "trak" || type == "mdia" || type == "minf" || type == "stbl")
+      if (const int64_t n = stszCount(data, at + header, at + size); n >= 0) return n;
+    at += size;
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::string mp4Problem(const fs::path& path, int frames) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  if (!in || !(bytes << in.rdbuf())) return "cannot read " + path.filename().string();
+  const std::string data = bytes.str();
+  // The top-level boxes must tile the file, one of them `moov`.
+  bool moov = false;
+  for (size_t at = 0; at < data.size();) {
+    if (at + 8 > data.size()) return "a box cut off at byte " + std::to_string(at);
+    const auto* p = reinterpret_cast<const unsigned char*>(data.data() + at);
+    uint64_t size = bigEndian(p, 4);
+    if (size == 1 && at + 16 <= data.size()) size = bigEndian(p + 8, 8);
+    if (size == 0) size = data.size() - at;
+    if (size < 8 || at + size > data.size()) return "a box cut off at byte " + std::to_string(at);
+    moov = moov || data.compare(at + 4, 4, "moov") == 0;
+    at += size;
+  }
+  if (!moov) return "no moov index: the encoder did not finish the file";
+  const int64_t samples = stszCount(data, 0, data.size());
+  if (samples != frames) return std::to_string(samples) + " frames in its index, " + std::to_string(frames) + " sent";
+  return "";
 }
 
 nlohmann::json finishRunVideo(RunVideo& video, const MissionResult& r, const CameraFrame* last_frame, double wall_s,
                               const fs::path& final_path) {
   const auto start = std::chrono::steady_clock::now();
   video.addFinalFrames(r, last_frame);
-  const std::string error = video.finish();
+  std::string error = video.finish();
+  if (error.empty()) error = video.commit();
   wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!error.empty()) {
     std::fprintf(stderr, "msbench run: video %s not written: %s\n", final_path.c_str(), error.c_str());

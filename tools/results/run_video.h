@@ -6,6 +6,7 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -20,9 +21,12 @@ namespace msb {
 /// The `ffmpeg` program on PATH, or "" when it is not installed.
 std::string findFfmpeg();
 
-/// A run's video being written. The frames go to `file`.partial in the run's staging directory;
-/// finish() renames it to `file` only when the encoder ended cleanly. Destroyed unfinished (an
-/// interrupt, an error), it stops the encoder and removes what it wrote.
+/// A run's video being written. The frames go to a private directory msbench makes beside `file`
+/// (mkdtemp: no fixed name in a user's directory, no link followed); finish() checks the encoder
+/// ended cleanly and that the MP4 is whole (its `moov` index present, one sample per frame sent);
+/// commit() then renames it to `file`. Every wait on the encoder is bounded (kStallLimitS) and
+/// calls the wait hook (an interrupt ends it at once). Destroyed uncommitted (an interrupt, an
+/// error, a failed check), it kills the encoder and removes its directory.
 class RunVideo {
  public:
   /// Starts the encoder. `name` heads the caption; `box` fixes the map panel's extent; `truth`
@@ -42,9 +46,19 @@ class RunVideo {
   /// Adds the run's end, held for 2 s of video: the final map, the collision and (with truth)
   /// the object hit.
   void addFinalFrames(const MissionResult& r, const CameraFrame* last_frame);
-  /// Ends the stream. Returns "" when `file` is complete, else why no video was kept (the
-  /// encoder failed: a full disk, an unwritable directory); nothing is left at `file` then.
+  /// Ends the stream and checks the video. Returns "" when it is whole, else why no video is kept
+  /// (the encoder failed or stalled, the file is not a whole MP4: a full disk, a file-size limit);
+  /// nothing is kept then.
   std::string finish();
+  /// Renames the checked video to `file` (after finish() returned ""); "" or why it could not.
+  std::string commit();
+  /// Gives up the video (kills the encoder, removes what it wrote: its space goes back to the
+  /// run's other files); `why` becomes its error.
+  void abandon(const std::string& why);
+  /// Called about every 100 ms while waiting on the encoder; what it throws ends the wait.
+  void setWaitHook(std::function<void()> hook) { wait_hook_ = std::move(hook); }
+  /// Seconds a write to the encoder, or its exit, may take before it counts as stuck.
+  static constexpr double kStallLimitS = 30.0;
   /// Frames sent so far.
   int frames() const { return frames_; }
   /// Frame size in pixels.
@@ -56,9 +70,13 @@ class RunVideo {
  private:
   cv::Mat compose(const CameraFrame* frame, const TopdownView& view, const WorldTruth* truth);
   void send(const cv::Mat& img);
+  // Closes the encoder's input and reaps it within kStallLimitS (kill: at once).
   void stopEncoder(bool kill);
+  // Waits up to 100 ms for `fd_` to accept bytes; calls the wait hook.
+  void waitWritable();
 
-  std::filesystem::path file_, partial_, log_;
+  std::filesystem::path file_, dir_, partial_, log_;
+  std::function<void()> wait_hook_;
   VideoSettings settings_;
   std::string name_;
   double duration_s_ = 0;
@@ -73,6 +91,10 @@ class RunVideo {
   bool finished_ = false;
   bool finished_frame_ = false;  // the run's end: the caption says how it ended
 };
+
+/// Why `path` is not a whole MP4 of `frames` video samples ("" when it is): its top-level boxes
+/// read to the end, a `moov` box, and in it a sample-size table (`stsz`) counting `frames`.
+std::string mp4Problem(const std::filesystem::path& path, int frames);
 
 /// Ends a run's video: the run's end held 2 s (`last_frame`: the latest camera image), then the
 /// encoder. Returns metrics.json's `video` — the file's name (`final_path`'s), frames, size, fps,

@@ -133,12 +133,22 @@ TEST(OutputLock, ASecondWriterIsRefusedAndTheFirstsStagingIsKept) {
 TEST(OutputLock, ALockFileOfADeadWriterIsTakenOverAndAForeignFileIsNeverTaken) {
   const fs::path root = msb_test::tempDir("msb_lock_", "stale");
   const fs::path out = root / "run";
-  std::ofstream(root / "run.lock") << "999999";  // a holder that died (the kernel released its lock)
+  // A holder that died (the kernel released its lock).
+  std::ofstream(root / "run.lock") << "msbench output lock, pid 999999";
   { StagedOutputDir again(out, false); }
   EXPECT_FALSE(fs::exists(root / "run.lock"));  // removed at release
-  std::ofstream(root / "run.lock") << "my notes, not a lock";
+  // A user's file of that name — text, empty, or digits — and a link are never taken or removed.
+  for (const std::string& mine : {std::string("my notes, not a lock"), std::string(), std::string("12345")}) {
+    std::ofstream(root / "run.lock") << mine;
+    EXPECT_THROW(StagedOutputDir(out, false), UsageError) << "'" << mine << "'";
+    EXPECT_EQ(readAll(root / "run.lock"), mine);
+  }
+  fs::remove(root / "run.lock");
+  std::ofstream(root / "target") << "msbench output lock, pid 1";
+  fs::create_symlink(root / "target", root / "run.lock");
   EXPECT_THROW(StagedOutputDir(out, false), UsageError);
-  EXPECT_EQ(readAll(root / "run.lock"), "my notes, not a lock");
+  EXPECT_TRUE(fs::is_symlink(root / "run.lock"));
+  EXPECT_EQ(readAll(root / "target"), "msbench output lock, pid 1");
 }
 
 TEST(StagedOutputDir, ATargetThatGainedAUserFileWhileTheRunFlewIsKept) {

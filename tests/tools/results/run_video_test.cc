@@ -2,7 +2,11 @@
 // video leaves nothing; an encoder that cannot write (a file-size limit standing in for a full
 // disk) is reported and no file is kept.
 #include <gtest/gtest.h>
+
 #include <sys/resource.h>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
 
 #include <cstdio>
 #include <filesystem>
@@ -65,9 +69,79 @@ TEST_F(RunVideoTest, FramesAndSizeAreAsDocumented) {
   video.addFinalFrames(r, &cam);  // the end, held 2 s: 2 × fps frames
   EXPECT_EQ(video.finish(), "");
   EXPECT_EQ(video.frames(), 10);
+  EXPECT_FALSE(fs::exists(d / "video.mp4"));  // checked, not yet committed
+  EXPECT_EQ(video.commit(), "");
   EXPECT_EQ(msb_test::probeVideo(d / "video.mp4"), "" + std::to_string(video.width()) + ",360,10");
-  EXPECT_FALSE(fs::exists(d / "video.mp4.partial"));
-  EXPECT_FALSE(fs::exists(d / "video.mp4.ffmpeg.log"));
+  EXPECT_EQ(mp4Problem(d / "video.mp4", 10), "");
+  EXPECT_NE(mp4Problem(d / "video.mp4", 11), "");
+}
+
+// The encoder writes into a directory msbench made: links at the names older builds used, and a
+// user's files there, are never followed, truncated or removed.
+TEST_F(RunVideoTest, StagingNeverFollowsALinkOrTouchesAUsersFile) {
+  const fs::path d = tempDir("links");
+  std::ofstream(d / "mine.txt") << "a user's file";
+  for (const char* name : {"video.mp4.partial", "video.mp4.ffmpeg.log", ".video.mp4.replay"})
+    fs::create_symlink(d / "mine.txt", d / name);
+  const MissionResult r = smallRun();
+  {
+    RunVideo video(d / "video.mp4", VideoSettings{}, "test", 60, r.exploration_box, nullptr, 376, 240);
+    video.addFinalFrames(r, nullptr);
+    EXPECT_EQ(video.finish(), "");
+    EXPECT_EQ(video.commit(), "");
+  }
+  EXPECT_EQ(msb_test::readText(d / "mine.txt"), "a user's file");
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(d)) {
+    ++entries;
+    EXPECT_EQ(e.path().filename().string().rfind(".msbench-video-", 0), std::string::npos) << e.path();
+  }
+  EXPECT_EQ(entries, 5);  // mine.txt, the three links, video.mp4: no staging left
+}
+
+// A stand-in `ffmpeg` first on PATH, running `body` (sh).
+struct FakeEncoder {
+  std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  explicit FakeEncoder(const fs::path& dir, const std::string& body) {
+    fs::create_directories(dir);
+    std::ofstream(dir / "ffmpeg") << "#!/bin/sh\n" << body << "\n";
+    fs::permissions(dir / "ffmpeg", fs::perms::owner_all);
+    setenv("PATH", (dir.string() + ":" + old_path).c_str(), 1);
+  }
+  ~FakeEncoder() { setenv("PATH", old_path.c_str(), 1); }
+};
+
+// An encoder that exits 0 over a file without its index (as ffmpeg does after a failed write)
+// makes no video: the file is checked, not the exit status.
+TEST_F(RunVideoTest, AnEncoderThatExitsCleanlyOverABrokenFileMakesNoVideo) {
+  const fs::path d = tempDir("broken");
+  const FakeEncoder fake(d / "bin", "cat > /dev/null; for a; do out=$a; done; printf 'junk' > \"$out\"; exit 0");
+  const MissionResult r = smallRun();
+  RunVideo video(d / "video.mp4", VideoSettings{}, "test", 60, r.exploration_box, nullptr, 376, 240);
+  video.addFinalFrames(r, nullptr);
+  const std::string error = video.finish();
+  EXPECT_NE(error.find("not a whole video"), std::string::npos) << error;
+  EXPECT_NE(video.commit(), "");
+  EXPECT_FALSE(fs::exists(d / "video.mp4"));
+}
+
+// An encoder that never reads (stuck, or stopped with SIGSTOP) blocks nothing: each wait calls
+// the hook, and an interrupt thrown there ends the video at once, leaving nothing.
+TEST_F(RunVideoTest, AStuckEncoderNeverBlocksAnInterrupt) {
+  const fs::path d = tempDir("stuck");
+  const FakeEncoder fake(d / "bin", "exec sleep 600");
+  const MissionResult r = smallRun();
+  const auto start = std::chrono::steady_clock::now();
+  {
+    RunVideo video(d / "video.mp4", VideoSettings{}, "test", 60, r.exploration_box, nullptr, 376, 240);
+    int waits = 0;
+    video.setWaitHook([&] {
+      if (++waits == 5) throw std::runtime_error("interrupted");
+    });
+    EXPECT_THROW(video.addFinalFrames(r, nullptr), std::runtime_error);
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  for (const auto& e : fs::directory_iterator(d)) EXPECT_EQ(e.path().filename(), "bin") << e.path();
 }
 
 TEST_F(RunVideoTest, AnUnfinishedVideoLeavesNothing) {
