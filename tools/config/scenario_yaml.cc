@@ -162,7 +162,23 @@ void applySet(YAML::Node& root, const std::string& kv) {
     YAML::Node cur = nodes.back();
     if (!cur[keys[i]]) cur[keys[i]] = YAML::Node(YAML::NodeType::Map);
     YAML::Node next = cur[keys[i]];
-    if (!next.IsMap()) throw UsageError("--set " + path + ": '" + keys[i] + "' is not a map");
+    // A key under a preset name (trajectory.limits: medium): the preset expands to its map first.
+    if (next.IsScalar() && i == 1 && keys[0] == "trajectory" && keys[1] == "limits") {
+      TrajectoryLimits limits;
+      try {
+        limits = TrajectoryLimits::preset(next.Scalar());
+      } catch (const ConfigError& e) {
+        throw UsageError("--set " + path + ": trajectory.limits is '" + next.Scalar() + "', " +
+                         e.issues().front().reason);
+      }
+      MapWriter w{YAML::Node(YAML::NodeType::Map)};
+      fieldKeys(w, limits);
+      cur[keys[i]] = w.node();
+      next = cur[keys[i]];
+    }
+    if (!next.IsMap())
+      throw UsageError("--set " + path + ": '" + keys[i] + "' is '" + (next.IsScalar() ? next.Scalar() : "a list") +
+                       "', not a map: set '" + keys[i] + "' itself, or give it as a map first");
     nodes.push_back(next);
   }
   nodes.back()[keys.back()] = value;

@@ -27,9 +27,20 @@ struct Axis {
   std::vector<AxisValue> values;
 };
 
-// A YAML value as the text `--set key=VALUE` parses back to the same value.
+// A YAML value as the text `--set key=VALUE` parses back to the same value: a scalar that would
+// read back as something else (a list, a map, a quote, a comment) is written quoted.
 std::string yamlText(const YAML::Node& n) {
-  if (n.IsScalar()) return n.Scalar();
+  if (n.IsScalar()) {
+    const std::string& text = n.Scalar();
+    try {
+      const YAML::Node back = YAML::Load(text);
+      if (back.IsScalar() && back.Scalar() == text) return text;
+    } catch (const YAML::Exception&) {
+    }
+    YAML::Emitter e;
+    e << YAML::DoubleQuoted << text;
+    return e.c_str();
+  }
   YAML::Emitter e;
   e << YAML::Flow << n;
   return e.c_str();

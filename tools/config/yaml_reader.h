@@ -145,8 +145,17 @@ class MapReader {
     if (!parseUnsigned(n.Scalar(), &out, &why))
       throw ConfigError(keyName(key), "expected a non-negative integer: " + why);
   }
+  // One rule for every boolean key: the words true or false (YAML 1.2's; yes/no/on/off/y/n, 1/0
+  // and other spellings YAML 1.1 read as booleans are refused, quoted or not).
   void convert(const YAML::Node& n, const std::string& key, bool& out) const {
-    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, out)) typeError(n, key, "true or false");
+    if (!n.IsScalar()) typeError(n, key, "true or false");
+    const std::string& v = n.Scalar();
+    if (v == "true" || v == "True" || v == "TRUE")
+      out = true;
+    else if (v == "false" || v == "False" || v == "FALSE")
+      out = false;
+    else
+      throw ConfigError(keyName(key), "expected true or false, got '" + v + "'");
   }
   void convert(const YAML::Node& n, const std::string& key, std::string& out) const {
     if (!n.IsScalar()) typeError(n, key, "a string");

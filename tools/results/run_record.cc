@@ -89,6 +89,11 @@ MissionRecordRead missionRecordOf(const nlohmann::json& m, const std::filesystem
     if (!v->is_number() || !(std::abs(v->get<double>()) <= kMaxAreaM2))
       return problem("score.earned", "expected a number in [-1e7, 1e7] m³ or null");
     rec.earned_m3 = v->get<double>();
+    // A score is at most the box's truly free volume: more is a record no run of msbench wrote.
+    if (const nlohmann::json* box = at(m, "score.box_free_m3"); box && box->is_number())
+      if (*rec.earned_m3 > box->get<double>() * (1.0 + 1e-9) + 1e-6)
+        return problem("score.earned", "claims " + std::to_string(*rec.earned_m3) + " m³, more than the box's free " +
+                                           std::to_string(box->get<double>()) + " m³ (score.box_free_m3)");
   }
   rec.sim_time_s = m["sim_time_s"].get<double>();
   rec.determinism_hash = m["determinism_hash"].get<std::string>();

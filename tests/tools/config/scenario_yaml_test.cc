@@ -383,3 +383,23 @@ TEST(ScenarioYaml, EveryShippedFileLoads) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+// A key under a preset name is set on the preset's values; one boolean rule for every key.
+TEST(ScenarioYaml, AKeyUnderAPresetAndOneBooleanRule) {
+  const std::string urban = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/urban_short.yaml";
+  const ScenarioSpec s = loadScenario(urban, {"trajectory.limits.max_yaw_rate_radps=1.5"});
+  const TrajectoryLimits medium = TrajectoryLimits::preset("medium");
+  EXPECT_DOUBLE_EQ(s.flight.trajectory.limits.max_yaw_rate_radps, 1.5);
+  EXPECT_DOUBLE_EQ(s.flight.trajectory.limits.max_speed_mps, medium.max_speed_mps);
+  EXPECT_DOUBLE_EQ(s.flight.trajectory.limits.max_accel_mps2, medium.max_accel_mps2);
+  for (const char* word : {"yes", "no", "on", "off", "y", "1", "0", "\"yes\""})
+    EXPECT_THROW(loadScenario(urban, {std::string("video.enabled=") + word}), FileConfigError) << word;
+  for (const char* word : {"true", "false", "\"true\""})
+    EXPECT_NO_THROW(loadScenario(urban, {std::string("video.enabled=") + word})) << word;
+}
+
+}  // namespace
+}  // namespace msb

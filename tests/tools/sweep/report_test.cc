@@ -620,3 +620,21 @@ TEST(SweepReport, NamesFromFilesAreInertInReportMd) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+// An unsealed record whose earned score exceeds its own box's free volume is not read as a
+// result (no run of msbench writes one).
+TEST(SweepReport, AnEarnedScoreAboveTheBoxsFreeVolumeIsRefused) {
+  ReportRun r = madeRun("urban-x-s1", "urban", "x", 500, "completed");
+  r.metrics["score"] = {{"earned", 99999.0}, {"box_free_m3", 28887.0}};
+  const MissionRecordRead over = missionRecordOf(r.metrics, "m.json");
+  EXPECT_FALSE(over.record.has_value());
+  EXPECT_NE(over.problem.find("score.earned"), std::string::npos) << over.problem;
+  r.metrics["score"]["earned"] = 20000.0;
+  EXPECT_TRUE(missionRecordOf(r.metrics, "m.json").record.has_value());
+}
+
+}  // namespace
+}  // namespace msb

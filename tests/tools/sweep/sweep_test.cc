@@ -75,6 +75,22 @@ exclude: [{world: b, variant: other}, {world: a, variant: full, seed: 2}]
   EXPECT_EQ(kept, (std::vector<std::string>{"a-s1", "a-s2", "a-s3", "a-s4", "b-s1", "b-s3"}));
 }
 
+// A value the sweep file gives is the value the run gets: names with quotes, Markdown or a '#'
+// reach `--set` quoted, and read back unchanged.
+TEST(SweepPlan, SetValuesReachTheRunAsTheyWereWritten) {
+  const fs::path d = msb_test::tempDir("msb_sweep_", "quoted");
+  const std::string name = "a \"quoted\" [x](y) # not a comment: {z}";
+  const fs::path f = writeSweep(
+      d, "set: {name: '" + std::string("a \"quoted\" [x](y) # not a comment: {z}") + "', duration_s: 30}\nseeds: 1\n");
+  const SweepPlan p = loadSweepPlan(f.string());
+  ASSERT_EQ(p.runs.size(), 1u);
+  std::vector<std::string> sets;
+  for (const auto& [k, v] : p.runs[0].sets) sets.push_back(k + "=" + v);
+  const ScenarioSpec spec = loadScenario(p.runs[0].scenario, sets);
+  EXPECT_EQ(spec.name, name);
+  EXPECT_DOUBLE_EQ(spec.flight.duration_s, 30.0);
+}
+
 TEST(SweepPlan, BadSweepFilesNameTheFileAndKey) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "bad");
   auto expectError = [&](const std::string& body, const std::string& fragment) {
