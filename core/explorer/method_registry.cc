@@ -1,6 +1,7 @@
 #include "core/explorer/method_registry.h"
 
 #include <algorithm>
+#include <cctype>
 #include <stdexcept>
 
 namespace msb {
@@ -11,15 +12,42 @@ std::vector<MethodRegistration>& registry() {
   static std::vector<MethodRegistration> methods;
   return methods;
 }
+// What was wrong with the registrations, one line each (reported when the registry is used).
+std::vector<std::string>& problems() {
+  static std::vector<std::string> lines;
+  return lines;
+}
 }  // namespace
 
-void addMethodRegistration(MethodRegistration r) {
-  for (const auto& m : registry())
-    if (m.info.type == r.info.type) throw std::logic_error("method type '" + r.info.type + "' is registered twice");
-  registry().push_back(std::move(r));
+void addMethodRegistration(MethodRegistration r) noexcept {
+  try {
+    const std::string& type = r.info.type;
+    const bool well_formed = !type.empty() && std::all_of(type.begin(), type.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    });
+    if (!well_formed) {
+      problems().push_back(r.source_file + ": method type '" + type +
+                           "' must be letters, digits and '_' (and not empty)");
+      return;
+    }
+    for (const auto& m : registry())
+      if (m.info.type == type) {
+        problems().push_back("method type '" + type + "' is registered twice: in " + m.source_file + " and in " +
+                             r.source_file + "; rename one");
+        return;
+      }
+    registry().push_back(std::move(r));
+  } catch (...) {
+    // Out of memory before main(): nothing sensible to do but leave the method out.
+  }
 }
 
 std::vector<MethodRegistration> registeredMethods() {
+  if (!problems().empty()) {
+    std::string all;
+    for (const auto& p : problems()) all += (all.empty() ? "" : "\n") + p;
+    throw MethodRegistryError(all);
+  }
   std::vector<MethodRegistration> out = registry();
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.info.type < b.info.type; });
   return out;

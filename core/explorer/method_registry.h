@@ -15,6 +15,8 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <source_location>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -68,7 +70,7 @@ class ForwardKeys {
 
 /// What a method says about itself when it registers.
 struct MethodInfo {
-  std::string type;                            ///< `method.type`
+  std::string type;                            ///< `method.type` (letters, digits and '_', not empty)
   std::string summary;                         ///< one line, for `msbench methods` and errors
   std::vector<std::string> progress_counters;  ///< the counters the progress line shows, in order
 };
@@ -76,7 +78,8 @@ struct MethodInfo {
 /// A registered method: its info and its config and explorer, type-erased.
 struct MethodRegistration {
   MethodInfo info;
-  std::function<std::any()> default_config;                                ///< the config with its defaults
+  std::string source_file;                   ///< the source file that registered it (for errors naming both of a clash)
+  std::function<std::any()> default_config;  ///< the config with its defaults
   std::function<void(std::any& config, KeyVisitor& keys)> keys;            ///< visits the config's key table
   std::function<void(const std::any& config, ConfigChecker& c)> validate;  ///< the config's validate()
   /// Builds the explorer from a (validated) config.
@@ -85,11 +88,21 @@ struct MethodRegistration {
       make;
 };
 
-/// Every method registered so far, sorted by type (static registrars run before main()).
+/// A registration that cannot be used: two methods under one type name, an empty or malformed
+/// name. The message names the source files. Bad input of the build, not a crash: commands that
+/// need the methods exit 2 with it; the others (`--help`) run.
+class MethodRegistryError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Every method registered so far, sorted by type (static registrars run before main()). Throws
+/// MethodRegistryError naming the files if a registration clashed or was malformed.
 std::vector<MethodRegistration> registeredMethods();
 
-/// Adds a registration (throws std::logic_error if its type is taken); registerMethod() calls it.
-void addMethodRegistration(MethodRegistration r);
+/// Adds a registration; registerMethod() calls it. Never throws (it runs before main()): a clash
+/// is kept and reported by registeredMethods().
+void addMethodRegistration(MethodRegistration r) noexcept;
 
 /// The proof that a method registered (keep it as a namespace-scope constant of the method).
 struct MethodRegistrar {
@@ -99,9 +112,10 @@ struct MethodRegistrar {
 /// Registers `ExplorerT` with its `Config` (which has a key table and validate()); the explorer
 /// is constructed from (config, camera, context) or (config, context).
 template <class ExplorerT, class Config>
-MethodRegistrar registerMethod(MethodInfo info) {
+MethodRegistrar registerMethod(MethodInfo info, std::source_location where = std::source_location::current()) {
   MethodRegistration r;
   r.info = info;
+  r.source_file = where.file_name();
   r.default_config = [] { return std::any(Config{}); };
   r.keys = [](std::any& config, KeyVisitor& v) {
     ForwardKeys f(v);

@@ -256,7 +256,8 @@ const std::vector<MethodEntry>& methodTable() {
     for (const auto& reg : registered) {
       for (const auto& built_in : table)
         if (reg.info.type == built_in.type)
-          throw std::logic_error("method type '" + reg.info.type + "' is registered twice");
+          throw MethodRegistryError("method type '" + reg.info.type + "' is registered twice: built into " +
+                                    "tools/config/method_table.cc and in " + reg.source_file + "; rename the latter");
       t.push_back(registeredEntry(reg));
     }
     return t;

@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/common/config_check.h"
+#include "core/explorer/method_registry.h"
 #include "tools/config/flight_yaml.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
@@ -83,6 +84,9 @@ int main(int argc, char** argv) {
       return msb::kExitUsage;
     } catch (const msb::FileConfigError& e) {
       std::fprintf(stderr, "msbench %s: %s\n", c.name, e.what());
+      return msb::kExitUsage;
+    } catch (const msb::MethodRegistryError& e) {
+      std::fprintf(stderr, "msbench %s: the methods built into this msbench clash: %s\n", c.name, e.what());
       return msb::kExitUsage;
     } catch (const msb::ConfigError& e) {
       std::fprintf(stderr, "msbench %s: configuration error: %s\n", c.name, e.what());

@@ -92,9 +92,11 @@ TEST(MethodRegistry, TheConfigIsVisitedValidatedAndBuiltThroughTheRegistration) 
   EXPECT_EQ(bad.issues()[0].key, "method.steps");
 }
 
-TEST(MethodRegistry, ATypeRegisteredTwiceIsRefusedAndTheListIsSorted) {
-  EXPECT_THROW((registerMethod<ProbeExplorer, ProbeConfig>({"zz_probe", "again", {}})), std::logic_error);
+// (A type registered twice: test_core_method_registry_clash, a program of its own, since the
+// clash makes every later use of that program's registry an error.)
+TEST(MethodRegistry, TheListIsSortedAndNamesItsSourceFiles) {
   const auto all = registeredMethods();
+  for (const auto& m : all) EXPECT_NE(m.source_file.find(".cc"), std::string::npos) << m.info.type;
   for (size_t i = 1; i < all.size(); ++i) EXPECT_LT(all[i - 1].info.type, all[i].info.type);
 }
 

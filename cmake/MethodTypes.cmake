@@ -1,0 +1,25 @@
+# Configure-time check that no two method folders register one `method.type` (issue 85;
+# core/explorer/method_registry.h): each `registerMethod<...>({"TYPE", ...` under core/ is read,
+# and a type found in two files stops the configuration naming both. The same clash in a build
+# that skips this check is refused at run time (MethodRegistryError, exit 2).
+function(msb_check_method_types)
+  file(GLOB_RECURSE sources "${PROJECT_SOURCE_DIR}/core/*.cc")
+  set(seen_types "")
+  foreach(src IN LISTS sources)
+    file(READ "${src}" text)
+    string(REGEX MATCHALL "registerMethod<[^>]*>[ \t\r\n]*\\([ \t\r\n]*{[ \t\r\n]*\"[^\"]*\"" calls "${text}")
+    foreach(call IN LISTS calls)
+      string(REGEX REPLACE ".*\"([^\"]*)\"$" "\\1" type "${call}")
+      file(RELATIVE_PATH rel "${PROJECT_SOURCE_DIR}" "${src}")
+      if(type STREQUAL "")
+        message(FATAL_ERROR "${rel}: registers a method with an empty type name")
+      endif()
+      if(DEFINED MSB_METHOD_TYPE_${type})
+        message(FATAL_ERROR "method type '${type}' is registered twice: in ${MSB_METHOD_TYPE_${type}} and in ${rel}; rename one")
+      endif()
+      set(MSB_METHOD_TYPE_${type} "${rel}")
+      list(APPEND seen_types "${type}")
+    endforeach()
+  endforeach()
+  set(MSB_REGISTERED_METHOD_TYPES "${seen_types}" PARENT_SCOPE)
+endfunction()

@@ -1,0 +1,29 @@
+// Two method folders registering one type name (the second is method_registry_clash_other.cc):
+// the program starts (no abort before main()), and asking for the methods is an error naming
+// both source files; a malformed name is named with its file too.
+#include <gtest/gtest.h>
+
+#include "core/explorer/method_registry.h"
+#include "tests/core/explorer/method_registry_clash.h"
+
+namespace msb {
+namespace {
+
+const MethodRegistrar kFirst = registerMethod<ClashExplorer, ClashConfig>({"twice", "the first", {}});
+const MethodRegistrar kEmpty = registerMethod<ClashExplorer, ClashConfig>({"", "no name", {}});
+
+TEST(MethodRegistry, ADuplicateOrEmptyTypeIsAnErrorNamingTheFilesNotAnAbort) {
+  try {
+    registeredMethods();
+    FAIL() << "no error";
+  } catch (const MethodRegistryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'twice' is registered twice"), std::string::npos) << what;
+    EXPECT_NE(what.find("method_registry_clash_test.cc"), std::string::npos) << what;
+    EXPECT_NE(what.find("method_registry_clash_other.cc"), std::string::npos) << what;
+    EXPECT_NE(what.find("method type ''"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace msb
