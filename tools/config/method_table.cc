@@ -1,7 +1,9 @@
 #include "tools/config/method_table.h"
-#include "tools/config/field_keys.h"
 
+#include <set>
 #include <stdexcept>
+
+#include "tools/config/field_keys.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -279,7 +281,12 @@ MethodChoice readMethod(MapReader m) {
     if (type == e.type) return e.read(m);
     names += (names.empty() ? "" : ", ") + std::string(e.type);
   }
-  throw ConfigError(m.keyName("type"), "unknown method '" + type + "' (known: " + names + ")");
+  std::set<std::string> types;
+  for (const auto& e : methodTable()) types.insert(e.type);
+  const std::string near = closestName(type, types);
+  throw ConfigError(m.keyName("type"), "unknown method '" + type + "'" +
+                                           (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                                           " (known: " + names + ")");
 }
 
 void writeMethod(MapWriter& w, const MethodChoice& method) {

@@ -56,8 +56,13 @@ fs::path baseOf(const YAML::Node& node, const fs::path& file, const fs::path& di
   if (!node["base"].IsScalar()) throw FileConfigError(file.string() + ": key 'base': expected a file path");
   if (node["base"].Scalar().find('\0') != std::string::npos)
     throw FileConfigError(file.string() + ": key 'base': the file name contains a NUL character");
-  const fs::path base = dir / node["base"].Scalar();
+  const std::string& name = node["base"].Scalar();
+  fs::path base = dir / name;
   std::error_code ec;
+  // A bare name (no directory, no .yaml) that is no file beside this one names a mission of
+  // scenarios/missions: `base: base`, `base: monospheres`.
+  const bool bare = !name.empty() && name.find('/') == std::string::npos && fs::path(name).extension().empty();
+  if (bare && !fs::is_regular_file(base, ec)) base = fs::path(MSB_MISSIONS_DIR) / (name + ".yaml");
   const auto st = fs::status(base, ec);
   if (ec && ec != std::errc::no_such_file_or_directory)
     throw FileConfigError(file.string() + ": key 'base': " + base.string() + ": " + ec.message());

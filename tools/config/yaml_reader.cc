@@ -1,6 +1,8 @@
 #include "tools/config/yaml_reader.h"
 
+#include <algorithm>
 #include <map>
+#include <vector>
 
 namespace msb {
 
@@ -36,6 +38,27 @@ void rejectDuplicates(const YAML::Node& node, const std::string& label, const st
 void rejectDuplicateKeys(const YAML::Node& node, const std::string& label, const std::string& prefix) {
   size_t visited = 0;
   rejectDuplicates(node, label, prefix, visited);
+}
+
+std::string closestName(const std::string& typo, const std::set<std::string>& names) {
+  std::string best;
+  size_t best_d = std::max<size_t>(2, typo.size() / 3) + 1;
+  for (const std::string& n : names) {
+    // Levenshtein distance, one row at a time.
+    std::vector<size_t> row(n.size() + 1);
+    for (size_t j = 0; j <= n.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= typo.size(); ++i) {
+      size_t diag = row[0];
+      row[0] = i;
+      for (size_t j = 1; j <= n.size(); ++j) {
+        const size_t up = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (typo[i - 1] == n[j - 1] ? 0 : 1)});
+        diag = up;
+      }
+    }
+    if (row[n.size()] < best_d) best_d = row[n.size()], best = n;
+  }
+  return best;
 }
 
 YAML::Node loadYamlFile(const std::string& path) {

@@ -25,6 +25,10 @@ namespace msb {
 template <class Spec, class Read>
 Spec parseConfigFile(const std::string& path, Read read);
 
+/// The name among `names` closest to `typo` (edit distance at most 2, or a third of its length for
+/// long names), "" if none is that close: the "did you mean" of unknown keys and method types.
+std::string closestName(const std::string& typo, const std::set<std::string>& names);
+
 // Strict reader of one YAML map: reads optional keys into typed fields and rejects unknown ones.
 class MapReader {
  public:
@@ -35,7 +39,10 @@ class MapReader {
   /// True here, false for MapWriter: sections only a reader can do (presets, refusals) check it.
   static constexpr bool kReading = true;
 
-  bool has(const std::string& key) const { return bool(node_[key]); }
+  bool has(const std::string& key) const {
+    asked_.insert(key);
+    return bool(node_[key]);
+  }
 
   /// read() under the name the key functions shared with MapWriter use.
   template <class T>
@@ -51,6 +58,7 @@ class MapReader {
   // Reads `key` into `out` if present (marks it used); type errors name the key.
   template <class T>
   bool read(const std::string& key, T& out) {
+    asked_.insert(key);
     const YAML::Node n = node_[key];
     if (!n) return false;
     used_.insert(key);
@@ -103,7 +111,10 @@ class MapReader {
     std::vector<ConfigIssue> issues;
     for (const auto& kv : node_) {
       const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : "<a non-text key>";
-      if (!used_.count(k)) issues.push_back({keyName(k), "unknown key"});
+      if (used_.count(k)) continue;
+      const std::string near = closestName(k, asked_);
+      issues.push_back(
+          {keyName(k), near.empty() ? "unknown key" : "unknown key (did you mean '" + keyName(near) + "'?)"});
     }
     if (!issues.empty()) throw ConfigError(issues);
   }
@@ -186,6 +197,7 @@ class MapReader {
   YAML::Node node_;
   std::string prefix_;
   std::set<std::string> used_;
+  mutable std::set<std::string> asked_;  // every key looked for: the names a typo is compared with
 };
 
 /// The largest YAML input msbench reads (a scenario, base, flight, sweep or world spec).

@@ -403,3 +403,31 @@ TEST(ScenarioYaml, AKeyUnderAPresetAndOneBooleanRule) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+// A newcomer's scenario kept anywhere names its base by a mission's name; a typo in a key or a
+// method type gets the nearest name.
+TEST(ScenarioYaml, BaseByNameAndDidYouMean) {
+  const fs::path d = fs::path(::testing::TempDir()) / "msb_base_by_name";
+  fs::create_directories(d);
+  std::ofstream(d / "mine.yaml") << "base: urban_short\nduration_s: 5\n";
+  const ScenarioSpec s = loadScenario((d / "mine.yaml").string(), {});
+  EXPECT_DOUBLE_EQ(s.flight.duration_s, 5.0);
+  EXPECT_EQ(s.flight.world_name, "urban");
+  auto error = [&](const std::string& set) {
+    try {
+      loadScenario((d / "mine.yaml").string(), {set});
+    } catch (const FileConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("method.map.r_max=3").find("did you mean 'method.map.r_max_m'?"), std::string::npos);
+  EXPECT_NE(error("method.type=monosphere").find("did you mean 'monospheres'?"), std::string::npos);
+  EXPECT_EQ(error("zzzz=1").find("did you mean"), std::string::npos) << error("zzzz=1");
+}
+
+}  // namespace
+}  // namespace msb
