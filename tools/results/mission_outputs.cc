@@ -62,11 +62,12 @@ nlohmann::json coverageJson(const MissionResult& r) {
 }
 
 // metrics.json → score: the earned score (docs/metrics.md, "The earned score"); a run that ended
-// in a collision forfeits it (a lost vehicle brings back no map). Null without ground truth.
+// in a collision forfeits what it earned (a lost vehicle brings back no map) but keeps what it
+// lost: the lower of its score and 0, so a crash never raises a score. Null without ground truth.
 nlohmann::json scoreJson(const MissionResult& r) {
   if (!r.earned) return nullptr;
   const bool forfeit = r.flight.collision.has_value();
-  const double earned = forfeit ? 0.0 : r.earned->earnedM3();
+  const double earned = forfeit ? std::min(0.0, r.earned->earnedM3()) : r.earned->earnedM3();
   return {{"earned", earned},
           {"unit", "m3"},
           {"earned_share", r.box_free_m3 > 0 ? nlohmann::json(earned / r.box_free_m3) : nlohmann::json(nullptr)},

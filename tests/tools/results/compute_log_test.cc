@@ -7,6 +7,7 @@
 
 #include "tools/results/compute_log.h"
 #include "tools/results/input_files.h"
+#include "tools/results/mission_outputs.h"
 #include "tools/results/provenance.h"
 
 namespace msb {
@@ -48,6 +49,34 @@ TEST(ComputeLog, AReplayLogThatIsMissingTruncatedOrAnotherBuildsIsBadInput) {
   const std::string missing = replayError((dir / "none.csv").string());
   EXPECT_NE(missing.find("timing.replay"), std::string::npos) << missing;
   EXPECT_NE(missing.find("none.csv"), std::string::npos) << missing;
+}
+
+}  // namespace
+}  // namespace msb
+
+namespace msb {
+namespace {
+
+// A collision forfeits a positive score and keeps a negative one: crashing never pays.
+TEST(Score, ACrashNeverRaisesAScore) {
+  ScenarioSpec spec;
+  spec.flight.world_name = "urban";
+  MissionResult r;
+  r.box_free_m3 = 1000;
+  for (const double earned : {-6971.0, 250.0})
+    for (const bool crashed : {false, true}) {
+      r.earned = EarnedTally{std::max(earned, 0.0), std::max(-earned, 0.0), 0.0};
+      r.flight.collision.reset();
+      if (crashed) {
+        CollisionEvent hit;
+        hit.vehicle_position_m = hit.contact_position_m = Vec3::Zero();
+        r.flight.collision = hit;
+      }
+      const nlohmann::json m = missionMetrics(spec, r, nullptr);
+      const double expect = crashed ? std::min(earned, 0.0) : earned;
+      EXPECT_DOUBLE_EQ(m["score"]["earned"].get<double>(), expect) << earned << (crashed ? " crashed" : "");
+      EXPECT_DOUBLE_EQ(m["score"]["before_forfeit"].get<double>(), earned);
+    }
 }
 
 }  // namespace
