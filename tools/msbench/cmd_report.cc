@@ -118,6 +118,7 @@ int runReportCommand(int argc, char** argv) {
       throw std::runtime_error("the suite " + suite + " is not a directory from here (" +
                                (args.get("suite").empty() ? "named by the runs" : "--suite") +
                                "): run from the repository, or give --suite PATH");
+    applyRankRules(results);  // every report: only sealed, confined runs are ranked
     if (!suite.empty()) applySuite(results, suite);
   } catch (const std::runtime_error& e) {
     throw UsageError(e.what());

@@ -59,6 +59,23 @@ void applySuite(SweepResults& results, const fs::path& suite_dir) {
   }
 }
 
+void applyRankRules(SweepResults& results) {
+  for (ReportRun& run : results.runs) {
+    if (run.status != "complete" || !run.metrics.is_object()) continue;
+    const nlohmann::json& m = run.metrics;
+    const std::string confinement = m.contains("method_confinement") && m["method_confinement"].is_string()
+                                        ? m["method_confinement"].get<std::string>()
+                                        : "";
+    if (!confinement.empty() && !m.contains("record_digest"))
+      run.unranked = "unsealed: its record has no record_digest, which every build that records confinement writes";
+    else if (confinement.find("unconfined") != std::string::npos || confinement.find("in-process") != std::string::npos)
+      run.unranked = "unconfined: its method ran " + confinement;
+    if (run.unranked.empty()) continue;
+    run.status = "unranked";
+    run.record.reset();
+  }
+}
+
 std::string suiteNamedByRuns(const SweepResults& results) {
   std::set<std::string> named;
   for (const ReportRun& r : results.runs) {

@@ -16,6 +16,13 @@ namespace msb {
 /// why. Throws std::runtime_error when the suite has no readable run.
 void applySuite(SweepResults& results, const std::filesystem::path& suite_dir);
 
+/// The rule of every report (docs/metrics.md, "What is ranked"): a complete run is ranked only if
+/// its record is sealed and its method ran confined or compiled into msbench. An unsealed record
+/// from a build that seals (it names its method's confinement, which such builds write beside
+/// the seal) and a run whose method ran unconfined (in-process, a goal chooser) are set aside:
+/// status "unranked" with the reason, in no row, ranking, ratio or finding.
+void applyRankRules(SweepResults& results);
+
 /// The suite the complete runs name (metrics.json `suite`, from the scenario's `suite:` key):
 /// "" if none names one; throws std::runtime_error if they name different suites.
 std::string suiteNamedByRuns(const SweepResults& results);

@@ -681,15 +681,26 @@ PairedAreas pairedAreas(const ReportRow& a, const ReportRow& b) {
 std::string reportMarkdown(const SweepResults& results, const std::vector<ReportRow>& rows) {
   std::ostringstream o;
   o << "# Sweep report: " << mdText(results.dir.string()) << "\n\n";
-  int complete = 0, failed = 0, pending = 0, off_suite = 0;
+  int complete = 0, failed = 0, pending = 0, off_suite = 0, unranked = 0;
   for (const auto& r : results.runs)
     (r.status == "complete"    ? complete
      : r.status == "failed"    ? failed
      : r.status == "off-suite" ? off_suite
+     : r.status == "unranked"  ? unranked
                                : pending)++;
   o << results.runs.size() << " runs: " << complete << " complete, " << failed << " failed, " << pending << " not run"
     << (results.suite.empty() ? "" : ", " + std::to_string(off_suite) + " off the suite " + mdText(results.suite))
+    << (unranked ? ", " + std::to_string(unranked) + " not ranked" : "")
     << ". A = explored 2.5 m columns (m², unbounded, VIO frame, as the paper's Table I).\n\n";
+  // Runs not ranked (unsealed, unconfined): set aside, said first.
+  if (unranked > 0) {
+    o << "## Not ranked\n\nThese runs completed, but only sealed records of methods that ran confined or "
+         "compiled into msbench are ranked (docs/metrics.md, \"What is ranked\"); they are in no row, ranking, "
+         "ratio or finding below.\n\n| run | why |\n| --- | --- |\n";
+    for (const ReportRun& r : results.runs)
+      if (r.status == "unranked") o << "| " << mdText(r.id) << " | " << mdText(r.unranked) << " |\n";
+    o << "\n";
+  }
   // Runs whose settings are not the suite's: set aside, said first.
   if (off_suite > 0) {
     o << "## Off the suite\n\nThese runs flew with settings the suite (" << mdText(results.suite)

@@ -32,6 +32,7 @@ struct ReportRun {
   std::optional<SweepRunFailure> failure;  ///< why it has no result (failed runs)
   std::vector<CoverageSample> coverage;    ///< coverage.csv (complete runs)
   std::string off_suite;                   ///< why a complete run is off the suite (applySuite)
+  std::string unranked;                    ///< why a complete run is not ranked (applyRankRules)
 };
 
 /// A sweep directory read back: its axes and runs in run order.

@@ -638,3 +638,39 @@ TEST(SweepReport, AnEarnedScoreAboveTheBoxsFreeVolumeIsRefused) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+// Every report ranks only sealed records of confined or compiled methods: an unsealed record
+// (its digest removed) and an unconfined run are listed with their reason and in no row.
+TEST(SweepReport, OnlySealedConfinedRunsAreRanked) {
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  ReportRun honest = madeRun("urban-ms-s1", "urban", "ms", 500, "completed");
+  honest.metrics["method_confinement"] = "compiled into msbench";
+  honest.metrics["record_digest"] = "x";
+  ReportRun unsealed = madeRun("urban-forger-s1", "urban", "forger", 9000, "completed");
+  unsealed.metrics["method_confinement"] = "own process, Landlock ABI 7";
+  ReportRun chooser = madeRun("urban-chooser-s1", "urban", "chooser", 9000, "completed");
+  chooser.metrics["method_confinement"] = "in-process goal chooser (unconfined)";
+  chooser.metrics["record_digest"] = "x";
+  ReportRun old = madeRun("urban-old-s1", "urban", "old", 400, "completed");  // before the seal: as before
+  s.runs = {honest, unsealed, chooser, old};
+  applyRankRules(s);
+  EXPECT_EQ(s.runs[0].status, "complete");
+  EXPECT_EQ(s.runs[1].status, "unranked");
+  EXPECT_NE(s.runs[1].unranked.find("unsealed"), std::string::npos);
+  EXPECT_EQ(s.runs[2].status, "unranked");
+  EXPECT_NE(s.runs[2].unranked.find("unconfined"), std::string::npos);
+  EXPECT_EQ(s.runs[3].status, "complete");
+  const std::vector<ReportRow> rows = reportRows(s);
+  for (const ReportRow& r : rows) EXPECT_LT(r.area_m2.mean, 1000.0) << rowName(r);
+  const std::string md = reportMarkdown(s, rows);
+  EXPECT_NE(md.find("## Not ranked"), std::string::npos) << md;
+  EXPECT_NE(md.find("| urban-forger-s1 | unsealed"), std::string::npos) << md;
+}
+
+}  // namespace
+}  // namespace msb
