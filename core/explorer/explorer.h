@@ -35,7 +35,9 @@ struct VehicleState {
   Pose T_W_B = Pose::Identity();     ///< VIO estimate
   Vec3 velocity_mps = Vec3::Zero();  ///< VIO estimate
   TrajectoryReference reference;     ///< the tracker's current reference
-  bool path_finished = true;         ///< the last command is done (at rest, heading reached)
+  /// The method's last command is done (at rest, heading reached): false while a path it sent
+  /// has not yet taken effect (compute in the loop, docs/compute.md).
+  bool path_finished = true;
 };
 
 /// A method's output broke the interface's contract (free space or waypoints not finite, out of

@@ -240,7 +240,10 @@ VehicleState ClosedLoop::vehicleState() const {
   vs.T_W_B = est_.T_W_B;
   vs.velocity_mps = est_.v_W_mps;
   vs.reference = trajectory_.reference();
-  vs.path_finished = trajectory_.finished();
+  // Finished: the tracker is at the end of its path and no path the method sent is still on its
+  // way (a planning step's path lands when its compute ends: until then the method's last
+  // command is not done, whatever the tracker's previous path says).
+  vs.path_finished = trajectory_.finished() && ending_paths_.empty();
   return vs;
 }
 

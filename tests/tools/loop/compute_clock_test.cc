@@ -173,6 +173,45 @@ TEST(ComputeInTheLoop, APlanningStepOf04SRunsAt25HzAndItsPathLands04SLater) {
   EXPECT_NEAR(double(r.counters.at("observed")), double(planned.size()), 1.0);
 }
 
+// A method that sends one path, then records what each later planning step is told about it.
+class OnePathMethod final : public Explorer {
+ public:
+  std::vector<bool> finished;
+  void observe(const SlamPointsFrame&) override {}
+  std::optional<PathCommand> plan(const VehicleState& v) override {
+    if (sent_) {
+      finished.push_back(v.path_finished);
+      return std::nullopt;
+    }
+    sent_ = true;
+    return PathCommand{v.tick, {{v.T_W_B.translation() + Vec3(0, 0, 1.0), std::nullopt}}};
+  }
+  ExplorerSnapshot snapshot() const override { return {}; }
+  std::map<std::string, double> counters() const override { return {{"unit", 1.0}}; }
+
+ private:
+  bool sent_ = false;
+};
+
+// A path still on its way (its planning step's compute has not ended) is not finished: the next
+// planning step must not take the tracker's previous, finished path for the one it sent (the
+// race that made hover_turn skip every other turn step under 2 ms of compute).
+TEST(ComputeInTheLoop, APathNotYetInEffectIsNotFinished) {
+  const WorldTruth truth(urban().generated.shapes);
+  ScenarioSpec spec = oracleMission(1.0);
+  spec.flight.perception.latency_frames = 3;  // the path lands 3 frames after its plan ...
+  spec.flight.perception.threads = 1;
+  spec.timing.compute = "modelled";
+  spec.timing.plan.base_s = 0.004;  // ... and 4 ms later: after the next plan's state (3 frames on)
+  auto method = std::make_unique<OnePathMethod>();
+  OnePathMethod* m = method.get();
+  Mission mission(spec, urban().generated.exploration_box, &truth, std::move(method));
+  while (mission.running()) mission.step();
+  mission.finish();
+  ASSERT_GE(m->finished.size(), 2u);
+  EXPECT_FALSE(m->finished[0]);  // a 1 m climb: not done 200 ms after it was sent, nor before it landed
+}
+
 TEST(ComputeInTheLoop, AChargedRunReplaysBitForBitFromItsLog) {
   const WorldTruth truth(urban().generated.shapes);
   ScenarioSpec spec = oracleMission(4.0);
