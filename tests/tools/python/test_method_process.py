@@ -179,3 +179,42 @@ def test_a_method_path_that_holds_msbench_is_refused(tmp_path):
                                      "  params: {}\n")
     r = run(str(tmp_path / "s.yaml"), tmp_path / "run")
     assert r.returncode == 2 and "key 'method.path'" in r.stderr and "its own directory" in r.stderr, r.stderr
+
+
+def test_the_method_process_starts_isolated_with_a_minimal_environment(tmp_path):
+    # A .pth file in the user site of the HOME msbench runs with is never run by the method's
+    # process (python -I), and msbench's environment does not reach the method.
+    home = tmp_path / "home"
+    site = subprocess.run([sys.executable, "-c", "import site; print(site.getusersitepackages())"],
+                          env={**os.environ, "HOME": str(home)}, capture_output=True, text=True).stdout.strip()
+    os.makedirs(site)
+    with open(os.path.join(site, "evil.pth"), "w") as f:
+        f.write("import builtins; builtins.PWNED = 'yes'\n")
+    init = ("        import builtins\n"
+            "        self.found['pwned'] = float(hasattr(builtins, 'PWNED'))\n"
+            "        self.found['secret'] = float('MSBENCH_TEST_SECRET' in os.environ)")
+    out = tmp_path / "run"
+    sets = sum([["--set", s] for s in FAST + ["duration_s=2"]], [])
+    r = subprocess.run([MSBENCH_BIN, "run", scenario(tmp_path, init=init), "--quiet", "--out", str(out)] + sets,
+                       capture_output=True, text=True, timeout=300,
+                       env={**os.environ, "HOME": str(home), "MSBENCH_TEST_SECRET": "1"})
+    assert r.returncode == 0, r.stderr
+    assert metrics(out)["counters"] == {"pwned": 0.0, "secret": 0.0}
+
+
+@pytest.mark.parametrize("request_, says", [
+    ("host.ask_rng(h, '__class__', ())", "operation '__class__'"),
+    ("host.ask_rng(99, 'uniform', ())", "stream 99"),
+    ("host.ask_rng(h, 'uniform_range', ('a', 'b'))", "arguments"),
+])
+def test_a_random_stream_request_msbench_does_not_answer_stops_the_method_naming_it(tmp_path, request_, says):
+    # The method reaches its host through the stream object it was given (as a cheater would).
+    init = ("        r = context.rng('goals')\n"
+            "        host, h = r._host, r._handle\n"
+            f"        self.found['x'] = float(bool({request_}))")
+    out = tmp_path / "run"
+    t0 = time.monotonic()
+    r = run(scenario(tmp_path, init=init), out)
+    assert time.monotonic() - t0 < 60
+    assert r.returncode != 0
+    assert "does not answer" in r.stderr and says in r.stderr, r.stderr

@@ -93,10 +93,12 @@ class _Worker:
         self.failure = None  # the timeout or exit that ended the process, if one did
         to_host_r, self.to_host = os.pipe()
         self.from_host, from_host_w = os.pipe()
-        env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "MSBENCH_BIN")}
-        env["TMPDIR"] = self.scratch
+        # A minimal environment: nothing of msbench's (its paths, tokens, settings) reaches the method.
+        env = {"PATH": "/usr/bin:/bin", "LANG": "C.UTF-8", "HOME": self.scratch, "TMPDIR": self.scratch}
         with open(self.log_path, "wb") as log:
-            self.proc = subprocess.Popen([sys.executable, "-E", "-P", _HOST, str(to_host_r), str(from_host_w)],
+            # -I: isolated (no user site and its .pth files, no PYTHON* variables, no script directory
+            # on sys.path): nothing runs in the host before it confines itself but the host.
+            self.proc = subprocess.Popen([sys.executable, "-I", _HOST, str(to_host_r), str(from_host_w)],
                                          stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
                                          pass_fds=(to_host_r, from_host_w), env=env, cwd=self.scratch,
                                          start_new_session=True)
@@ -162,16 +164,49 @@ class _Worker:
             if n > _MAX_ANSWER_BYTES:
                 raise self._fail(MethodExited, f"the method answered {what} with {n} bytes (the limit is "
                                  f"{_MAX_ANSWER_BYTES >> 20} MiB); its process was stopped")
-            answer = json.loads(self._read(n, deadline, what))
+            try:
+                answer = json.loads(self._read(n, deadline, what))
+            except (ValueError, RecursionError) as e:  # malformed, or nested beyond Python's stack
+                raise self._protocol_error(what, f"an answer that is not JSON msbench reads: {type(e).__name__}")
+            if not isinstance(answer, dict):
+                raise self._protocol_error(what, "an answer that is not a JSON object")
             if "rng_open" in answer:
-                handle, name = answer["rng_open"]
+                handle, name = self._rng_open(answer["rng_open"], what)
                 self.rngs[handle] = RngStream(self.seed, name)
                 self._send(True)
             elif "rng" in answer:
-                handle, op, args = answer["rng"]
+                handle, op, args = self._rng_call(answer["rng"], what)
                 self._send(getattr(self.rngs[handle], op)(*args))
             else:
                 return answer
+
+    # The random-stream requests msbench answers: these operations with these argument types, on
+    # a stream the method opened. Anything else stops the method at once, named.
+    _RNG_OPS = {"uniform": (), "uniform_range": (float, float), "uniform_int": (int,), "normal": ()}
+
+    def _protocol_error(self, what, message):
+        return self._fail(MethodExited, f"the method's process sent a message msbench does not answer during "
+                                        f"{what} ({message}); its process was stopped")
+
+    def _rng_open(self, request, what):
+        if (not isinstance(request, list) or len(request) != 2 or not isinstance(request[0], int)
+                or not isinstance(request[1], str) or len(request[1]) > 200):
+            raise self._protocol_error(what, "a malformed random-stream request")
+        return request
+
+    def _rng_call(self, request, what):
+        if not isinstance(request, list) or len(request) != 3 or not isinstance(request[2], list):
+            raise self._protocol_error(what, "a malformed random-stream draw")
+        handle, op, args = request
+        if handle not in self.rngs:
+            raise self._protocol_error(what, f"a draw from stream {handle!r}, which it never opened")
+        kinds = self._RNG_OPS.get(op) if isinstance(op, str) else None
+        if kinds is None:
+            raise self._protocol_error(what, f"the random-stream operation {str(op)[:60]!r}")
+        if len(args) != len(kinds) or not all(isinstance(a, k) and not isinstance(a, bool) for a, k in zip(args, kinds)):
+            if not (len(args) == len(kinds) and all(isinstance(a, (int, float)) for a in args)):
+                raise self._protocol_error(what, f"arguments {str(args)[:60]} for {op}")
+        return handle, op, [k(a) for a, k in zip(args, kinds)]
 
     def call(self, op, arg=None):
         if self.failure is not None:
