@@ -421,23 +421,21 @@ ExplorerSnapshot MonoSpheresExplorer::snapshot() const {
   return snap;
 }
 
-std::map<std::string, double> MonoSpheresExplorer::workCounters() const {
+Counters<MonoSpheresCounter> MonoSpheresExplorer::sizeCounters() const {
   using C = MonoSpheresCounter;
   Counters<C> c = counters_;
   c[C::kSpheres] = double(map_.spheres().size());
   c[C::kObstaclePoints] = double(map_.obstacles().size());
   c[C::kFrontiers] = double(map_.frontiers().size());
   c[C::kViewpoints] = double(viewpoints_.viewpoints().size());
-  return c.toMap();
+  return c;
 }
+
+std::map<std::string, double> MonoSpheresExplorer::workCounters() const { return sizeCounters().toMap(); }
 
 std::map<std::string, double> MonoSpheresExplorer::counters() const {
   using C = MonoSpheresCounter;
-  Counters<C> c = counters_;
-  c[C::kSpheres] = double(map_.spheres().size());
-  c[C::kObstaclePoints] = double(map_.obstacles().size());
-  c[C::kFrontiers] = double(map_.frontiers().size());
-  c[C::kViewpoints] = double(viewpoints_.viewpoints().size());
+  Counters<C> c = sizeCounters();
   c[C::kVisitedMarkers] = double(viewpoints_.markers().size());
   c[C::kViewpointsPassed] = double(viewpoints_.passedCount());
   c[C::kFrontiersRetired] = double(viewpoints_.retiredFrontiers(map_));

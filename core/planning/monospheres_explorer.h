@@ -321,6 +321,8 @@ class MonoSpheresExplorer : public Explorer {
   std::vector<Vec3> last_path_;
   std::vector<uint64_t> reachable_;  // this step's reachable spheres (ascending)
   Counters<MonoSpheresCounter> counters_{kMonoSpheresCounterNames};
+  // The counters kept as the method runs, with the map's sizes (workCounters, counters).
+  Counters<MonoSpheresCounter> sizeCounters() const;
 };
 
 }  // namespace msb

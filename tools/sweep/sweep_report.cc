@@ -11,61 +11,13 @@
 #include "tools/config/strict_number.h"
 #include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
+#include "tools/sweep/markdown_text.h"
 
 namespace msb {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// A name, id, path or message from a file as Markdown text: inert in report.md and in the page
-// made from it — HTML's < > & as entities; [ ] | * ` and \ escaped (no link, image, table cell,
-// emphasis or code span of its own); characters that reorder or hide text (bidirectional
-// controls, zero-width marks) and control characters removed. Ordinary names are unchanged.
-std::string mdText(const std::string& in) {
-  std::string out;
-  for (size_t i = 0; i < in.size(); ++i) {
-    const unsigned char c = static_cast<unsigned char>(in[i]);
-    // U+200B..U+200F, U+202A..U+202E, U+2066..U+2069 (E2 80 8B..8F, E2 80 AA..AE, E2 81 A6..A9), U+FEFF.
-    if (c == 0xE2 && i + 2 < in.size()) {
-      const unsigned char b = static_cast<unsigned char>(in[i + 1]), d = static_cast<unsigned char>(in[i + 2]);
-      if ((b == 0x80 && ((d >= 0x8B && d <= 0x8F) || (d >= 0xAA && d <= 0xAE))) ||
-          (b == 0x81 && d >= 0xA6 && d <= 0xA9)) {
-        i += 2;
-        continue;
-      }
-    }
-    if (c == 0xEF && i + 2 < in.size() && static_cast<unsigned char>(in[i + 1]) == 0xBB &&
-        static_cast<unsigned char>(in[i + 2]) == 0xBF) {
-      i += 2;
-      continue;
-    }
-    if (c < 0x20 || c == 0x7F) continue;
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '[':
-      case ']':
-      case '|':
-      case '*':
-      case '`':
-      case '\\':
-        out += '\\';
-        out += char(c);
-        break;
-      default:
-        out += char(c);
-    }
-  }
-  return out;
-}
 
 // coverage.csv rows by column name (older files without box_share read it as 0). Strict: the
 // file present (a complete run writes one), a header with t_s, every row as many numbers as the
