@@ -120,6 +120,21 @@ def dump_dom(chromium, page):
                            "file://" + page], capture_output=True, text=True, timeout=180).stdout
 
 
+def probed_result(chromium, page, probe, tag):
+    """`page` opened with `probe` (a copy beside it, so its relative links are the page's): what
+    the probe wrote into the title after `tag:`, as JSON."""
+    with open(page, encoding="utf-8") as f:
+        text = f.read()
+    probed = os.path.join(os.path.dirname(page), "probe.html")
+    with open(probed, "w", encoding="utf-8") as f:
+        f.write(with_probe(text, probe))
+    dom = dump_dom(chromium, probed)
+    m = re.search(r"<title>%s:(.*?)</title>" % tag, dom, re.S)
+    if not m:
+        fail("the page's checks did not run (no %s in the title):\n%s" % (tag, dom[:2000]))
+    return json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+
+
 def injection_check(chromium, source, work):
     """A report whose names are payloads, made into a page and opened: nothing ran, nothing injected."""
     rep = os.path.join(work, "injected_report")
@@ -133,17 +148,7 @@ def injection_check(chromium, source, work):
                     "score_earned_m3"])
         w.writerow([name, name, name, "complete", name, os.path.join(work, name.replace("/", "_")), "1", "1", "1"])
     subprocess.run([sys.executable, os.path.join(source, "tools/sweep/report_html.py"), rep], check=True)
-    page = os.path.join(rep, "report.html")
-    with open(page, encoding="utf-8") as f:
-        text = f.read()
-    probed = os.path.join(rep, "probe.html")
-    with open(probed, "w", encoding="utf-8") as f:
-        f.write(with_probe(text, INJECTION_PROBE))
-    dom = dump_dom(chromium, probed)
-    m = re.search(r"<title>CHECK:(.*?)</title>", dom, re.S)
-    if not m:
-        fail("the injection page's checks did not run:\n" + dom[:2000])
-    r = json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    r = probed_result(chromium, os.path.join(rep, "report.html"), INJECTION_PROBE, "CHECK")
     print(json.dumps(r))
     if r["title"].strip() == "PWNED" or r["errors"]:
         fail("a payload ran: %s" % r)
@@ -184,17 +189,7 @@ def main():
     page = os.path.join(sweep, "report", "report.html")
     if not os.path.exists(page):
         fail("no report.html")
-    # The probed copy sits beside the page, so its relative links are the page's.
-    with open(page, encoding="utf-8") as f:
-        text = f.read()
-    probed = os.path.join(sweep, "report", "probe.html")
-    with open(probed, "w", encoding="utf-8") as f:
-        f.write(with_probe(text, PROBE))
-    dom = dump_dom(chromium, probed)
-    m = re.search(r"<title>RESULT:(.*?)</title>", dom, re.S)
-    if not m:
-        fail("the page's checks did not run (no RESULT in the title):\n" + dom[:2000])
-    r = json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    r = probed_result(chromium, page, PROBE, "RESULT")
     print(json.dumps(r, indent=1))
     if r["errors"]:
         fail("errors: %s" % r["errors"])
