@@ -31,6 +31,8 @@ int runRegressCommand(int argc, char** argv) {
   SweepResults results;
   try {
     results = loadSweepResults(args.get("DIR"));
+  } catch (const std::filesystem::filesystem_error&) {
+    throw;  // main names the path and the reason in words
   } catch (const std::runtime_error& e) {
     throw UsageError(e.what());
   }

@@ -120,6 +120,8 @@ int runReportCommand(int argc, char** argv) {
                                "): run from the repository, or give --suite PATH");
     applyRankRules(results);  // every report: only sealed, confined runs are ranked
     if (!suite.empty()) applySuite(results, suite);
+  } catch (const std::filesystem::filesystem_error&) {
+    throw;  // main names the path and the reason in words
   } catch (const std::runtime_error& e) {
     throw UsageError(e.what());
   }

@@ -14,6 +14,7 @@
 #include "tools/config/method_table.h"
 #include "tools/config/world_registry.h"
 #include "tools/loop/mission.h"
+#include "tools/loop/records.h"
 #include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
@@ -425,9 +426,37 @@ class PyMission {
   double last_t_s_ = 0.0;
 };
 
+/// Writes the record of a run whose method failed before its first step (its factory timed out
+/// or its process ended, `status` as metrics.json spells it): config.yaml and metrics.json, staged
+/// like a run's files. Returns the output directory.
+std::string writeStartFailure(const PyScenario& s, const std::string& dir, const std::string& status,
+                              const std::string& what, bool overwrite) {
+  const std::optional<RunStatus> st = parseRunStatus(status);
+  if (!st) throw py::value_error("write_start_failure: unknown status '" + status + "'");
+  std::vector<NamedPath> modules;
+  if (s.spec.method.type == kPythonMethodType) {
+    const auto& c = std::any_cast<const PythonMethodConfig&>(s.spec.method.config);
+    const py::module_ methods = py::module_::import("msbench.methods");
+    const py::object file = methods.attr("module_file")(c.entry, methods.attr("method_dir")(c.path, s.file, "method"));
+    if (!file.is_none()) modules.push_back({"the method's module", file.cast<std::string>()});
+  }
+  checkNoOverlap(missionInputs(s.file, s.spec, modules), {{"dir", dir}});
+  StagedOutputDir out(dir, overwrite);
+  writeFileAtomic(out.staging() / "config.yaml",
+                  configYamlText(s.file, !s.sets.empty(), s.effective_yaml, s.spec.method.not_replayable));
+  nlohmann::json m = errorMetrics(s.spec, what, *st);
+  m["error_tick"] = 0;
+  writeFileAtomic(out.staging() / "metrics.json", m.dump(2) + "\n");
+  out.commit();
+  return out.finalDir().string();
+}
+
 }  // namespace
 
 void bindMission(py::module_& m) {
+  m.def("write_start_failure", &writeStartFailure, py::arg("scenario"), py::arg("dir"), py::arg("status"),
+        py::arg("error"), py::arg("overwrite") = false,
+        "Writes config.yaml and metrics.json for a run whose method failed before its first step.");
   py::class_<PyMission>(m, "Mission", "A mission of a scenario, stepped or run from Python.")
       .def(py::init([](const py::object& scenario, py::object method, py::object goals) {
              return std::make_unique<PyMission>(scenarioOf(scenario), std::move(method), std::move(goals));

@@ -522,6 +522,14 @@ TEST(BadInput, FlagsAndPathsAreNamedInWords) {
                   {"loop", "Too many levels of symbolic links"});
   t.expectRefused("run " + t.p("loop") + " --out " + t.p("o"), {"loop", "Too many levels of symbolic links"});
   t.expectRefused("run " + m + " --out " + t.p("sentinel/x"), {"sentinel/x", "Not a directory"});
+  // The same words for report's --suite and regress's --against (before: the library's text,
+  // "filesystem error: status: ...").
+  const std::string sweep = kSrc + "/results/compute_charged";
+  t.expectRefused("report " + sweep + " --suite " + t.p("loop/x") + " --out " + t.p("o"),
+                  {"msbench report: " + (t.d / "loop/x").string() + ": Too many levels of symbolic links"});
+  t.expectRefused("regress " + sweep + " --against " + t.p("loop/x"),
+                  {"msbench regress: ", "loop/x: Too many levels of symbolic links"});
+  EXPECT_EQ(t.log().find("filesystem error"), std::string::npos) << t.log();
 }
 
 TEST(BadInput, ACameraIsMountedOnTheVehicle) {

@@ -133,6 +133,26 @@ def test_a_method_that_hangs_ends_the_run_as_method_timeout_within_its_budget(tm
     assert "method_timeout" in r.stderr or "did not answer" in r.stderr
 
 
+def test_a_factory_that_hangs_writes_the_method_timeout_record(tmp_path):
+    # Before: a 20-line traceback and no record at all (a sweep saw a run without metrics.json).
+    out = tmp_path / "run"
+    r = run(scenario(tmp_path, init="        time.sleep(3600)", budget=1), out)
+    assert r.returncode == 1, r.stderr
+    assert "Traceback" not in r.stderr and "recorded in" in r.stderr, r.stderr
+    m = metrics(out)
+    assert m["status"] == "method_timeout" and m["error_tick"] == 0, m
+    assert "the factory within 4 s (4 × method.call_budget_s)" in m["error"], m["error"]
+    assert (out / "config.yaml").exists() and "record_digest" not in m
+
+
+def test_a_factory_whose_process_ends_writes_the_method_exited_record(tmp_path):
+    out = tmp_path / "run"
+    r = run(scenario(tmp_path, init="        os._exit(5)"), out)
+    assert r.returncode == 1, r.stderr
+    m = metrics(out)
+    assert m["status"] == "method_exited" and "exit code 5" in m["error"], m["error"]
+
+
 @pytest.mark.parametrize("plan, why", [("        os._exit(3)", "exit code 3"),
                                        ("        os.kill(os.getpid(), 9)", "SIGKILL"),
                                        ("        while True: print('x' * 4096)", "SIGXFSZ")])

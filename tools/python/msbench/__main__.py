@@ -5,7 +5,8 @@ import argparse
 import signal
 import sys
 
-from . import ConfigError, MethodError, Mission, Scenario, confined
+from . import ConfigError, MethodError, MethodExited, MethodTimeout, Mission, Scenario, confined
+from ._msbench import write_start_failure
 
 
 class _Signalled(KeyboardInterrupt):
@@ -43,10 +44,18 @@ def run(argv):
     try:
         if a.record:
             raise ConfigError("--record: not available for Python methods (the perception log is the C++ runner's)")
-        mission = Mission(Scenario.load(a.scenario, set=sets))
+        scenario = Scenario.load(a.scenario, set=sets)
+        mission = Mission(scenario)
     except ConfigError as e:
         print(f"msbench run: {e}", file=sys.stderr)
         return 2
+    except MethodError as e:  # the method's factory timed out, or its process ended, before the first step
+        confined.close_all()
+        status = ("method_timeout" if isinstance(e, MethodTimeout) else
+                  "method_exited" if isinstance(e, MethodExited) else "error")
+        out = write_start_failure(scenario, a.out, status, str(e), overwrite=a.overwrite)
+        print(f"msbench run: error: {e} (recorded in {out})", file=sys.stderr)
+        return 1
     try:
         mission.run(progress=not a.quiet)
         mission.result()  # the method's last answers (its final map) before its process goes

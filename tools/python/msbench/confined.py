@@ -133,13 +133,14 @@ class _Worker:
         except (BrokenPipeError, OSError):
             pass  # the process is gone: the answer's wait says how
 
-    def _read(self, n, deadline, what):
+    def _read(self, n, deadline, what, budget_s):
         chunks = []
         while n:
             wait = deadline - time.monotonic()
             if wait <= 0:
-                raise self._fail(MethodTimeout, f"the method did not answer {what} within {self.budget_s:g} s "
-                                 "(method.call_budget_s); its process was stopped")
+                raise self._fail(MethodTimeout, f"the method did not answer {what} within {budget_s:g} s "
+                                 f"({'4 × ' if budget_s != self.budget_s else ''}method.call_budget_s); its process "
+                                 "was stopped")
             fds = [self.from_host] + ([_signal_fd] if _signal_fd is not None else [])
             ready, _, _ = select.select(fds, [], [], min(wait, 1.0))
             if _signal_fd is not None and _signal_fd in ready:
@@ -158,14 +159,15 @@ class _Worker:
 
     def _answer(self, what, budget_s=None):
         """The host's next answer, serving the method's random draws meanwhile."""
-        deadline = time.monotonic() + (budget_s or self.budget_s)
+        budget_s = budget_s or self.budget_s
+        deadline = time.monotonic() + budget_s
         while True:
-            (n,) = struct.unpack("<Q", self._read(8, deadline, what))
+            (n,) = struct.unpack("<Q", self._read(8, deadline, what, budget_s))
             if n > _MAX_ANSWER_BYTES:
                 raise self._fail(MethodExited, f"the method answered {what} with {n} bytes (the limit is "
                                  f"{_MAX_ANSWER_BYTES >> 20} MiB); its process was stopped")
             try:
-                answer = json.loads(self._read(n, deadline, what))
+                answer = json.loads(self._read(n, deadline, what, budget_s))
             except (ValueError, RecursionError) as e:  # malformed, or nested beyond Python's stack
                 raise self._protocol_error(what, f"an answer that is not JSON msbench reads: {type(e).__name__}")
             if not isinstance(answer, dict):
