@@ -14,10 +14,13 @@
 #include <any>
 #include <array>
 #include <functional>
+#include <map>
 #include <memory>
 #include <source_location>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/common/config_fields.h"
@@ -26,6 +29,7 @@
 namespace msb {
 
 class FisheyeCamera;
+struct PresetKey;
 
 /// A key table visited through virtual calls (the YAML layer implements it): the same calls as
 /// a table's template visitor, for the types a table may hold.
@@ -45,6 +49,20 @@ class KeyVisitor {
   /// A nested group: `body` visits its keys with the visitor of the group.
   virtual void group(const char* name, const std::function<void(KeyVisitor&)>& body) = 0;
   virtual void moved(const char* name, const char* where) = 0;
+  /// A preset key (PresetKey), visited before the keys it presets.
+  virtual void preset(const char* name, const PresetKey& p) = 0;
+};
+
+/// A key that names a preset of the published code (`reference_code: published | intended`) or,
+/// when the method has switches for it, a map of those switches in which `published: true` turns
+/// every switch on first and the switches named beside it then set their own value. `published`
+/// also applies `published_settings` (the authors' values), before the keys visited after it, so
+/// a key a scenario names beside the preset wins. Written back as the map of switches (nothing
+/// when there are none: the keys it set are written instead).
+struct PresetKey {
+  std::vector<std::pair<const char*, bool*>> switches;  ///< the map form's switches (empty: a name only)
+  std::function<void()> published_settings;             ///< what `published` applies beyond the switches
+  const char* why_no_map = "";                          ///< said when a map is given and there are no switches
 };
 
 /// The template visitor a table's fields() is called with, forwarding to a KeyVisitor.
@@ -68,11 +86,44 @@ class ForwardKeys {
   KeyVisitor& v_;
 };
 
+/// A row of the paper's Table I that a method answers to (mean and max A over its runs, m²; the
+/// runs; the runs that ended in a collision where §V-C says how many). The one source of the
+/// paper's figures: the report's rows and its findings read them from the method's registration.
+struct PaperRow {
+  const char* world;         ///< urban, cave, rooftops, sparse
+  const char* switched_off;  ///< "" for the full method, else the one switch an ablation turns off
+  double mean_area_m2, max_area_m2;
+  int runs = 0;         ///< Table I's "Runs"
+  int collisions = -1;  ///< runs ended by a collision (-1: the paper does not say)
+};
+
+/// MethodInfo::listed of every method that is not one of the paper's.
+inline constexpr int kListedAfterThePaper = 100;
+
 /// What a method says about itself when it registers.
 struct MethodInfo {
   std::string type;                            ///< `method.type` (letters, digits and '_', not empty)
   std::string summary;                         ///< one line, for `msbench methods` and errors
   std::vector<std::string> progress_counters;  ///< the counters the progress line shows, in order
+  std::vector<PaperRow> paper_rows = {};       ///< the Table I rows it answers to (none: not in the paper)
+  /// Where `msbench methods` lists it: the paper's methods first (0, 1, 2 in Table I's order),
+  /// every other method after them (the default), by type.
+  int listed = kListedAfterThePaper;
+};
+
+/// The outside goal choosers a method may take (the goal-only helper, docs/python.md), each as
+/// the chooser type the method's setter takes: `goals` for a setGoalChooser(GoalChooser),
+/// `viewpoints` for a setViewpointChooser(ViewpointChooser).
+struct GoalChoosers {
+  std::any goals, viewpoints;
+};
+
+/// What the run's record says of a method's config (from the config's own functions, if it has
+/// them): the paper's ablation switches (`switches()`), the published code's defects
+/// (`referenceCode()`), the OctoMap leaf of its free space (`octreeResolutionM()`, 0: none).
+struct MethodFacts {
+  std::map<std::string, bool> switches, reference_code;
+  double octree_resolution_m = 0.0;
 };
 
 /// A registered method: its info and its config and explorer, type-erased.
@@ -82,10 +133,14 @@ struct MethodRegistration {
   std::function<std::any()> default_config;  ///< the config with its defaults
   std::function<void(std::any& config, KeyVisitor& keys)> keys;            ///< visits the config's key table
   std::function<void(const std::any& config, ConfigChecker& c)> validate;  ///< the config's validate()
+  std::function<MethodFacts(const std::any& config)> facts;                ///< what the record says of it
   /// Builds the explorer from a (validated) config.
   std::function<std::unique_ptr<Explorer>(const std::any& config, const FisheyeCamera& camera,
                                           const ExplorerContext& context)>
       make;
+  /// Gives `explorer` (one `make` built) the chooser of `choosers` that fits it; null: the method
+  /// takes no outside goal chooser (set when the explorer has setGoalChooser or setViewpointChooser).
+  std::function<void(Explorer& explorer, const GoalChoosers& choosers)> attach_goal_chooser;
 };
 
 /// A registration that cannot be used: two methods under one type name, an empty or malformed
@@ -109,19 +164,44 @@ struct MethodRegistrar {
   std::string type;
 };
 
+/// The argument type of a one-argument member function (a chooser setter's chooser type).
+template <class F>
+struct SetterArgument;
+template <class C, class A>
+struct SetterArgument<void (C::*)(A)> {
+  using type = std::decay_t<A>;
+};
+
+/// A method's keys beyond its config's table (a preset, a section of switches): visits them and
+/// the table, in the order they are read and written.
+template <class Config>
+using MethodKeysFn = void (*)(Config& config, KeyVisitor& keys);
+
 /// Registers `ExplorerT` with its `Config` (which has a key table and validate()); the explorer
-/// is constructed from (config, camera, context) or (config, context).
+/// is constructed from (config, camera, context) or (config, context). `keys` (default: the
+/// config's table alone) visits the method's keys.
 template <class ExplorerT, class Config>
-MethodRegistrar registerMethod(MethodInfo info, std::source_location where = std::source_location::current()) {
+MethodRegistrar registerMethod(MethodInfo info, MethodKeysFn<Config> keys = nullptr,
+                               std::source_location where = std::source_location::current()) {
   MethodRegistration r;
   r.info = info;
   r.source_file = where.file_name();
   r.default_config = [] { return std::any(Config{}); };
-  r.keys = [](std::any& config, KeyVisitor& v) {
+  r.keys = [keys](std::any& config, KeyVisitor& v) {
+    Config& c = std::any_cast<Config&>(config);
+    if (keys) return keys(c, v);
     ForwardKeys f(v);
-    Config::fields(std::any_cast<Config&>(config), f);
+    Config::fields(c, f);
   };
   r.validate = [](const std::any& config, ConfigChecker& c) { std::any_cast<const Config&>(config).validate(c); };
+  r.facts = [](const std::any& config) {
+    const Config& c = std::any_cast<const Config&>(config);
+    MethodFacts f;
+    if constexpr (requires { c.switches(); }) f.switches = c.switches();
+    if constexpr (requires { c.referenceCode(); }) f.reference_code = c.referenceCode();
+    if constexpr (requires { c.octreeResolutionM(); }) f.octree_resolution_m = c.octreeResolutionM();
+    return f;
+  };
   r.make = [](const std::any& config, const FisheyeCamera& camera,
               const ExplorerContext& context) -> std::unique_ptr<Explorer> {
     const Config& c = std::any_cast<const Config&>(config);
@@ -130,6 +210,18 @@ MethodRegistrar registerMethod(MethodInfo info, std::source_location where = std
     else
       return std::make_unique<ExplorerT>(c, context);
   };
+  // An outside goal chooser for the explorers that take one (a compile-time check on the
+  // explorer type). `x` is an explorer this registration made, so the cast is exact.
+  if constexpr (requires { &ExplorerT::setGoalChooser; })
+    r.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
+      using Chooser = typename SetterArgument<decltype(&ExplorerT::setGoalChooser)>::type;
+      static_cast<ExplorerT&>(x).setGoalChooser(std::any_cast<const Chooser&>(c.goals));
+    };
+  if constexpr (requires { &ExplorerT::setViewpointChooser; })
+    r.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
+      using Chooser = typename SetterArgument<decltype(&ExplorerT::setViewpointChooser)>::type;
+      static_cast<ExplorerT&>(x).setViewpointChooser(std::any_cast<const Chooser&>(c.viewpoints));
+    };
   addMethodRegistration(std::move(r));
   return {info.type};
 }

@@ -13,7 +13,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -145,6 +147,46 @@ TEST(Architecture, NoCodeOutsideTheExampleMethodsFolderNamesIt) {
       EXPECT_EQ(text.find("hover_turn"), std::string::npos) << path;
     }
   }
+}
+
+// Every method registered from a folder, as the build's clash check reads them
+// (cmake/MethodTypes.cmake): type → the folder of its registration.
+std::map<std::string, fs::path> registeredTypes() {
+  const std::regex call(R"re(registerMethod<[^>]*>\s*\(\s*\{\s*"([^"]*)")re");
+  std::map<std::string, fs::path> out;
+  for (const auto& e : fs::recursive_directory_iterator(fs::path(MSB_SOURCE_DIR) / "core")) {
+    if (e.path().extension() != ".cc") continue;
+    std::ifstream in(e.path());
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string text = ss.str();
+    for (std::sregex_iterator m(text.begin(), text.end(), call), end; m != end; ++m)
+      out[(*m)[1].str()] = e.path().parent_path();
+  }
+  return out;
+}
+
+// Every method is its folder: no code outside the folder that registers it spells its type
+// (`"grid_random"`), comments aside. Two places name the paper's methods as data, by design:
+// the default method of a scenario (tools/loop/methods.h, MonoSpheres) and the paper's findings
+// the report checks (tools/sweep/findings.*, which compare MonoSpheres with the grid).
+TEST(Architecture, NoCodeOutsideAMethodsFolderSpellsItsType) {
+  const auto types = registeredTypes();
+  for (const char* t : {"monospheres", "grid_random", "star_discovery", "hover_turn"})
+    EXPECT_TRUE(types.count(t)) << t << " is not registered from a folder";
+  const fs::path src(MSB_SOURCE_DIR);
+  const std::set<fs::path> data = {src / "tools/loop/methods.h", src / "tools/sweep/findings.cc",
+                                   src / "tools/sweep/findings.h"};
+  for (const auto& [type, folder] : types) {
+    const std::regex spelt("^\\s*[^/\\s].*\"" + type + "( [^\"]*)?\"");
+    for (const char* top : {"core", "sim", "tools"})
+      for (const auto& hit : matchingLines(src / top, spelt)) {
+        const fs::path file = hit.substr(0, hit.find(':'));
+        if (file.parent_path() == folder || data.count(file)) continue;
+        ADD_FAILURE() << type << " (registered in " << folder.string() << ") spelt at " << hit;
+      }
+  }
+  EXPECT_TRUE(std::regex_search("  {\"monospheres -ovde\", \"x\"},", std::regex("^\\s*[^/\\s].*\"monospheres( [^\"]*)?\"")));
 }
 
 TEST(Architecture, SimHasNoMappingOrPlanningAndTheLoopNoYaml) {

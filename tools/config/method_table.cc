@@ -7,10 +7,9 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "core/baseline/grid_explorer.h"
-#include "core/baseline/star_discovery_explorer.h"
+#include <algorithm>
+
 #include "core/explorer/method_registry.h"
-#include "core/planning/monospheres_explorer.h"
 
 namespace msb {
 
@@ -23,73 +22,6 @@ void validateMethod(const Config& c) {
   ConfigChecker checker("method.");
   c.validate(checker);
   if (!checker.issues().empty()) throw ConfigError(checker.issues());
-}
-
-// The published code's defects (docs/deviations.md, "The published code as switches"):
-//   reference_code: published            every modelled defect on (`intended`: none)
-//   reference_code: {path_resend_8s: true, ...}        the switches named
-//   reference_code: {published: true, heading_check_signed: false}
-// In a map `published: true` turns every switch on first; switches named beside it then set
-// their own value. Written back as the full map of switches.
-// Returns true when the whole published code is named (`published`, or `published: true` in a
-// map): the authors' settings then apply too (MonoSpheresConfig::applyPublishedSettings).
-template <class Keys>
-bool referenceCodeKeys(Keys& m, ReferenceCodeConfig& c) {
-  if constexpr (Keys::kReading) {
-    if (!m.has("reference_code")) return false;
-    const YAML::Node n = m.raw("reference_code");
-    const std::string key = m.keyName("reference_code");
-    if (n.IsScalar()) {
-      if (n.Scalar() != "published" && n.Scalar() != "intended")
-        throw ConfigError(key, "expected published, intended or a map of switches, got '" + n.Scalar() + "'");
-      c = n.Scalar() == "published" ? ReferenceCodeConfig::published() : ReferenceCodeConfig{};
-      return n.Scalar() == "published";
-    }
-    MapReader r(n, key + ".");
-    bool all = false;
-    r.field("published", all);
-    if (all) c = ReferenceCodeConfig::published();
-    for (const auto& [name, member] : ReferenceCodeConfig::switches()) r.field(name, c.*member);
-    r.finish();
-    return all;
-  } else {
-    auto w = m.sub("reference_code");
-    for (const auto& [name, member] : ReferenceCodeConfig::switches()) w.field(name, c.*member);
-    return false;
-  }
-}
-
-// MonoSpheres: switches, the published code's switches (and with the whole published code, the
-// authors' settings, before the keys named beside it), mapper and planner keys.
-template <class Keys>
-void monoSpheresKeys(Keys& m, MonoSpheresConfig& c) {
-  if (referenceCodeKeys(m, c.reference_code)) c.applyPublishedSettings();
-  if (m.has("switches")) {
-    auto w = m.sub("switches");
-    w.field("ovde", c.map.ovde);
-    w.field("dbof", c.map.dbof);
-    w.field("fff", c.planner.fff);
-    w.field("vpb", c.planner.viewpoints.vpb);
-    w.finish();
-  }
-  fieldKeys(m, c);  // map, planner
-}
-
-// The grid: `reference_code: published` (the authors' grid session's settings, applied before the
-// keys named beside it; not written back: the keys it set are) or `intended`, then its table.
-template <class Keys>
-void gridKeys(Keys& m, GridExplorerConfig& c) {
-  if constexpr (Keys::kReading) {
-    if (m.has("reference_code")) {
-      const YAML::Node n = m.raw("reference_code");
-      if (!n.IsScalar() || (n.Scalar() != "published" && n.Scalar() != "intended"))
-        throw ConfigError(m.keyName("reference_code"),
-                          "expected published or intended (the grid has no switches), got '" +
-                              (n.IsScalar() ? n.Scalar() : std::string("a map")) + "'");
-      if (n.Scalar() == "published") c.applyPublishedSettings();
-    }
-  }
-  fieldKeys(m, c);
 }
 
 // A Python method's keys: entry and path, and `params`, a map passed through to its factory
@@ -118,38 +50,24 @@ class PythonMethodStub final : public Explorer {
   std::map<std::string, double> counters() const override { return {}; }
 };
 
-// One method-table entry from the method's explorer and config types and its keys function
-// (`keys(k, config)` for any key visitor k: MapReader reads, MapWriter writes).
-template <class ExplorerT, class Config, class KeysFn>
-MethodEntry methodEntry(const char* type, const char* summary, KeysFn keys, std::vector<std::string> progress,
-                        std::vector<PaperRow> paper_rows = {}) {
+// `python`: the door for methods written in Python, not a method of its own — its keys name
+// the method (entry, path, params) and the binary hands its runs to the Python module. It stays
+// here, the one entry not registered from a method's folder.
+MethodEntry pythonEntry() {
   MethodEntry e;
-  e.type = type;
-  e.summary = summary;
-  e.paper_rows = std::move(paper_rows);
-  e.progress_counters = std::move(progress);
-  e.read = [type, keys](MapReader& m) {
-    Config c;
-    keys(m, c);
+  e.type = kPythonMethodType;
+  e.summary = "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)";
+  e.read = [](MapReader& m) {
+    PythonMethodConfig c;
+    pythonMethodKeys(m, c);
     m.finish();
     validateMethod(c);
-    return methodChoice<ExplorerT>(type, c);
+    return methodChoice<PythonMethodStub>(kPythonMethodType, c);
   };
-  e.write = [keys](const std::any& config, MapWriter& w) {
-    Config c = std::any_cast<const Config&>(config);
-    keys(w, c);
+  e.write = [](const std::any& config, MapWriter& w) {
+    PythonMethodConfig c = std::any_cast<const PythonMethodConfig&>(config);
+    pythonMethodKeys(w, c);
   };
-  // An outside goal chooser for the explorers that take one (a compile-time check on the
-  // explorer type): the grid its goals, MonoSpheres its viewpoints. `x` is an explorer this
-  // entry made, so the cast is exact.
-  if constexpr (requires(ExplorerT & x, GoalChooser g) { x.setGoalChooser(g); })
-    e.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
-      static_cast<ExplorerT&>(x).setGoalChooser(c.goals);
-    };
-  if constexpr (requires(ExplorerT & x, ViewpointChooser v) { x.setViewpointChooser(v); })
-    e.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
-      static_cast<ExplorerT&>(x).setViewpointChooser(c.viewpoints);
-    };
   return e;
 }
 
@@ -176,8 +94,43 @@ class YamlKeyVisitor final : public KeyVisitor {
     sub.finish();
   }
   void moved(const char* n, const char* where) override { f_.moved(n, where); }
+  void preset(const char* n, const PresetKey& p) override {
+    if constexpr (Keys::kReading) {
+      readPreset(n, p);
+    } else if (!p.switches.empty()) {
+      auto w = k_.sub(n);
+      for (const auto& [name, value] : p.switches) w.field(name, *value);
+    }
+  }
 
  private:
+  // `reference_code: published | intended`, or a map of the switches (PresetKey).
+  void readPreset(const char* n, const PresetKey& p) {
+    if (!k_.has(n)) return;
+    const YAML::Node node = k_.raw(n);
+    const std::string key = k_.keyName(n);
+    const bool named = node.IsScalar() && (node.Scalar() == "published" || node.Scalar() == "intended");
+    if (p.switches.empty() && !named)
+      throw ConfigError(key, std::string("expected published or intended") + p.why_no_map + ", got '" +
+                                 (node.IsScalar() ? node.Scalar() : std::string("a map")) + "'");
+    if (node.IsScalar() && !named)
+      throw ConfigError(key, "expected published, intended or a map of switches, got '" + node.Scalar() + "'");
+    bool all = named && node.Scalar() == "published";
+    if (named) {
+      for (const auto& sw : p.switches) *sw.second = all;
+    } else {
+      // In a map `published: true` turns every switch on first; the switches named beside it
+      // then set their own value.
+      MapReader r(node, key + ".");
+      r.field("published", all);
+      if (all)
+        for (const auto& sw : p.switches) *sw.second = true;
+      for (const auto& [name, value] : p.switches) r.field(name, *value);
+      r.finish();
+    }
+    if (all && p.published_settings) p.published_settings();
+  }
+
   Keys& k_;
   FieldKeys<Keys> f_;
 };
@@ -189,6 +142,8 @@ MethodEntry registeredEntry(const MethodRegistration& reg) {
   e.type = reg.info.type.c_str();
   e.summary = reg.info.summary.c_str();
   e.progress_counters = reg.info.progress_counters;
+  e.paper_rows = reg.info.paper_rows;
+  e.attach_goal_chooser = reg.attach_goal_chooser;
   e.read = [&reg](MapReader& m) {
     std::any config = reg.default_config();
     YamlKeyVisitor<MapReader> v(m);
@@ -200,6 +155,11 @@ MethodEntry registeredEntry(const MethodRegistration& reg) {
     MethodChoice choice;
     choice.type = reg.info.type;
     choice.config = config;
+    const MethodFacts facts = reg.facts(config);
+    choice.switches = facts.switches;
+    choice.reference_code = facts.reference_code;
+    choice.octree_resolution_m = facts.octree_resolution_m;
+    choice.takes_goal_chooser = static_cast<bool>(reg.attach_goal_chooser);
     choice.make = [&reg, config](const FisheyeCamera& camera, const ExplorerContext& context) {
       return reg.make(config, camera, context);
     };
@@ -218,50 +178,29 @@ MethodEntry registeredEntry(const MethodRegistration& reg) {
 void readSphereMapKeys(MapReader& r, SphereMapConfig& c) { fieldKeys(r, c); }
 
 const std::vector<MethodEntry>& methodTable() {
-  // One entry per method: explorer and config types, `method.type`, summary, keys, Table I rows.
-  static const std::vector<MethodEntry> table = {
-      // MonoSpheres paper, Table I: the full method in the four worlds and its urban ablations.
-      methodEntry<MonoSpheresExplorer, MonoSpheresConfig>(
-          kMonoSpheresType, "MonoSpheres: sphere map, frontier viewpoints, sphere-graph A* (the paper's method)",
-          [](auto& k, MonoSpheresConfig& c) { monoSpheresKeys(k, c); },
-          {"spheres", "reachable_spheres", "viewpoints", "goals_reached", "goals_chosen"},
-          // Collisions (§V-C): two of the six urban runs; none in the cave; not given for the rest.
-          {{"urban", "", 4919, 6081, 6, 2},
-           {"cave", "", 7627, 8006, 3, 0},
-           {"rooftops", "", 3760, 4606, 3},
-           {"sparse", "", 5127, 5150, 3},
-           {"urban", "fff", 2470, 3181, 3},
-           {"urban", "dbof", 2308, 3081, 3},
-           {"urban", "ovde", 747, 862, 3},
-           {"urban", "vpb", 3697, 4175, 3}}),
-      methodEntry<GridExplorer, GridExplorerConfig>(
-          "grid_random", "grid baseline: OctoMap, random goals, grid A* (the paper's Grid-Based rows)",
-          [](auto& k, GridExplorerConfig& c) { gridKeys(k, c); }, {"leaves", "goals_reached", "goals_chosen"},
-          // Collisions (§V-C): one of the six urban runs (a metal rod); none in the cave.
-          {{"urban", "", 1911, 2306, 6, 1},
-           {"cave", "", 3171, 3375, 3, 0},
-           {"rooftops", "", 1360, 1556, 3},
-           {"sparse", "", 2108, 2168, 3}}),
-      methodEntry<StarDiscoveryExplorer, StarDiscoveryConfig>(
-          "star_discovery", "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
-          [](auto& k, StarDiscoveryConfig& c) { fieldKeys(k, c); },
-          {"leaves", "stars", "interesting_cells", "goals_reached"}),
-      methodEntry<PythonMethodStub, PythonMethodConfig>(
-          kPythonMethodType, "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)",
-          [](auto& k, PythonMethodConfig& c) { pythonMethodKeys(k, c); }, {}),
-  };
-  // Then every method registered from its own folder (core/explorer/method_registry.h), by type;
-  // the registrations outlive the table, which points into them.
-  static const std::vector<MethodRegistration> registered = registeredMethods();
+  // Every method registered from its own folder (core/explorer/method_registry.h), the paper's
+  // first in Table I's order, then `python`, then the others by type; the registrations outlive
+  // the table, which points into them.
+  static const std::vector<MethodRegistration> registered = [] {
+    std::vector<MethodRegistration> r = registeredMethods();
+    std::stable_sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.info.listed < b.info.listed; });
+    for (const auto& reg : r)
+      if (reg.info.type == kPythonMethodType)
+        throw MethodRegistryError("method type '" + reg.info.type + "' is registered in " + reg.source_file +
+                                  ", but it names methods written in Python (tools/config/method_table.cc); rename it");
+    return r;
+  }();
   static const std::vector<MethodEntry> all = [] {
-    std::vector<MethodEntry> t = table;
+    std::vector<MethodEntry> t;
+    bool python_listed = false;
     for (const auto& reg : registered) {
-      for (const auto& built_in : table)
-        if (reg.info.type == built_in.type)
-          throw MethodRegistryError("method type '" + reg.info.type + "' is registered twice: built into " +
-                                    "tools/config/method_table.cc and in " + reg.source_file + "; rename the latter");
+      if (!python_listed && reg.info.listed >= kListedAfterThePaper) {
+        t.push_back(pythonEntry());
+        python_listed = true;
+      }
       t.push_back(registeredEntry(reg));
     }
+    if (!python_listed) t.push_back(pythonEntry());
     return t;
   }();
   return all;

@@ -3,9 +3,9 @@
 // function serves both; strict: keys of another method are unknown keys), the factory (through
 // methodChoice<Explorer>() of tools/loop/methods.h) and the Table I rows it answers to. How a
 // method's free space is drawn and scored comes from its free-space geometry, not its name.
-// The paper's methods and `python` are listed here; any other method registers itself from its
-// own folder (core/explorer/method_registry.h) and is appended to the table by type
-// (docs/architecture.md, "How to add an exploration method").
+// Every method registers itself from its own folder (core/explorer/method_registry.h;
+// docs/architecture.md, "How to add an exploration method"); only `python`, the door for methods
+// written in Python, is listed here.
 #pragma once
 
 #include <any>
@@ -14,29 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "core/baseline/grid_explorer.h"
+#include "core/explorer/method_registry.h"
 #include "tools/config/yaml_reader.h"
 #include "tools/config/yaml_writer.h"
 #include "tools/loop/methods.h"
 
 namespace msb {
-
-/// A row of the paper's Table I that a method answers to (mean and max A over its runs, m²; the
-/// runs; the runs that ended in a collision where §V-C says how many). The one source of the
-/// paper's figures: the report's rows and its findings read them from here.
-struct PaperRow {
-  const char* world;         ///< urban, cave, rooftops, sparse
-  const char* switched_off;  ///< "" for the full method, else the one switch an ablation turns off
-  double mean_area_m2, max_area_m2;
-  int runs = 0;         ///< Table I's "Runs"
-  int collisions = -1;  ///< runs ended by a collision (-1: the paper does not say)
-};
-
-/// Outside goal choosers (the goal-only helper, docs/python.md), one per kind a method can take.
-struct GoalChoosers {
-  GoalChooser goals;            ///< grid_random: the next goal(s) at a goal check
-  ViewpointChooser viewpoints;  ///< monospheres: the viewpoint to fly to
-};
 
 /// One registered method.
 struct MethodEntry {

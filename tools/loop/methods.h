@@ -1,8 +1,8 @@
 // The exploration method of a mission as the loop sees it: a type name, a validated config and
 // a factory. MethodChoice is built from a method's config struct by methodChoice<Explorer>(),
-// which is generic. The methods themselves are listed in the method table
-// (tools/config/method_table.cc), one entry each; the one method named here is MonoSpheres, the
-// paper's method, as the default of a C++-built ScenarioSpec (monospheresMethod() below).
+// which is generic. The methods register themselves from their folders
+// (core/explorer/method_registry.h); the one method named here is MonoSpheres, the paper's
+// method, as the default of a scenario (monospheresMethod() below).
 #pragma once
 
 #include <any>

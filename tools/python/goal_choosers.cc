@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "core/baseline/grid_explorer.h"
+#include "core/planning/goal_choice.h"
 #include "tools/config/method_table.h"
 
 namespace msb {
@@ -125,7 +127,7 @@ void attachGoalChooser(Explorer& explorer, const std::string& method_type, py::o
                           takers + "; got '" + method_type + "')");
   }
   auto fn = std::make_shared<py::object>(std::move(goals));
-  entry->attach_goal_chooser(explorer, GoalChoosers{pythonGoalChooser(fn), pythonViewpointChooser(fn)});
+  entry->attach_goal_chooser(explorer, GoalChoosers{std::any(pythonGoalChooser(fn)), std::any(pythonViewpointChooser(fn))});
 }
 
 }  // namespace binding

@@ -55,13 +55,87 @@ class Recorder final : public KeyVisitor {
     body(*this);
   }
   void moved(const char* n, const char*) override { seen[n] = "moved"; }
+  void preset(const char* n, const PresetKey& p) override {
+    seen[n] = "preset of " + std::to_string(p.switches.size());
+    for (const auto& sw : p.switches) *sw.second = true;  // as `published` does
+    if (p.published_settings) p.published_settings();
+  }
 };
 
-const MethodRegistration* probe() {
+// A method whose registration carries everything the paper's methods need: its own keys (a
+// preset, a section of switches, the table), Table I rows, a place in the list, the record's
+// facts (switches()) and an outside goal chooser (setGoalChooser of its own chooser type).
+struct TunedConfig {
+  bool loud = false, fast = true;
+  double gain = 1.0;
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.key("gain", s.gain, Limits::positive());
+  }
+  void validate(ConfigChecker& c) const { checkFields(*this, c); }
+  std::map<std::string, bool> switches() const { return {{"fast", fast}}; }
+};
+using TunedChooser = std::function<int(int)>;
+class TunedExplorer final : public Explorer {
+ public:
+  TunedExplorer(const TunedConfig&, const ExplorerContext&) {}
+  void observe(const SlamPointsFrame&) override {}
+  std::optional<PathCommand> plan(const VehicleState&) override { return std::nullopt; }
+  ExplorerSnapshot snapshot() const override { return {}; }
+  std::map<std::string, double> counters() const override { return {{"chosen", chooser_ ? chooser_(20) : -1}}; }
+  void setGoalChooser(TunedChooser c) { chooser_ = std::move(c); }
+
+ private:
+  TunedChooser chooser_;
+};
+void tunedKeys(TunedConfig& c, KeyVisitor& v) {
+  PresetKey p;
+  p.switches = {{"loud", &c.loud}};
+  p.published_settings = [&c] { c.gain = 9.0; };
+  v.preset("reference_code", p);
+  v.group("switches", [&c](KeyVisitor& s) { s.key("fast", c.fast); });
+  ForwardKeys table(v);
+  TunedConfig::fields(c, table);
+}
+const MethodRegistrar kTuned = registerMethod<TunedExplorer, TunedConfig>(
+    {"zz_tuned", "a tuned test method", {}, {{"urban", "", 100, 200, 3, 1}}, /*listed=*/5}, tunedKeys);
+
+const MethodRegistration* registered(const std::string& type) {
   static const std::vector<MethodRegistration> all = registeredMethods();
   for (const auto& r : all)
-    if (r.info.type == "zz_probe") return &r;
+    if (r.info.type == type) return &r;
   return nullptr;
+}
+const MethodRegistration* probe() { return registered("zz_probe"); }
+
+TEST(MethodRegistry, ARegistrationCarriesKeysRowsPlaceFactsAndChooser) {
+  const MethodRegistration* r = registered("zz_tuned");
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->info.listed, 5);
+  ASSERT_EQ(r->info.paper_rows.size(), 1u);
+  EXPECT_EQ(r->info.paper_rows[0].mean_area_m2, 100);
+  EXPECT_EQ(r->info.paper_rows[0].collisions, 1);
+  // The keys in order: the preset (which turned its switch on and applied its settings), the
+  // switches, the table.
+  std::any config = r->default_config();
+  Recorder rec;
+  r->keys(config, rec);
+  EXPECT_EQ(rec.seen["reference_code"], "preset of 1");
+  EXPECT_EQ(rec.seen["switches"], "group");
+  EXPECT_EQ(rec.seen["fast"], "flag");
+  const TunedConfig& c = std::any_cast<const TunedConfig&>(config);
+  EXPECT_TRUE(c.loud);
+  EXPECT_EQ(c.gain, 3.5);  // the table's key, visited after the preset's 9, wins
+  EXPECT_EQ(r->facts(config).switches, (std::map<std::string, bool>{{"fast", true}}));
+  EXPECT_EQ(r->facts(config).octree_resolution_m, 0.0);
+  // The chooser reaches the explorer as its own type.
+  ASSERT_TRUE(r->attach_goal_chooser);
+  TunedExplorer x(c, ExplorerContext{});
+  EXPECT_EQ(x.counters()["chosen"], -1);
+  r->attach_goal_chooser(x, GoalChoosers{std::any(TunedChooser([](int v) { return v + 1; })), {}});
+  EXPECT_EQ(x.counters()["chosen"], 21);
+  // A method without a setter takes no chooser.
+  EXPECT_FALSE(probe()->attach_goal_chooser);
 }
 
 TEST(MethodRegistry, AStaticRegistrarAddsTheMethodBeforeMain) {
