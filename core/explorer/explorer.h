@@ -47,6 +47,13 @@ class MethodOutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// What a method's observe() or plan() threw, named by the call and its tick (the loop wraps
+/// any error a call throws that does not say so itself: docs/architecture.md).
+class MethodCallError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// An exploration method.
 class Explorer {
  public:

@@ -1,6 +1,7 @@
 #include "tools/loop/perception_pipeline.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -40,6 +41,30 @@ void PerceptionPipeline::run(PerceptionJob& j) {
   j.done = true;
 }
 
+void PerceptionPipeline::namedCall(const char* call, int64_t tick, const std::function<void()>& f) const {
+  // Errors that name themselves pass as they are (an output limit, a configuration error, a
+  // Python method's traceback); any other error of the method is named by its call and tick.
+  const auto named = [&](const char* what) {
+    char at[64];
+    std::snprintf(at, sizeof at, " at t = %.3f s (tick %lld) threw: ", double(tick) / stages_.compute.physics_hz,
+                  static_cast<long long>(tick));
+    return MethodCallError(std::string("the method's ") + call + at + what);
+  };
+  try {
+    f();
+  } catch (const MethodOutputError&) {
+    throw;
+  } catch (const MethodCallError&) {
+    throw;
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw named(e.what());
+  } catch (const std::logic_error& e) {
+    throw named(e.what());
+  }
+}
+
 void PerceptionPipeline::runMethodCalls(PerceptionJob& j) {
   // The calls asked for on this tick join those waiting; each that may start now runs (free:
   // all of them, map update first, on the frame's tick).
@@ -51,11 +76,11 @@ void PerceptionPipeline::runMethodCalls(PerceptionJob& j) {
     const double cpu0 = charged ? threadCpuSeconds() + stages_.explorer->helperCpuSeconds() : 0.0;
     std::optional<PathCommand> cmd;
     if (call->stage == ComputeCall::Stage::kMap) {
-      stages_.explorer->observe(j.points);
+      namedCall("observe()", j.tick, [&] { stages_.explorer->observe(j.points); });
       j.timing.map_ms += msSince(t0);
       j.map_updated = true;
     } else {
-      cmd = stages_.explorer->plan(*j.plan_state);
+      namedCall("plan()", j.tick, [&] { cmd = stages_.explorer->plan(*j.plan_state); });
       j.timing.planning_ms += msSince(t0);
     }
     const double cpu_s = charged ? threadCpuSeconds() + stages_.explorer->helperCpuSeconds() - cpu0 : 0.0;

@@ -111,6 +111,8 @@ class PerceptionPipeline {
   void run(PerceptionJob& j);
   // The explorer's calls that start on the job's tick (tools/loop/compute_clock.h).
   void runMethodCalls(PerceptionJob& j);
+  // Runs a method's call `call` ("plan()") of the job's tick: what it throws names the call.
+  void namedCall(const char* call, int64_t tick, const std::function<void()>& f) const;
   // A call's latency in ticks by the setup's mode; `cpu_s`: its measured CPU time.
   int64_t latencyTicks(ComputeCall& call, double cpu_s);
   void complete(PerceptionJob& j);

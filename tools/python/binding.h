@@ -107,10 +107,10 @@ void fillPoints(PyTick& t, const SlamPointsFrame& f);
 /// A Python exception as text with its traceback (for the run's error record).
 std::string pythonErrorText(py::error_already_set& e);
 
-/// A method error: the Python method raised (its traceback is the message).
-class MethodError : public std::runtime_error {
+/// A method error: the Python method raised (its traceback, which names the call, is the message).
+class MethodError : public MethodCallError {
  public:
-  using std::runtime_error::runtime_error;
+  using MethodCallError::MethodCallError;
 };
 
 /// A method in its own process that stopped answering (`kMethodTimeout`) or whose process ended

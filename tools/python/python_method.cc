@@ -278,6 +278,8 @@ void bindErrors(py::module_& m) {
       (e.status == RunStatus::kMethodTimeout ? timeout : exited)(e.what());
     } catch (const MethodError& e) {
       method_error(e.what());
+    } catch (const MethodCallError& e) {  // a C++ method's call that threw, named by the loop
+      method_error(e.what());
     } catch (const MethodOutputError& e) {
       method_error(e.what());
     }

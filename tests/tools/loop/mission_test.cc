@@ -272,3 +272,56 @@ TEST(MissionChecks, TheFinalMapHoldsThePerceptionStillInFlight) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+// A method whose plan() (or observe()) throws a plain library error once the run is under way.
+class ThrowingExplorer final : public Explorer {
+ public:
+  explicit ThrowingExplorer(bool in_plan) : in_plan_(in_plan) {}
+  void observe(const SlamPointsFrame& f) override {
+    if (!in_plan_ && f.tick >= 500) throw std::out_of_range("map index 7 of 3");
+  }
+  std::optional<PathCommand> plan(const VehicleState& s) override {
+    if (in_plan_ && s.t_s >= 1.0) throw std::runtime_error("no route to the goal");
+    return std::nullopt;
+  }
+  ExplorerSnapshot snapshot() const override { return {}; }
+  std::map<std::string, double> counters() const override { return {}; }
+
+ private:
+  bool in_plan_;
+};
+
+// Before: the run ended with "error: no route to the goal", naming no call. Under the mission
+// defaults (the call runs on the pipeline's second thread) and at latency 0 on one thread.
+TEST(MissionChecks, AnErrorThrownInAMethodsCallNamesTheCallAndItsTick) {
+  const std::string& file = kUrban;
+  for (const bool defaults : {true, false}) {
+    for (const bool in_plan : {true, false}) {
+      std::vector<std::string> sets = {"camera_stream.renderer=blank", "perception.source=oracle", "duration_s=4"};
+      if (!defaults) sets.insert(sets.end(), {"perception.latency_frames=0", "perception.threads=1"});
+      ScenarioSpec spec = loadScenario(file, sets);
+      spec.mission.progress = false;
+      MissionWorld world = prepareMissionWorld(file, spec);
+      Mission mission(spec, world.box, world.truth ? &*world.truth : nullptr,
+                      std::make_unique<ThrowingExplorer>(in_plan));
+      try {
+        while (mission.running()) mission.step();
+        ADD_FAILURE() << "the mission ended without the method's error";
+      } catch (const MethodCallError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(in_plan ? "the method's plan() at t = " : "the method's observe() at t = "),
+                  std::string::npos)
+            << what;
+        EXPECT_NE(what.find(in_plan ? "threw: no route to the goal" : "threw: map index 7 of 3"), std::string::npos)
+            << what;
+        EXPECT_NE(what.find("(tick "), std::string::npos) << what;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace msb
