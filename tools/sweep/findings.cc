@@ -422,6 +422,14 @@ FindingCounts countFindings(const std::vector<FindingResult>& findings) {
 std::string findingsMarkdown(const std::vector<FindingResult>& findings) {
   const FindingCounts c = countFindings(findings);
   std::ostringstream o;
+  // A sweep where none applies (not a Table I sweep): one sentence, not a table of n/a rows.
+  if (!findings.empty() && c.not_evaluated == int(findings.size()) &&
+      std::all_of(findings.begin(), findings.end(), [](const FindingResult& r) { return r.status == "n/a"; })) {
+    o << "\n## Findings\n\nThe paper's " << findings.size()
+      << " findings are claims about its Table I runs (20 simulated minutes in its worlds); none applies to this "
+         "sweep (docs/sweeps.md, \"Reports\"); findings.csv lists them as n/a.\n";
+    return o.str();
+  }
   o << "\n## Findings\n\nThe paper's qualitative findings as checks (tools/sweep/findings.cc): " << c.holds
     << " hold (✓), " << c.fails << " fail (✗), " << c.undecided << " undecided (?), " << c.not_evaluated
     << " not evaluated. A ratio holds when its 95 % bootstrap interval lies on the paper's side of the threshold, "

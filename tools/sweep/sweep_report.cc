@@ -387,7 +387,7 @@ std::string tableHead(const SweepResults& results, const std::vector<std::string
 
 // A sweep that is not Table I: rows ranked by the earned score (docs/metrics.md), then by verified
 // A, the claim beside them. Rows without the figures (records from before them) come last.
-std::string rankedResultsSection(const SweepResults& results, std::vector<ReportRow> rows) {
+std::vector<ReportRow> rankedRows(std::vector<ReportRow> rows) {
   std::stable_sort(rows.begin(), rows.end(), [](const ReportRow& a, const ReportRow& b) {
     const auto key = [](const ReportRow& r) {
       return std::make_tuple(r.earned_m3.count > 0, r.earned_m3.count ? r.earned_m3.mean : 0.0,
@@ -395,6 +395,18 @@ std::string rankedResultsSection(const SweepResults& results, std::vector<Report
     };
     return key(a) > key(b);
   });
+  return rows;
+}
+
+// A run's earned score and verified A, as the Runs table of a ranked report shows them.
+std::string earnedCells(const ReportRun& r) {
+  const nlohmann::json& cov = r.metrics["coverage"];
+  const bool verified = cov.is_object() && cov.contains("verified_area_m2") && cov["verified_area_m2"].is_number();
+  return (r.record && r.record->earned_m3 ? fixed(*r.record->earned_m3, 0) : std::string("—")) + " | " +
+         (verified ? fixed(cov["verified_area_m2"].get<double>(), 0) : std::string("—")) + " | ";
+}
+
+std::string rankedResultsSection(const SweepResults& results, const std::vector<ReportRow>& rows) {
   std::ostringstream o;
   o << "## Results\n\nRanked by the earned score: the truly free volume of the box a method declared where its "
        "camera, inside the box, came within 10 m, less what it declared inside obstacles or where its camera "
@@ -605,7 +617,7 @@ std::string pairedSection(const std::vector<ReportRow>& all_rows, bool verified)
   }
   if (body.str().empty()) return "";
   return std::string("\n## Paired comparisons\n\nEach row's mean ") + (verified ? "verified A" : "A") +
-         " over its world's first row's: independently (each row's "
+         " over its world's first row's (in a ranked report, the leader's): independently (each row's "
          "seeds resampled on their own) and paired (runs with the same seed resampled together; r: the correlation "
          "of the pairs). Runs with the same seed share the world and every noise stream's seed; the pairing is "
          "tightest between a method and its own ablation, which fly the same until the switch first acts "
@@ -682,15 +694,20 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     }
     o << "\n";
   }
-  o << tableOneSection(results, rows) << verifiedSection(results, rows) << beyondPaperSection(results, rows)
-    << frontEndSection(results, rows) << saturationSection(rows) << pairedSection(rows, !isTableOneSweep(results));
-  // Every run, with its collision.
-  o << "\n## Runs\n\n| run | status | A (m²) | box share | time (s) | tracked (mean) | drift (m) | collision |\n"
-       "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  // Every table in one order: Table I's, or (any other sweep) the ranking of the Results.
+  const bool table_one = isTableOneSweep(results);
+  const std::vector<ReportRow> ordered = table_one ? rows : rankedRows(rows);
+  o << tableOneSection(results, ordered) << verifiedSection(results, ordered) << beyondPaperSection(results, ordered)
+    << frontEndSection(results, ordered) << saturationSection(ordered) << pairedSection(ordered, !table_one);
+  // Every run, with its collision (and what it earned, in a ranked report).
+  o << "\n## Runs\n\n| run | status | A (m²) | " << (table_one ? "" : "earned (m³) | verified A (m²) | ")
+    << "box share | time (s) | tracked (mean) | drift (m) | collision |\n"
+    << "| --- | --- | --- | " << (table_one ? "" : "--- | --- | ") << "--- | --- | --- | --- | --- |\n";
   for (const ReportRun& r : results.runs) {
     const nlohmann::json& m = r.metrics;
     if (!m.is_object()) {
-      o << "| " << mdText(r.id) << " | " << mdText(r.status) << " | — | — | — | — | — | — |\n";
+      o << "| " << mdText(r.id) << " | " << mdText(r.status) << " | — | — | — | — | — | — |"
+        << (table_one ? "" : " — | — |") << "\n";
       continue;
     }
     std::string hit = "—";
@@ -710,8 +727,9 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     }
     const auto& cov = m["coverage"];
     o << "| " << mdText(r.id) << " | " << mdText(m.value("status", std::string("?"))) << " | "
-      << fixed(number(cov, "area_m2"), 0) << " | "
-      << (cov.is_object() && cov.contains("box_share") && cov["box_share"].is_number()
+      << fixed(number(cov, "area_m2"), 0) << " | ";
+    if (!table_one) o << earnedCells(r);
+    o << (cov.is_object() && cov.contains("box_share") && cov["box_share"].is_number()
               ? fixed(cov["box_share"].get<double>(), 2)
               : "—")
       << " | " << fixed(number(m, "sim_time_s"), 0) << " | "

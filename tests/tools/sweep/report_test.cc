@@ -267,9 +267,24 @@ TEST(SweepReport, ACustomSweepShowsNoPaperColumnAndNoVacuousFinding) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("{min, max}: a range, not an interval"), std::string::npos) << md;
-  EXPECT_NE(md.find("Each row's mean verified A over its world's first row's"), std::string::npos) << md;
-  EXPECT_NE(md.find("| urban | ms / mine |"), std::string::npos) << md;
+  EXPECT_NE(md.find("Each row's mean verified A over its world's first row's (in a ranked report, the leader's)"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| urban | mine / ms |"), std::string::npos) << md;
   EXPECT_NE(md.find("## Verified coverage and map accuracy"), std::string::npos) << md;
+  // Every later table in the Results' order (before: sweep order, mine first).
+  for (const char* section : {"## Verified coverage", "## Beyond the paper"}) {
+    const size_t at = md.find(section);
+    ASSERT_NE(at, std::string::npos) << section;
+    EXPECT_LT(md.find("| urban | ms |", at), md.find("| urban | mine |", at)) << section;
+  }
+  // The Runs table says what each run earned and verified.
+  EXPECT_NE(md.find("| run | status | A (m²) | earned (m³) | verified A (m²) | box share |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| urban-mine-s1 | completed | 300 | -40 | 120 |"), std::string::npos) << md;
+  // No table of n/a findings (before: nine rows of "not a Table I sweep").
+  const std::string findings_md = findingsMarkdown(evaluateFindings(s, rows));
+  EXPECT_EQ(findings_md.find("| – n/a |"), std::string::npos) << findings_md;
+  EXPECT_NE(findings_md.find("none applies to this sweep"), std::string::npos) << findings_md;
   // (Verified / claimed 0.40 is below 0.75: flagged.)
   EXPECT_NE(md.find("| urban | mine | 300 {300, 300} | 120 {120, 120} | 0.40 {0.40, 0.40} ⚠ |"), std::string::npos)
       << md;
