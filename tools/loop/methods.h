@@ -69,6 +69,20 @@ MethodChoice methodChoice(std::string type, const Config& config) {
   return m;
 }
 
+/// The method as reports name it: its type, each ablation switch that is off ("monospheres
+/// -ovde"), and the published code's defects that are on ("+published" when all are).
+inline std::string methodLabel(const MethodChoice& m) {
+  std::string label = m.type, on;
+  for (const auto& [name, value] : m.switches)
+    if (!value) label += " -" + name;
+  bool all = true;
+  for (const auto& [name, value] : m.reference_code) {
+    all = all && value;
+    if (value) on += " +" + name;
+  }
+  return label + (all && !on.empty() ? " +published" : on);
+}
+
 /// The `method.type` of a method written in Python (docs/python.md).
 inline constexpr char kPythonMethodType[] = "python";
 

@@ -83,9 +83,9 @@ void printRunSummary(const ScenarioSpec& spec, const MissionResult& r, const nlo
   if (!cov["box_share"].is_null())
     std::snprintf(share, sizeof(share), ", %d %% of explorable", int(100 * cov["box_share"].get<double>()));
   std::printf(
-      "run %s: %s after %.0f s simulated (%.0f s wall, RTF %.2f); A = %.0f m² (box %.0f m²%s), "
+      "run %s (%s): %s after %.0f s simulated (%.0f s wall, RTF %.2f); A = %.0f m² (box %.0f m²%s), "
       "%.0f m flown; hash %s -> %s\n",
-      spec.name.c_str(), runStatusName(r.flight.status), r.flight.sim_time_s, r.flight.wall_time_s,
+      spec.name.c_str(), methodLabel(spec.method).c_str(), runStatusName(r.flight.status), r.flight.sim_time_s, r.flight.wall_time_s,
       r.flight.realTimeFactor(), cov["area_m2"].get<double>(), cov["area_box_m2"].get<double>(), share,
       r.flight.distance_flown_m, hexHash(r.run_hash).c_str(), dir.c_str());
   if (r.flight.collision)
@@ -171,10 +171,14 @@ int runRunCommand(int argc, char** argv) {
                        {"camera_scale", spec.flight.camera.scale},
                        {"scenario", file}});
   std::unique_ptr<RunVideo> video;
-  if (spec.video.enabled)
-    video = std::make_unique<RunVideo>(out.staging() / "video.mp4", spec.video, spec.name, spec.flight.duration_s, box,
+  if (spec.video.enabled) {
+    // The caption names the run and its method, and shows the method's progress counters.
+    video = std::make_unique<RunVideo>(out.staging() / "video.mp4", spec.video,
+                                       spec.name + " (" + methodLabel(spec.method) + ")", spec.flight.duration_s, box,
                                        truth ? &*truth : nullptr, mission.loop().camera().width(),
                                        mission.loop().camera().height());
+    if (const MethodEntry* e = findMethod(spec.method.type)) video->setCaptionCounters(e->progress_counters);
+  }
   MissionResult r;
   double video_s = 0;
   try {

@@ -253,10 +253,12 @@ class PyMission {
     char dir[] = "/tmp/msbench_video.XXXXXX";
     if (!mkdtemp(dir)) throw std::runtime_error("video: cannot create a temporary directory in /tmp");
     video_dir_ = dir;
-    video_ = std::make_unique<RunVideo>(video_dir_ / "video.mp4", scenario_.spec.video, scenario_.spec.name,
+    video_ = std::make_unique<RunVideo>(video_dir_ / "video.mp4", scenario_.spec.video,
+                                        scenario_.spec.name + " (" + methodLabel(scenario_.spec.method) + ")",
                                         scenario_.spec.flight.duration_s, world_->box,
                                         world_->truth ? &*world_->truth : nullptr, mission_->loop().camera().width(),
                                         mission_->loop().camera().height());
+    if (const MethodEntry* e = findMethod(scenario_.spec.method.type)) video_->setCaptionCounters(e->progress_counters);
     video_ticks_ = video_->periodTicks(mission_->physicsHz());
   }
 

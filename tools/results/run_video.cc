@@ -200,8 +200,10 @@ cv::Mat RunVideo::compose(const CameraFrame* frame, const TopdownView& view, con
   std::snprintf(text, sizeof(text), "%s   t = %.0f / %.0f s   A = %.0f m2 (%.0f m2 in box)%s%s", name_.c_str(),
                 view.t_s, duration_s_, view.columns.areaM2(), in_box, finished_frame_ ? "   " : "",
                 finished_frame_ ? runStatusName(view.status) : "");
-  cv::putText(img, text, cv::Point(10, caption_h_ - 10), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1,
-              cv::LINE_AA);
+  cv::putText(img, text, cv::Point(10, 22), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  // Second line: the method's progress counters.
+  cv::putText(img, counters_text_, cv::Point(10, caption_h_ - 9), cv::FONT_HERSHEY_SIMPLEX, 0.5,
+              cv::Scalar(200, 200, 200), 1, cv::LINE_AA);
   return img;
 }
 
@@ -245,6 +247,7 @@ void RunVideo::abandon(const std::string& why) {
 
 void RunVideo::addFrame(const Mission& mission) {
   const ExplorerSnapshot snap = mission.explorer().snapshot();  // waits for the perception in flight
+  setCountersText(mission.explorer().counters());
   const FlightResult& flight = mission.loop().result();
   const std::shared_ptr<const CameraFrame> frame = mission.loop().sharedFrame();
   const double t_s = frame ? frame->t_s : 0.0;
@@ -252,8 +255,20 @@ void RunVideo::addFrame(const Mission& mission) {
   send(compose(frame.get(), view, nullptr));
 }
 
+void RunVideo::setCountersText(const std::map<std::string, double>& counters) {
+  counters_text_.clear();
+  for (const std::string& name : caption_counters_) {
+    const auto it = counters.find(name);
+    if (it == counters.end()) continue;
+    char value[48];
+    std::snprintf(value, sizeof value, "%s%s %.0f", counters_text_.empty() ? "" : "   ", name.c_str(), it->second);
+    counters_text_ += value;
+  }
+}
+
 void RunVideo::addFinalFrames(const MissionResult& r, const CameraFrame* last_frame) {
   finished_frame_ = true;
+  setCountersText(r.counters);
   const TopdownView view{
       box_, r.flight.trajectory, r.final_map, r.columns, r.flight.collision, r.flight.sim_time_s, r.flight.status};
   const cv::Mat img = compose(last_frame, view, truth_);

@@ -7,7 +7,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -29,7 +31,7 @@ std::string findFfmpeg();
 /// error, a failed check), it kills the encoder and removes its directory.
 class RunVideo {
  public:
-  /// Starts the encoder. `name` heads the caption; `box` fixes the map panel's extent; `truth`
+  /// Starts the encoder. `name` heads the caption (the run's name and method: runCaption()); `box` fixes the map panel's extent; `truth`
   /// (may be null) draws the true obstacles faint beneath the map; `camera_w/h` is the fisheye
   /// image size. Throws std::runtime_error when ffmpeg is missing or cannot start.
   RunVideo(const std::filesystem::path& file, const VideoSettings& settings, const std::string& name, double duration_s,
@@ -55,6 +57,8 @@ class RunVideo {
   /// Gives up the video (kills the encoder, removes what it wrote: its space goes back to the
   /// run's other files); `why` becomes its error.
   void abandon(const std::string& why);
+  /// The method's counters the caption's second line shows (its progress counters), by name.
+  void setCaptionCounters(std::vector<std::string> names) { caption_counters_ = std::move(names); }
   /// Called about every 100 ms while waiting on the encoder; what it throws ends the wait.
   void setWaitHook(std::function<void()> hook) { wait_hook_ = std::move(hook); }
   /// Seconds a write to the encoder, or its exit, may take before it counts as stuck.
@@ -68,6 +72,8 @@ class RunVideo {
   const VideoSettings& settings() const { return settings_; }
 
  private:
+  // The caption's counters line from `counters` (caption_counters_ in order).
+  void setCountersText(const std::map<std::string, double>& counters);
   cv::Mat compose(const CameraFrame* frame, const TopdownView& view, const WorldTruth* truth);
   void send(const cv::Mat& img);
   // Closes the encoder's input and reaps it within kStallLimitS (kill: at once).
@@ -83,7 +89,9 @@ class RunVideo {
   Aabb box_;
   const WorldTruth* truth_ = nullptr;
   TopdownCanvas background_;  // truth footprints and grid, drawn once
-  int width_ = 0, height_ = 0, caption_h_ = 32, camera_panel_w_ = 0;
+  int width_ = 0, height_ = 0, caption_h_ = 52, camera_panel_w_ = 0;
+  std::vector<std::string> caption_counters_;  // the counters the caption shows
+  std::string counters_text_;                  // their values at the latest frame
   int frames_ = 0;
   int fd_ = -1;    // the encoder's stdin
   pid_t pid_ = 0;  // the encoder

@@ -138,7 +138,14 @@ void drawMapMarks(TopdownCanvas& canvas, const TopdownView& r) {
     if (p.z() < 0.5) cv::circle(img, px(p), 1, cv::Scalar(185, 185, 185), -1);
   for (const auto& p : r.map.obstacles)
     if (p.z() >= 0.5) cv::circle(img, px(p), 1, cv::Scalar(20, 20, 20), -1);
-  for (const auto& p : r.map.frontiers) cv::circle(img, px(p), 3, cv::Scalar(200, 40, 200), -1);
+  // Frontiers (magenta): at most 0.3 m across on the ground and translucent, so the explored
+  // columns beneath stay visible on a coarse canvas (the video's) with thousands of them.
+  if (!r.map.frontiers.empty()) {
+    const int radius = std::clamp(int(std::lround(0.3 / canvas.mpp)), 1, 3);
+    cv::Mat marks = img.clone();
+    for (const auto& p : r.map.frontiers) cv::circle(marks, px(p), radius, cv::Scalar(200, 40, 200), -1);
+    cv::addWeighted(marks, 0.6, img, 0.4, 0, img);
+  }
   auto arrow = [&](const ExplorerSnapshot::Pose2& v, const cv::Scalar& col) {
     const Vec3 tip = v.position + 2.0 * Vec3(std::cos(v.yaw_rad), std::sin(v.yaw_rad), 0);
     cv::arrowedLine(img, px(v.position), px(tip), col, 2, cv::LINE_AA, 0, 0.4);

@@ -153,3 +153,5 @@ def test_a_piped_python_run_prints_the_command_lines_progress_and_summary(tmp_pa
     cpp_line = next(l for l in cpp.stdout.splitlines() if " after " in l)
     py_line = next(l for l in py.stdout.splitlines() if " after " in l)
     assert "s wall, RTF " in py_line and shape(py_line) == shape(cpp_line)
+    # Each names its method beside the run (before: the scenario's name alone).
+    assert cpp_line.startswith("run hover_turn (hover_turn): ") and py_line.startswith("run hover_turn_python (python): ")

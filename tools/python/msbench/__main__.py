@@ -74,11 +74,21 @@ def run(argv):
     return 0
 
 
+def method_label(r):
+    """The method as msbench run's summary names it (methodLabel in tools/loop/methods.h): its type,
+    each ablation switch that is off, the published code's defects that are on."""
+    label = r.get("method", "?") + "".join(f" -{k}" for k, v in sorted(r.get("switches", {}).items()) if v is False)
+    on = [k for k, v in sorted(r.get("reference_code", {}).items()) if v is True]
+    if on and len(on) == len(r.get("reference_code", {})):
+        return label + " +published"
+    return label + "".join(f" +{k}" for k in on)
+
+
 def summary_line(r, out):
     """The result line `msbench run` prints, from a run's metrics (and its collision line)."""
     cov = r["coverage"]
     share = "" if cov.get("box_share") is None else f", {int(100 * cov['box_share'])} % of explorable"
-    line = (f"run {r['name']}: {r['status']} after {r['sim_time_s']:.0f} s simulated "
+    line = (f"run {r['name']} ({method_label(r)}): {r['status']} after {r['sim_time_s']:.0f} s simulated "
             f"({r['wall_time_s']:.0f} s wall, RTF {r['real_time_factor']:.2f}); A = {cov['area_m2']:.0f} m² "
             f"(box {cov['area_box_m2']:.0f} m²{share}), {r['distance_flown_m']:.0f} m flown; "
             f"hash {r['determinism_hash']} -> {out}")
