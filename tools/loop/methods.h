@@ -94,6 +94,7 @@ struct PythonMethodConfig {
   std::string path;                ///< a directory put first on sys.path (relative: to the scenario file)
   std::string params_yaml = "{}";  ///< the method's own keys (a YAML map), the factory's keyword arguments
   double call_budget_s = 60.0;     ///< wall-clock seconds each call of its process may take (a method only)
+  double memory_limit_mib = 4096;  ///< its process's address space (RLIMIT_AS; a method only)
 
   /// A method's keys, each once (`params` is read in tools/config; a goal chooser reads entry,
   /// path and params only).
@@ -102,6 +103,7 @@ struct PythonMethodConfig {
     v.key("entry", s.entry);
     v.key("path", s.path);
     v.key("call_budget_s", s.call_budget_s, Limits::range(0.1, 86400.0));
+    v.key("memory_limit_mib", s.memory_limit_mib, Limits::range(256.0, 1048576.0));
   }
 
   /// Records invalid fields.

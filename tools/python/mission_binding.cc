@@ -96,7 +96,7 @@ class PyMission {
       const auto& c = std::any_cast<const PythonMethodConfig&>(scenario_.spec.method.config);
       const py::module_ methods = py::module_::import("msbench.methods");
       method = methods.attr("factory_of")(c.entry, c.path, yamlToPython(YAML::Load(c.params_yaml)), scenario_.file,
-                                          c.call_budget_s);
+                                          c.call_budget_s, c.memory_limit_mib);
       // The module's file, found without importing it: the method runs in its own process only.
       const py::object file =
           methods.attr("module_file")(c.entry, methods.attr("method_dir")(c.path, scenario_.file, "method"));

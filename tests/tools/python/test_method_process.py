@@ -133,6 +133,58 @@ def test_a_method_that_hangs_ends_the_run_as_method_timeout_within_its_budget(tm
     assert "method_timeout" in r.stderr or "did not answer" in r.stderr
 
 
+def _processes_with(marker):
+    """Pids of the processes whose command line holds `marker`."""
+    found = []
+    for pid in os.listdir("/proc"):
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                if marker.encode() in f.read():
+                    found.append(int(pid))
+        except (OSError, ValueError):
+            pass
+    return found
+
+
+def test_a_daemon_the_method_starts_does_not_outlive_the_run(tmp_path):
+    # A double-forked daemon in a session of its own escaped the method's process group before:
+    # it kept running after msbench had exited. Now it lives in the host's PID namespace.
+    marker = f"msbench-daemon-{os.getpid()}-{time.monotonic_ns()}"
+    init = textwrap.indent(textwrap.dedent(f"""
+        pid = os.fork()
+        if pid == 0:
+            os.setsid()
+            if os.fork() == 0:
+                os.execv(sys.executable, [sys.executable, "-c", "import time; time.sleep(3600)", "{marker}"])
+            os._exit(0)
+        os.waitpid(pid, 0)
+        time.sleep(0.5)
+    """), " " * 8)
+    out = tmp_path / "run"
+    r = run(scenario(tmp_path, init=init), out)
+    assert r.returncode == 0, r.stderr
+    assert "own PID namespace" in metrics(out)["method_confinement"], metrics(out)["method_confinement"]
+    deadline = time.monotonic() + 10
+    while _processes_with(marker) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    left = _processes_with(marker)
+    for pid in left:
+        os.kill(pid, signal.SIGKILL)
+    assert not left, f"the daemon outlived the run: {left}"
+
+
+def test_a_method_past_its_memory_limit_ends_the_run_as_method_exited(tmp_path):
+    out = tmp_path / "run"
+    file = scenario(tmp_path, plan="        self.hog = bytearray(2 << 30)")
+    with open(file, "a") as f:
+        f.write("  memory_limit_mib: 512\n")
+    r = run(file, out)
+    assert r.returncode == 1, r.stderr
+    m = metrics(out)
+    assert m["status"] == "method_exited", m
+    assert "memory limit (512 MiB, method.memory_limit_mib) during plan()" in m["error"], m["error"]
+
+
 def test_a_factory_that_hangs_writes_the_method_timeout_record(tmp_path):
     # Before: a 20-line traceback and no record at all (a sweep saw a run without metrics.json).
     out = tmp_path / "run"

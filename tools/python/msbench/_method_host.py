@@ -3,7 +3,8 @@
 msbench starts it as `python3 -E -P _method_host.py RFD WFD` and never imports it: this file
 imports nothing of msbench. It confines itself (Linux Landlock: read-only to the Python
 installation, /etc and the method's own directory; writes only in its scratch directory; no
-network; no signals or abstract sockets outside), then imports the method and answers msbench's
+network; no signals or abstract sockets outside; a memory limit; every process it starts in a
+PID namespace that dies with it), then imports the method and answers msbench's
 calls over two pipes. msbench -> host: pickled (op, argument) messages; host -> msbench: JSON
 only (msbench never unpickles what a method wrote). Every message is an 8-byte little-endian
 length and its bytes.
@@ -28,6 +29,46 @@ _FS_TRUNCATE, _FS_IOCTL_DEV = 1 << 14, 1 << 15
 _NET_ALL = (1 << 0) | (1 << 1)                  # bind and connect TCP (ABI 4)
 _SCOPE_ALL = (1 << 0) | (1 << 1)                # abstract unix sockets and signals (ABI 6)
 _FILE_RIGHTS = _FS_EXECUTE | _FS_WRITE_FILE | _FS_READ_FILE | _FS_TRUNCATE | _FS_IOCTL_DEV
+_CLONE_NEWUSER, _CLONE_NEWPID = 0x10000000, 0x20000000
+
+
+def _pid_namespace_init(host_alive):
+    """The PID namespace's init (the host's first child): reaps what is orphaned in it and ends
+    with the host (SIGKILL at its death, or `host_alive` read to its end); the kernel then kills
+    every process left in the namespace."""
+    os.closerange(3, host_alive)  # not the host's pipes: msbench must see them close with the host
+    os.closerange(host_alive + 1, 1 << 16)
+    import select
+    while True:
+        try:
+            while os.waitpid(-1, os.WNOHANG)[0] > 0:
+                pass
+        except ChildProcessError:
+            pass
+        if select.select([host_alive], [], [], 1.0)[0]:
+            os._exit(0)
+
+
+def own_pid_namespace(libc):
+    """Puts every process the method starts into a PID namespace of its own whose init dies with
+    the host, so that nothing the method started (a double-forked daemon included) outlives the
+    run. Unprivileged: in a user namespace mapping the user to itself. Returns "" or why not."""
+    if os.geteuid() != 0:
+        uid, gid = os.geteuid(), os.getegid()
+        if libc.unshare(_CLONE_NEWUSER) != 0:
+            return f"unshare(CLONE_NEWUSER): {os.strerror(ctypes.get_errno())}"
+        for name, text in (("setgroups", "deny"), ("uid_map", f"{uid} {uid} 1"), ("gid_map", f"{gid} {gid} 1")):
+            with open(f"/proc/self/{name}", "w") as f:
+                f.write(text)
+    if libc.unshare(_CLONE_NEWPID) != 0:
+        return f"unshare(CLONE_NEWPID): {os.strerror(ctypes.get_errno())}"
+    host_alive, keep = os.pipe()  # `keep` stays open in the host while it lives
+    if os.fork() == 0:
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        os.close(keep)
+        _pid_namespace_init(host_alive)
+    os.close(host_alive)
+    return ""
 
 
 def _fs_rights(abi):
@@ -213,6 +254,9 @@ def _serve(host, method):
         op, arg = _recv(host.rfd)
         try:
             answer = _plain(calls[op](arg), f"{op}()")
+        except MemoryError:  # its memory limit (RLIMIT_AS): the process's end, not the method's error
+            _send(host.wfd, {"memory": f"{op}()"})
+            os._exit(1)
         except BaseException as e:  # noqa: B902 — SystemExit and KeyboardInterrupt are method errors here
             _send(host.wfd, {"error": "".join(traceback.format_exception(e))})
             continue
@@ -229,6 +273,9 @@ def main():
     init = _recv(rfd)
     limit = init["file_limit_bytes"]
     resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    memory = init["memory_limit_bytes"]
+    resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+    no_namespace = own_pid_namespace(libc) if init["confine"] else "not confined"
     os.chdir(init["scratch"])
     abi = confine(init["read_exec"], init["read_only"], init["scratch"], init["excluded"]) if init["confine"] else 0
     # The method: its directory first on sys.path, nothing of msbench's.
@@ -253,7 +300,7 @@ def main():
         _send(wfd, {"error": "".join(traceback.format_exception(e))})
         return
     _send(wfd, {"ready": {"snapshot": hasattr(method, "snapshot"), "counters": hasattr(method, "counters"),
-                          "landlock_abi": abi}})
+                          "landlock_abi": abi, "no_pid_namespace": no_namespace}})
     try:
         _serve(host, method)
     except EOFError:

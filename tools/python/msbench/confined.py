@@ -78,8 +78,8 @@ def _allowed_reads(method_dir):
 class _Worker:
     """One method process and its pipes."""
 
-    def __init__(self, entry, method_dir, params, context, budget_s, scenario_file):
-        self.budget_s, self.entry = budget_s, entry
+    def __init__(self, entry, method_dir, params, context, budget_s, scenario_file, memory_limit_mib=4096):
+        self.budget_s, self.entry, self.memory_limit_mib = budget_s, entry, memory_limit_mib
         # A method directory that holds msbench is refused before any process starts.
         excluded = _excluded()
         if method_dir and any(e == method_dir or e.startswith(method_dir.rstrip("/") + "/") for e in excluded):
@@ -109,7 +109,8 @@ class _Worker:
                                            [self.to_host, self.from_host])
         self._send({"entry": entry, "path": method_dir, "params": params, "context": context,
                     "read_exec": read_exec, "read_only": read_only, "scratch": self.scratch,
-                    "excluded": excluded, "confine": True, "file_limit_bytes": _FILE_LIMIT_BYTES})
+                    "excluded": excluded, "confine": True, "file_limit_bytes": _FILE_LIMIT_BYTES,
+                    "memory_limit_bytes": int(memory_limit_mib) << 20})
         first = self._answer("the factory", 4 * budget_s)
         if "config" in first:
             self.close()
@@ -217,6 +218,9 @@ class _Worker:
             raise MethodExited(f"the method's process is gone ({op}() asked after the run ended)")
         self._send((op, arg))
         answer = self._answer(f"{op}()")
+        if "memory" in answer:
+            raise self._fail(MethodExited, f"the method's process reached its memory limit ({self.memory_limit_mib:g} "
+                                           f"MiB, method.memory_limit_mib) during {answer['memory']}; it was stopped")
         if "error" in answer:
             raise RuntimeError("the method raised in its own process:\n" + answer["error"])
         return answer["ok"]
@@ -285,8 +289,11 @@ class _Proxy:
     def __init__(self, worker):
         self._worker = worker
         self.msbench_process_id = worker.proc.pid  # its CPU time is charged (timing.compute: charged)
-        self.msbench_confinement = (f"own process, Landlock ABI {worker.ready['landlock_abi']}"
-                                    if worker.ready["landlock_abi"] else "own process, unconfined (no Landlock)")
+        namespace = worker.ready.get("no_pid_namespace", "")
+        self.msbench_confinement = ((f"own process, Landlock ABI {worker.ready['landlock_abi']}"
+                                     if worker.ready["landlock_abi"] else "own process, unconfined (no Landlock)") +
+                                    f", {worker.memory_limit_mib:g} MiB" +
+                                    (", own PID namespace" if not namespace else f", no PID namespace ({namespace})"))
         if worker.ready["snapshot"]:
             self.snapshot = lambda: worker.call("snapshot")
         if worker.ready["counters"]:
@@ -304,12 +311,12 @@ class _Proxy:
         return self._worker.call("free_space")
 
 
-def factory(entry, method_dir, params, budget_s, scenario_file):
+def factory(entry, method_dir, params, budget_s, scenario_file, memory_limit_mib=4096):
     """A factory(context) that starts the method's process and returns the proxy."""
 
     def build(context):
         ctx = {k: getattr(context, k) for k in ("box_min", "box_max", "start_position", "start_yaw_rad", "start_pose",
                                                 "seed")}
-        return _Proxy(_Worker(entry, method_dir, dict(params or {}), ctx, budget_s, scenario_file))
+        return _Proxy(_Worker(entry, method_dir, dict(params or {}), ctx, budget_s, scenario_file, memory_limit_mib))
 
     return build

@@ -61,14 +61,14 @@ def chooser_of(entry, path, params, scenario_file):
     return chooser
 
 
-def factory_of(entry, path, params, scenario_file, call_budget_s=60.0):
+def factory_of(entry, path, params, scenario_file, call_budget_s=60.0, memory_limit_mib=4096):
     """The factory(context) of a scenario's Python method, its params bound: the method runs in
     its own confined process (msbench.confined), imported there and nowhere else. A bad path or
     entry raises ConfigError naming the key."""
     from . import confined
     full = method_dir(path, scenario_file, "method")
     check_importable(entry, scenario_file, "method")
-    return confined.factory(entry, full, dict(params or {}), call_budget_s, scenario_file)
+    return confined.factory(entry, full, dict(params or {}), call_budget_s, scenario_file, memory_limit_mib)
 
 
 def method_dir(path, scenario_file, key):
