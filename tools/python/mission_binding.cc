@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -218,6 +219,7 @@ class PyMission {
   // Writes the files `msbench run` writes into `dir` (staged: whole or not at all); after a
   // method error, config.yaml and the error record.
   std::string write(const std::string& dir, bool overwrite) {
+    refuseReentry("write()");
     if (interrupted_) throw std::runtime_error("the mission was interrupted: nothing to write");
     // The output may not be, hold or lie in what the mission reads: the scenario, its base: chain,
     // its world file, the Python method's or chooser's module (before: overwrite=True deleted them).
@@ -295,8 +297,14 @@ class PyMission {
   // Runs `f`; a method error (or any failure of the loop) ends the run with status error.
   template <class F>
   void guarded(F&& f) {
+    refuseReentry("step() or run()");
     if (interrupted_) throw std::runtime_error("the mission was interrupted: it cannot go on or be written");
     if (error_) throw std::runtime_error("the mission ended with an error: " + *error_);
+    struct Stepping {  // while the loop runs: a call back into the mission is refused
+      std::atomic<bool>& flag;
+      explicit Stepping(std::atomic<bool>& f) : flag(f) { flag = true; }
+      ~Stepping() { flag = false; }
+    } stepping{stepping_};
     try {
       f();
     } catch (py::error_already_set& e) {
@@ -364,7 +372,17 @@ class PyMission {
     scenario_.spec.method.goal_chooser = spec.method.goal_chooser;
   }
 
+  // A method or goal chooser that calls its own mission back (step, run, result, write) while the
+  // loop waits for it would deadlock: refused, naming the call (the chooser's error ends the run).
+  void refuseReentry(const char* call) const {
+    if (stepping_)
+      throw std::runtime_error(std::string("Mission.") + call +
+                               " called while the mission is stepping, from its own method or goal chooser: a "
+                               "chooser decides from the request it is given and never steps the mission");
+  }
+
   const MissionResult& finished() {
+    refuseReentry("result(), hash or write()");
     if (error_) throw std::runtime_error("the mission ended with an error (write() records it): " + *error_);
     if (!result_) {
       if (mission_->running())
@@ -422,6 +440,7 @@ class PyMission {
   bool video_done_ = false;
   std::optional<std::string> error_;            // the run ended with an error (a Python method raised)
   RunStatus error_status_ = RunStatus::kError;  // or its process failed (method_timeout, method_exited)
+  std::atomic<bool> stepping_{false};           // the loop runs (guarded): re-entry is refused
   bool interrupted_ = false;                    // a KeyboardInterrupt ended it: nothing to write
   bool stuck_ = false;                          // interrupted with a method call still running
   int64_t last_tick_ = 0;

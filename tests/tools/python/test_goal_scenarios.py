@@ -6,6 +6,8 @@ import os
 import subprocess
 import textwrap
 
+import pytest
+
 import msbench
 from conftest import FAST, MSBENCH_BIN, SOURCE_DIR
 
@@ -103,3 +105,24 @@ def test_an_importable_in_process_chooser_is_recorded_as_a_goals_section_and_rep
     assert replay.returncode == 0, replay.stderr
     assert f"hash {m.hash}" in replay.stdout
 
+
+
+@pytest.mark.parametrize("threads", [[], ["perception.latency_frames=0", "perception.threads=1"]])
+@pytest.mark.parametrize("call", ["step", "result", "write"])
+def test_a_chooser_that_calls_its_own_mission_back_is_refused_not_hung(tmp_path, call, threads):
+    # Before: the chooser's mission.step(1) deadlocked the run (no output after 120 s). Under the
+    # mission defaults (the chooser on the pipelined loop's second thread) and on one thread.
+    scenario = msbench.Scenario.load(os.path.join(SOURCE_DIR, "scenarios/missions/grid_random.yaml"),
+                                     set=FAST + ["world=urban", "duration_s=20"] + threads)
+    holder = {}
+
+    def chooser(request):
+        m = holder["mission"]
+        m.step(1) if call == "step" else m.result() if call == "result" else m.write(str(tmp_path / "w"))
+        return None
+
+    mission = msbench.Mission(scenario, goals=chooser)
+    holder["mission"] = mission
+    with pytest.raises(msbench.MethodError, match="called while the mission is stepping"):
+        mission.run(progress=False)
+    assert mission.status == "error" and not (tmp_path / "w").exists()
