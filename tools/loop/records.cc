@@ -43,17 +43,21 @@ const char* runStatusName(RunStatus s) {
       return "method_timeout";
     case RunStatus::kMethodExited:
       return "method_exited";
+    case RunStatus::kMethodProtocolError:
+      return "method_protocol_error";
   }
   return "?";
 }
 
 bool isErrorStatus(RunStatus s) {
-  return s == RunStatus::kError || s == RunStatus::kMethodTimeout || s == RunStatus::kMethodExited;
+  return s == RunStatus::kError || s == RunStatus::kMethodTimeout || s == RunStatus::kMethodExited ||
+         s == RunStatus::kMethodProtocolError;
 }
 
 std::optional<RunStatus> parseRunStatus(const std::string& word) {
   for (RunStatus s : {RunStatus::kCompleted, RunStatus::kCollided, RunStatus::kVioLost, RunStatus::kDiverged,
-                      RunStatus::kError, RunStatus::kMethodTimeout, RunStatus::kMethodExited})
+                      RunStatus::kError, RunStatus::kMethodTimeout, RunStatus::kMethodExited,
+                      RunStatus::kMethodProtocolError})
     if (word == runStatusName(s)) return s;
   return std::nullopt;
 }

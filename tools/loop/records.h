@@ -36,6 +36,7 @@ enum class RunStatus {
   kError,          ///< an exception ended it (the message is in metrics.json)
   kMethodTimeout,  ///< a method in its own process did not answer a call within its budget
   kMethodExited,   ///< a method's own process ended (exit, signal, a limit) during the run
+  kMethodProtocolError,  ///< a method's own process sent a message msbench does not answer
 };
 
 /// True for the statuses of a run that ended in an error (its record is not a result).

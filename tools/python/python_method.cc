@@ -44,7 +44,7 @@ void interruptMethodCall() {
 }
 
 namespace {
-py::handle method_timeout_type, method_exited_type;  // set by bindErrors
+py::handle method_timeout_type, method_exited_type, method_protocol_type;  // set by bindErrors
 
 // The Python errors of a method's own process (msbench.confined) as the run's status.
 void rethrowIfProcessError(py::error_already_set& e) {
@@ -52,6 +52,8 @@ void rethrowIfProcessError(py::error_already_set& e) {
     throw MethodProcessError(RunStatus::kMethodTimeout, py::str(e.value()).cast<std::string>());
   if (method_exited_type && e.matches(method_exited_type))
     throw MethodProcessError(RunStatus::kMethodExited, py::str(e.value()).cast<std::string>());
+  if (method_protocol_type && e.matches(method_protocol_type))
+    throw MethodProcessError(RunStatus::kMethodProtocolError, py::str(e.value()).cast<std::string>());
 }
 }  // namespace
 
@@ -271,11 +273,16 @@ void bindErrors(py::module_& m) {
   static py::exception<MethodProcessError> exited(m, "MethodExited", method_error.ptr());
   method_timeout_type = timeout;
   method_exited_type = exited;
+  // A message the method's process sent that msbench does not answer (msbench.confined).
+  static py::exception<MethodProcessError> protocol(m, "MethodProtocolError", method_error.ptr());
+  method_protocol_type = protocol;
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const MethodProcessError& e) {
-      (e.status == RunStatus::kMethodTimeout ? timeout : exited)(e.what());
+      (e.status == RunStatus::kMethodTimeout         ? timeout
+       : e.status == RunStatus::kMethodProtocolError ? protocol
+                                                     : exited)(e.what());
     } catch (const MethodError& e) {
       method_error(e.what());
     } catch (const MethodCallError& e) {  // a C++ method's call that threw, named by the loop

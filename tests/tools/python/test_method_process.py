@@ -290,3 +290,7 @@ def test_a_random_stream_request_msbench_does_not_answer_stops_the_method_naming
     assert time.monotonic() - t0 < 60
     assert r.returncode != 0
     assert "does not answer" in r.stderr and says in r.stderr, r.stderr
+    # Its own status (before: method_exited, as if the process had died; and no record at all
+    # from the factory).
+    m = metrics(out)
+    assert m["status"] == "method_protocol_error" and says in m["error"], m

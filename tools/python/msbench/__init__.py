@@ -11,9 +11,9 @@
 The loop and the configuration are the command line's own (the C++ extension `_msbench`); the
 result loaders (`msbench.results`) are plain Python over the files every run writes.
 """
-from ._msbench import (ConfigError, Context, GoalRequest, MethodError, MethodExited, MethodTimeout, Mission, RngStream, Scenario, SlamFrame,
+from ._msbench import (ConfigError, Context, GoalRequest, MethodError, MethodExited, MethodProtocolError, MethodTimeout, Mission, RngStream, Scenario, SlamFrame,
                        TickRecord, Vehicle, ViewpointRequest, __version__)
 from . import gym, results, spaces, vector
 
-__all__ = ["ConfigError", "Context", "GoalRequest", "MethodError", "MethodExited", "MethodTimeout", "Mission", "RngStream", "Scenario", "SlamFrame", "TickRecord",
+__all__ = ["ConfigError", "Context", "GoalRequest", "MethodError", "MethodExited", "MethodProtocolError", "MethodTimeout", "Mission", "RngStream", "Scenario", "SlamFrame", "TickRecord",
            "Vehicle", "ViewpointRequest", "gym", "results", "__version__"]

@@ -5,7 +5,7 @@ import argparse
 import signal
 import sys
 
-from . import ConfigError, MethodError, MethodExited, MethodTimeout, Mission, Scenario, confined
+from . import ConfigError, MethodError, MethodExited, MethodProtocolError, MethodTimeout, Mission, Scenario, confined
 from ._msbench import write_start_failure
 
 
@@ -52,7 +52,8 @@ def run(argv):
     except MethodError as e:  # the method's factory timed out, or its process ended, before the first step
         confined.close_all()
         status = ("method_timeout" if isinstance(e, MethodTimeout) else
-                  "method_exited" if isinstance(e, MethodExited) else "error")
+                  "method_exited" if isinstance(e, MethodExited) else
+                  "method_protocol_error" if isinstance(e, MethodProtocolError) else "error")
         out = write_start_failure(scenario, a.out, status, str(e), overwrite=a.overwrite)
         print(f"msbench run: error: {e} (recorded in {out})", file=sys.stderr)
         return 1

@@ -18,7 +18,7 @@ import tempfile
 import time
 import weakref
 
-from ._msbench import ConfigError, MethodExited, MethodTimeout, RngStream, worlds_dir
+from ._msbench import ConfigError, MethodExited, MethodProtocolError, MethodTimeout, RngStream, worlds_dir
 
 _HOST = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_method_host.py")
 _MAX_ANSWER_BYTES = 1 << 29  # 512 MiB: the element limit's worst case is far below
@@ -188,7 +188,7 @@ class _Worker:
     _RNG_OPS = {"uniform": (), "uniform_range": (float, float), "uniform_int": (int,), "normal": ()}
 
     def _protocol_error(self, what, message):
-        return self._fail(MethodExited, f"the method's process sent a message msbench does not answer during "
+        return self._fail(MethodProtocolError, f"the method's process sent a message msbench does not answer during "
                                         f"{what} ({message}); its process was stopped")
 
     def _rng_open(self, request, what):
