@@ -173,6 +173,32 @@ def test_a_daemon_the_method_starts_does_not_outlive_the_run(tmp_path):
     assert not left, f"the daemon outlived the run: {left}"
 
 
+def test_a_confined_method_opens_no_socket_and_runs_nothing_from_memory(tmp_path):
+    # Landlock stops TCP bind and connect; UDP, pathname and netlink sockets and memfd (code run
+    # from memory) were open before: seccomp refuses socket() and memfd_create() now, while
+    # socketpair() (multiprocessing's pipes) still works.
+    init = textwrap.indent(textwrap.dedent("""
+        import socket
+        def tries(f):
+            try:
+                f()
+                return 1.0
+            except PermissionError:
+                return 0.0
+        self.found['udp'] = tries(lambda: socket.socket(socket.AF_INET, socket.SOCK_DGRAM).close())
+        self.found['unix'] = tries(lambda: socket.socket(socket.AF_UNIX, socket.SOCK_STREAM).close())
+        self.found['netlink'] = tries(lambda: socket.socket(socket.AF_NETLINK, socket.SOCK_RAW).close())
+        self.found['memfd'] = tries(lambda: os.close(os.memfd_create('x')))
+        self.found['socketpair'] = tries(lambda: [x.close() for x in socket.socketpair()])
+    """), " " * 8)
+    out = tmp_path / "run"
+    r = run(scenario(tmp_path, init=init), out)
+    assert r.returncode == 0, r.stderr
+    m = metrics(out)
+    assert m["counters"] == {"udp": 0.0, "unix": 0.0, "netlink": 0.0, "memfd": 0.0, "socketpair": 1.0}, m["counters"]
+    assert "no sockets or memfd" in m["method_confinement"], m["method_confinement"]
+
+
 def test_a_method_past_its_memory_limit_ends_the_run_as_method_exited(tmp_path):
     out = tmp_path / "run"
     file = scenario(tmp_path, plan="        self.hog = bytearray(2 << 30)")

@@ -115,6 +115,45 @@ def _allow(libc, ruleset, path, rights, excluded):
         os.close(fd)
 
 
+# seccomp (include/uapi/linux/seccomp.h, filter.h, audit.h): what Landlock does not cover.
+_PR_SET_SECCOMP, _SECCOMP_MODE_FILTER = 22, 2
+_SECCOMP_RET_ALLOW, _SECCOMP_RET_ERRNO = 0x7FFF0000, 0x00050000
+_BPF_LD_W_ABS, _BPF_JEQ_K, _BPF_JGE_K, _BPF_RET_K = 0x20, 0x15, 0x35, 0x06
+# Per architecture: its audit number and the calls denied (socket, memfd_create).
+_DENIED_CALLS = {0xC000003E: (41, 319),   # x86-64
+                 0xC00000B7: (198, 279)}  # arm64
+
+
+class _SockFilter(ctypes.Structure):
+    _fields_ = [("code", ctypes.c_uint16), ("jt", ctypes.c_uint8), ("jf", ctypes.c_uint8), ("k", ctypes.c_uint32)]
+
+
+class _SockFprog(ctypes.Structure):
+    _fields_ = [("len", ctypes.c_uint16), ("filter", ctypes.POINTER(_SockFilter))]
+
+
+def deny_sockets_and_memfd(libc):
+    """A seccomp filter: socket() (UDP, pathname and every other socket; socketpair() stays, for
+    multiprocessing) and memfd_create() (code run from memory) fail with EPERM. Needs
+    no_new_privs (set by confine()). Returns "" or why not."""
+    prog = [_SockFilter(_BPF_LD_W_ABS, 0, 0, 4)]  # the architecture
+    for arch, (socket_nr, memfd_nr) in _DENIED_CALLS.items():
+        prog += [_SockFilter(_BPF_JEQ_K, 0, 6, arch),  # not this one: skip its six
+                 _SockFilter(_BPF_LD_W_ABS, 0, 0, 0),  # the call's number
+                 _SockFilter(_BPF_JGE_K, 3, 0, 0x40000000),  # x32 calls (bit 30): none is needed
+                 _SockFilter(_BPF_JEQ_K, 2, 0, socket_nr),
+                 _SockFilter(_BPF_JEQ_K, 1, 0, memfd_nr),
+                 _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ALLOW),
+                 _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ERRNO | 1)]  # EPERM
+        prog += [_SockFilter(_BPF_LD_W_ABS, 0, 0, 4)]  # reload the architecture for the next
+    prog[-1] = _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ALLOW)  # another architecture: as it is
+    array = (_SockFilter * len(prog))(*prog)
+    fprog = _SockFprog(len(prog), array)
+    if libc.prctl(_PR_SET_SECCOMP, _SECCOMP_MODE_FILTER, ctypes.byref(fprog), 0, 0) != 0:
+        return f"seccomp: {os.strerror(ctypes.get_errno())}"
+    return ""
+
+
 def confine(read_exec, read_only, scratch, excluded):
     """Restricts this process for good; returns the Landlock ABI used, or 0 when the kernel has
     none (the run is then recorded as unconfined)."""
@@ -278,6 +317,7 @@ def main():
     no_namespace = own_pid_namespace(libc) if init["confine"] else "not confined"
     os.chdir(init["scratch"])
     abi = confine(init["read_exec"], init["read_only"], init["scratch"], init["excluded"]) if init["confine"] else 0
+    no_seccomp = deny_sockets_and_memfd(libc) if init["confine"] else "not confined"
     # The method: its directory first on sys.path, nothing of msbench's.
     sys.path[:] = [p for p in sys.path if not any(_inside(os.path.abspath(p or "."), e) for e in init["excluded"])]
     if init["path"]:
@@ -300,7 +340,7 @@ def main():
         _send(wfd, {"error": "".join(traceback.format_exception(e))})
         return
     _send(wfd, {"ready": {"snapshot": hasattr(method, "snapshot"), "counters": hasattr(method, "counters"),
-                          "landlock_abi": abi, "no_pid_namespace": no_namespace}})
+                          "landlock_abi": abi, "no_pid_namespace": no_namespace, "no_seccomp": no_seccomp}})
     try:
         _serve(host, method)
     except EOFError:

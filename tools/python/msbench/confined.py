@@ -293,7 +293,9 @@ class _Proxy:
         self.msbench_confinement = ((f"own process, Landlock ABI {worker.ready['landlock_abi']}"
                                      if worker.ready["landlock_abi"] else "own process, unconfined (no Landlock)") +
                                     f", {worker.memory_limit_mib:g} MiB" +
-                                    (", own PID namespace" if not namespace else f", no PID namespace ({namespace})"))
+                                    (", own PID namespace" if not namespace else f", no PID namespace ({namespace})") +
+                                    (", no sockets or memfd" if not worker.ready.get("no_seccomp")
+                                     else f", sockets allowed ({worker.ready['no_seccomp']})"))
         if worker.ready["snapshot"]:
             self.snapshot = lambda: worker.call("snapshot")
         if worker.ready["counters"]:
