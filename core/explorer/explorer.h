@@ -3,8 +3,8 @@
 // path commands for the trajectory tracker, and exposes the free space it has mapped as geometry,
 // which the coverage metric (core/eval) scores. This layer depends on core/common alone: a method
 // links msb::explorer, never the metric or another method. Methods are chosen by `method.type` in
-// a scenario; a new method lives in its own folder behind this interface and has one entry in the
-// method table (tools/config/method_table.cc). The loop times observe() and plan() itself (wall
+// a scenario; a new method lives in its own folder behind this interface and registers itself
+// there (core/explorer/method_registry.h). The loop times observe() and plan() itself (wall
 // time is recorded, never used).
 #pragma once
 

@@ -1,4 +1,4 @@
-// msbench methods: the registered exploration methods (tools/config/method_table.cc), each with
+// msbench methods: the registered exploration methods (core/explorer/method_registry.h), each with
 // its summary, the Table I rows it answers to and every key of its `method:` section with its
 // default — what a scenario may set.
 #include <cstdio>
