@@ -1,6 +1,7 @@
 #!/bin/bash
-# The configure-time check (cmake/MethodTypes.cmake) stops a tree whose two method folders
-# register one type, naming both files; the real tree passes.
+# The configure-time checks stop a tree whose two method folders register one type, naming both
+# files (cmake/MethodTypes.cmake), and a method folder whose sources register no method, naming
+# its CMakeLists.txt (msb_add_method, cmake/MsbHelpers.cmake); the real tree passes.
 #   cmake_method_types_test.sh SOURCE_DIR
 set -u
 S=$1
@@ -15,3 +16,18 @@ for want in "'same' is registered twice" core/baseline/a/a_method.cc core/baseli
   grep -qF "$want" <<<"$out" || { echo "FAIL: '$want' not in: $out"; exit 1; }
 done
 echo "ok: a type registered in two folders stops the configuration naming both"
+
+# A method folder without its registration: msb_add_method refuses it before any target exists.
+mkdir -p "$D/core/baseline/c"
+printf 'int helper() { return 1; }\n' >"$D/core/baseline/c/c_explorer.cc"
+cat >"$D/core/baseline/c/CMakeLists.txt" <<EOF
+include("$S/cmake/MsbHelpers.cmake")
+set(CMAKE_CURRENT_SOURCE_DIR "$D/core/baseline/c")
+set(PROJECT_SOURCE_DIR "$D")
+msb_add_method(msb_method_c SOURCES c_explorer.cc DEPS msb::explorer)
+EOF
+out=$(cmake -P "$D/core/baseline/c/CMakeLists.txt" 2>&1) && { echo "FAIL: no error for a folder without registration"; exit 1; }
+for want in "core/baseline/c/CMakeLists.txt" "msb_add_method(msb_method_c) has no source"; do
+  grep -qF "$want" <<<"$out" || { echo "FAIL: '$want' not in: $out"; exit 1; }
+done
+echo "ok: a method folder without its registration stops the configuration naming it"

@@ -17,6 +17,27 @@ std::vector<std::string>& problems() {
   static std::vector<std::string> lines;
   return lines;
 }
+// The names of a method's keys under `method:` (its top level only).
+class TopLevelKeys final : public KeyVisitor {
+ public:
+  std::vector<std::string> names;
+  void key(const char* n, double&, const Limits&) override { names.push_back(n); }
+  void key(const char* n, int&, const Limits&) override { names.push_back(n); }
+  void key(const char* n, uint64_t&, const Limits&) override { names.push_back(n); }
+  void key(const char* n, Vec2&, const Limits&) override { names.push_back(n); }
+  void key(const char* n, Vec3&, const Limits&) override { names.push_back(n); }
+  void key(const char* n, std::array<double, 3>&, const Limits&) override { names.push_back(n); }
+  void key(const char* n, std::array<double, 4>&, const Limits&) override { names.push_back(n); }
+  void key(const char* n, bool&) override { names.push_back(n); }
+  void key(const char* n, std::string&) override { names.push_back(n); }
+  void key(const char* n, std::string&, const Choices&) override { names.push_back(n); }
+  void group(const char* n, const std::function<void(KeyVisitor&)>&) override { names.push_back(n); }
+  void moved(const char* n, const char*) override { names.push_back(n); }
+  void preset(const char* n, const PresetKey&) override { names.push_back(n); }
+};
+
+// The keys every `method:` section has besides the method's own.
+constexpr const char* kSharedMethodKeys[] = {"type"};
 }  // namespace
 
 void addMethodRegistration(MethodRegistration r) noexcept {
@@ -30,6 +51,17 @@ void addMethodRegistration(MethodRegistration r) noexcept {
                            "' must be letters, digits and '_' (and not empty)");
       return;
     }
+    // A key of the method's that is a key every method: section has (`method.type`).
+    TopLevelKeys keys;
+    std::any config = r.default_config();
+    r.keys(config, keys);
+    for (const std::string& k : keys.names)
+      for (const char* shared : kSharedMethodKeys)
+        if (k == shared) {
+          problems().push_back(r.source_file + ": method '" + type + "' has a key named '" + k +
+                               "', which every method: section has (method." + k + "); rename the key");
+          return;
+        }
     for (const auto& m : registry())
       if (m.info.type == type) {
         problems().push_back("method type '" + type + "' is registered twice: in " + m.source_file + " and in " +

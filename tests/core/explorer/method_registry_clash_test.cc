@@ -1,6 +1,7 @@
 // Two method folders registering one type name (the second is method_registry_clash_other.cc):
 // the program starts (no abort before main()), and asking for the methods is an error naming
-// both source files; a malformed name is named with its file too.
+// both source files; a malformed name and a key clashing with `method.type` are named with
+// their file too.
 #include <gtest/gtest.h>
 
 #include "core/explorer/method_registry.h"
@@ -11,6 +12,7 @@ namespace {
 
 const MethodRegistrar kFirst = registerMethod<ClashExplorer, ClashConfig>({"twice", "the first", {}});
 const MethodRegistrar kEmpty = registerMethod<ClashExplorer, ClashConfig>({"", "no name", {}});
+const MethodRegistrar kTyped = registerMethod<ClashExplorer, TypedConfig>({"typed", "a key named type", {}});
 
 TEST(MethodRegistry, ADuplicateOrEmptyTypeIsAnErrorNamingTheFilesNotAnAbort) {
   try {
@@ -22,6 +24,10 @@ TEST(MethodRegistry, ADuplicateOrEmptyTypeIsAnErrorNamingTheFilesNotAnAbort) {
     EXPECT_NE(what.find("method_registry_clash_test.cc"), std::string::npos) << what;
     EXPECT_NE(what.find("method_registry_clash_other.cc"), std::string::npos) << what;
     EXPECT_NE(what.find("method type ''"), std::string::npos) << what;
+    // A key of the method's that clashes with the section's own (before: accepted, and the
+    // method's `type` key could never be set).
+    EXPECT_NE(what.find("method_registry_clash_test.cc: method 'typed' has a key named 'type'"), std::string::npos)
+        << what;
   }
 }
 
