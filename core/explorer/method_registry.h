@@ -126,6 +126,16 @@ struct MethodFacts {
   double octree_resolution_m = 0.0;
 };
 
+/// The facts of `config` (MethodFacts) from the functions its type has.
+template <class Config>
+MethodFacts methodFactsOf(const Config& c) {
+  MethodFacts f;
+  if constexpr (requires { c.switches(); }) f.switches = c.switches();
+  if constexpr (requires { c.referenceCode(); }) f.reference_code = c.referenceCode();
+  if constexpr (requires { c.octreeResolutionM(); }) f.octree_resolution_m = c.octreeResolutionM();
+  return f;
+}
+
 /// A registered method: its info and its config and explorer, type-erased.
 struct MethodRegistration {
   MethodInfo info;
@@ -194,14 +204,7 @@ MethodRegistrar registerMethod(MethodInfo info, MethodKeysFn<Config> keys = null
     Config::fields(c, f);
   };
   r.validate = [](const std::any& config, ConfigChecker& c) { std::any_cast<const Config&>(config).validate(c); };
-  r.facts = [](const std::any& config) {
-    const Config& c = std::any_cast<const Config&>(config);
-    MethodFacts f;
-    if constexpr (requires { c.switches(); }) f.switches = c.switches();
-    if constexpr (requires { c.referenceCode(); }) f.reference_code = c.referenceCode();
-    if constexpr (requires { c.octreeResolutionM(); }) f.octree_resolution_m = c.octreeResolutionM();
-    return f;
-  };
+  r.facts = [](const std::any& config) { return methodFactsOf(std::any_cast<const Config&>(config)); };
   r.make = [](const std::any& config, const FisheyeCamera& camera,
               const ExplorerContext& context) -> std::unique_ptr<Explorer> {
     const Config& c = std::any_cast<const Config&>(config);

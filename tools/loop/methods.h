@@ -16,6 +16,7 @@
 #include "core/camera/fisheye_camera.h"
 #include "core/common/config_fields.h"
 #include "core/explorer/explorer.h"
+#include "core/explorer/method_registry.h"
 #include "core/planning/monospheres_explorer.h"
 
 namespace msb {
@@ -55,9 +56,10 @@ MethodChoice methodChoice(std::string type, const Config& config) {
   MethodChoice m;
   m.type = std::move(type);
   m.config = c;
-  if constexpr (requires { c.switches(); }) m.switches = c.switches();
-  if constexpr (requires { c.referenceCode(); }) m.reference_code = c.referenceCode();
-  if constexpr (requires { c.octreeResolutionM(); }) m.octree_resolution_m = c.octreeResolutionM();
+  MethodFacts facts = methodFactsOf(c);
+  m.switches = std::move(facts.switches);
+  m.reference_code = std::move(facts.reference_code);
+  m.octree_resolution_m = facts.octree_resolution_m;
   m.takes_goal_chooser = requires(ExplorerT & x) { x.setGoalChooser({}); }
   || requires(ExplorerT & x) { x.setViewpointChooser({}); };
   m.make = [c](const FisheyeCamera& camera, const ExplorerContext& context) -> std::unique_ptr<Explorer> {
