@@ -186,7 +186,8 @@ TEST(Architecture, NoCodeOutsideAMethodsFolderSpellsItsType) {
         ADD_FAILURE() << type << " (registered in " << folder.string() << ") spelt at " << hit;
       }
   }
-  EXPECT_TRUE(std::regex_search("  {\"monospheres -ovde\", \"x\"},", std::regex("^\\s*[^/\\s].*\"monospheres( [^\"]*)?\"")));
+  EXPECT_TRUE(
+      std::regex_search("  {\"monospheres -ovde\", \"x\"},", std::regex("^\\s*[^/\\s].*\"monospheres( [^\"]*)?\"")));
 }
 
 TEST(Architecture, SimHasNoMappingOrPlanningAndTheLoopNoYaml) {

@@ -55,9 +55,9 @@ bool isErrorStatus(RunStatus s) {
 }
 
 std::optional<RunStatus> parseRunStatus(const std::string& word) {
-  for (RunStatus s : {RunStatus::kCompleted, RunStatus::kCollided, RunStatus::kVioLost, RunStatus::kDiverged,
-                      RunStatus::kError, RunStatus::kMethodTimeout, RunStatus::kMethodExited,
-                      RunStatus::kMethodProtocolError})
+  for (RunStatus s :
+       {RunStatus::kCompleted, RunStatus::kCollided, RunStatus::kVioLost, RunStatus::kDiverged, RunStatus::kError,
+        RunStatus::kMethodTimeout, RunStatus::kMethodExited, RunStatus::kMethodProtocolError})
     if (word == runStatusName(s)) return s;
   return std::nullopt;
 }

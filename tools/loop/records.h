@@ -29,13 +29,13 @@ uint64_t hashTrajectory(const std::vector<TrajectoryRow>& rows);
 
 /// How a run ended.
 enum class RunStatus {
-  kCompleted,      ///< ran its duration
-  kCollided,       ///< a real contact ended it
-  kVioLost,        ///< the VIO lost track
-  kDiverged,       ///< the vehicle left the world or its state became invalid
-  kError,          ///< an exception ended it (the message is in metrics.json)
-  kMethodTimeout,  ///< a method in its own process did not answer a call within its budget
-  kMethodExited,   ///< a method's own process ended (exit, signal, a limit) during the run
+  kCompleted,            ///< ran its duration
+  kCollided,             ///< a real contact ended it
+  kVioLost,              ///< the VIO lost track
+  kDiverged,             ///< the vehicle left the world or its state became invalid
+  kError,                ///< an exception ended it (the message is in metrics.json)
+  kMethodTimeout,        ///< a method in its own process did not answer a call within its budget
+  kMethodExited,         ///< a method's own process ended (exit, signal, a limit) during the run
   kMethodProtocolError,  ///< a method's own process sent a message msbench does not answer
 };
 

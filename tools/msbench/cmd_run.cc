@@ -85,9 +85,9 @@ void printRunSummary(const ScenarioSpec& spec, const MissionResult& r, const nlo
   std::printf(
       "run %s (%s): %s after %.0f s simulated (%.0f s wall, RTF %.2f); A = %.0f m² (box %.0f m²%s), "
       "%.0f m flown; hash %s -> %s\n",
-      spec.name.c_str(), methodLabel(spec.method).c_str(), runStatusName(r.flight.status), r.flight.sim_time_s, r.flight.wall_time_s,
-      r.flight.realTimeFactor(), cov["area_m2"].get<double>(), cov["area_box_m2"].get<double>(), share,
-      r.flight.distance_flown_m, hexHash(r.run_hash).c_str(), dir.c_str());
+      spec.name.c_str(), methodLabel(spec.method).c_str(), runStatusName(r.flight.status), r.flight.sim_time_s,
+      r.flight.wall_time_s, r.flight.realTimeFactor(), cov["area_m2"].get<double>(), cov["area_box_m2"].get<double>(),
+      share, r.flight.distance_flown_m, hexHash(r.run_hash).c_str(), dir.c_str());
   if (r.flight.collision)
     std::printf("run %s: collision at t = %.1f s, vehicle at (%.1f, %.1f, %.1f), %s hit %s\n", spec.name.c_str(),
                 r.flight.collision->t_s, r.flight.collision->vehicle_position_m.x(),

@@ -127,7 +127,8 @@ void attachGoalChooser(Explorer& explorer, const std::string& method_type, py::o
                           takers + "; got '" + method_type + "')");
   }
   auto fn = std::make_shared<py::object>(std::move(goals));
-  entry->attach_goal_chooser(explorer, GoalChoosers{std::any(pythonGoalChooser(fn)), std::any(pythonViewpointChooser(fn))});
+  entry->attach_goal_chooser(explorer,
+                             GoalChoosers{std::any(pythonGoalChooser(fn)), std::any(pythonViewpointChooser(fn))});
 }
 
 }  // namespace binding

@@ -31,8 +31,8 @@ std::string findFfmpeg();
 /// error, a failed check), it kills the encoder and removes its directory.
 class RunVideo {
  public:
-  /// Starts the encoder. `name` heads the caption (the run's name and method: runCaption()); `box` fixes the map panel's extent; `truth`
-  /// (may be null) draws the true obstacles faint beneath the map; `camera_w/h` is the fisheye
+  /// Starts the encoder. `name` heads the caption (the run's name and method: runCaption()); `box` fixes the map
+  /// panel's extent; `truth` (may be null) draws the true obstacles faint beneath the map; `camera_w/h` is the fisheye
   /// image size. Throws std::runtime_error when ffmpeg is missing or cannot start.
   RunVideo(const std::filesystem::path& file, const VideoSettings& settings, const std::string& name, double duration_s,
            const Aabb& box, const WorldTruth* truth, int camera_w, int camera_h);
