@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -80,8 +81,18 @@ class Explorer {
   /// default counters(); a method whose counters() is costly gives the cheap ones here.
   virtual std::map<std::string, double> workCounters() const { return counters(); }
   /// CPU seconds, so far, of the processes the method computes in besides the thread that calls
-  /// it (a Python method's own process; `timing.compute: charged`). 0 for a method in-process.
-  virtual double helperCpuSeconds() const { return 0.0; }
+  /// it (a Python method's or goal chooser's own process; `timing.compute: charged`): by default
+  /// the sum of the clocks added with addHelperClock (0 for a method wholly in-process).
+  virtual double helperCpuSeconds() const {
+    double s = 0.0;
+    for (const auto& clock : helper_clocks_) s += clock();
+    return s;
+  }
+  /// Adds a process the method computes in (a goal chooser's own process) to helperCpuSeconds().
+  void addHelperClock(std::function<double()> clock) { helper_clocks_.push_back(std::move(clock)); }
+
+ private:
+  std::vector<std::function<double()>> helper_clocks_;  // CPU seconds of helper processes
 };
 
 /// A path command sent at this planning step: `last_path` becomes the vehicle's reference followed

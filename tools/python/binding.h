@@ -126,6 +126,14 @@ class MethodProcessError : public MethodError {
 /// it is, and the mission ends as interrupted (nothing recorded).
 void rethrowIfInterrupt(py::error_already_set& e);
 
+/// Charges the CPU time of a method's or goal chooser's own process (a msbench.confined proxy:
+/// `msbench_process_id`) to `explorer` (timing.compute: charged); nothing for an in-process one.
+void addOwnProcessClock(Explorer& explorer, const py::object& proxy);
+
+/// The errors of a method's or goal chooser's own process (msbench.confined: MethodTimeout,
+/// MethodExited, MethodProtocolError) as a MethodProcessError with the run's status.
+void rethrowIfProcessError(py::error_already_set& e);
+
 /// While it lives (the GIL held), a Python method's or goal chooser's call runs on this thread:
 /// an interrupt the waiting loop thread sees is raised here too (interruptMethodCall).
 struct MethodCallNote {

@@ -67,6 +67,7 @@ auto callChooser(F&& f) -> decltype(f()) {
     return f();
   } catch (py::error_already_set& e) {
     rethrowIfInterrupt(e);
+    rethrowIfProcessError(e);
     throw MethodError("the Python goal chooser raised:\n" + pythonErrorText(e));
   } catch (const py::cast_error& e) {
     throw MethodError(std::string("the Python goal chooser returned a value of the wrong type: ") + e.what());
@@ -93,7 +94,7 @@ ViewpointChooser pythonViewpointChooser(std::shared_ptr<py::object> fn) {
 }
 
 /// A Python goal chooser for the grid: goals(request) is called at every goal check with the GIL
-/// held; an exception becomes a MethodError.
+/// held; an exception becomes a MethodError (its own process's end: that run status).
 GoalChooser pythonGoalChooser(std::shared_ptr<py::object> fn) {
   return [fn](const GoalRequest& q) {
     return callChooser([&]() -> std::optional<std::vector<Vec3>> {
@@ -126,6 +127,8 @@ void attachGoalChooser(Explorer& explorer, const std::string& method_type, py::o
     throw py::value_error(scenario_file + ": goals= needs a scenario whose method.type takes a goal chooser (" +
                           takers + "; got '" + method_type + "')");
   }
+  // A chooser in its own process (a scenario's `goals`): its CPU time is charged like the method's.
+  addOwnProcessClock(explorer, goals);
   auto fn = std::make_shared<py::object>(std::move(goals));
   entry->attach_goal_chooser(explorer,
                              GoalChoosers{std::any(pythonGoalChooser(fn)), std::any(pythonViewpointChooser(fn))});

@@ -79,15 +79,18 @@ class PyMission {
       buildWithGoalChooser(std::move(method), std::move(goals), truth, /*record=*/true);
       return;
     }
-    // A scenario naming a goal chooser (`goals:`): imported from its entry, recorded by the
-    // scenario itself (config.yaml's goals section replays it).
+    // A scenario naming a goal chooser (`goals:`): started in its own confined process, recorded
+    // by the scenario itself (config.yaml's goals section replays it).
     if (method.is_none() && scenario_.spec.goals) {
       const PythonMethodConfig& g = *scenario_.spec.goals;
       scenario_.spec.method.goal_chooser = g.entry;  // metrics.json names it; config.yaml replays it
+      const py::module_ methods = py::module_::import("msbench.methods");
       py::object chooser =
-          py::module_::import("msbench.methods")
-              .attr("chooser_of")(g.entry, g.path, yamlToPython(YAML::Load(g.params_yaml)), scenario_.file);
-      noteEntryModule(g.entry, "the goal chooser's module");
+          methods.attr("chooser_of")(g.entry, g.path, yamlToPython(YAML::Load(g.params_yaml)), scenario_.file);
+      // The module's file, found without importing it: the chooser runs in its own process only.
+      const py::object file =
+          methods.attr("module_file")(g.entry, methods.attr("method_dir")(g.path, scenario_.file, "goals"));
+      if (!file.is_none()) moduleInputs_.push_back({"the goal chooser's module", file.cast<std::string>()});
       buildWithGoalChooser(py::none(), chooser, truth, /*record=*/false);
       return;
     }
@@ -325,7 +328,10 @@ class PyMission {
   void buildWithGoalChooser(py::object method, py::object goals, const WorldTruth* truth, bool record) {
     if (!method.is_none()) throw py::value_error("Mission: give a method or goals, not both");
     if (record) recordInProcess(scenario_, goals, /*goal_chooser=*/true);
-    scenario_.spec.method.confinement = "in-process goal chooser (unconfined)";
+    // Where the chooser ran: its own confined process (a scenario's `goals`), or this process.
+    scenario_.spec.method.confinement = py::hasattr(goals, "msbench_confinement")
+                                            ? goals.attr("msbench_confinement").cast<std::string>()
+                                            : std::string("in-process goal chooser (unconfined)");
     std::unique_ptr<Explorer> explorer = scenario_.spec.method.make(FisheyeCamera(scenario_.spec.flight.camera),
                                                                     explorerContext(scenario_.spec, world_->box));
     attachGoalChooser(*explorer, scenario_.spec.method.type, std::move(goals), scenario_.file);
@@ -422,10 +428,6 @@ class PyMission {
     if (obj.is_none()) return;
     const py::object file = py::module_::import("msbench.methods").attr("source_file")(obj);
     if (!file.is_none()) moduleInputs_.push_back({what, file.cast<std::string>()});
-  }
-  // The same for the module an entry ("module:name") names (imported already).
-  void noteEntryModule(const std::string& entry, const std::string& what) {
-    noteModule(py::module_::import("importlib").attr("import_module")(entry.substr(0, entry.find(':'))), what);
   }
 
   PyScenario scenario_;

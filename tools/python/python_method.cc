@@ -43,10 +43,21 @@ void interruptMethodCall() {
   if (t != 0 && t != PyThread_get_thread_ident()) PyThreadState_SetAsyncExc(t, PyExc_KeyboardInterrupt);
 }
 
+void addOwnProcessClock(Explorer& explorer, const py::object& proxy) {
+  if (!py::hasattr(proxy, "msbench_process_id")) return;
+  const pid_t pid = proxy.attr("msbench_process_id").cast<pid_t>();
+  clockid_t clock;
+  if (clock_getcpuclockid(pid, &clock) != 0) return;
+  explorer.addHelperClock([clock] {
+    timespec ts{};
+    return clock_gettime(clock, &ts) == 0 ? double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec) : 0.0;
+  });
+}
+
 namespace {
 py::handle method_timeout_type, method_exited_type, method_protocol_type;  // set by bindErrors
+}  // namespace
 
-// The Python errors of a method's own process (msbench.confined) as the run's status.
 void rethrowIfProcessError(py::error_already_set& e) {
   if (method_timeout_type && e.matches(method_timeout_type))
     throw MethodProcessError(RunStatus::kMethodTimeout, py::str(e.value()).cast<std::string>());
@@ -55,7 +66,6 @@ void rethrowIfProcessError(py::error_already_set& e) {
   if (method_protocol_type && e.matches(method_protocol_type))
     throw MethodProcessError(RunStatus::kMethodProtocolError, py::str(e.value()).cast<std::string>());
 }
-}  // namespace
 
 namespace {
 
@@ -123,10 +133,7 @@ class PyExplorer final : public Explorer {
  public:
   explicit PyExplorer(py::object method) : method_(std::move(method)) {
     // A method in its own process: that process's CPU clock (compute charged, docs/compute.md).
-    if (py::hasattr(method_, "msbench_process_id")) {
-      const pid_t pid = method_.attr("msbench_process_id").cast<pid_t>();
-      if (clockid_t clock; clock_getcpuclockid(pid, &clock) == 0) helper_clock_ = clock;
-    }
+    addOwnProcessClock(*this, method_);
   }
   ~PyExplorer() override {
     py::gil_scoped_acquire gil;
@@ -204,12 +211,6 @@ class PyExplorer final : public Explorer {
     return snap;
   }
 
-  double helperCpuSeconds() const override {
-    timespec ts{};
-    if (!helper_clock_ || clock_gettime(*helper_clock_, &ts) != 0) return 0.0;
-    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-  }
-
   std::map<std::string, double> counters() const override {
     std::map<std::string, double> c;
     call([&] {
@@ -242,7 +243,6 @@ class PyExplorer final : public Explorer {
   }
 
   py::object method_;
-  std::optional<clockid_t> helper_clock_;  // the CPU clock of the method's own process
 };
 
 }  // namespace

@@ -126,3 +126,114 @@ def test_a_chooser_that_calls_its_own_mission_back_is_refused_not_hung(tmp_path,
     with pytest.raises(msbench.MethodError, match="called while the mission is stepping"):
         mission.run(progress=False)
     assert mission.status == "error" and not (tmp_path / "w").exists()
+
+
+def test_a_scenario_named_chooser_runs_confined_and_cannot_forge_its_record(tmp_path):
+    # Before: a `goals` chooser ran in msbench's process, read the truth, rewrote metrics.json at
+    # exit and re-sealed it (earned 25 000, ranked first). Now it runs in its own confined
+    # process: the truth and msbench's outputs are out of its reach, and the record says so.
+    (tmp_path / "choosers").mkdir()
+    forged = tmp_path / "out" / "metrics.json"
+    (tmp_path / "choosers" / "forger.py").write_text(textwrap.dedent(f'''
+        import os
+        def choose(request):
+            for truth in ("{SOURCE_DIR}/worlds/urban/spec.yaml", "{SOURCE_DIR}/worlds/urban"):
+                try:
+                    os.listdir(truth) if os.path.isdir(truth) else open(truth).read()
+                    raise RuntimeError("read the truth at " + truth)
+                except PermissionError:
+                    pass
+            try:
+                os.makedirs("{forged.parent}", exist_ok=True)
+                open("{forged}", "w").write("{{}}")
+                raise RuntimeError("wrote the record")
+            except PermissionError:
+                pass
+            return None
+    '''))
+    scenario = tmp_path / "forge.yaml"
+    scenario.write_text(f"base: {GRID}\nworld: urban\nduration_s: 6\ngoals: {{entry: 'forger:choose', path: choosers}}\n")
+    out = tmp_path / "out"
+    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out)] +
+                       sum([["--set", s] for s in FAST], []), capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    metrics = json.loads((out / "metrics.json").read_text())
+    assert metrics["status"] == "completed", metrics.get("error")
+    assert metrics["method_confinement"].startswith("goal chooser: own process, Landlock"), metrics["method_confinement"]
+    assert metrics["counters"]["goals_chosen"] == 0  # it was asked, and kept the grid's own goals
+
+
+def test_a_grid_chooser_in_its_own_process_reads_the_map_during_its_call_only(tmp_path):
+    (tmp_path / "choosers").mkdir()
+    (tmp_path / "choosers" / "mapper.py").write_text(textwrap.dedent('''
+        kept = []
+        def choose(request):
+            free, occupied = request.free(), request.occupied()
+            assert free.shape[1] == 4 and occupied.shape[1] == 4 and not free.flags.writeable
+            if kept:
+                try:
+                    kept[0].free()
+                    raise AssertionError("an old request's map answered")
+                except RuntimeError as e:
+                    assert "only during the goals() call" in str(e)
+            kept[:] = [request]
+            if not request.needs_goal:
+                return None
+            x, y, z = request.position.tolist()
+            return (x + 6.0, y, 2.0)
+    '''))
+    scenario = tmp_path / "mapper.yaml"
+    scenario.write_text(f"base: {GRID}\nworld: urban\nduration_s: 12\ngoals: {{entry: 'mapper:choose', path: choosers}}\n")
+    out = tmp_path / "out"
+    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out)] +
+                       sum([["--set", s] for s in FAST], []), capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    metrics = json.loads((out / "metrics.json").read_text())
+    assert metrics["status"] == "completed", metrics.get("error")
+    assert metrics["counters"]["goals_chosen"] >= 1
+
+
+def test_a_viewpoint_chooser_in_its_own_process_flies_the_in_process_run(tmp_path):
+    (tmp_path / "ch").mkdir()
+    (tmp_path / "ch" / "far.py").write_text("def farthest(request):\n"
+                                            "    return int(request.ids[-1]) if len(request.ids) else None\n")
+    urban = os.path.join(SOURCE_DIR, "scenarios/missions/urban_short.yaml")
+    scenario = tmp_path / "far.yaml"
+    scenario.write_text(f"base: {urban}\nduration_s: 20\ngoals: {{entry: 'far:farthest', path: ch}}\n")
+    out = tmp_path / "out"
+    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out)] +
+                       sum([["--set", s] for s in FAST], []), capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    metrics = json.loads((out / "metrics.json").read_text())
+    assert metrics["method_confinement"].startswith("goal chooser: own process"), metrics["method_confinement"]
+    assert metrics["counters"]["goals_chosen"] >= 1
+    import sys
+    sys.path.insert(0, str(tmp_path / "ch"))
+    import far
+    m = msbench.Mission(msbench.Scenario.load(urban, set=FAST + ["duration_s=20"]), goals=far.farthest)
+    m.run(progress=False)
+    assert m.hash == metrics["determinism_hash"]
+
+
+def test_a_chooser_in_its_own_process_is_charged_its_cpu_time(tmp_path):
+    # timing.compute: charged counts the thread that calls the method; a chooser thinks in its own
+    # process, which was free before: 100 ms of its CPU per goal check is now a planning latency.
+    (tmp_path / "ch").mkdir()
+    (tmp_path / "ch" / "slow.py").write_text(textwrap.dedent('''
+        import time
+        def slow(request):
+            t = time.process_time()
+            while time.process_time() - t < 0.1:
+                pass
+            return None
+    '''))
+    scenario = tmp_path / "slow.yaml"
+    scenario.write_text(f"base: {GRID}\nworld: urban\nduration_s: 14\ngoals: {{entry: 'slow:slow', path: ch}}\n")
+    out = tmp_path / "out"
+    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out), "--set",
+                        "timing.compute=charged"] + sum([["--set", s] for s in FAST], []), capture_output=True,
+                       text=True)
+    assert r.returncode == 0, r.stderr
+    rows = [line.split(",") for line in (out / "compute_latency.csv").read_text().splitlines()[2:]]
+    plan_ns = [int(row[4]) for row in rows if len(row) == 6 and row[1] == "plan"]
+    assert max(plan_ns) >= 90_000_000, max(plan_ns)

@@ -119,9 +119,9 @@ def _allow(libc, ruleset, path, rights, excluded):
 _PR_SET_SECCOMP, _SECCOMP_MODE_FILTER = 22, 2
 _SECCOMP_RET_ALLOW, _SECCOMP_RET_ERRNO = 0x7FFF0000, 0x00050000
 _BPF_LD_W_ABS, _BPF_JEQ_K, _BPF_JGE_K, _BPF_RET_K = 0x20, 0x15, 0x35, 0x06
-# Per architecture: its audit number and the calls denied (socket, memfd_create).
-_DENIED_CALLS = {0xC000003E: (41, 319),   # x86-64
-                 0xC00000B7: (198, 279)}  # arm64
+# Per architecture: its audit number and the calls denied (socket, memfd_create, execve, execveat).
+_DENIED_CALLS = {0xC000003E: (41, 319, 59, 322),   # x86-64
+                 0xC00000B7: (198, 279, 221, 281)}  # arm64
 
 
 class _SockFilter(ctypes.Structure):
@@ -132,18 +132,19 @@ class _SockFprog(ctypes.Structure):
     _fields_ = [("len", ctypes.c_uint16), ("filter", ctypes.POINTER(_SockFilter))]
 
 
-def deny_sockets_and_memfd(libc):
+def deny_calls(libc):
     """A seccomp filter: socket() (UDP, pathname and every other socket; socketpair() stays, for
-    multiprocessing) and memfd_create() (code run from memory) fail with EPERM. Needs
-    no_new_privs (set by confine()). Returns "" or why not."""
+    multiprocessing), memfd_create() (code run from memory), execve() and execveat() (no program
+    runs: not one the method wrote, through `ld.so ./copy` or from memory) fail with EPERM. Needs
+    no_new_privs (set with the Landlock rules). Returns "" or why not."""
     prog = [_SockFilter(_BPF_LD_W_ABS, 0, 0, 4)]  # the architecture
-    for arch, (socket_nr, memfd_nr) in _DENIED_CALLS.items():
-        prog += [_SockFilter(_BPF_JEQ_K, 0, 6, arch),  # not this one: skip its six
+    for arch, numbers in _DENIED_CALLS.items():
+        n = len(numbers)
+        prog += [_SockFilter(_BPF_JEQ_K, 0, n + 4, arch),  # not this one: skip its n + 4
                  _SockFilter(_BPF_LD_W_ABS, 0, 0, 0),  # the call's number
-                 _SockFilter(_BPF_JGE_K, 3, 0, 0x40000000),  # x32 calls (bit 30): none is needed
-                 _SockFilter(_BPF_JEQ_K, 2, 0, socket_nr),
-                 _SockFilter(_BPF_JEQ_K, 1, 0, memfd_nr),
-                 _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ALLOW),
+                 _SockFilter(_BPF_JGE_K, n + 1, 0, 0x40000000)]  # x32 calls (bit 30): none is needed
+        prog += [_SockFilter(_BPF_JEQ_K, n - i, 0, nr) for i, nr in enumerate(numbers)]
+        prog += [_SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ALLOW),
                  _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ERRNO | 1)]  # EPERM
         prog += [_SockFilter(_BPF_LD_W_ABS, 0, 0, 4)]  # reload the architecture for the next
     prog[-1] = _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ALLOW)  # another architecture: as it is
@@ -154,14 +155,15 @@ def deny_sockets_and_memfd(libc):
     return ""
 
 
-def confine(read_exec, read_only, scratch, excluded):
-    """Restricts this process for good; returns the Landlock ABI used, or 0 when the kernel has
-    none (the run is then recorded as unconfined)."""
-    libc = ctypes.CDLL(None, use_errno=True)
+def landlock_ruleset(libc, read_exec, read_only, scratch, excluded):
+    """The Landlock rules (read-only to the installation, /etc and the method's directory; writes
+    in its scratch directory only), built while every path can still be opened; (ABI, ruleset fd),
+    or (0, None) when the kernel has no Landlock (the run is then recorded as unconfined). Sets
+    no_new_privs, which restricting needs."""
     libc.prctl(_PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0)
     abi = libc.syscall(_SYS_CREATE, None, 0, 1)
     if abi <= 0:
-        return 0
+        return 0, None
     fs = _fs_rights(abi)
     fields = [fs] + ([_NET_ALL] if abi >= 4 else []) + ([_SCOPE_ALL] if abi >= 6 else [])
     attr = struct.pack(f"<{len(fields)}Q", *fields)
@@ -175,10 +177,44 @@ def confine(read_exec, read_only, scratch, excluded):
         _allow(libc, ruleset, p, read, excluded)
     _allow(libc, ruleset, scratch, fs & ~_FS_EXECUTE, excluded)  # nothing it writes runs
     _allow(libc, ruleset, "/dev/null", _FS_READ_FILE | _FS_WRITE_FILE, excluded)
+    return abi, ruleset
+
+
+def landlock_restrict(libc, ruleset):
+    """Applies the rules to this process and every process it starts, for good."""
+    if ruleset is None:
+        return
     if libc.syscall(_SYS_RESTRICT, ruleset, 0) != 0:
         raise OSError(ctypes.get_errno(), "landlock_restrict_self")
     os.close(ruleset)
-    return abi
+
+
+_TASK_LIMIT = 256  # processes and threads of a method's own user namespace (RLIMIT_NPROC)
+_NOBODY = 65534  # the unprivileged user a method runs as when msbench runs as root
+_PR_SET_DUMPABLE = 4
+
+
+def drop_root(libc, scratch, method_dir):
+    """As root: hands the scratch directory to nobody and becomes nobody (no capabilities, no
+    supplementary groups), so that neither root-owned files (/etc/shadow) nor root's powers reach
+    the method. The method's directory stays reachable through a descriptor opened before (its
+    parents may be closed to others, as /root or pytest's temporary directories are). Returns
+    (user, the method directory's path to import from)."""
+    if os.geteuid() != 0:
+        return "", method_dir
+    fd = os.open(method_dir, os.O_PATH | os.O_DIRECTORY) if method_dir else None
+    for root, dirs, files in os.walk(scratch):
+        for name in dirs + files:
+            os.lchown(os.path.join(root, name), _NOBODY, _NOBODY)
+    os.chown(scratch, _NOBODY, _NOBODY)
+    os.setgroups([])
+    os.setresgid(_NOBODY, _NOBODY, _NOBODY)
+    os.setresuid(_NOBODY, _NOBODY, _NOBODY)
+    libc.prctl(_PR_SET_DUMPABLE, 1, 0, 0, 0)  # its own /proc files (uid_map) stay its own
+    libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)  # cleared by the change of user
+    if fd is not None and not os.access(method_dir, os.R_OK | os.X_OK):
+        method_dir = f"/proc/self/fd/{fd}"
+    return "nobody", method_dir
 
 
 # --- the pipes ---------------------------------------------------------------------------------
@@ -281,14 +317,98 @@ def _view(d):
     return types.SimpleNamespace(**d)
 
 
-def _serve(host, method):
-    calls = {
+def _method_calls(method):
+    return {
         "observe": lambda a: method.observe(_view(a)),
         "plan": lambda a: method.plan(_view(a)),
         "free_space": lambda a: method.free_space(),
         "snapshot": lambda a: method.snapshot(),
         "counters": lambda a: method.counters(),
     }
+
+
+class _MapRequest(types.SimpleNamespace):  # noqa: D101
+    """The grid's GoalRequest in the chooser's process: free() and occupied() ask msbench for the
+    OctoMap's leaves (N×4, read-only), during the call only."""
+
+    def __init__(self, host, fields):
+        super().__init__(**fields)
+        self._host, self._open = host, True
+
+    def _leaves(self, which):
+        if not self._open:
+            raise RuntimeError("a GoalRequest's map is valid only during the goals() call")
+        _send(self._host.wfd, {"map": which})
+        leaves = _recv(self._host.rfd)
+        leaves.flags.writeable = False
+        return leaves
+
+    def free(self):
+        return self._leaves("free")
+
+    def occupied(self):
+        return self._leaves("occupied")
+
+
+def _request(host, a):
+    """A goal check's request as the chooser sees it in-process (read-only arrays)."""
+    kind = a.pop("kind")
+    if kind == "grid":
+        return _MapRequest(host, dict(_view(a).__dict__))
+    return _view(a)
+
+
+def _choose(chooser, host, a):
+    """One goal check: the chooser's answer; the request's map closes when the call returns."""
+    request = _request(host, a)
+    try:
+        return chooser(request)
+    finally:
+        request._open = False
+
+
+def _preload():
+    """numpy (the arrays of every frame and request) is imported before the host gives up root:
+    it may sit where nobody cannot read (a virtual environment under /root)."""
+    try:
+        import numpy  # noqa: F401
+    except ImportError:
+        pass
+
+
+def _make(init, host, user=""):
+    """The method (its factory called with the Context and params) or the goal chooser (entry, or
+    entry(**params)); None when it cannot be made (msbench was told why)."""
+    wfd = host.wfd
+    module_name, _, attr = init["entry"].partition(":")
+    try:
+        found = getattr(importlib.import_module(module_name), attr, None)
+    except BaseException as e:  # noqa: B902
+        hint = (" (methods run as nobody when msbench runs as root: the directory and its files must be readable "
+                "by others)" if user and isinstance(e, (ImportError, PermissionError)) else "")
+        _send(wfd, {"config": f"cannot import '{module_name}': {type(e).__name__}: {e}{hint}"})
+        return None
+    if not callable(found):
+        _send(wfd, {"config": f"'{module_name}' has no callable '{attr}'"})
+        return None
+    chooser = init["kind"] == "chooser"
+    if chooser and not init["params"]:
+        return found
+    try:
+        made = found(**init["params"]) if chooser else found(host.context(init["context"]), **init["params"])
+    except TypeError as e:
+        _send(wfd, {"params": str(e), "error": "".join(traceback.format_exception(e))})
+        return None
+    except BaseException as e:  # noqa: B902
+        _send(wfd, {"error": "".join(traceback.format_exception(e))})
+        return None
+    if chooser and not callable(made):
+        _send(wfd, {"config": f"'{init['entry']}(**params)' did not return a callable chooser"})
+        return None
+    return made
+
+
+def _serve(host, calls):
     while True:
         op, arg = _recv(host.rfd)
         try:
@@ -314,35 +434,34 @@ def main():
     resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
     memory = init["memory_limit_bytes"]
     resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
-    no_namespace = own_pid_namespace(libc) if init["confine"] else "not confined"
+    user, no_namespace, no_seccomp, abi = "", "not confined", "not confined", 0
+    if init["confine"]:
+        _preload()
+        abi, ruleset = landlock_ruleset(libc, init["read_exec"], init["read_only"], init["scratch"], init["excluded"])
+        user, init["path"] = drop_root(libc, init["scratch"], init["path"])
+        no_namespace = own_pid_namespace(libc)
+        if not no_namespace:  # its own user namespace: the count is of its own processes only
+            resource.setrlimit(resource.RLIMIT_NPROC, (_TASK_LIMIT, _TASK_LIMIT))
+        landlock_restrict(libc, ruleset)
+        no_seccomp = deny_calls(libc)
     os.chdir(init["scratch"])
-    abi = confine(init["read_exec"], init["read_only"], init["scratch"], init["excluded"]) if init["confine"] else 0
-    no_seccomp = deny_sockets_and_memfd(libc) if init["confine"] else "not confined"
     # The method: its directory first on sys.path, nothing of msbench's.
     sys.path[:] = [p for p in sys.path if not any(_inside(os.path.abspath(p or "."), e) for e in init["excluded"])]
     if init["path"]:
         sys.path.insert(0, init["path"])
-    module_name, _, attr = init["entry"].partition(":")
+    made = _make(init, host, user)
+    if made is None:
+        return
+    ready = {"landlock_abi": abi, "no_pid_namespace": no_namespace, "no_seccomp": no_seccomp, "user": user,
+             "task_limit": 0 if no_namespace else _TASK_LIMIT}
+    if init["kind"] == "chooser":
+        calls = {"goals": lambda a: _choose(made, host, a)}
+    else:
+        ready.update(snapshot=hasattr(made, "snapshot"), counters=hasattr(made, "counters"))
+        calls = _method_calls(made)
+    _send(wfd, {"ready": ready})
     try:
-        factory = getattr(importlib.import_module(module_name), attr, None)
-    except BaseException as e:  # noqa: B902
-        _send(wfd, {"config": f"cannot import '{module_name}': {type(e).__name__}: {e}"})
-        return
-    if not callable(factory):
-        _send(wfd, {"config": f"'{module_name}' has no callable '{attr}'"})
-        return
-    try:
-        method = factory(host.context(init["context"]), **init["params"])
-    except TypeError as e:
-        _send(wfd, {"params": str(e), "error": "".join(traceback.format_exception(e))})
-        return
-    except BaseException as e:  # noqa: B902
-        _send(wfd, {"error": "".join(traceback.format_exception(e))})
-        return
-    _send(wfd, {"ready": {"snapshot": hasattr(method, "snapshot"), "counters": hasattr(method, "counters"),
-                          "landlock_abi": abi, "no_pid_namespace": no_namespace, "no_seccomp": no_seccomp}})
-    try:
-        _serve(host, method)
+        _serve(host, calls)
     except EOFError:
         pass  # msbench closed the pipe: the run is over
 

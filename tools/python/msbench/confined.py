@@ -78,12 +78,14 @@ def _allowed_reads(method_dir):
 class _Worker:
     """One method process and its pipes."""
 
-    def __init__(self, entry, method_dir, params, context, budget_s, scenario_file, memory_limit_mib=4096):
+    def __init__(self, entry, method_dir, params, context, budget_s, scenario_file, memory_limit_mib=4096,
+                 kind="method"):
         self.budget_s, self.entry, self.memory_limit_mib = budget_s, entry, memory_limit_mib
+        key = "method" if kind == "method" else "goals"  # the scenario's section, in errors
         # A method directory that holds msbench is refused before any process starts.
         excluded = _excluded()
         if method_dir and any(e == method_dir or e.startswith(method_dir.rstrip("/") + "/") for e in excluded):
-            raise ConfigError(f"{scenario_file}: key 'method.path': {method_dir} holds msbench itself (its package, "
+            raise ConfigError(f"{scenario_file}: key '{key}.path': {method_dir} holds msbench itself (its package, "
                               "worlds or binary), which a method may not read: give the method its own directory")
         read_exec, read_only = _allowed_reads(method_dir)
         self.scratch = tempfile.mkdtemp(prefix="msbench-method-")
@@ -91,6 +93,7 @@ class _Worker:
         self.rngs = {}
         self.seed = context["seed"]
         self.failure = None  # the timeout or exit that ended the process, if one did
+        self.map_source = None  # a goal chooser's GoalRequest while its call runs (its map answers)
         to_host_r, self.to_host = os.pipe()
         self.from_host, from_host_w = os.pipe()
         # A minimal environment: nothing of msbench's (its paths, tokens, settings) reaches the method.
@@ -107,20 +110,21 @@ class _Worker:
         _workers.add(self)
         self._finalizer = weakref.finalize(self, _Worker._kill, self.proc, self.scratch,
                                            [self.to_host, self.from_host])
-        self._send({"entry": entry, "path": method_dir, "params": params, "context": context,
+        self._send({"kind": kind, "entry": entry, "path": method_dir, "params": params, "context": context,
                     "read_exec": read_exec, "read_only": read_only, "scratch": self.scratch,
                     "excluded": excluded, "confine": True, "file_limit_bytes": _FILE_LIMIT_BYTES,
                     "memory_limit_bytes": int(memory_limit_mib) << 20})
         first = self._answer("the factory", 4 * budget_s)
         if "config" in first:
             self.close()
-            raise ConfigError(f"{scenario_file}: key 'method.entry': {first['config']}")
+            raise ConfigError(f"{scenario_file}: key '{key}.entry': {first['config']}")
         if "params" in first:
             self.close()
-            raise ConfigError(f"{scenario_file}: key 'method.params': {first['params']}")
+            raise ConfigError(f"{scenario_file}: key '{key}.params': {first['params']}")
         if "error" in first:
             self.close()
-            raise ConfigError(f"{scenario_file}: the method's factory raised:\n{first['error']}")
+            raise ConfigError(f"{scenario_file}: the {'method' if kind == 'method' else 'goal chooser'}'s factory "
+                              f"raised:\n{first['error']}")
         self.ready = first["ready"]
 
     # --- the pipes -------------------------------------------------------------------------------
@@ -180,6 +184,8 @@ class _Worker:
             elif "rng" in answer:
                 handle, op, args = self._rng_call(answer["rng"], what)
                 self._send(getattr(self.rngs[handle], op)(*args))
+            elif "map" in answer:
+                self._send(self._map_leaves(answer["map"], what))
             else:
                 return answer
 
@@ -210,6 +216,14 @@ class _Worker:
             if not (len(args) == len(kinds) and all(isinstance(a, (int, float)) for a in args)):
                 raise self._protocol_error(what, f"arguments {str(args)[:60]} for {op}")
         return handle, op, [k(a) for a, k in zip(args, kinds)]
+
+    def _map_leaves(self, which, what):
+        """A goal chooser's map request during its call: the OctoMap's free or occupied leaves."""
+        if self.map_source is None:
+            raise self._protocol_error(what, "a map request outside a goal check on the grid's map")
+        if which not in ("free", "occupied"):
+            raise self._protocol_error(what, f"the map request {str(which)[:60]!r}")
+        return getattr(self.map_source, which)()
 
     def call(self, op, arg=None):
         if self.failure is not None:
@@ -289,13 +303,7 @@ class _Proxy:
     def __init__(self, worker):
         self._worker = worker
         self.msbench_process_id = worker.proc.pid  # its CPU time is charged (timing.compute: charged)
-        namespace = worker.ready.get("no_pid_namespace", "")
-        self.msbench_confinement = ((f"own process, Landlock ABI {worker.ready['landlock_abi']}"
-                                     if worker.ready["landlock_abi"] else "own process, unconfined (no Landlock)") +
-                                    f", {worker.memory_limit_mib:g} MiB" +
-                                    (", own PID namespace" if not namespace else f", no PID namespace ({namespace})") +
-                                    (", no sockets or memfd" if not worker.ready.get("no_seccomp")
-                                     else f", sockets allowed ({worker.ready['no_seccomp']})"))
+        self.msbench_confinement = _confinement(worker)
         if worker.ready["snapshot"]:
             self.snapshot = lambda: worker.call("snapshot")
         if worker.ready["counters"]:
@@ -311,6 +319,50 @@ class _Proxy:
 
     def free_space(self):
         return self._worker.call("free_space")
+
+
+def _confinement(worker):
+    """How a process was confined, as its record says (an unconfined one is never ranked)."""
+    ready = worker.ready
+    namespace = ready.get("no_pid_namespace", "")
+    return ((f"own process, Landlock ABI {ready['landlock_abi']}" if ready["landlock_abi"]
+             else "own process, unconfined (no Landlock)") +
+            f", {worker.memory_limit_mib:g} MiB" +
+            (f", runs as {ready['user']}" if ready.get("user") else "") +
+            (", own PID namespace" if not namespace else f", no PID namespace ({namespace})") +
+            (", no sockets, memfd or exec" if not ready.get("no_seccomp") else f", sockets allowed ({ready['no_seccomp']})"))
+
+
+class _ChooserProxy:
+    """A scenario's goal chooser as msbench calls it: chooser(request) answered by its process.
+    A GoalRequest's map (free(), occupied()) is served on the chooser's demand during the call."""
+
+    def __init__(self, worker):
+        self._worker = worker
+        self.msbench_process_id = worker.proc.pid
+        self.msbench_confinement = "goal chooser: " + _confinement(worker)
+
+    def __call__(self, request):
+        if hasattr(request, "needs_goal"):  # the grid's GoalRequest
+            payload = {"kind": "grid", "t_s": request.t_s, "needs_goal": request.needs_goal,
+                       "position": request.position}
+            self._worker.map_source = request
+        else:  # MonoSpheres' ViewpointRequest
+            payload = {"kind": "viewpoints", **{k: getattr(request, k) for k in ("t_s", "position", "ids", "positions",
+                                                                                  "yaws", "path_costs", "values")}}
+        try:
+            return self._worker.call("goals", payload)
+        finally:
+            self._worker.map_source = None
+
+
+def chooser(entry, chooser_dir, params, budget_s, scenario_file, memory_limit_mib=4096):
+    """A scenario's goal chooser (its `goals` section) started in its own confined process, as a
+    callable proxy: `entry`, or with `params` what `entry(**params)` returns, runs there only."""
+    ctx = {"box_min": None, "box_max": None, "start_position": None, "start_yaw_rad": None, "start_pose": None,
+           "seed": 0}
+    return _ChooserProxy(_Worker(entry, chooser_dir, dict(params or {}), ctx, budget_s, scenario_file,
+                                 memory_limit_mib, kind="chooser"))
 
 
 def factory(entry, method_dir, params, budget_s, scenario_file, memory_limit_mib=4096):

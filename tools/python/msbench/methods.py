@@ -47,18 +47,13 @@ def source_file(obj):
 
 
 def chooser_of(entry, path, params, scenario_file):
-    """The goal chooser a scenario's `goals` section names: `entry` itself, or — with `params` —
-    what `entry(**params)` returns (a factory of choosers). ConfigError naming the key."""
-    found = _import_entry(entry, path, scenario_file, "goals")
-    if not params:
-        return found
-    try:
-        chooser = found(**dict(params))
-    except TypeError as e:
-        raise ConfigError(f"{scenario_file}: key 'goals.params': {e}") from e
-    if not callable(chooser):
-        raise ConfigError(f"{scenario_file}: key 'goals.entry': '{entry}(**params)' did not return a callable chooser")
-    return chooser
+    """The goal chooser a scenario's `goals` section names, in its own confined process
+    (msbench.confined): `entry` itself, or — with `params` — what `entry(**params)` returns (a
+    factory of choosers), imported there and nowhere else. ConfigError naming the key."""
+    from . import confined
+    full = method_dir(path, scenario_file, "goals")
+    check_importable(entry, scenario_file, "goals")
+    return confined.chooser(entry, full, dict(params or {}), 60.0, scenario_file)
 
 
 def factory_of(entry, path, params, scenario_file, call_budget_s=60.0, memory_limit_mib=4096):
