@@ -59,10 +59,13 @@ struct SceneReader {
         s.vertices.push_back(T_W_M * Vec3(scale.x() * p.x, scale.y() * p.y, scale.z() * p.z));
         if (mesh->HasTextureCoords(0)) s.uv.emplace_back(mesh->mTextureCoords[0][v].x, mesh->mTextureCoords[0][v].y);
       }
+      // A mirroring scale (a held-out world's mirror) turns the faces inside out: wound back.
+      const bool flip = scale.x() * scale.y() * scale.z() < 0;
       for (unsigned f = 0; f < mesh->mNumFaces; ++f)
-        if (mesh->mFaces[f].mNumIndices == 3)
-          s.triangles.push_back(
-              {int(mesh->mFaces[f].mIndices[0]), int(mesh->mFaces[f].mIndices[1]), int(mesh->mFaces[f].mIndices[2])});
+        if (mesh->mFaces[f].mNumIndices == 3) {
+          const unsigned* i = mesh->mFaces[f].mIndices;
+          s.triangles.push_back({int(i[0]), int(flip ? i[2] : i[1]), int(flip ? i[1] : i[2])});
+        }
       if (!s.triangles.empty()) surfaces.push_back(std::move(s));
     }
     for (unsigned c = 0; c < node->mNumChildren; ++c) read(node->mChildren[c], T);

@@ -78,7 +78,8 @@ ImportedMesh readMesh(const WorldSpec& spec, size_t i) {
                                " and run `msbench world import " + spec.name + " --from CLONE`");
   }
   try {
-    return importMesh(path.string(), m.scale, poseFromXyzYaw(m.at, m.yaw_deg * kDeg), m.slab_thickness_m);
+    return importMesh(path.string(), m.mirrored ? Vec3(m.scale.x(), -m.scale.y(), m.scale.z()) : m.scale,
+                      poseFromXyzYaw(m.at, m.yaw_deg * kDeg), m.slab_thickness_m);
   } catch (const std::runtime_error& e) {
     throw ConfigError(key, e.what());
   }

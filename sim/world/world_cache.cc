@@ -70,12 +70,13 @@ void removeStaleTemporaries(const fs::path& cache_root, const std::string& name)
 
 // Writes the world's files into `tmp` and renames it to `dir` (another process may have built
 // it first). On any failure the temporary directory is removed and the error names the cache.
-void writeWorldDirectory(const GeneratedWorld& g, int texture_px, const fs::path& tmp, const fs::path& dir) {
+void writeWorldDirectory(const GeneratedWorld& g, int texture_px, uint64_t texture_seed, const fs::path& tmp,
+                         const fs::path& dir) {
   try {
     fs::remove_all(tmp);
     fs::create_directories(tmp / "textures");
     for (const auto& t : g.textures)
-      writeBytes(tmp / "textures" / (t + ".png"), encodePng(viewOf(makeTexture(t, texture_px, 0))));
+      writeBytes(tmp / "textures" / (t + ".png"), encodePng(viewOf(makeTexture(t, texture_px, texture_seed))));
     for (const auto& [name, png] : g.image_textures) writeBytes(tmp / "textures" / (name + ".png"), png);
     writeBytes(tmp / "shapes.csv", shapesCsv(g.shapes));
     writeBytes(tmp / "world.xml", g.mjcf);
@@ -96,9 +97,11 @@ BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
   BuiltWorld out;
   out.generated = generateWorld(spec);
 
-  // Cache key: generator version, texture size and the generated MJCF text.
-  const std::string key_text =
-      std::to_string(kWorldGeneratorVersion) + "|" + std::to_string(spec.texture_px) + "|" + out.generated.mjcf;
+  // Cache key: generator version, texture size (and seed, when not the world's own) and the
+  // generated MJCF text.
+  const std::string key_text = std::to_string(kWorldGeneratorVersion) + "|" + std::to_string(spec.texture_px) +
+                               (spec.texture_seed ? "|t" + std::to_string(spec.texture_seed) : std::string()) + "|" +
+                               out.generated.mjcf;
   char key[17];
   std::snprintf(key, sizeof(key), "%016llx",
                 static_cast<unsigned long long>(fnv1a64(key_text.data(), key_text.size())));
@@ -109,7 +112,7 @@ BuiltWorld buildWorld(const WorldSpec& spec, const std::string& cache_root) {
   if (!fs::is_regular_file(dir / "world.xml")) {
     removeStaleTemporaries(cache_root, spec.name);
     const fs::path tmp = fs::path(cache_root) / (".tmp-" + spec.name + "-" + std::to_string(::getpid()));
-    writeWorldDirectory(out.generated, spec.texture_px, tmp, dir);
+    writeWorldDirectory(out.generated, spec.texture_px, spec.texture_seed, tmp, dir);
     if (!fs::is_regular_file(dir / "world.xml"))
       throw std::runtime_error(dir.string() + ": could not write the world cache");
   } else {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sim/world/world_generator.h"
+#include "sim/world/world_salt.h"
 
 namespace msb {
 
@@ -16,6 +17,7 @@ struct BuiltWorld {
   GeneratedWorld generated;    ///< shapes, start, exploration box, counts
   bool reused = false;         ///< found in the cache
   double build_seconds = 0.0;  ///< wall time of generation (+ writing, if built)
+  WorldSalting salting;        ///< how a held-out world differs from its spec (none: not held out)
 };
 
 /// Generates `spec` and makes sure its files exist under `cache_root`. Throws on I/O errors.

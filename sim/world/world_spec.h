@@ -157,6 +157,9 @@ struct MeshSpec {
   /// imported source; empty: such a mesh is an error.
   std::string missing_texture;
   int max_texture_px = 2048;  ///< images are scaled down to this side (grey, as the camera sees)
+  /// Not a key: the mesh is mirrored across its own x axis (a held-out world's mirror,
+  /// sim/world/world_salt.h).
+  bool mirrored = false;
 
   /// The keys, each once with the values it accepts.
   template <class Self, class V>
@@ -201,6 +204,9 @@ struct WorldSpec {
   /// Not a key: the directory the imported files are read from (the world cache's
   /// sources/NAME/, set where the spec is resolved).
   std::string source_dir;
+  /// Not a key: the procedural textures' seed (0: the world's own textures; a held-out world's
+  /// is drawn from its salt, sim/world/world_salt.h).
+  uint64_t texture_seed = 0;
 
   /// The top-level keys, each once with the values it accepts (`ground`, `start`,
   /// `exploration_box`, `objects` and `cave` are read in tools/config).

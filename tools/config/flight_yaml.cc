@@ -151,6 +151,7 @@ void readFlightKeys(MapReader& r, const fs::path& dir, FlightSpec& s) {
     else
       s.world_name = world;
   }
+  r.read("held_out", s.held_out);
   if (r.has("start")) {
     MapReader st = r.sub("start");
     st.read("position", s.start_position_m);
@@ -165,6 +166,7 @@ void writeFlightKeys(MapWriter& w, const FlightSpec& spec, bool with_start) {
   FlightSpec s = spec;
   // The world as it was named: a world name, else the MJCF file (absolute).
   w.field("world", s.world_name.empty() ? s.world_path : s.world_name);
+  if (s.held_out) w.field("held_out", true);  // only when set: every other run's text as it was
   if (with_start) {
     MapWriter st = w.sub("start");
     st.field("position", s.start_position_m);

@@ -23,6 +23,9 @@ const OutsideKey kOutsideKeys[] = {
     {"suite", "a directory of published runs the run is for, e.g. results/table1 (docs/sweeps.md, \"Suites\")"},
     {"base", "a scenario file whose keys this file overrides (relative to this file)"},
     {"world", "a world name (msbench world list) or an MJCF file (.xml, relative to this file)"},
+    {"held_out",
+     "true: the world is drawn with the salt in $MSBENCH_WORLD_SALT or $MSBENCH_WORLD_SALT_FILE (docs/worlds.md, "
+     "\"Held-out worlds\"; default false)"},
     {"start.position", "[x, y, z] in m (default: the world's start)"},
     {"start.yaw_deg", "a number (default: the world's start)"},
     {"exploration_box.min", "[x, y, z] in m (default: the world's box)"},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "core/common/config_check.h"
 #include "tools/config/field_keys.h"
@@ -163,9 +164,35 @@ std::vector<WorldEntry> listWorlds() {
   return out;
 }
 
-ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed) {
+std::string heldOutSalt() {
+  const char* text = std::getenv("MSBENCH_WORLD_SALT");
+  const char* file = std::getenv("MSBENCH_WORLD_SALT_FILE");
+  std::string salt, from = "$MSBENCH_WORLD_SALT";
+  if (text && *text) {
+    salt = text;
+  } else if (file && *file) {
+    from = "$MSBENCH_WORLD_SALT_FILE (" + std::string(file) + ")";
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error(from + " cannot be read");
+    std::getline(in, salt);
+  } else {
+    throw std::runtime_error(
+        "a held-out world needs the evaluator's salt: set $MSBENCH_WORLD_SALT or "
+        "$MSBENCH_WORLD_SALT_FILE (at least " +
+        std::to_string(kMinSaltChars) + " characters, e.g. `head -c 16 /dev/urandom | xxd -p`)");
+  }
+  while (!salt.empty() && (salt.back() == '\r' || salt.back() == ' ')) salt.pop_back();
+  if (salt.size() < kMinSaltChars)
+    throw std::runtime_error(from + " holds " + std::to_string(salt.size()) + " characters; a salt needs at least " +
+                             std::to_string(kMinSaltChars));
+  return salt;
+}
+
+ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed, const std::string& salt) {
   ResolvedWorld out;
   if (fs::is_regular_file(arg) && fs::path(arg).extension() == ".xml") {
+    if (!salt.empty())
+      throw std::runtime_error("world '" + arg + "' is an MJCF file: only a generated world is held out");
     out.world_xml = fs::absolute(arg).string();
     return out;
   }
@@ -173,14 +200,19 @@ ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed)
   for (const auto& w : worlds) {
     if (w.name != arg && w.path != arg) continue;
     if (!w.generated) {
+      if (!salt.empty())
+        throw std::runtime_error("world '" + arg + "' is hand-written MJCF: only a generated world is held out");
       out.world_xml = w.path;
       return out;
     }
     WorldSpec spec = loadWorldSpec(w.path);
     if (seed) spec.seed = *seed;
     spec.source_dir = worldSourcesDir(spec.name);
+    WorldSalting salting;
+    if (!salt.empty()) spec = saltWorldSpec(spec, salt, &salting);
     try {
       out.built = buildWorld(spec, worldCacheDir());
+      out.built->salting = salting;
     } catch (const ConfigError& e) {
       throw FileConfigError(w.path + ": " + e.what());
     }
@@ -198,9 +230,18 @@ ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed)
 namespace msb {
 
 std::optional<BuiltWorld> resolveFlightWorld(const std::string& file, FlightSpec& spec) {
+  std::string salt;
+  if (spec.held_out) {
+    try {
+      if (spec.world_name.empty()) throw std::runtime_error("an MJCF file is never held out: name a generated world");
+      salt = heldOutSalt();
+    } catch (const std::runtime_error& e) {
+      throw FileConfigError(file + ": key 'held_out': " + e.what());
+    }
+  }
   if (spec.world_name.empty()) return std::nullopt;
   try {
-    ResolvedWorld w = resolveWorld(spec.world_name);
+    ResolvedWorld w = resolveWorld(spec.world_name, std::nullopt, salt);
     spec.world_path = w.world_xml;
     return w.built;
   } catch (const std::runtime_error& e) {
@@ -212,16 +253,23 @@ MissionWorld prepareMissionWorld(const std::string& file, ScenarioSpec& spec) {
   MissionWorld w;
   w.box.min = Vec3::Constant(-1e6);
   w.box.max = Vec3::Constant(1e6);
-  if (std::optional<BuiltWorld> built = resolveFlightWorld(file, spec.flight)) {
+  const WorldSalting* salting = nullptr;
+  std::optional<BuiltWorld> built = resolveFlightWorld(file, spec.flight);
+  if (built) {
+    salting = &built->salting;
     if (spec.start_from_world) {
       spec.flight.start_position_m = built->generated.start.translation();
       spec.flight.start_yaw_rad = yawOf(built->generated.start.linear());
+    } else if (salting->mirrored) {  // the scenario's own start, mirrored with its world
+      spec.flight.start_position_m.head<2>() = salting->point(spec.flight.start_position_m.head<2>());
+      spec.flight.start_yaw_rad = salting->yaw(spec.flight.start_yaw_rad);
     }
     w.box = built->generated.exploration_box;
     w.truth.emplace(built->generated.shapes);
     spec.paper_world = built->generated.paper_world;
+    if (spec.flight.held_out) spec.world_salt_commitment = worldSaltCommitment(heldOutSalt());
   }
-  if (spec.exploration_box) w.box = *spec.exploration_box;
+  if (spec.exploration_box) w.box = salting ? salting->box(*spec.exploration_box) : *spec.exploration_box;
   return w;
 }
 

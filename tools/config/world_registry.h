@@ -44,7 +44,13 @@ struct ResolvedWorld {
 /// Resolves a world argument (name or MJCF path); generated worlds are built into the cache
 /// with the spec's seed or `seed` if given. Throws UsageError (listing the names that exist)
 /// for an unknown world.
-ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed = std::nullopt);
+ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed = std::nullopt,
+                           const std::string& salt = "");
+
+/// The evaluator's salt for held-out worlds: $MSBENCH_WORLD_SALT, else the first line of the file
+/// $MSBENCH_WORLD_SALT_FILE names. Throws std::runtime_error naming both when neither gives a
+/// salt of at least kMinSaltChars characters (or the file cannot be read).
+std::string heldOutSalt();
 
 /// Resolves the world named in flight file `file` (spec.world_name, if any) into
 /// spec.world_path; an unknown name is a FileConfigError naming the file and key.

@@ -77,11 +77,12 @@ struct PerceptionConfig {
 
 /// Everything `msbench fly` needs.
 struct FlightSpec {
-  std::string world_path;                    ///< MJCF world file (absolute after loading), or
-  std::string world_name;                    ///< a world name (worlds/<name>/), resolved when flying
-  uint64_t seed = 1;                         ///< scenario seed for all RNG streams
-  double duration_s = 60.0;                  ///< hard limit on simulated time
-  double hold_after_s = 2.0;                 ///< keep flying this long after the path is finished
+  std::string world_path;     ///< MJCF world file (absolute after loading), or
+  std::string world_name;     ///< a world name (worlds/<name>/), resolved when flying
+  bool held_out = false;      ///< the world is drawn with the evaluator's salt (docs/worlds.md, "Held-out worlds")
+  uint64_t seed = 1;          ///< scenario seed for all RNG streams
+  double duration_s = 60.0;   ///< hard limit on simulated time
+  double hold_after_s = 2.0;  ///< keep flying this long after the path is finished
   Vec3 start_position_m = Vec3(0, 0, 0.05);  ///< body origin at start (0.05 m = on the ground)
   double start_yaw_rad = 0.0;                ///< heading at start
   std::vector<Waypoint> waypoints;           ///< the scripted path

@@ -77,6 +77,10 @@ struct ScenarioSpec {
   /// Not a key: the paper's Table I world the resolved world is (its spec's paper_world), set
   /// where the world is resolved; metrics.json `paper_world` when not empty.
   std::string paper_world;
+  /// Not a key: the commitment of the salt a held-out world was drawn with (`held_out: true`;
+  /// sim/world/world_salt.h), set where the world is resolved; metrics.json
+  /// `world_salt_commitment` when not empty. The salt itself is never recorded.
+  std::string world_salt_commitment;
   FlightSpec flight = missionFlightDefaults();  ///< world, seed, duration, start, vehicle, sensors
   bool start_from_world = true;                 ///< take start pose from the generated world unless `start` is given
   std::optional<Aabb> exploration_box;          ///< overrides the world's box

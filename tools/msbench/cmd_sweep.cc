@@ -8,6 +8,7 @@
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/strict_number.h"
 #include "tools/config/sweep_plan.h"
+#include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/interrupt.h"
@@ -71,6 +72,14 @@ int runSweepCommand(int argc, char** argv) {
     try {
       const ScenarioSpec spec = loadScenario(r.scenario, sets);
       options.time_limit_s.push_back(limit ? *limit : defaultRunTimeLimitS(spec.flight.duration_s));
+      // A held-out world needs the evaluator's salt before any run starts.
+      if (spec.flight.held_out) {
+        try {
+          (void)heldOutSalt();
+        } catch (const std::runtime_error& e) {
+          throw std::runtime_error(std::string("key 'held_out': ") + e.what());
+        }
+      }
     } catch (const std::exception& e) {
       throw FileConfigError(plan.file + ": run " + r.id + ": " + e.what());
     }

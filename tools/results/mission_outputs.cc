@@ -148,6 +148,7 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
   j["seed"] = spec.flight.seed;
   j["world"] = spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name;
   if (!spec.paper_world.empty()) j["paper_world"] = spec.paper_world;  // only when set: older records as they were
+  if (!spec.world_salt_commitment.empty()) j["world_salt_commitment"] = spec.world_salt_commitment;
   j["method"] = spec.method.type;
   j["switches"] = spec.method.switches;
   if (!spec.method.reference_code.empty()) j["reference_code"] = spec.method.reference_code;

@@ -33,6 +33,18 @@ void applySuite(SweepResults& results, const fs::path& suite_dir) {
   }
   if (allowed.empty())
     throw std::runtime_error("--suite " + suite_dir.string() + ": no run with a readable config.yaml under runs/");
+  // Held-out worlds: one salt for every run the suite ranks (records carry its commitment).
+  std::set<std::string> salts;
+  for (const ReportRun& run : results.runs)
+    if (run.record) {
+      const auto it = run.metrics.find("world_salt_commitment");
+      salts.insert(it != run.metrics.end() && it->is_string() ? it->get<std::string>() : "no salt");
+    }
+  if (salts.size() > 1)
+    throw std::runtime_error("--suite " + suite_dir.string() + ": the runs were drawn with " +
+                             std::to_string(salts.size()) + " different world salts (" + *salts.begin() + ", " +
+                             *std::next(salts.begin()) + (salts.size() > 2 ? ", ..." : "") +
+                             "): a suite ranks the runs of one salt; report each salt's runs apart");
   results.suite = suite_dir.string();
   for (ReportRun& run : results.runs) {
     if (!run.record) continue;

@@ -13,7 +13,9 @@ namespace msb {
 /// settings (tools/config/scenario_yaml.h). Every complete run of `results` whose own hash
 /// (metrics.json `fixed_settings_hash`, else from its config.yaml) is not among its world's is
 /// set aside: status "off-suite", no record (in no row, ranking or finding), `off_suite` saying
-/// why. Throws std::runtime_error when the suite has no readable run.
+/// why. Throws std::runtime_error when the suite has no readable run, or when the complete runs
+/// disagree on the salt of their held-out worlds (metrics.json `world_salt_commitment`, "no salt"
+/// for a run without).
 void applySuite(SweepResults& results, const std::filesystem::path& suite_dir);
 
 /// The rule of every report (docs/metrics.md, "What is ranked"): a complete run is ranked only if

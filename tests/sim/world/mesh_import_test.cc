@@ -20,6 +20,7 @@
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/world/world_cache.h"
 #include "sim/world/world_generator.h"
+#include "sim/world/world_salt.h"
 
 namespace msb {
 namespace {
@@ -226,6 +227,37 @@ TEST(MeshImport, AMissingImageFileOrMeshIsAnErrorNamingTheKey) {
   w.source_dir = dir.string();
   w.meshes[0].file = "meshes/junk.obj";
   expectError(w, "junk.obj");
+}
+
+}  // namespace
+}  // namespace msb
+
+namespace msb {
+namespace {
+
+// A held-out world's mirror (sim/world/world_salt.h) mirrors an imported mesh too: its solids are
+// where the unmirrored ones are, seen in the mirror (the fixture starts at (-15, 15) heading +x:
+// the mirror is y -> 30 - y), and its faces stay wound outwards.
+TEST(MeshImport, AMirroredMeshHoldsItsSolidsInTheMirror) {
+  const fs::path dir = tempDir("mirror");
+  writeScene(dir / "meshes");
+  const WorldSpec plain = sceneWorld(dir);
+  WorldSpec mirrored;
+  WorldSalting h;
+  for (int i = 0; i < 64 && !h.mirrored; ++i)
+    mirrored = saltWorldSpec(plain, "mirror-salt-" + std::to_string(i) + "-0123456", &h);
+  ASSERT_TRUE(h.mirrored);
+  ASSERT_TRUE(mirrored.meshes[0].mirrored);
+  const WorldTruth a(generateWorld(plain).shapes), b(generateWorld(mirrored).shapes);
+  int checked = 0;
+  for (double x = -19.5; x < 20; x += 1.5)
+    for (double y = 10.25; y < 20; y += 1.5)
+      for (double z = -1.0; z < 5; z += 0.7) {
+        const Vec2 m = h.point(Vec2(x, y));
+        EXPECT_EQ(a.inside(Vec3(x, y, z)), b.inside(Vec3(m.x(), m.y(), z))) << x << ", " << y << ", " << z;
+        ++checked;
+      }
+  EXPECT_GT(checked, 500);
 }
 
 }  // namespace

@@ -92,6 +92,34 @@ TEST(SweepReport, ASuiteSetsAsideRunsWithOtherSettings) {
   EXPECT_THROW(applySuite(s, d / "nothing"), std::runtime_error);
 }
 
+// Held-out worlds (docs/worlds.md): a suite is ranked on one salt; runs drawn with different
+// salts (or some with none) are refused, naming the commitments.
+TEST(SweepReport, ASuiteRefusesRunsDrawnWithDifferentWorldSalts) {
+  const fs::path d = fs::path(::testing::TempDir()) / "msb_report_salts";
+  fs::remove_all(d);
+  fs::create_directories(d / "suite/runs/urban-s1");
+  const std::string scenario = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/urban.yaml";
+  std::ofstream(d / "suite/runs/urban-s1/config.yaml") << effectiveScenarioYaml(loadScenario(scenario));
+  SweepResults s;
+  s.dir = d / "sweep";
+  s.axes = {"world", "method"};
+  s.runs = {madeRun("urban-a-s1", "urban", "a", 800, "completed"),
+            madeRun("urban-b-s1", "urban", "b", 900, "completed")};
+  s.runs[0].metrics["world_salt_commitment"] = "fnv1a64:0000000000000001";
+  s.runs[1].metrics["world_salt_commitment"] = "fnv1a64:0000000000000001";
+  SweepResults same = s;
+  EXPECT_NO_THROW(applySuite(same, d / "suite"));
+  s.runs[1].metrics["world_salt_commitment"] = "fnv1a64:0000000000000002";
+  try {
+    applySuite(s, d / "suite");
+    ADD_FAILURE() << "two salts were ranked together";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("2 different world salts"), std::string::npos) << e.what();
+  }
+  s.runs[1].metrics.erase("world_salt_commitment");
+  EXPECT_THROW(applySuite(s, d / "suite"), std::runtime_error);  // one salted, one not
+}
+
 TEST(SweepReport, TheSuiteIsTheOneTheRunsRecord) {
   SweepResults s;
   s.runs = {madeRun("urban-mine-s1", "urban", "mine", 800, "completed"),
