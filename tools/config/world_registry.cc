@@ -19,6 +19,11 @@ std::string worldsDir() {
   return env && *env ? env : MSB_WORLDS_DIR;
 }
 
+std::string resultsDir() {
+  const char* env = std::getenv("MSBENCH_RESULTS_DIR");
+  return env && *env ? std::string(env) : (fs::path(MSB_WORLDS_DIR).parent_path() / "results").string();
+}
+
 std::string worldCacheDir() {
   const char* env = std::getenv("MSBENCH_CACHE_DIR");
   return env && *env ? std::string(env) : (fs::path(worldsDir()) / ".cache").string();

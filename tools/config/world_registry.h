@@ -17,6 +17,9 @@ namespace msb {
 std::string worldsDir();
 /// The generated-world cache: $MSBENCH_CACHE_DIR or <worlds dir>/.cache.
 std::string worldCacheDir();
+/// The runs msbench publishes (its own settings, docs/metrics.md): $MSBENCH_RESULTS_DIR or the
+/// source tree's results/.
+std::string resultsDir();
 /// Where `msbench world import NAME` keeps a world's imported source files: the cache's
 /// sources/NAME/.
 std::string worldSourcesDir(const std::string& name);

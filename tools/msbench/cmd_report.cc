@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/interrupt.h"
@@ -119,7 +120,13 @@ int runReportCommand(int argc, char** argv) {
                                (args.get("suite").empty() ? "named by the runs" : "--suite") +
                                "): run from the repository, or give --suite PATH");
     applyRankRules(results);  // every report: only sealed, confined runs are ranked
-    if (!suite.empty()) applySuite(results, suite);
+    if (!suite.empty())
+      applySuite(results, suite);
+    else  // the default suite: msbench's own settings, where some run flies them
+      applyRetunedRule(results, [&] {
+        const std::set<std::string> worlds = worldsOf(results);
+        return publishedSettings(resultsDir(), &worlds);
+      }());
   } catch (const std::filesystem::filesystem_error&) {
     throw;  // main names the path and the reason in words
   } catch (const std::runtime_error& e) {

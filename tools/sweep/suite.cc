@@ -1,5 +1,7 @@
 #include "tools/sweep/suite.h"
 
+#include <algorithm>
+#include <fstream>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -20,17 +22,85 @@ std::pair<std::string, std::string> settingsOf(const fs::path& config) {
   return {spec.flight.world_name.empty() ? spec.flight.world_path : spec.flight.world_name, spec.fixed_settings_hash};
 }
 
+// The world a msbench-written config.yaml names on its top-level `world:` line ("" if none).
+std::string worldLineOf(const fs::path& config) {
+  std::ifstream in(config);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("world: ", 0) == 0) return line.substr(7);
+  return "";
+}
+
+// Per world, the fixed-settings hashes of the runs under `runs_dir` (each run's config.yaml);
+// with `worlds`, only of runs whose config names one of them.
+void addSettingsOfRuns(const fs::path& runs_dir, SettingsByWorld& out, const std::set<std::string>* worlds = nullptr) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(runs_dir, ec)) {
+    if (!fs::is_regular_file(e.path() / "config.yaml")) continue;
+    if (worlds && !worlds->count(worldLineOf(e.path() / "config.yaml"))) continue;
+    try {
+      const auto [world, hash] = settingsOf(e.path() / "config.yaml");
+      out[world].insert(hash);
+    } catch (const std::exception&) {
+      // A published run this build cannot read: its settings are not msbench's own any more.
+    }
+  }
+}
+
+// A run's fixed-settings hash: its record's, else from its config.yaml ("" when unreadable).
+std::string hashOfRun(const SweepResults& results, const ReportRun& run) {
+  const nlohmann::json& m = run.metrics;
+  if (m.contains("fixed_settings_hash") && m["fixed_settings_hash"].is_string())
+    return m["fixed_settings_hash"].get<std::string>();
+  try {
+    return settingsOf(results.dir / "runs" / run.id / "config.yaml").second;
+  } catch (const std::exception&) {
+    return "";
+  }
+}
+
 }  // namespace
+
+SettingsByWorld publishedSettings(const fs::path& results_dir, const std::set<std::string>* worlds) {
+  SettingsByWorld out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(results_dir, ec))
+    if (e.is_directory()) addSettingsOfRuns(e.path() / "runs", out, worlds);
+  return out;
+}
+
+std::set<std::string> worldsOf(const SweepResults& results) {
+  std::set<std::string> out;
+  for (const ReportRun& run : results.runs)
+    if (run.metrics.is_object()) out.insert(run.metrics.value("world", std::string("?")));
+  return out;
+}
+
+void applyRetunedRule(SweepResults& results, const SettingsByWorld& own) {
+  // Per world: the hashes of the runs still ranked.
+  std::map<std::string, std::vector<std::pair<ReportRun*, std::string>>> by_world;
+  for (ReportRun& run : results.runs)
+    if (run.status == "complete" && run.metrics.is_object())
+      by_world[run.metrics.value("world", std::string("?"))].push_back({&run, hashOfRun(results, run)});
+  for (auto& [world, runs] : by_world) {
+    const auto it = own.find(world);
+    if (it == own.end()) continue;  // a world msbench publishes nothing in: no default
+    const std::set<std::string>& mine = it->second;
+    const bool some_own = std::any_of(runs.begin(), runs.end(), [&](const auto& r) { return mine.count(r.second); });
+    if (!some_own) continue;  // every run flies settings of its own: compared like with like
+    for (auto& [run, hash] : runs) {
+      if (hash.empty() || mine.count(hash)) continue;
+      run->unranked = "retuned: its fixed settings " + hash + " are none of msbench's own for " + world +
+                      ", which other runs here fly (compare them under --suite)";
+      run->status = "unranked";
+      run->record.reset();
+    }
+  }
+}
 
 void applySuite(SweepResults& results, const fs::path& suite_dir) {
   // The suite: per world, the hashes its published runs flew with.
-  std::map<std::string, std::set<std::string>> allowed;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(suite_dir / "runs", ec)) {
-    if (!fs::is_regular_file(e.path() / "config.yaml")) continue;
-    const auto [world, hash] = settingsOf(e.path() / "config.yaml");
-    allowed[world].insert(hash);
-  }
+  SettingsByWorld allowed;
+  addSettingsOfRuns(suite_dir / "runs", allowed);
   if (allowed.empty())
     throw std::runtime_error("--suite " + suite_dir.string() + ": no run with a readable config.yaml under runs/");
   // Held-out worlds: one salt for every run the suite ranks (records carry its commitment).

@@ -3,6 +3,9 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <set>
+#include <string>
 
 #include "tools/sweep/sweep_report.h"
 
@@ -24,6 +27,26 @@ void applySuite(SweepResults& results, const std::filesystem::path& suite_dir);
 /// the seal) and a run whose method ran unconfined (in-process, a goal chooser) are set aside:
 /// status "unranked" with the reason, in no row, ranking, ratio or finding.
 void applyRankRules(SweepResults& results);
+
+/// Per world, the fixed-settings hashes of a set of runs.
+using SettingsByWorld = std::map<std::string, std::set<std::string>>;
+
+/// msbench's own settings (docs/metrics.md, "What is ranked"): per world, the fixed-settings
+/// hashes of every run msbench publishes (`results_dir`/*/runs/*/config.yaml, read by this build);
+/// with `worlds`, of the runs in those worlds only (each config read in full only then).
+SettingsByWorld publishedSettings(const std::filesystem::path& results_dir,
+                                  const std::set<std::string>* worlds = nullptr);
+
+/// The worlds of a report's runs (metrics.json `world`).
+std::set<std::string> worldsOf(const SweepResults& results);
+
+/// The default report's suite: in a world where some ranked run flies one of msbench's own
+/// settings (`own`), a ranked run whose fixed settings are none of them is "retuned" — status
+/// "unranked" with the reason, in no row, ranking, ratio or finding (a sweep variant with a longer
+/// camera range used to outrank MonoSpheres). Worlds msbench publishes nothing in, and reports
+/// whose runs in a world all fly settings of their own, are left as they are (compare those
+/// under --suite).
+void applyRetunedRule(SweepResults& results, const SettingsByWorld& own);
 
 /// The suite the complete runs name (metrics.json `suite`, from the scenario's `suite:` key):
 /// "" if none names one; throws std::runtime_error if they name different suites.

@@ -717,3 +717,41 @@ TEST(SweepReport, OnlySealedConfinedRunsAreRanked) {
 
 }  // namespace
 }  // namespace msb
+
+namespace msb {
+namespace {
+
+// The default report's suite is msbench's own settings: a sweep variant that changes a fixed
+// setting (a longer camera range: it used to outrank MonoSpheres in the default report) is set
+// aside as retuned where another run flies msbench's own; a world msbench publishes nothing in,
+// or runs all on settings of their own, are left to --suite.
+TEST(SweepReport, ARetunedVariantIsNotRankedBesideMsbenchsOwnSettings) {
+  const std::string scenario = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/urban.yaml";
+  SettingsByWorld own;
+  own["urban"].insert(loadScenario(scenario).fixed_settings_hash);
+  SweepResults s;
+  s.dir = "/nowhere";
+  s.axes = {"world", "method"};
+  s.runs = {madeRun("urban-ms-s1", "urban", "ms", 500, "completed"),
+            madeRun("urban-far-s1", "urban", "far", 9000, "completed"),
+            madeRun("cave-far-s1", "cave", "far", 9000, "completed")};
+  s.runs[0].metrics["fixed_settings_hash"] = loadScenario(scenario).fixed_settings_hash;
+  const std::string far = loadScenario(scenario, {"camera.clip_far_m=150"}).fixed_settings_hash;
+  s.runs[1].metrics["fixed_settings_hash"] = far;
+  s.runs[2].metrics["fixed_settings_hash"] = far;
+  SweepResults alone = s;
+  alone.runs.erase(alone.runs.begin());  // no run on msbench's own settings: nothing to compare with
+  applyRetunedRule(s, own);
+  EXPECT_EQ(s.runs[0].status, "complete");
+  EXPECT_EQ(s.runs[1].status, "unranked");
+  EXPECT_NE(s.runs[1].unranked.find("retuned"), std::string::npos) << s.runs[1].unranked;
+  EXPECT_NE(s.runs[1].unranked.find(far), std::string::npos) << s.runs[1].unranked;
+  EXPECT_EQ(s.runs[2].status, "complete");  // cave: no own settings given here
+  const std::string md = reportMarkdown(s, reportRows(s));
+  EXPECT_NE(md.find("| urban-far-s1 | retuned"), std::string::npos) << md;
+  applyRetunedRule(alone, own);
+  EXPECT_EQ(alone.runs[0].status, "complete");
+}
+
+}  // namespace
+}  // namespace msb

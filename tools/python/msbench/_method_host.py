@@ -1,13 +1,14 @@
-"""The process a Python method runs in (docs/python.md, "A method in its own process").
+"""The process a Python method or goal chooser runs in (docs/python.md, "A method in its own process").
 
-msbench starts it as `python3 -E -P _method_host.py RFD WFD` and never imports it: this file
-imports nothing of msbench. It confines itself (Linux Landlock: read-only to the Python
+msbench starts it as `python3 -I _method_host.py RFD WFD` and never imports it: this file
+imports nothing of msbench. It confines itself — Linux Landlock (read-only to the Python
 installation, /etc and the method's own directory; writes only in its scratch directory; no
-network; no signals or abstract sockets outside; a memory limit; every process it starts in a
-PID namespace that dies with it), then imports the method and answers msbench's
-calls over two pipes. msbench -> host: pickled (op, argument) messages; host -> msbench: JSON
-only (msbench never unpickles what a method wrote). Every message is an 8-byte little-endian
-length and its bytes.
+network; no signals or abstract sockets outside), nobody instead of root, a memory limit, its
+own user and PID namespaces (at most 256 tasks, none outliving it), seccomp (no socket(),
+memfd_create() or execve()) — then imports the method and answers msbench's calls over two
+pipes. msbench -> host: pickled (op, argument) messages; host -> msbench: JSON only (msbench
+never unpickles what a method wrote). Every message is an 8-byte little-endian length and its
+bytes.
 """
 import ctypes
 import importlib
