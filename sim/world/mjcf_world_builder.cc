@@ -334,8 +334,9 @@ std::string MjcfWorldBuilder::mjcf() const {
   }
   os << assets_.str() << merged_assets.str() << "  </asset>\n  <worldbody>\n";
   if (outdoor_)
-    os << "    <light name=\"sun\" directional=\"true\" castshadow=\"false\" pos=\"0 0 60\" "
-          "dir=\"0.62 0.47 -0.63\" diffuse=\"0.45 0.45 0.45\" specular=\"0 0 0\" ambient=\"0 0 0\"/>\n";
+    os << "    <light name=\"sun\" directional=\"true\" castshadow=\"false\" pos=\"0 0 60\" dir=\""
+       << (sun_direction_ == Vec3(0.62, 0.47, -0.63) ? std::string("0.62 0.47 -0.63") : vec(sun_direction_))
+       << "\" diffuse=\"0.45 0.45 0.45\" specular=\"0 0 0\" ambient=\"0 0 0\"/>\n";
   os << bodies_.str() << merged_geoms.str() << "  </worldbody>\n</mujoco>\n";
   return os.str();
 }

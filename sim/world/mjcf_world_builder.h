@@ -94,6 +94,8 @@ class MjcfWorldBuilder {
   /// flat and self-lit (no collision, no ground-truth shape), and a world-fixed sun. Worlds
   /// without it (caves) have neither.
   void setOutdoorSky(const Vec2& ground_size_m);
+  /// The sun's direction (default: msbench's, (0.62, 0.47, -0.63)).
+  void setSunDirection(const Vec3& dir) { sun_direction_ = dir; }
   /// The ground: plane z = 0 of the given extent with a texture repeating every tile.
   void setGround(const Vec2& size_m, const std::string& texture);
 
@@ -131,6 +133,7 @@ class MjcfWorldBuilder {
   std::map<std::pair<std::string, std::string>, MergedMesh> merged_;  // (group, material) → mesh
   int visual_geoms_ = 0;
   bool outdoor_ = false;
+  Vec3 sun_direction_ = Vec3(0.62, 0.47, -0.63);
 };
 
 }  // namespace msb

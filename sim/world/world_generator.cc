@@ -533,6 +533,7 @@ GeneratedWorld generateWorld(const WorldSpec& spec) {
   MjcfWorldBuilder b(spec.name);
   if (spec.ground_enabled) b.setGround(spec.ground_size_m, spec.ground_texture);
   if (!spec.cave) b.setOutdoorSky(spec.ground_size_m);  // caves: no sky, no sun
+  b.setSunDirection(spec.sun_direction);
   GeneratedWorld out;
   out.name = spec.name;
   out.paper_world = spec.paper_world;

@@ -27,16 +27,23 @@ bool alongAnAxis(double yaw_deg) {
   return q < 1e-6 || q > 90.0 - 1e-6;
 }
 
-// Kinds that stand square to their streets: turned by quarter turns only.
-bool squareKind(const std::string& kind) {
-  return kind == "building" || kind == "house" || kind == "gazebo" || kind == "tower";
+// How far a fixed object turns: buildings stand square to their streets (quarter turns);
+// vehicles and walls keep their line within kVehicleTurnDeg (a bus turned across a street closes
+// it); trees, rocks and the rest turn freely.
+double turnOf(const std::string& kind, RngStream& rng) {
+  if (kind == "building" || kind == "house" || kind == "gazebo" || kind == "tower")
+    return 90.0 * double(rng.uniformInt(4));
+  if (kind == "car" || kind == "suv" || kind == "bus" || kind == "fire_truck" || kind == "ambulance" ||
+      kind == "wall" || kind == "dumpster")
+    return rng.uniform(-kVehicleTurnDeg, kVehicleTurnDeg);
+  return rng.uniform(0.0, 360.0);
 }
 
 // Whether a fixed object stands where moving it could touch the start's clearance or the take-off
 // (it keeps its place and pose: the take-off is the world's own).
 bool nearTheStart(const WorldSpec& s, const ObjectGroupSpec& g) {
   const double reach = 0.5 * g.size_max.head<2>().norm() + g.offset.norm();
-  const double keep = s.start_clearance_m + s.start_corridor_m + kSaltJitterM + 3.0;
+  const double keep = std::max(s.start_clearance_m + s.start_corridor_m + kSaltJitterM + 3.0, kSaltKeepM);
   return (*g.at - s.start_position_m.head<2>()).norm() - reach < keep;
 }
 
@@ -76,7 +83,7 @@ void jitterObjects(WorldSpec& s, RngStream& rng, int& jittered) {
     if (!g.at || !g.near.empty() || nearTheStart(s, g)) continue;
     const double r = kSaltJitterM * std::sqrt(rng.uniform()), a = rng.uniform(0.0, 2.0 * kPi);
     *g.at += r * Vec2(std::cos(a), std::sin(a));
-    const double turn = squareKind(g.kind) ? 90.0 * double(rng.uniformInt(4)) : rng.uniform(0.0, 360.0);
+    const double turn = turnOf(g.kind, rng);
     g.yaw_deg = std::remainder(g.yaw_deg.value_or(0.0) + turn, 360.0);
     ++jittered;
   }
@@ -114,6 +121,9 @@ void mirrorSpec(WorldSpec& s, const WorldSalting& h) {
     }
   }
   s.exploration_box = h.box(s.exploration_box);
+  // The sun, mirrored: every face lit as its mirror image was.
+  const Vec2 sun = s.sun_direction.head<2>(), n(-h.heading.y(), h.heading.x());
+  s.sun_direction.head<2>() = sun.dot(h.heading) * h.heading - sun.dot(n) * n;
   // The ground (centred on the origin) grows to lie under the mirrored box.
   const Vec2 reach = s.exploration_box.min.head<2>().cwiseAbs().cwiseMax(s.exploration_box.max.head<2>().cwiseAbs());
   s.ground_size_m = s.ground_size_m.cwiseMax(2.0 * reach + Vec2::Constant(2.0));

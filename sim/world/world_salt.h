@@ -32,14 +32,22 @@ struct WorldSalting {
 /// The rules (docs/worlds.md): the world keeps its kinds, counts, sizes, start, exploration box
 /// volume and start clearance. Objects placed at random are placed with a seed drawn from the
 /// salt; fixed objects trade places with objects of the same kind and size, are moved by up to
-/// `kSaltJitterM` and turned (buildings and houses by quarter turns, everything else freely) —
-/// except on a terrain mesh (their heights are the terrain's) and near the start (kept clear);
+/// `kSaltJitterM` and turned (buildings and houses by quarter turns, vehicles and walls by up to
+/// kVehicleTurnDeg, the rest freely) — except on a terrain mesh (their heights are the terrain's)
+/// and within kSaltKeepM of the start;
 /// the whole world is mirrored across the start's heading line with probability 1/2 when that
 /// heading lies along an axis; procedural textures take a seed drawn from the salt.
 WorldSpec saltWorldSpec(const WorldSpec& spec, const std::string& salt, WorldSalting* how = nullptr);
 
 /// The furthest a fixed object's position moves (m).
 inline constexpr double kSaltJitterM = 1.5;
+
+/// Fixed objects whose footprint comes within this distance of the start keep their place and
+/// pose (up to the mirror): the take-off and its first minute are the world's own.
+inline constexpr double kSaltKeepM = 10.0;
+
+/// How far vehicles, walls and dumpsters turn (either way, degrees).
+inline constexpr double kVehicleTurnDeg = 20.0;
 
 /// The fewest characters a salt may have (a short salt can be guessed).
 inline constexpr size_t kMinSaltChars = 16;

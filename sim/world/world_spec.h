@@ -207,6 +207,9 @@ struct WorldSpec {
   /// Not a key: the procedural textures' seed (0: the world's own textures; a held-out world's
   /// is drawn from its salt, sim/world/world_salt.h).
   uint64_t texture_seed = 0;
+  /// Not a key: the outdoor sun's direction (a held-out world's mirror mirrors it, so that every
+  /// face is lit as its mirror image was).
+  Vec3 sun_direction = Vec3(0.62, 0.47, -0.63);
 
   /// The top-level keys, each once with the values it accepts (`ground`, `start`,
   /// `exploration_box`, `objects` and `cave` are read in tools/config).

@@ -112,13 +112,19 @@ TEST(WorldSalt, AMirrorMovesTheBoxAndEveryObjectWithTheWorld) {
   // The fire station (fixed, by the start: never jittered) stands mirrored, turned to match.
   EXPECT_TRUE(mirrored.objects[0].at->isApprox(Vec2(4.24, 16.54)));
   EXPECT_NEAR(*mirrored.objects[0].yaw_deg, 0.4, 1e-9);
+  // The sun too, so that every face is lit as its mirror image was (before, it was not: the
+  // textureless buses' sides then faced the light differently in a mirrored urban).
+  EXPECT_TRUE(mirrored.sun_direction.isApprox(Vec3(-0.62, 0.47, -0.63)));
+  EXPECT_NE(generateWorld(mirrored).mjcf.find("dir=\"-0.62 0.47 -0.63\""), std::string::npos);
+  EXPECT_NE(generateWorld(plain).mjcf.find("dir=\"0.62 0.47 -0.63\""), std::string::npos);
 }
 
 // What a method carrying the world's truth from the repository meets on a held-out world: where
-// its truth says "obstacle", the salted world is often free, and the other way round — as many
-// lattice points differ as 30 % of what the obstacles hold or more, whether the salt mirrors it or
-// not (measured: urban 1.33 / 0.41, sparse1 1.49 / 0.62, suburb3 1.18 / 0.36 mirrored / not; the
-// large buildings by the start stay, and a building moved 1.5 m changes only its edges).
+// its truth says "obstacle", the salted world is often free, and the other way round. Measured,
+// lattice points that differ per point the obstacles hold, mirrored / not: urban 1.53 / 0.13,
+// sparse1 1.52 / 0.62, suburb3 1.17 / 0.34 — a mirror moves everything; without one, urban keeps
+// the large buildings within kSaltKeepM of its start, and a building moved 1.5 m changes only its
+// edges. Asserted: above 1 mirrored, above 0.1 not.
 TEST(WorldSalt, ATruthCarriedInAdvanceNoLongerFitsTheWorld) {
   for (const auto& name : {"urban", "sparse1", "suburb3"}) {
     const GeneratedWorld plain = generateWorld(spec(name));
@@ -130,7 +136,7 @@ TEST(WorldSalt, ATruthCarriedInAdvanceNoLongerFitsTheWorld) {
       const double ratio = double(l.differ) / double(l.occupied);
       std::printf("%s %s: %d of the box's lattice points differ, %d are occupied (%.2f)\n", name,
                   mirrors ? "mirrored" : "not mirrored", l.differ, l.occupied, ratio);
-      EXPECT_GT(ratio, 0.3) << name << (mirrors ? " mirrored" : " not mirrored");
+      EXPECT_GT(ratio, mirrors ? 1.0 : 0.1) << name << (mirrors ? " mirrored" : " not mirrored");
     }
   }
 }
@@ -140,6 +146,27 @@ TEST(WorldSalt, TheRecordCarriesACommitmentNotTheSalt) {
   EXPECT_NE(worldSaltCommitment(kSaltA), worldSaltCommitment(kSaltB));
   EXPECT_EQ(worldSaltCommitment(kSaltA).find(kSaltA), std::string::npos);
   EXPECT_EQ(worldSaltCommitment(kSaltA).rfind("fnv1a64:", 0), 0u);
+}
+
+}  // namespace
+}  // namespace msb
+
+namespace msb {
+namespace {
+
+// Half the salts mirror a world whose start heads along an axis (the mirror is a coin, not a
+// constant a method could carry the answer to).
+TEST(WorldSalt, AboutHalfTheSaltsMirror) {
+  const WorldSpec urban = spec("urban");
+  int mirrored = 0;
+  for (int i = 0; i < 200; ++i) {
+    WorldSalting h;
+    saltWorldSpec(urban, "coin-" + std::to_string(i) + "-0123456789abcdef", &h);
+    mirrored += h.mirrored;
+  }
+  EXPECT_GT(mirrored, 70);
+  EXPECT_LT(mirrored, 130);
+  std::printf("%d of 200 salts mirror urban\n", mirrored);
 }
 
 }  // namespace

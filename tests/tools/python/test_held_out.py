@@ -13,7 +13,7 @@ import msbench
 from conftest import FAST, MSBENCH_BIN, SOURCE_DIR
 
 URBAN = os.path.join(SOURCE_DIR, "scenarios/missions/urban_short.yaml")
-SALT = "0123456789abcdef0123"  # one that mirrors urban (sim/world/world_salt_test.cc checks both kinds)
+SALT = "held-out-test-salt-1-0123456789"  # one that mirrors urban (world_salt_test.cc checks both kinds)
 
 
 def run(scenario, out, sets=(), salt=None, duration=40):
