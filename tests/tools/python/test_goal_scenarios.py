@@ -128,6 +128,14 @@ def test_a_chooser_that_calls_its_own_mission_back_is_refused_not_hung(tmp_path,
     assert mission.status == "error" and not (tmp_path / "w").exists()
 
 
+def run_fast(scenario, out, extra=()):
+    """`msbench run` of a scenario on the fast front end; its metrics.json (the run must succeed)."""
+    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out)] + list(extra) +
+                       sum([["--set", s] for s in FAST], []), capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    return json.loads((out / "metrics.json").read_text())
+
+
 def test_a_scenario_named_chooser_runs_confined_and_cannot_forge_its_record(tmp_path):
     # Before: a `goals` chooser ran in msbench's process, read the truth, rewrote metrics.json at
     # exit and re-sealed it (earned 25 000, ranked first). Now it runs in its own confined
@@ -154,10 +162,7 @@ def test_a_scenario_named_chooser_runs_confined_and_cannot_forge_its_record(tmp_
     scenario = tmp_path / "forge.yaml"
     scenario.write_text(f"base: {GRID}\nworld: urban\nduration_s: 6\ngoals: {{entry: 'forger:choose', path: choosers}}\n")
     out = tmp_path / "out"
-    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out)] +
-                       sum([["--set", s] for s in FAST], []), capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    metrics = json.loads((out / "metrics.json").read_text())
+    metrics = run_fast(scenario, out)
     assert metrics["status"] == "completed", metrics.get("error")
     assert metrics["method_confinement"].startswith("goal chooser: own process, Landlock"), metrics["method_confinement"]
     assert metrics["counters"]["goals_chosen"] == 0  # it was asked, and kept the grid's own goals
@@ -185,10 +190,7 @@ def test_a_grid_chooser_in_its_own_process_reads_the_map_during_its_call_only(tm
     scenario = tmp_path / "mapper.yaml"
     scenario.write_text(f"base: {GRID}\nworld: urban\nduration_s: 12\ngoals: {{entry: 'mapper:choose', path: choosers}}\n")
     out = tmp_path / "out"
-    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out)] +
-                       sum([["--set", s] for s in FAST], []), capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    metrics = json.loads((out / "metrics.json").read_text())
+    metrics = run_fast(scenario, out)
     assert metrics["status"] == "completed", metrics.get("error")
     assert metrics["counters"]["goals_chosen"] >= 1
 
@@ -201,10 +203,7 @@ def test_a_viewpoint_chooser_in_its_own_process_flies_the_in_process_run(tmp_pat
     scenario = tmp_path / "far.yaml"
     scenario.write_text(f"base: {urban}\nduration_s: 20\ngoals: {{entry: 'far:farthest', path: ch}}\n")
     out = tmp_path / "out"
-    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out)] +
-                       sum([["--set", s] for s in FAST], []), capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    metrics = json.loads((out / "metrics.json").read_text())
+    metrics = run_fast(scenario, out)
     assert metrics["method_confinement"].startswith("goal chooser: own process"), metrics["method_confinement"]
     assert metrics["counters"]["goals_chosen"] >= 1
     import sys
@@ -230,10 +229,7 @@ def test_a_chooser_in_its_own_process_is_charged_its_cpu_time(tmp_path):
     scenario = tmp_path / "slow.yaml"
     scenario.write_text(f"base: {GRID}\nworld: urban\nduration_s: 14\ngoals: {{entry: 'slow:slow', path: ch}}\n")
     out = tmp_path / "out"
-    r = subprocess.run([MSBENCH_BIN, "run", str(scenario), "--quiet", "--out", str(out), "--set",
-                        "timing.compute=charged"] + sum([["--set", s] for s in FAST], []), capture_output=True,
-                       text=True)
-    assert r.returncode == 0, r.stderr
+    run_fast(scenario, out, ["--set", "timing.compute=charged"])
     rows = [line.split(",") for line in (out / "compute_latency.csv").read_text().splitlines()[2:]]
     plan_ns = [int(row[4]) for row in rows if len(row) == 6 and row[1] == "plan"]
     assert max(plan_ns) >= 90_000_000, max(plan_ns)
