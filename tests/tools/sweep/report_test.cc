@@ -751,6 +751,16 @@ TEST(SweepReport, ARetunedVariantIsNotRankedBesideMsbenchsOwnSettings) {
   EXPECT_NE(md.find("| urban-far-s1 | retuned"), std::string::npos) << md;
   applyRetunedRule(alone, own);
   EXPECT_EQ(alone.runs[0].status, "complete");
+  // The reason quotes metrics.json (a stranger's file): a hash written as markup or a table cell
+  // is shown as text.
+  SweepResults hostile = s;
+  hostile.runs[1] = madeRun("urban-far-s1", "urban", "far", 9000, "completed");
+  hostile.runs[1].metrics["fixed_settings_hash"] = "x | <script>alert(1)</script>\n## Forged";
+  applyRetunedRule(hostile, own);
+  ASSERT_EQ(hostile.runs[1].status, "unranked");
+  const std::string hmd = reportMarkdown(hostile, reportRows(hostile));
+  EXPECT_EQ(hmd.find("<script>"), std::string::npos) << hmd;
+  EXPECT_EQ(hmd.find("\n## Forged"), std::string::npos) << hmd;
 }
 
 }  // namespace
