@@ -3,13 +3,18 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 namespace msb_test {
 
@@ -31,6 +36,22 @@ inline int run(const std::string& args, const fs::path& log) {
   const std::string cmd = "'" + kExe + "' " + args + " > '" + log.string() + "' 2>&1";
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// Runs msbench with arguments (output to `log`), sends it `sig` after `delay_ms` and returns its
+/// exit code (128 + the signal when the signal killed it).
+inline int runAndSignal(const std::string& args, int sig, const fs::path& log, int delay_ms = 2500) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = "exec '" + kExe + "' " + args + " > '" + log.string() + "' 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+  kill(pid, sig);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 /// The whole file as a string (empty if missing).

@@ -44,6 +44,13 @@ namespace {
 // An even number of pixels at least `lo` (the encoder's 4:2:0 chroma needs even sizes).
 int evenPixels(double v, int lo) { return std::max(lo, 2 * int(std::lround(v / 2.0))); }
 
+// "30 s", "0.5 s": a limit in words.
+std::string secondsText(double s) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g s", s);
+  return text;
+}
+
 // The last lines of the encoder's log, on one line.
 std::string logTail(const fs::path& log) {
   std::ifstream in(log);
@@ -142,11 +149,10 @@ void RunVideo::stopEncoder(bool kill_it) {
   for (;;) {
     const pid_t got = waitpid(pid_, &status, WNOHANG);
     if (got == pid_ || (got < 0 && errno != EINTR)) break;
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > kStallLimitS) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > stall_limit_s_) {
       kill(pid_, SIGKILL);
       waitpid(pid_, &status, 0);
-      if (error_.empty())
-        error_ = "the encoder (ffmpeg) did not finish within " + std::to_string(int(kStallLimitS)) + " s";
+      if (error_.empty()) error_ = "the encoder (ffmpeg) did not finish within " + secondsText(stall_limit_s_);
       break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -220,7 +226,7 @@ void RunVideo::send(const cv::Mat& img) {
     }
     const bool later = w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
     const double stalled_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_progress).count();
-    if (later && stalled_s <= kStallLimitS) {
+    if (later && stalled_s <= stall_limit_s_) {
       try {
         waitWritable();  // bounded; an interrupt throws out of it
       } catch (...) {
@@ -229,7 +235,7 @@ void RunVideo::send(const cv::Mat& img) {
       }
       continue;
     }
-    abandon(later ? "the encoder (ffmpeg) read no frame for " + std::to_string(int(kStallLimitS)) + " s"
+    abandon(later ? "the encoder (ffmpeg) read no frame for " + secondsText(stall_limit_s_)
                   : std::string("the encoder (ffmpeg) stopped reading frames (") + std::strerror(errno) + ")");
     return;
   }

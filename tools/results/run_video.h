@@ -63,6 +63,8 @@ class RunVideo {
   void setWaitHook(std::function<void()> hook) { wait_hook_ = std::move(hook); }
   /// Seconds a write to the encoder, or its exit, may take before it counts as stuck.
   static constexpr double kStallLimitS = 30.0;
+  /// Sets that limit (tests shorten it; msbench keeps kStallLimitS).
+  void setStallLimit(double seconds) { stall_limit_s_ = seconds; }
   /// Frames sent so far.
   int frames() const { return frames_; }
   /// Frame size in pixels.
@@ -76,13 +78,14 @@ class RunVideo {
   void setCountersText(const std::map<std::string, double>& counters);
   cv::Mat compose(const CameraFrame* frame, const TopdownView& view, const WorldTruth* truth);
   void send(const cv::Mat& img);
-  // Closes the encoder's input and reaps it within kStallLimitS (kill: at once).
+  // Closes the encoder's input and reaps it within the stall limit (kill: at once).
   void stopEncoder(bool kill);
   // Waits up to 100 ms for `fd_` to accept bytes; calls the wait hook.
   void waitWritable();
 
   std::filesystem::path file_, dir_, partial_, log_;
   std::function<void()> wait_hook_;
+  double stall_limit_s_ = kStallLimitS;
   VideoSettings settings_;
   std::string name_;
   double duration_s_ = 0;

@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 using msb_test::kExe;
 using msb_test::readText;
 using msb_test::run;
+using msb_test::runAndSignal;
 
 const std::string kSrc = MSB_SOURCE_DIR;
 
@@ -615,20 +616,6 @@ TEST(BadInput, YamlAliasBombsAndHugeFilesAreRefusedAtOnce) {
   }
   t.expectRefused("run " + t.p("big.yaml") + " --out " + t.p("o"), {"big.yaml", "bytes, larger than a YAML input"});
   fs::remove(t.d / "big.yaml");
-}
-
-int runAndSignal(const std::string& args, int sig, const fs::path& log) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const std::string cmd = "exec '" + kExe + "' " + args + " > '" + log.string() + "' 2>&1";
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
-  kill(pid, sig);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 // The commands that finish within a second are stopped at their safe points through the same

@@ -3,7 +3,12 @@
 // run, a video that cannot be written (file-size limit) loses none of the run's other files,
 // bad video settings write nothing.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
 
 #include <cstdio>
 #include <filesystem>
@@ -87,6 +92,28 @@ TEST(Video, AVideoThatCannotBeWrittenLosesNoneOfTheRunsFiles) {
     EXPECT_TRUE(fs::exists(d / "v" / f)) << f;
   for (const auto& e : fs::directory_iterator(d / "v"))
     EXPECT_EQ(e.path().filename().string().find("video"), std::string::npos) << e.path();
+}
+
+// An encoder that never reads (stuck, or stopped with SIGSTOP) holds up no signal: SIGINT ends
+// `run --video` at once, the encoder is killed and nothing is left.
+TEST(Video, AStuckEncoderNeverHoldsUpAnInterrupt) {
+  const fs::path d = tempDir("stuck");
+  fs::create_directories(d / "bin");
+  std::ofstream(d / "bin" / "ffmpeg") << "#!/bin/sh\nexec sleep 6017\n";
+  fs::permissions(d / "bin" / "ffmpeg", fs::perms::owner_all);
+  const std::string old_path = std::getenv("PATH");
+  setenv("PATH", ((d / "bin").string() + ":" + old_path).c_str(), 1);  // the stuck encoder first
+  const auto start = std::chrono::steady_clock::now();
+  const int code = msb_test::runAndSignal(
+      "run '" + kScenario + "' --duration 600 --quiet --video --out '" + (d / "v").string() + "'", SIGINT, d / "log",
+      4000);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  setenv("PATH", old_path.c_str(), 1);
+  EXPECT_EQ(code, 130) << readText(d / "log");
+  EXPECT_LT(s, 4.0 + 2.0) << readText(d / "log");
+  EXPECT_FALSE(fs::exists(d / "v"));
+  EXPECT_FALSE(fs::exists(d / "v.partial"));
+  EXPECT_NE(std::system("pgrep -f '[s]leep 6017' > /dev/null"), 0) << "the encoder outlived msbench";
 }
 
 TEST(Video, BadVideoSettingsWriteNothing) {

@@ -144,6 +144,41 @@ TEST_F(RunVideoTest, AStuckEncoderNeverBlocksAnInterrupt) {
   for (const auto& e : fs::directory_iterator(d)) EXPECT_EQ(e.path().filename(), "bin") << e.path();
 }
 
+// An encoder that reads every frame but never exits is killed at the stall limit: the video is
+// given up, named, and nothing is kept.
+TEST_F(RunVideoTest, AnEncoderThatNeverExitsIsKilledAtTheLimit) {
+  const fs::path d = tempDir("never_exits");
+  const FakeEncoder fake(d / "bin", "cat > /dev/null; exec sleep 600");
+  const MissionResult r = smallRun();
+  const auto start = std::chrono::steady_clock::now();
+  RunVideo video(d / "video.mp4", VideoSettings{}, "test", 60, r.exploration_box, nullptr, 376, 240);
+  video.setStallLimit(0.5);
+  video.addFinalFrames(r, nullptr);
+  const std::string error = video.finish();
+  EXPECT_NE(error.find("did not finish within 0.5 s"), std::string::npos) << error;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  EXPECT_NE(video.commit(), "");
+  EXPECT_FALSE(fs::exists(d / "video.mp4"));
+}
+
+// An encoder that stops reading (stuck, or stopped with SIGSTOP) ends the video at the stall
+// limit, not the caller: the frames after it are dropped, the error says why, nothing is kept.
+TEST_F(RunVideoTest, AnEncoderThatStopsReadingEndsTheVideoNotTheRun) {
+  const fs::path d = tempDir("stops_reading");
+  const FakeEncoder fake(d / "bin", "exec sleep 600");
+  const MissionResult r = smallRun();
+  const CameraFrame cam = noiseFrame(752, 480);
+  const auto start = std::chrono::steady_clock::now();
+  RunVideo video(d / "video.mp4", VideoSettings{}, "test", 60, r.exploration_box, nullptr, cam.width, cam.height);
+  video.setStallLimit(0.5);
+  for (int i = 0; i < 3; ++i) video.addFinalFrames(r, &cam);  // far more than a pipe holds
+  const std::string error = video.finish();
+  EXPECT_NE(error.find("read no frame for 0.5 s"), std::string::npos) << error;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  EXPECT_NE(video.commit(), "");
+  for (const auto& e : fs::directory_iterator(d)) EXPECT_EQ(e.path().filename(), "bin") << e.path();
+}
+
 TEST_F(RunVideoTest, AnUnfinishedVideoLeavesNothing) {
   const fs::path d = tempDir("unfinished");
   const MissionResult r = smallRun();
