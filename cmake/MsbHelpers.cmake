@@ -33,8 +33,22 @@ function(msb_add_test name)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
 endfunction()
 
+# msb_add_method_folders(): every folder beside the calling CMakeLists.txt that has a
+# CMakeLists.txt of its own (a method's folder: core/baseline/<method>/, core/planning/<method>/),
+# found by a CONFIGURE_DEPENDS glob, so adding or removing a method needs no edit outside its
+# folder and the next build re-runs CMake itself.
+macro(msb_add_method_folders)
+  file(GLOB _msb_method_dirs LIST_DIRECTORIES true CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*)
+  list(SORT _msb_method_dirs)
+  foreach(_msb_dir IN LISTS _msb_method_dirs)
+    if(IS_DIRECTORY ${_msb_dir} AND EXISTS ${_msb_dir}/CMakeLists.txt)
+      add_subdirectory(${_msb_dir})
+    endif()
+  endforeach()
+endmacro()
+
 # msb_add_method(<name> SOURCES ... DEPS ...): the library of an exploration method kept in a
-# folder of its own (core/baseline/<method>/); it is linked into the method table
+# folder of its own (core/baseline/<method>/, core/planning/<method>/); it is linked into the method table
 # (tools/config) through the global property MSB_METHOD_LIBRARIES.
 function(msb_add_method name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})

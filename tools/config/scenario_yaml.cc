@@ -51,18 +51,25 @@ YAML::Node loadChainFile(const fs::path& file, const fs::path& dir) {
   return node;
 }
 
+}  // namespace
+
+fs::path scenarioFileNamed(const fs::path& dir, const std::string& name) {
+  const fs::path beside = dir / name;
+  const bool bare = !name.empty() && name.find('/') == std::string::npos && fs::path(name).extension().empty();
+  std::error_code ec;
+  if (bare && !fs::is_regular_file(beside, ec)) return fs::path(MSB_MISSIONS_DIR) / (name + ".yaml");
+  return beside;
+}
+
+namespace {
+
 // The file a node's `base:` names, checked (a regular file that exists).
 fs::path baseOf(const YAML::Node& node, const fs::path& file, const fs::path& dir) {
   if (!node["base"].IsScalar()) throw FileConfigError(file.string() + ": key 'base': expected a file path");
   if (node["base"].Scalar().find('\0') != std::string::npos)
     throw FileConfigError(file.string() + ": key 'base': the file name contains a NUL character");
-  const std::string& name = node["base"].Scalar();
-  fs::path base = dir / name;
+  const fs::path base = scenarioFileNamed(dir, node["base"].Scalar());
   std::error_code ec;
-  // A bare name (no directory, no .yaml) that is no file beside this one names a mission of
-  // scenarios/missions: `base: base`, `base: monospheres`.
-  const bool bare = !name.empty() && name.find('/') == std::string::npos && fs::path(name).extension().empty();
-  if (bare && !fs::is_regular_file(base, ec)) base = fs::path(MSB_MISSIONS_DIR) / (name + ".yaml");
   const auto st = fs::status(base, ec);
   if (ec && ec != std::errc::no_such_file_or_directory)
     throw FileConfigError(file.string() + ": key 'base': " + base.string() + ": " + ec.message());

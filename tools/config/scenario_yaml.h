@@ -4,6 +4,7 @@
 // types and bad values fail with the file and the key named.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +14,11 @@
 #include "tools/loop/scenario_spec.h"
 
 namespace msb {
+
+/// The scenario file `name` names from a file in `dir` (`base:`, a sweep's `scenario:`): `dir /
+/// name`, or, for a bare name (no directory, no extension) that is no file there, the mission
+/// scenarios/missions/<name>.yaml (`base: base`, `scenario: monospheres`). Not checked to exist.
+std::filesystem::path scenarioFileNamed(const std::filesystem::path& dir, const std::string& name);
 
 /// Loads and validates a scenario. Throws FileConfigError / UsageError.
 ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string>& sets = {});

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/common/rng.h"
+#include "tools/config/scenario_yaml.h"
 #include "tools/config/yaml_reader.h"
 
 namespace msb {
@@ -96,7 +97,7 @@ Axis readAxis(MapReader& r, const fs::path& dir) {
       if (!kv.second.IsMap()) throw ConfigError(vkey, "expected a map of key paths to values ({} for none)");
       for (auto& [k, v] : overrides(kv.second, vkey)) {
         if (k == "scenario")
-          av.scenario = (dir / v).lexically_normal().string();
+          av.scenario = scenarioFileNamed(dir, v).lexically_normal().string();
         else
           av.sets.emplace_back(k, v);
       }
@@ -248,7 +249,7 @@ SweepPlan loadSweepPlan(const std::string& path) {
     MapReader r(root, "");
     std::string scenario;
     if (!r.read("scenario", scenario)) throw ConfigError("scenario", "required (the base scenario file)");
-    const std::string base = (dir / scenario).lexically_normal().string();
+    const std::string base = scenarioFileNamed(dir, scenario).lexically_normal().string();
     std::vector<std::pair<std::string, std::string>> common;
     if (r.has("set")) common = overrides(r.raw("set"), "set");
     std::vector<Axis> axes;

@@ -91,6 +91,23 @@ TEST(SweepPlan, SetValuesReachTheRunAsTheyWereWritten) {
   EXPECT_DOUBLE_EQ(spec.flight.duration_s, 30.0);
 }
 
+// A sweep kept in a method's folder names missions by name, as a scenario's `base:` does; a
+// file of that name beside the sweep wins.
+TEST(SweepPlan, ScenariosAreNamedByAMissionsNameOrAFileBeside) {
+  const fs::path d = msb_test::tempDir("msb_sweep_", "by_name");
+  std::ofstream(d / "mine") << "base: base\n";
+  std::ofstream(d / "sweep.yaml")
+      << "scenario: monospheres\naxes: [{name: m, variants: {a: {}, b: {scenario: grid_random}, "
+         "c: {scenario: mine}}}]\nseeds: 1\n";
+  const SweepPlan p = loadSweepPlan((d / "sweep.yaml").string());
+  ASSERT_EQ(p.runs.size(), 3u);
+  const std::string missions = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/";
+  EXPECT_EQ(p.runs[0].scenario, missions + "monospheres.yaml");
+  EXPECT_EQ(p.runs[1].scenario, missions + "grid_random.yaml");
+  EXPECT_EQ(p.runs[2].scenario, (d / "mine").string());
+  EXPECT_EQ(loadScenario(p.runs[1].scenario, {"world=urban"}).method.type, "grid_random");
+}
+
 TEST(SweepPlan, BadSweepFilesNameTheFileAndKey) {
   const fs::path d = msb_test::tempDir("msb_sweep_", "bad");
   auto expectError = [&](const std::string& body, const std::string& fragment) {
