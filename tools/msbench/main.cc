@@ -63,6 +63,11 @@ int main(int argc, char** argv) {
   msb::installCrashHandler(argc > 1 ? argv[1] : "");
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     printUsage();
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      std::fprintf(stderr, "msbench: error: cannot write its output to stdout: %s\n",
+                   std::strerror(errno ? errno : EIO));
+      return argc < 2 ? msb::kExitUsage : msb::kExitRuntime;
+    }
     return argc < 2 ? msb::kExitUsage : msb::kExitOk;
   }
   for (const auto& c : kCommands) {

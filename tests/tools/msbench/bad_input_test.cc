@@ -705,4 +705,18 @@ TEST(BadInput, InterruptsLeaveNothingBehind) {
   EXPECT_EQ(readText(t.d / "sentinel"), "keep me");
 }
 
+// What a command prints reaches its destination or the command fails saying so: `msbench keys >
+// /dev/full` regenerates docs/keys.md this way, and once exited 0 with the file empty.
+TEST(BadInput, AnOutputThatCannotBeWrittenIsAnError) {
+  const Dir t("dev_full");
+  for (const std::string args : {"keys", "methods", "world list", "--help", "run --help"}) {
+    const std::string cmd = "'" + kExe + "' " + args + " > /dev/full 2> '" + (t.d / "log").string() + "'";
+    const int status = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << args << "\n" << t.log();
+    EXPECT_NE(t.log().find("cannot write its output to stdout: No space left on device"), std::string::npos)
+        << args << "\n"
+        << t.log();
+  }
+}
+
 }  // namespace
