@@ -82,34 +82,72 @@ TEST(PublishedTable, TheTablesReadmeIsTheReportsRowForRow) {
   }
 }
 
+// The row of `rows` (a report's Table I layout) for `world` and `method`.
+std::vector<std::vector<std::string>>::const_iterator rowOf(const std::vector<std::vector<std::string>>& rows,
+                                                            const std::string& world, const std::string& method) {
+  return std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r[0] == world && r[1] == method; });
+}
+
+// A cell's first word ("6953 [5778, 7788]" → "6953").
+std::string firstWord(const std::string& c) { return c.substr(0, c.find(' ')); }
+
 TEST(PublishedTable, TheReadmesShortTableIsTheReports) {
-  // README: "| world | MonoSpheres (paper) | box share | published code | Grid (paper) |", the
-  // paper-bearing cells "mean (paper's mean)"; results/table1's report gives MonoSpheres, the box
-  // share and the grid, results/table1_published's the published code's MonoSpheres mean.
+  // README: "| world | MonoSpheres (paper) | box share | published code | authors' worlds and
+  // configuration | Grid (paper) | Grid, authors' |", the paper-bearing cells "mean (paper's
+  // mean)"; results/table1's report gives MonoSpheres, the box share and the grid,
+  // results/table1_published's the published code's MonoSpheres mean, results/table1_reference's
+  // the two methods in the authors' worlds and configuration (the cave's grid is grid_fast).
   const auto report = readLines(kSource + "/results/table1/report.md");
   const auto layout = tableAfter(report, "| world | method | method type |");
   const auto beyond = tableAfter(report, "| world | method | box share |");
   const auto published =
       tableAfter(readLines(kSource + "/results/table1_published/report.md"), "| world | method | method type |");
+  const auto reference =
+      tableAfter(readLines(kSource + "/results/table1_reference/report.md"), "| world | method | method type |");
   const auto table = tableAfter(readLines(kSource + "/README.md"), "| world | MonoSpheres (paper) |");
   ASSERT_EQ(table.size(), 4u);
-  const auto first = [](const std::string& c) { return c.substr(0, c.find(' ')); };
-  const auto row = [](const std::vector<std::vector<std::string>>& rows, const std::string& world,
-                      const std::string& method) {
-    return std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r[0] == world && r[1] == method; });
-  };
   for (const auto& md : table) {
-    for (const auto& [col, method] : {std::pair<size_t, std::string>{1, "monospheres"}, {4, "grid"}}) {
-      const auto rep = row(layout, md[0], method);
+    ASSERT_EQ(md.size(), 7u) << md[0];
+    for (const auto& [col, method] : {std::pair<size_t, std::string>{1, "monospheres"}, {5, "grid"}}) {
+      const auto rep = rowOf(layout, md[0], method);
       ASSERT_NE(rep, layout.end()) << md[0] << " " << method;
-      EXPECT_EQ(md[col], first((*rep)[4]) + " (" + (*rep)[6] + ")") << md[0] << " " << method;
+      EXPECT_EQ(md[col], firstWord((*rep)[4]) + " (" + (*rep)[6] + ")") << md[0] << " " << method;
     }
-    const auto pub = row(published, md[0], "monospheres");
+    const auto pub = rowOf(published, md[0], "monospheres");
     ASSERT_NE(pub, published.end()) << md[0];
-    EXPECT_EQ(md[3], first((*pub)[4])) << md[0];
-    const auto b = row(beyond, md[0], "monospheres");
+    EXPECT_EQ(md[3], firstWord((*pub)[4])) << md[0];
+    const auto b = rowOf(beyond, md[0], "monospheres");
     ASSERT_NE(b, beyond.end()) << md[0];
-    EXPECT_EQ(md[2], first((*b)[2])) << md[0];
+    EXPECT_EQ(md[2], firstWord((*b)[2])) << md[0];
+    const auto ref = rowOf(reference, md[0], "monospheres");
+    const auto ref_grid = rowOf(reference, md[0], md[0] == "cave" ? "grid_fast" : "grid");
+    ASSERT_NE(ref, reference.end()) << md[0];
+    ASSERT_NE(ref_grid, reference.end()) << md[0];
+    EXPECT_EQ(md[4], firstWord((*ref)[4])) << md[0];
+    EXPECT_EQ(md[6], firstWord((*ref_grid)[4])) << md[0];
+  }
+}
+
+// results/table1_reference/README.md's table is its report's: each row's mean A with its
+// interval, crashes and box share.
+TEST(PublishedTable, TheReferenceTablesReadmeIsItsReportsRowForRow) {
+  const std::string dir = kSource + "/results/table1_reference/";
+  const auto report = readLines(dir + "report.md");
+  const auto layout = tableAfter(report, "| world | method | method type |");
+  const auto beyond = tableAfter(report, "| world | method | box share |");
+  const auto table = tableAfter(readLines(dir + "README.md"), "| world | row | paper mean / max |");
+  ASSERT_EQ(table.size(), layout.size()) << "the README's table and report.md list different rows";
+  for (size_t i = 0; i < table.size(); ++i) {
+    const auto& md = table[i];
+    const auto& rep = layout[i];
+    const std::string row = md[0] + " " + md[1];
+    EXPECT_EQ(md[0], rep[0]) << row;
+    EXPECT_EQ(md[2], rep[6] + " / " + rep[7]) << row << ": the paper's mean / max";
+    EXPECT_EQ(replaceAll(md[5], "**", ""), rep[4]) << row << ": mean A [CI]";
+    EXPECT_EQ(md[6].rfind(firstWord(rep[9]), 0), 0u) << row << ": crashes " << rep[9];  // after the earned column
+    const auto b = rowOf(beyond, rep[0], rep[1]);
+    ASSERT_NE(b, beyond.end()) << row;
+    EXPECT_EQ(md[7], firstWord((*b)[2])) << row << ": box share";
   }
 }
 
@@ -126,6 +164,22 @@ TEST(PublishedTable, TheReadmesVerdictCountsAreTheFindings) {
   EXPECT_TRUE(std::any_of(readme.begin(), readme.end(),
                           [&](const std::string& l) { return l.find(want.str()) != std::string::npos; }))
       << "README does not say " << want.str();
+  // And the reference table's counts, in README and its own README.
+  std::map<std::string, int> reference;
+  for (const auto& l : readLines(kSource + "/results/table1_reference/findings.csv"))
+    for (const char* v : {",holds,", ",fails,", ",undecided,"})
+      if (l.find(v) != std::string::npos) ++reference[v];
+  std::ostringstream counts;
+  counts << reference[",holds,"] << " hold, " << reference[",fails,"] << " fail, " << reference[",undecided,"]
+         << " undecided";
+  EXPECT_TRUE(
+      std::any_of(readme.begin(), readme.end(),
+                  [&](const std::string& l) { return l.find("**" + counts.str() + "**") != std::string::npos; }))
+      << "README does not say " << counts.str();
+  const auto reference_readme = readLines(kSource + "/results/table1_reference/README.md");
+  EXPECT_TRUE(std::any_of(reference_readme.begin(), reference_readme.end(),
+                          [&](const std::string& l) { return l.find(counts.str()) != std::string::npos; }))
+      << "results/table1_reference/README.md does not say " << counts.str();
   const auto table_readme = readLines(kSource + "/results/table1/README.md");
   EXPECT_TRUE(std::any_of(table_readme.begin(), table_readme.end(),
                           [&](const std::string& l) { return l.find(want.str()) != std::string::npos; }))
