@@ -53,14 +53,14 @@ def _pid_namespace_init(host_alive):
 def own_pid_namespace(libc):
     """Puts every process the method starts into a PID namespace of its own whose init dies with
     the host, so that nothing the method started (a double-forked daemon included) outlives the
-    run. Unprivileged: in a user namespace mapping the user to itself. Returns "" or why not."""
-    if os.geteuid() != 0:
-        uid, gid = os.geteuid(), os.getegid()
-        if libc.unshare(_CLONE_NEWUSER) != 0:
-            return f"unshare(CLONE_NEWUSER): {os.strerror(ctypes.get_errno())}"
-        for name, text in (("setgroups", "deny"), ("uid_map", f"{uid} {uid} 1"), ("gid_map", f"{gid} {gid} 1")):
-            with open(f"/proc/self/{name}", "w") as f:
-                f.write(text)
+    run. Unprivileged (drop_root has run: the host is never root here): in a user namespace
+    mapping the user to itself. Returns "" or why not."""
+    uid, gid = os.geteuid(), os.getegid()
+    if libc.unshare(_CLONE_NEWUSER) != 0:
+        return f"unshare(CLONE_NEWUSER): {os.strerror(ctypes.get_errno())}"
+    for name, text in (("setgroups", "deny"), ("uid_map", f"{uid} {uid} 1"), ("gid_map", f"{gid} {gid} 1")):
+        with open(f"/proc/self/{name}", "w") as f:
+            f.write(text)
     if libc.unshare(_CLONE_NEWPID) != 0:
         return f"unshare(CLONE_NEWPID): {os.strerror(ctypes.get_errno())}"
     host_alive, keep = os.pipe()  # `keep` stays open in the host while it lives
