@@ -63,13 +63,14 @@ def test_a_method_carrying_the_repositorys_truth_meets_a_world_it_does_not_fit(t
     scenario = tmp_path / "carrier.yaml"
     scenario.write_text(f"base: {os.path.join(SOURCE_DIR, 'scenarios/missions/base.yaml')}\nworld: urban\n"
                         f"method: {{type: python, entry: 'carrier:Carrier', path: {method}}}\n")
-    fixed, held = tmp_path / "fixed", tmp_path / "held"
+    fixed, held, honest_held = tmp_path / "fixed", tmp_path / "held", tmp_path / "honest_held"
     assert run(scenario, fixed).returncode == 0
     assert run(scenario, held, ["held_out=true"], SALT).returncode == 0
-    so, sf, sh = (metrics(d)["score"] for d in (honest, fixed, held))
-    print("honest:", so, "\ncarrier on urban:", sf, "\ncarrier on held-out urban:", sh)
+    assert run(URBAN, honest_held, ["held_out=true"], SALT).returncode == 0
+    so, sf, sh, soh = (metrics(d)["score"] for d in (honest, fixed, held, honest_held))
+    print("honest:", so, "\ncarrier on urban:", sf, "\ncarrier on held-out urban:", sh, "\nhonest held out:", soh)
     # On the world it carries, nothing it declares is an obstacle and it outscores the run whose
     # route it flies; on the held-out world its truth declares obstacles free and misses what is
-    # free, and it earns less than where it fits.
+    # free: it earns less than where it fits, and less than MonoSpheres flying that world.
     assert sf["falsely_free_m3"] == 0 and sf["earned"] > so["earned"]
-    assert sh["falsely_free_m3"] > 10 and sh["earned"] < sf["earned"]
+    assert sh["falsely_free_m3"] > 10 and sh["earned"] < sf["earned"] and sh["earned"] < soh["earned"]
