@@ -1,7 +1,7 @@
 // Videos of runs (msbench run --video, msbench video RUN; docs/video.md): the frames and size as
 // documented, the run's hash unchanged by the video, a replay that adds the video to a finished
-// run, a video that cannot be written (file-size limit) loses none of the run's other files,
-// bad video settings write nothing.
+// run, a video that cannot be written (file-size limit) loses none of the run's other files, a
+// stuck encoder holds up no interrupt, bad video settings write nothing.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>

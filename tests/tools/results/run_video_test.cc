@@ -1,6 +1,7 @@
 // video.mp4 (RunVideo): the frames and size it documents, decoded by ffprobe; an unfinished
 // video leaves nothing; an encoder that cannot write (a file-size limit standing in for a full
-// disk) is reported and no file is kept.
+// disk), exits 0 over a broken file, never reads or never exits is reported, within its limit, and
+// no file is kept; staging follows no link.
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
