@@ -54,6 +54,20 @@ inline int runAndSignal(const std::string& args, int sig, const fs::path& log, i
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+/// A stand-in `ffmpeg` first on PATH while it lives, running `body` (sh).
+struct FakeEncoder {
+  std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  FakeEncoder(const fs::path& dir, const std::string& body) {
+    fs::create_directories(dir);
+    std::ofstream(dir / "ffmpeg") << "#!/bin/sh\n" << body << "\n";
+    fs::permissions(dir / "ffmpeg", fs::perms::owner_all);
+    setenv("PATH", (dir.string() + ":" + old_path).c_str(), 1);
+  }
+  ~FakeEncoder() { setenv("PATH", old_path.c_str(), 1); }
+  FakeEncoder(const FakeEncoder&) = delete;
+  FakeEncoder& operator=(const FakeEncoder&) = delete;
+};
+
 /// The whole file as a string (empty if missing).
 inline std::string readText(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -54,6 +54,15 @@ void printUsage() {
   std::printf("\nexit codes: 0 ok, 1 runtime failure, 2 usage or configuration error, 130/143 interrupted\n");
 }
 
+// False, having said why on stderr, if what `who` printed did not reach stdout (`msbench keys >
+// /dev/full` is an error, not an empty file).
+bool stdoutWritten(const std::string& who) {
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return true;
+  std::fprintf(stderr, "%s: error: cannot write its output to stdout: %s\n", who.c_str(),
+               std::strerror(errno ? errno : EIO));
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -63,23 +72,15 @@ int main(int argc, char** argv) {
   msb::installCrashHandler(argc > 1 ? argv[1] : "");
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     printUsage();
-    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      std::fprintf(stderr, "msbench: error: cannot write its output to stdout: %s\n",
-                   std::strerror(errno ? errno : EIO));
-      return argc < 2 ? msb::kExitUsage : msb::kExitRuntime;
-    }
-    return argc < 2 ? msb::kExitUsage : msb::kExitOk;
+    const bool written = stdoutWritten("msbench");
+    if (argc < 2) return msb::kExitUsage;
+    return written ? msb::kExitOk : msb::kExitRuntime;
   }
   for (const auto& c : kCommands) {
     if (std::strcmp(argv[1], c.name) != 0) continue;
     try {
       const int rc = c.run(argc - 2, argv + 2);
-      // What a command printed reached its destination (`msbench keys > /dev/full` is an error).
-      if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-        std::fprintf(stderr, "msbench %s: error: cannot write its output to stdout: %s\n", c.name,
-                     std::strerror(errno ? errno : EIO));
-        return rc == msb::kExitOk ? msb::kExitRuntime : rc;
-      }
+      if (!stdoutWritten(std::string("msbench ") + c.name)) return rc == msb::kExitOk ? msb::kExitRuntime : rc;
       return rc;
     } catch (const msb::Interrupted& e) {
       std::fprintf(stderr, "msbench %s: %s; stopped, no partial results left\n", c.name, e.what());

@@ -21,6 +21,7 @@ namespace msb {
 namespace {
 
 namespace fs = std::filesystem;
+using msb_test::FakeEncoder;
 
 fs::path tempDir(const std::string& name) {
   const fs::path d = fs::path(::testing::TempDir()) / ("msb_video_" + name);
@@ -99,18 +100,6 @@ TEST_F(RunVideoTest, StagingNeverFollowsALinkOrTouchesAUsersFile) {
   }
   EXPECT_EQ(entries, 5);  // mine.txt, the three links, video.mp4: no staging left
 }
-
-// A stand-in `ffmpeg` first on PATH, running `body` (sh).
-struct FakeEncoder {
-  std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
-  explicit FakeEncoder(const fs::path& dir, const std::string& body) {
-    fs::create_directories(dir);
-    std::ofstream(dir / "ffmpeg") << "#!/bin/sh\n" << body << "\n";
-    fs::permissions(dir / "ffmpeg", fs::perms::owner_all);
-    setenv("PATH", (dir.string() + ":" + old_path).c_str(), 1);
-  }
-  ~FakeEncoder() { setenv("PATH", old_path.c_str(), 1); }
-};
 
 // An encoder that exits 0 over a file without its index (as ffmpeg does after a failed write)
 // makes no video: the file is checked, not the exit status.
