@@ -4,9 +4,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "core/common/strict_number.h"
 #include "tools/config/method_table.h"
 #include "tools/config/scenario_yaml.h"
-#include "tools/config/strict_number.h"
 #include "tools/config/yaml_writer.h"
 
 namespace msb {

@@ -338,6 +338,7 @@ ScenarioSpec loadScenario(const std::string& path, const std::vector<std::string
   if (spec.goals && !spec.goals->path.empty() && fs::path(spec.goals->path).is_relative())
     spec.goals->path = (dir / spec.goals->path).lexically_normal().string();
   spec.fixed_settings_hash = fixedSettingsHash(spec);
+  spec.replay_settings_hash = replaySettingsHash(spec);
   // Names and paths end up in metrics.json (JSON is UTF-8): checked now, not after the mission.
   if (!isValidUtf8(path)) throw FileConfigError(path + ": the file name is not valid UTF-8");
   if (!isValidUtf8(spec.name)) throw FileConfigError(label + ": key 'name': not valid UTF-8");
@@ -399,9 +400,13 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapW
   return yamlText(w.node());
 }
 
-std::string fixedSettingsYaml(const ScenarioSpec& spec) {
+namespace {
+
+// The effective YAML without the top-level keys `drop` and what never changes a flight: the
+// replay log named, the progress line, the map file.
+std::string effectiveYamlWithout(const ScenarioSpec& spec, std::initializer_list<const char*> drop) {
   YAML::Node tree = YAML::Load(effectiveScenarioYaml(spec));
-  for (const char* key : {"name", "suite", "seed", "method", "goals", "video"}) tree.remove(key);
+  for (const char* key : drop) tree.remove(key);
   if (tree["timing"]) tree["timing"].remove("replay");
   if (tree["mission"]) {
     tree["mission"].remove("progress");
@@ -410,11 +415,23 @@ std::string fixedSettingsYaml(const ScenarioSpec& spec) {
   return yamlText(tree);
 }
 
-std::string fixedSettingsHash(const ScenarioSpec& spec) {
-  const std::string text = fixedSettingsYaml(spec);
+// FNV-1a 64 of `text`, 16 hex digits.
+std::string hexFnv(const std::string& text) {
   char hex[17];
   std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(fnv1a64(text.data(), text.size())));
   return hex;
+}
+
+}  // namespace
+
+std::string fixedSettingsYaml(const ScenarioSpec& spec) {
+  return effectiveYamlWithout(spec, {"name", "suite", "seed", "method", "goals", "video"});
+}
+
+std::string fixedSettingsHash(const ScenarioSpec& spec) { return hexFnv(fixedSettingsYaml(spec)); }
+
+std::string replaySettingsHash(const ScenarioSpec& spec) {
+  return hexFnv(effectiveYamlWithout(spec, {"name", "suite", "seed", "video"}));
 }
 
 }  // namespace msb

@@ -43,5 +43,10 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapW
 std::string fixedSettingsYaml(const ScenarioSpec& spec);
 /// FNV-1a 64 of fixedSettingsYaml(), 16 hex digits (metrics.json `fixed_settings_hash`).
 std::string fixedSettingsHash(const ScenarioSpec& spec);
+/// What a charged run's latency log was measured under (its header's `scenario`): FNV-1a 64 of
+/// the effective YAML without `name`, `suite`, `seed` (checked on its own), `video`,
+/// `timing.replay`, `mission.progress` and `mission.write_map_ply`, 16 hex digits. A log replays
+/// only into a run of the same hash and seed.
+std::string replaySettingsHash(const ScenarioSpec& spec);
 
 }  // namespace msb

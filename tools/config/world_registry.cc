@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 
 #include "core/common/config_check.h"
+#include "core/common/input_file.h"
 #include "tools/config/field_keys.h"
 #include "tools/config/flight_yaml.h"
 #include "tools/config/yaml_reader.h"
@@ -177,9 +177,14 @@ std::string heldOutSalt() {
     salt = text;
   } else if (file && *file) {
     from = "$MSBENCH_WORLD_SALT_FILE (" + std::string(file) + ")";
-    std::ifstream in(file);
-    if (!in) throw std::runtime_error(from + " cannot be read");
-    std::getline(in, salt);
+    // A regular file of at most kMaxSaltFileBytes, opened without blocking: a FIFO, a device or
+    // 1 GiB of zeros is refused at once, before anything is read.
+    try {
+      salt = readInputFile(file, InputLimits{kMaxSaltFileBytes});
+    } catch (const InputFileError& e) {
+      throw InputFileError("$MSBENCH_WORLD_SALT_FILE: " + std::string(e.what()));
+    }
+    salt = salt.substr(0, salt.find('\n'));
   } else {
     throw std::runtime_error(
         "a held-out world needs the evaluator's salt: set $MSBENCH_WORLD_SALT or "

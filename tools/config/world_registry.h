@@ -50,9 +50,13 @@ struct ResolvedWorld {
 ResolvedWorld resolveWorld(const std::string& arg, std::optional<uint64_t> seed = std::nullopt,
                            const std::string& salt = "");
 
+/// Largest salt file read (bytes): a salt is one line of a few dozen characters.
+inline constexpr size_t kMaxSaltFileBytes = 4096;
+
 /// The evaluator's salt for held-out worlds: $MSBENCH_WORLD_SALT, else the first line of the file
-/// $MSBENCH_WORLD_SALT_FILE names. Throws std::runtime_error naming both when neither gives a
-/// salt of at least kMinSaltChars characters (or the file cannot be read).
+/// $MSBENCH_WORLD_SALT_FILE names (a regular file of at most kMaxSaltFileBytes, opened without
+/// blocking: InputFileError, exit 2, otherwise). Throws std::runtime_error naming both when
+/// neither gives a salt of at least kMinSaltChars characters.
 std::string heldOutSalt();
 
 /// Resolves the world named in flight file `file` (spec.world_name, if any) into

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "core/common/config_check.h"
+#include "core/common/strict_number.h"
 #include "core/common/types.h"
-#include "tools/config/strict_number.h"
 
 namespace msb {
 

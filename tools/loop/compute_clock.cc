@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/common/config_check.h"
+#include "core/common/strict_number.h"
 
 namespace msb {
 
@@ -69,15 +72,20 @@ void ComputeTiming::applyProfile() {
   plan = StageCostModel{0.011, {{"frontiers", 1.44e-5}, {"spheres", 1.53e-5}}};
 }
 
+namespace {
+// The log's first words and its column header.
+constexpr char kLogHead[] = "# msbench compute latency log";
+constexpr char kLogColumns[] = "call,stage,asked_tick,start_tick,cpu_ns,latency_ticks";
+}  // namespace
+
 const char* stageName(ComputeCall::Stage s) { return s == ComputeCall::Stage::kMap ? "map" : "plan"; }
 
-std::string computeLogText(const std::vector<ComputeCall>& calls, const std::string& build, const std::string& mode,
-                           double machine_factor) {
+std::string computeLogText(const std::vector<ComputeCall>& calls, const ComputeLogHeader& h) {
   std::ostringstream out;
   out.precision(17);
-  out << "# msbench compute latency log; build " << build << "; compute " << mode << "; machine_factor "
-      << machine_factor << "\n";
-  out << "call,stage,asked_tick,start_tick,cpu_ns,latency_ticks\n";
+  out << kLogHead << "; build " << h.build << "; compute " << h.mode << "; machine_factor " << h.machine_factor
+      << "; seed " << h.seed << "; scenario " << h.scenario << "\n";
+  out << kLogColumns << "\n";
   for (size_t i = 0; i < calls.size(); ++i) {
     const ComputeCall& c = calls[i];
     out << i << ',' << stageName(c.stage) << ',' << c.asked_tick << ',' << c.start_tick << ',' << c.cpu_ns << ','
@@ -87,44 +95,85 @@ std::string computeLogText(const std::vector<ComputeCall>& calls, const std::str
   return out.str();
 }
 
-ComputeLog parseComputeLog(const std::string& text) {
+namespace {
+
+// The header's fields ("build B; compute M; machine_factor F; seed S; scenario H"), each once.
+ComputeLogHeader parseLogHeader(const std::string& line) {
+  if (line.rfind(kLogHead, 0) != 0) throw std::runtime_error("not a compute latency log");
+  std::map<std::string, std::string> fields;
+  for (size_t at = std::strlen(kLogHead); at < line.size();) {
+    if (line.compare(at, 2, "; ") != 0) throw std::runtime_error("line 1: expected '; ' after the log's name");
+    const size_t end = std::min(line.find("; ", at + 2), line.size());
+    const std::string field = line.substr(at + 2, end - at - 2);
+    const size_t space = field.find(' ');
+    if (space == std::string::npos || !fields.emplace(field.substr(0, space), field.substr(space + 1)).second)
+      throw std::runtime_error("line 1: field '" + field + "' is not a 'name value' pair, or is given twice");
+    at = end;
+  }
+  for (const char* k : {"build", "compute", "machine_factor", "seed", "scenario"})
+    if (!fields.count(k)) throw std::runtime_error(std::string("line 1: the header has no ") + k);
+  if (fields.size() != 5) throw std::runtime_error("line 1: the header has fields msbench does not write");
+  ComputeLogHeader h;
+  h.build = fields["build"], h.mode = fields["compute"], h.scenario = fields["scenario"];
+  std::string why;
+  if (!parseNumber(fields["machine_factor"], &h.machine_factor, &why) || !(h.machine_factor > 0))
+    throw std::runtime_error("line 1: machine_factor " +
+                             (why.empty() ? "'" + fields["machine_factor"] + "' is not above 0" : why) +
+                             " (a machine factor is a finite number above 0)");
+  if (!parseUnsigned(fields["seed"], &h.seed, &why)) throw std::runtime_error("line 1: seed " + why);
+  return h;
+}
+
+// One row's six fields, each its whole text, checked against the call before it.
+ComputeCall parseLogRow(const std::string& line, int n, size_t index, const ComputeCall* prev, int64_t max_latency) {
+  const std::string at = "line " + std::to_string(n) + " ('" + line + "'): ";
+  std::vector<std::string> f;
+  std::istringstream row(line);
+  for (std::string s; std::getline(row, s, ',');) f.push_back(s);
+  if (f.size() != 6 || line.back() == ',') throw std::runtime_error(at + "expected 6 comma-separated fields");
+  int64_t v[5];
+  std::string why;
+  for (int k : {0, 2, 3, 4, 5})
+    if (!parseInteger(f[size_t(k)], &v[k == 0 ? 0 : k - 1], &why) ||
+        f[size_t(k)].find_first_of("+ \t") != std::string::npos)
+      throw std::runtime_error(at + "field " + std::to_string(k + 1) + " " +
+                               (why.empty() ? "'" + f[size_t(k)] + "' is not a plain integer" : why));
+  ComputeCall c;
+  if (v[0] != int64_t(index)) throw std::runtime_error(at + "the call's index is not " + std::to_string(index));
+  if (f[1] != "map" && f[1] != "plan") throw std::runtime_error(at + "the stage is not map or plan");
+  c.stage = f[1] == "map" ? ComputeCall::Stage::kMap : ComputeCall::Stage::kPlan;
+  c.asked_tick = v[1], c.start_tick = v[2], c.cpu_ns = v[3], c.latency_ticks = v[4];
+  if (c.asked_tick < 0 || c.start_tick < c.asked_tick)
+    throw std::runtime_error(at + "a call starts before it was asked for, or at a negative tick");
+  if (c.cpu_ns < 0) throw std::runtime_error(at + "a negative CPU time");
+  if (c.latency_ticks < 0 || c.latency_ticks > max_latency)
+    throw std::runtime_error(at + "the latency is outside 0..." + std::to_string(max_latency) + " ticks");
+  if (prev && c.asked_tick < prev->asked_tick) throw std::runtime_error(at + "asked for before the call above it");
+  if (prev && c.start_tick < prev->start_tick + prev->latency_ticks)
+    throw std::runtime_error(at + "starts before the call above it ended (the method is one computer)");
+  return c;
+}
+
+}  // namespace
+
+ComputeLog parseComputeLog(const std::string& text, int64_t max_latency_ticks) {
   std::istringstream in(text);
   std::string line;
-  const std::string head = "# msbench compute latency log; build ";
-  if (!std::getline(in, line) || line.rfind(head, 0) != 0) throw std::runtime_error("not a compute latency log");
+  if (!std::getline(in, line)) throw std::runtime_error("not a compute latency log");
   ComputeLog log;
-  log.build = line.substr(head.size(), line.find(';', head.size()) - head.size());
-  if (const size_t f = line.find("machine_factor "); f != std::string::npos) {
-    try {
-      log.machine_factor = std::stod(line.substr(f + 15));
-    } catch (const std::exception&) {
-      throw std::runtime_error("the header's machine_factor is not a number");
-    }
-  }
-  if (!std::getline(in, line) || line != "call,stage,asked_tick,start_tick,cpu_ns,latency_ticks")
-    throw std::runtime_error("line 2 is not the column header");
+  log.header = parseLogHeader(line);
+  if (!std::getline(in, line) || line != kLogColumns) throw std::runtime_error("line 2 is not the column header");
   std::vector<ComputeCall>& calls = log.calls;
   for (int n = 3; std::getline(in, line); ++n) {
     if (line.rfind("# end; calls ", 0) == 0) {
       if (line.substr(13) != std::to_string(calls.size()))
         throw std::runtime_error("the closing line counts " + line.substr(13) + " calls, the log has " +
                                  std::to_string(calls.size()));
+      if (std::getline(in, line))
+        throw std::runtime_error("line " + std::to_string(n + 1) + ": text after the closing line");
       return log;
     }
-    std::istringstream row(line);
-    std::string f[6];
-    for (auto& s : f) std::getline(row, s, ',');
-    ComputeCall c;
-    try {
-      if (std::stoul(f[0]) != calls.size() || (f[1] != "map" && f[1] != "plan")) throw std::invalid_argument("");
-      c.stage = f[1] == "map" ? ComputeCall::Stage::kMap : ComputeCall::Stage::kPlan;
-      c.asked_tick = std::stoll(f[2]), c.start_tick = std::stoll(f[3]), c.cpu_ns = std::stoll(f[4]);
-      c.latency_ticks = std::stoll(f[5]);
-    } catch (const std::exception&) {
-      throw std::runtime_error("line " + std::to_string(n) + " is not a call row: '" + line + "'");
-    }
-    if (c.latency_ticks < 0) throw std::runtime_error("line " + std::to_string(n) + ": a negative latency");
-    calls.push_back(c);
+    calls.push_back(parseLogRow(line, n, calls.size(), calls.empty() ? nullptr : &calls.back(), max_latency_ticks));
   }
   throw std::runtime_error("truncated: no closing line after " + std::to_string(calls.size()) + " calls");
 }

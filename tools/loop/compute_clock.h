@@ -8,6 +8,7 @@
 // Every latency is logged; a charged run replays bit for bit from its log (`timing.replay`).
 #pragma once
 
+#include <climits>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -80,19 +81,31 @@ struct ComputeCall {
 /// The stage's name in logs and metrics ("map", "plan").
 const char* stageName(ComputeCall::Stage s);
 
-/// The latency log of a run (compute_latency.csv): a header naming the build, the mode and the
-/// machine factor, one row per call, a closing line with the count (a truncated log lacks it).
-std::string computeLogText(const std::vector<ComputeCall>& calls, const std::string& build, const std::string& mode,
-                           double machine_factor);
+/// What a latency log's header names: the run it was measured in.
+struct ComputeLogHeader {
+  std::string build;            ///< the build that measured it (msbGitRevision)
+  std::string mode;             ///< the timing.compute mode ("charged")
+  double machine_factor = 1.0;  ///< finite, > 0
+  uint64_t seed = 0;            ///< the run's seed
+  std::string scenario;         ///< the run's replaySettingsHash (16 hex digits)
+};
+
+/// The latency log of a run (compute_latency.csv): a header naming build, mode, machine factor,
+/// seed and scenario, one row per call, a closing line with the count (a truncated log lacks it).
+std::string computeLogText(const std::vector<ComputeCall>& calls, const ComputeLogHeader& header);
 /// A parsed latency log.
 struct ComputeLog {
-  std::string build;  ///< the build that measured it
-  double machine_factor = 1.0;
+  ComputeLogHeader header;
   std::vector<ComputeCall> calls;
 };
-/// Parses a latency log; throws std::runtime_error saying what is wrong (no header, a row that
-/// does not parse, no closing line or a count that disagrees).
-ComputeLog parseComputeLog(const std::string& text);
+/// Largest latency a log may hold for one call (s): a call longer than an hour is no measurement.
+inline constexpr double kMaxLoggedLatencyS = 3600.0;
+/// Parses a latency log whole and strictly (every number its whole field, docs/compute.md
+/// "Replays"): the header's five fields (machine factor finite and > 0), each row's six fields
+/// — the call's index, its stage, asks non-decreasing, a start at or after its ask and after the
+/// previous call's end (one computer), CPU time >= 0, a latency within 0...`max_latency_ticks` —
+/// and a closing line whose count agrees. Throws std::runtime_error naming the line and reason.
+ComputeLog parseComputeLog(const std::string& text, int64_t max_latency_ticks = INT64_MAX / 4);
 
 /// Throws ConfigError (timing.map.per / timing.plan.per) for a term naming a counter that
 /// `counters` (a method's work counters) lacks.

@@ -53,7 +53,7 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
   checkModelTerms(spec_.timing, explorer_->workCounters(), spec_.method.type);
   if (spec_.timing.compute == "charged")
     setup.compute.machine_factor =
-        spec_.timing.replay.empty() ? measureMachineFactor() : spec_.compute_replay.machine_factor;
+        spec_.timing.replay.empty() ? measureMachineFactor() : spec_.compute_replay.header.machine_factor;
   machine_factor_ = setup.compute.machine_factor;
   loop_ = std::make_unique<ClosedLoop>(missionFlight(spec), setup);
   // A box with nothing above the ground has nothing to explore.

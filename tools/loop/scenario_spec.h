@@ -100,6 +100,9 @@ struct ScenarioSpec {
   /// chooses; tools/config/scenario_yaml.h fixedSettingsHash), set by loadScenario; "" for a
   /// spec built in code. Recorded in metrics.json.
   std::string fixed_settings_hash;
+  /// replaySettingsHash (tools/config/scenario_yaml.h), set by loadScenario ("" for a spec built
+  /// in code): a charged run's latency log names it, and replays only into the same.
+  std::string replay_settings_hash;
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;

@@ -1,6 +1,6 @@
 #include "tools/msbench/cli_args.h"
 
-#include "tools/config/strict_number.h"
+#include "core/common/strict_number.h"
 
 #include <cstdlib>
 #include <iomanip>

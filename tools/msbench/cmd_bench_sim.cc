@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "core/common/clock.h"
+#include "core/common/strict_number.h"
 #include "core/common/wall_time.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/physics/se3_controller.h"
 #include "sim/render/fisheye_renderer.h"
-#include "tools/config/strict_number.h"
 #include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"

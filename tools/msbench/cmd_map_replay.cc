@@ -11,13 +11,13 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/common/png.h"
+#include "core/common/strict_number.h"
 #include "core/common/wall_time.h"
 #include "core/eval/column_coverage.h"
 #include "core/eval/map_safety.h"
 #include "core/map/sphere_map.h"
 #include "core/planning/monospheres_explorer.h"
 #include "tools/config/scenario_yaml.h"
-#include "tools/config/strict_number.h"
 #include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"

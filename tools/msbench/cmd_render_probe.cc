@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "core/common/png.h"
+#include "core/common/strict_number.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/render/fisheye_renderer.h"
-#include "tools/config/strict_number.h"
 #include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"

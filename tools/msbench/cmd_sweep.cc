@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/common/strict_number.h"
 #include "tools/config/scenario_yaml.h"
-#include "tools/config/strict_number.h"
 #include "tools/config/sweep_plan.h"
 #include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"

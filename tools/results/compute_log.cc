@@ -11,16 +11,37 @@ namespace msb {
 void loadComputeReplay(ScenarioSpec& spec, const std::string& label) {
   if (spec.timing.replay.empty()) return;
   const std::string where = label + ": key 'timing.replay': " + spec.timing.replay;
+  // Checked whole before the run starts: every row, then the run it was measured in.
+  const int64_t max_latency = int64_t(std::ceil(kMaxLoggedLatencyS * spec.flight.physics.physics_hz));
+  const auto otherBuild = [&](const std::string& build) {
+    return InputFileError(where + ": written by build " + build + ", this is build " + msbGitRevision() +
+                          " (charged latencies replay only on the build that measured them)");
+  };
+  std::string text;
   try {
-    spec.compute_replay = parseComputeLog(readInputFile(spec.timing.replay));
+    text = readInputFile(spec.timing.replay);
+    spec.compute_replay = parseComputeLog(text, max_latency);
   } catch (const InputFileError& e) {
     throw InputFileError(label + ": key 'timing.replay': " + e.what());
   } catch (const std::runtime_error& e) {
+    // Another build's log (an older header among them) is named as such, not by its format.
+    const std::string head = "# msbench compute latency log; build ";
+    if (text.rfind(head, 0) == 0) {
+      const std::string build = text.substr(head.size(), text.find_first_of(";\n", head.size()) - head.size());
+      if (build != msbGitRevision()) throw otherBuild(build);
+    }
     throw InputFileError(where + ": " + e.what());
   }
-  if (spec.compute_replay.build != msbGitRevision())
-    throw InputFileError(where + ": written by build " + spec.compute_replay.build + ", this is build " +
-                         msbGitRevision() + " (charged latencies replay only on the build that measured them)");
+  const ComputeLogHeader& h = spec.compute_replay.header;
+  if (h.build != msbGitRevision()) throw otherBuild(h.build);
+  if (h.mode != "charged")
+    throw InputFileError(where + ": measured under compute " + h.mode + "; only a charged run's log replays");
+  if (h.seed != spec.flight.seed)
+    throw InputFileError(where + ": measured in a run of seed " + std::to_string(h.seed) + ", this run's seed is " +
+                         std::to_string(spec.flight.seed) + " (a log replays only into the run it was measured in)");
+  if (!spec.replay_settings_hash.empty() && h.scenario != spec.replay_settings_hash)
+    throw InputFileError(where + ": measured under scenario settings " + h.scenario + ", this run's are " +
+                         spec.replay_settings_hash + " (another scenario, or keys changed; docs/compute.md)");
 }
 
 namespace {

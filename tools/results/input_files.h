@@ -1,7 +1,7 @@
-// The one way msbench reads a result or data file it did not just write itself (metrics.json,
-// sweep.json, goldens, coverage.csv, logs): regular files only — a FIFO, device or directory is
-// refused before anything is read, so no reader blocks —, a size limit, and for JSON a nesting
-// limit and duplicate keys refused. Errors name the file and the reason (docs/robustness.md).
+// JSON result and data files msbench did not just write itself (metrics.json, sweep.json,
+// goldens): read through readInputFile (core/common/input_file.h: regular files only, a size
+// limit), then a nesting limit and duplicate keys refused. Errors name the file and the reason
+// (docs/robustness.md).
 #pragma once
 
 #include <cstddef>
@@ -11,28 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/common/config_check.h"
+#include "core/common/input_file.h"
 
 namespace msb {
-
-/// An input file that cannot be read as asked: missing, not a regular file, too large, not
-/// valid JSON, nested too deep, a key twice. The message names the file and the reason.
-/// Bad input: every command exits 2.
-class InputFileError : public FileConfigError {
- public:
-  using FileConfigError::FileConfigError;
-};
-
-/// Limits of one read.
-struct InputLimits {
-  size_t max_bytes = size_t(256) << 20;  ///< larger files are refused (256 MiB)
-  int max_depth = 64;                    ///< JSON: arrays and objects nested deeper are refused
-};
-
-/// The whole file `path`: a regular file (symlinks followed) of at most `limits.max_bytes`.
-/// Opens without blocking and checks the opened file, so a FIFO or device never stalls the
-/// reader. Throws InputFileError.
-std::string readInputFile(const std::filesystem::path& path, const InputLimits& limits = {});
 
 /// `text` parsed as JSON: nesting deeper than `limits.max_depth` and a key twice in one object
 /// are refused. `where` names the source in messages. Throws InputFileError.

@@ -272,8 +272,10 @@ nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const Scena
   if (spec.mission.write_map_ply) writeFileAtomic(dir / "map.ply", mapPly(r.final_map));
   writeTopdown(dir / "topdown.png", r, truth);
   if (!spec.timing.free())
-    writeFileAtomic(dir / kComputeLogFile, computeLogText(r.flight.compute_calls, msbGitRevision(), spec.timing.compute,
-                                                          r.compute_machine_factor));
+    writeFileAtomic(
+        dir / kComputeLogFile,
+        computeLogText(r.flight.compute_calls, {msbGitRevision(), spec.timing.compute, r.compute_machine_factor,
+                                                spec.flight.seed, spec.replay_settings_hash}));
   // What finishes after the run's files (its video: on a full disk, they go first) adds its keys
   // before the record is sealed.
   if (extra) metrics.update(extra());

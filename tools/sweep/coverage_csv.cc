@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "tools/config/strict_number.h"
+#include "core/common/strict_number.h"
 #include "tools/results/input_files.h"
 #include "tools/results/run_record.h"
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "core/geometry/world_truth.h"
 #include "tools/config/world_registry.h"
@@ -81,10 +82,12 @@ TEST(ComputeTiming, TheCostModelAddsItsTermsAndRefusesBadCoefficients) {
 
 TEST(ComputeLog, RoundTripsAndRefusesTruncatedLogs) {
   std::vector<ComputeCall> calls = {{Stage::kMap, 0, 0, 1234, 2}, {Stage::kPlan, 0, 2, 99, 7}};
-  const std::string text = computeLogText(calls, "abc123", "charged", 1.25);
+  const std::string text = computeLogText(calls, {"abc123", "charged", 1.25, 7, "00ff00ff00ff00ff"});
   const ComputeLog log = parseComputeLog(text);
-  EXPECT_EQ(log.build, "abc123");
-  EXPECT_DOUBLE_EQ(log.machine_factor, 1.25);
+  EXPECT_EQ(log.header.build, "abc123");
+  EXPECT_DOUBLE_EQ(log.header.machine_factor, 1.25);
+  EXPECT_EQ(log.header.seed, 7u);
+  EXPECT_EQ(log.header.scenario, "00ff00ff00ff00ff");
   ASSERT_EQ(log.calls.size(), 2u);
   EXPECT_EQ(log.calls[1].stage, Stage::kPlan);
   EXPECT_EQ(log.calls[1].start_tick, 2);
@@ -97,6 +100,56 @@ TEST(ComputeLog, RoundTripsAndRefusesTruncatedLogs) {
   miscounted.replace(miscounted.rfind("calls 2"), 7, "calls 3");
   EXPECT_THROW(parseComputeLog(miscounted), std::runtime_error);
   EXPECT_THROW(parseComputeLog("hello\n"), std::runtime_error);
+}
+
+// A replay log is checked whole before a run starts: each bad header value or row is refused,
+// naming the line and the reason (docs/compute.md, "Replays").
+TEST(ComputeLog, EveryBadHeaderValueOrRowIsRefusedNamingTheLine) {
+  const std::vector<ComputeCall> calls = {{Stage::kMap, 0, 0, 1234, 2}, {Stage::kPlan, 0, 2, 99, 7}};
+  const std::string good = computeLogText(calls, {"abc123", "charged", 1.25, 7, "00ff00ff00ff00ff"});
+  ASSERT_NO_THROW(parseComputeLog(good, 100));
+  auto errorOf = [](const std::string& text) -> std::string {
+    try {
+      parseComputeLog(text, 100);
+      return "";
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string t = good;
+    const size_t at = t.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return t.replace(at, from.size(), to);
+  };
+  // Machine factors that are not a finite number above 0, or not all of the field.
+  for (const char* f : {"nan", "inf", "-1", "0", "12abc", "0x10", ""}) {
+    const std::string e = errorOf(replaced("machine_factor 1.25", std::string("machine_factor ") + f));
+    EXPECT_NE(e.find("line 1"), std::string::npos) << f << ": " << e;
+    EXPECT_NE(e.find("machine_factor"), std::string::npos) << f << ": " << e;
+  }
+  EXPECT_NE(errorOf(replaced("; seed 7", "")).find("no seed"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("; seed 7", "; seed -0")).find("seed"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("; scenario", "; extra 1; scenario")).find("line 1"), std::string::npos);
+  // Rows: half-numbers, signs, a latency past the limit or of int64's size, order broken.
+  for (const auto& [from, to, says] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"1,plan,0,2,99,7", "1,plan,0,2,99,0abc", "line 4"},
+           {"1,plan,0,2,99,7", "1,plan,0,2,99,+0", "line 4"},
+           {"1,plan,0,2,99,7", "1,plan,0,2,99,9223372036854775807", "outside 0...100"},
+           {"1,plan,0,2,99,7", "1,plan,0,2,99,101", "outside 0...100"},
+           {"1,plan,0,2,99,7", "1,plan,0,2,99,-1", "outside"},
+           {"1,plan,0,2,99,7", "1,plan,0,1,99,7", "before the call above it ended"},
+           {"1,plan,0,2,99,7", "1,plan,3,2,99,7", "before it was asked for"},
+           {"0,map,0,0,1234,2", "0,map,5,5,1234,2", "asked for before"},
+           {"1,plan,0,2,99,7", "1,plan,0,2,-5,7", "negative CPU"},
+           {"1,plan,0,2,99,7", "2,plan,0,2,99,7", "index"},
+           {"1,plan,0,2,99,7", "1,fly,0,2,99,7", "stage"},
+           {"1,plan,0,2,99,7", "1,plan,0,2,99,7,8", "6 comma-separated"},
+           {"1,plan,0,2,99,7", "1,plan,0,2,99,7,", "6 comma-separated"},
+           {"# end; calls 2\n", "# end; calls 2\nmore\n", "after the closing line"}}) {
+    const std::string e = errorOf(replaced(from, to));
+    EXPECT_NE(e.find(says), std::string::npos) << to << ": " << e;
+  }
 }
 
 // The urban town on the null renderer and oracle features (as closed_loop_test.cc).
@@ -227,7 +280,7 @@ TEST(ComputeInTheLoop, AChargedRunReplaysBitForBitFromItsLog) {
   // The replay: the log's latencies, not this machine's.
   ScenarioSpec replay = spec;
   replay.timing.replay = "log.csv";
-  replay.compute_replay = parseComputeLog(computeLogText(ra.flight.compute_calls, "b", "charged", 1.0));
+  replay.compute_replay = parseComputeLog(computeLogText(ra.flight.compute_calls, {"b", "charged", 1.0, 0, ""}));
   std::vector<int64_t> planned_again;
   Mission b(replay, urban().generated.exploration_box, &truth, std::make_unique<StepMethod>(&planned_again, 0.0));
   while (b.running()) b.step();

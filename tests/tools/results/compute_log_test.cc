@@ -15,9 +15,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The message of loadComputeReplay for a spec naming `file`, or "" if it loads.
-std::string replayError(const std::string& file) {
+// The message of loadComputeReplay for a spec naming `file` (seed 3, scenario settings
+// 00000000000000aa unless given), or "" if it loads.
+std::string replayError(const std::string& file, uint64_t seed = 3, const std::string& scenario = "00000000000000aa") {
   ScenarioSpec spec;
+  spec.flight.seed = seed;
+  spec.replay_settings_hash = scenario;
   spec.timing.compute = "charged";
   spec.timing.replay = file;
   try {
@@ -36,16 +39,27 @@ TEST(ComputeLog, AReplayLogThatIsMissingTruncatedOrAnotherBuildsIsBadInput) {
     std::ofstream(dir / name) << text;
     return (dir / name).string();
   };
-  const std::string ours = computeLogText(calls, msbGitRevision(), "charged", 1.0);
+  const ComputeLogHeader header{msbGitRevision(), "charged", 1.0, 3, "00000000000000aa"};
+  const std::string ours = computeLogText(calls, header);
   EXPECT_EQ(replayError(write("ok.csv", ours)), "");
   for (const auto& [name, text, says] : std::vector<std::tuple<std::string, std::string, std::string>>{
            {"cut.csv", ours.substr(0, ours.rfind("# end")), "truncated"},
-           {"other.csv", computeLogText(calls, "0123456789ab", "charged", 1.0), "build 0123456789ab"}}) {
+           {"other.csv", computeLogText(calls, {"0123456789ab", "charged", 1.0, 3, "00000000000000aa"}),
+            "build 0123456789ab"},
+           {"modelled.csv", computeLogText(calls, {msbGitRevision(), "modelled", 1.0, 3, "00000000000000aa"}),
+            "compute modelled"},
+           {"long.csv", computeLogText({{ComputeCall::Stage::kMap, 0, 0, 10, int64_t(1) << 40}}, header),
+            "outside 0...1800000"}}) {
     const std::string e = replayError(write(name, text));
     EXPECT_NE(e.find("s.yaml: key 'timing.replay'"), std::string::npos) << e;
     EXPECT_NE(e.find(name), std::string::npos) << e;
     EXPECT_NE(e.find(says), std::string::npos) << e;
   }
+  // Measured in another run: another seed (`--seed 2` over seed 3's config.yaml) or scenario.
+  const std::string seeded = replayError((dir / "ok.csv").string(), 2);
+  EXPECT_NE(seeded.find("seed 3, this run's seed is 2"), std::string::npos) << seeded;
+  const std::string other = replayError((dir / "ok.csv").string(), 3, "00000000000000bb");
+  EXPECT_NE(other.find("scenario settings 00000000000000aa"), std::string::npos) << other;
   const std::string missing = replayError((dir / "none.csv").string());
   EXPECT_NE(missing.find("timing.replay"), std::string::npos) << missing;
   EXPECT_NE(missing.find("none.csv"), std::string::npos) << missing;

@@ -1,4 +1,4 @@
-#include "tools/config/strict_number.h"
+#include "core/common/strict_number.h"
 
 #include <charconv>
 #include <cmath>
@@ -53,7 +53,12 @@ bool parseInteger(std::string_view text, int64_t* out, std::string* why) {
 bool parseUnsigned(std::string_view text, uint64_t* out, std::string* why) {
   const std::string_view s = trim(text);
   if (s.empty()) return *why = "empty, expected a non-negative integer", false;
-  if (s.front() == '-') return *why = quoted(s, "is negative"), false;
+  // "-0" is no negative number, but a sign where none belongs: said as such.
+  if (s.front() == '-')
+    return *why = quoted(s, s.find_first_not_of('0', 1) == std::string_view::npos && s.size() > 1
+                                ? "carries a minus sign (a non-negative integer is written without one: 0)"
+                                : "is negative"),
+           false;
   std::string_view digits = s;
   if (digits.front() == '+') digits.remove_prefix(1);
   uint64_t v = 0;
