@@ -1,9 +1,12 @@
 #include "sim/world/mesh_import.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <sys/stat.h>
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <map>
@@ -14,6 +17,32 @@
 namespace msb {
 
 namespace {
+
+// assimp's file access, recorded: every file a mesh reads (the mesh, an OBJ's material library)
+// is listed, so an import copies all of them; a path that is there but no regular file (a FIFO,
+// a device, a directory) is never opened — it would block or never end — and is named instead.
+class RecordingIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    struct stat st {};
+    if (::stat(file, &st) == 0 && !S_ISREG(st.st_mode)) {
+      refused.push_back(file);
+      return nullptr;
+    }
+    Assimp::IOStream* stream = DefaultIOSystem::Open(file, mode);
+    if (stream) opened.push_back(file);
+    return stream;
+  }
+  /// Asked by stat, never by opening (DefaultIOSystem's fopen blocks on a FIFO).
+  bool Exists(const char* file) const override {
+    struct stat st {};
+    if (::stat(file, &st) != 0) return false;
+    if (!S_ISREG(st.st_mode)) refused.push_back(file);
+    return S_ISREG(st.st_mode);
+  }
+  std::vector<std::string> opened;
+  mutable std::vector<std::string> refused;
+};
 
 // A file's node name as a MuJoCo-safe word (letters, digits, '_'), unique within the file.
 std::string uniqueNodeName(const std::string& raw, std::set<std::string>& taken) {
@@ -181,18 +210,30 @@ const char* pieceRuleName(PieceRule r) {
 }
 
 ImportedMesh importMesh(const std::string& path, const Vec3& scale, const Pose& T_W_M, double slab_thickness_m) {
+  // The mesh itself a regular file before assimp looks at it (it would block on a FIFO).
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw std::runtime_error(path + ": not a regular file (a FIFO, device or directory)");
   Assimp::Importer importer;
+  auto* io = new RecordingIOSystem;  // owned by the importer
+  importer.SetIOHandler(io);
   // The file's own up axis is kept (Gazebo reads COLLADA as z-up); units and node transforms apply.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (!io->refused.empty())
+    throw std::runtime_error(path + ": reads " + io->refused.front() +
+                             ", which is not a regular file (a FIFO, device or directory)");
   if (!scene || !scene->mRootNode)
     throw std::runtime_error(path + ": cannot be read as a mesh: " + importer.GetErrorString());
   SceneReader reader{scene, scale, T_W_M, {}, {}};
   reader.read(scene->mRootNode, aiMatrix4x4());
   ImportedMesh out;
   out.surfaces = std::move(reader.surfaces);
+  for (const std::string& f : io->opened)
+    if (f != path && std::find(out.side_files.begin(), out.side_files.end(), f) == out.side_files.end())
+      out.side_files.push_back(f);
   // Every coordinate finite; the floor 1 m below the lowest vertex.
   double floor_z = std::numeric_limits<double>::infinity();
   for (const ImportedSurface& s : out.surfaces) {

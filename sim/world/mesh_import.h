@@ -48,6 +48,8 @@ struct ImportedMesh {
   std::vector<ImportedSurface> surfaces;
   std::vector<ImportedNode> nodes;
   size_t triangles = 0;
+  /// The other files the mesh read, as opened (an OBJ's material library): imported with it.
+  std::vector<std::string> side_files;
 };
 
 /// Reads `path` with its nodes' transforms and units, scales it by `scale` (the model's mesh

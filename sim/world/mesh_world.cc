@@ -72,6 +72,10 @@ ImportedMesh readMesh(const WorldSpec& spec, size_t i) {
   const MeshSpec& m = spec.meshes[i];
   const std::string key = "meshes[" + std::to_string(i) + "].file";
   const fs::path path = fs::path(spec.source_dir) / m.file;
+  if (fs::exists(fs::symlink_status(path)) && !fs::is_regular_file(path))
+    throw ConfigError(key, path.string() +
+                               ": is there but not a regular file (a FIFO, device, directory or a link "
+                               "to nothing)");
   if (!fs::is_regular_file(path)) {
     const std::string from = spec.source ? spec.source->repository + " at " + spec.source->commit : "its source";
     throw ConfigError(key, m.file + " is not in " + spec.source_dir + ": clone " + from +
@@ -173,7 +177,13 @@ std::vector<std::string> meshSourceFiles(const WorldSpec& spec, const std::strin
   from.source_dir = checkout;
   for (size_t i = 0; i < spec.meshes.size(); ++i) {
     if (seen.insert(spec.meshes[i].file).second) files.push_back(spec.meshes[i].file);
-    for (const ImportedSurface& s : readMesh(from, i).surfaces) {
+    const ImportedMesh mesh = readMesh(from, i);
+    // The files the mesh itself read (an OBJ's material library), relative to the checkout.
+    for (const std::string& f : mesh.side_files) {
+      const std::string rel = fs::path(f).lexically_normal().lexically_relative(fs::path(checkout).lexically_normal());
+      if (!rel.empty() && seen.insert(rel).second) files.push_back(rel);
+    }
+    for (const ImportedSurface& s : mesh.surfaces) {
       if (s.texture_file.empty()) continue;
       const std::string rel = imagePath(spec.meshes[i].file, s.texture_file);
       if (!seen.insert(rel).second) continue;

@@ -10,15 +10,16 @@
 
 #include "core/common/png.h"
 #include "core/common/rng.h"
+#include "core/common/strict_number.h"
 #include "core/common/wall_time.h"
 #include "sim/physics/mjcf_files.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/render/fisheye_renderer.h"
-#include "tools/config/strict_number.h"
 #include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/interrupt.h"
+#include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
 
 namespace msb {
@@ -171,9 +172,116 @@ WorldSpec generatedWorldSpec(const std::string& name) {
   throw UsageError("world '" + name + "': no world of that name in " + worldsDir());
 }
 
+// A directory `world import` may replace: empty, or an import msbench wrote (its marker; an
+// import from before the marker: no marker and an imported.json that is an import's record).
+bool isReplaceableImport(const fs::path& dir) {
+  if (fs::is_empty(dir) || isMsbenchOutput(dir, OutputKind::kWorldImport)) return true;
+  if (fs::exists(fs::symlink_status(dir / ".msbench-output"))) return false;
+  try {
+    const nlohmann::json j = readJsonFile(dir / "imported.json", InputLimits{size_t(1) << 20});
+    return j.is_object() && j.contains("repository") && j.contains("files") && j["files"].is_array();
+  } catch (const InputFileError&) {
+    return false;
+  }
+}
+
+// The checkout's file `rel` (a path inside it) as a regular file that resolves inside the
+// checkout (`root`, canonical): a link out of it, a link to nothing, a FIFO, device or directory
+// is bad input naming the file and why. Nothing at the path: false.
+bool checkoutFileOk(const fs::path& root, const std::string& rel) {
+  const fs::path p = root / rel;
+  if (!fs::exists(fs::symlink_status(p))) return false;
+  std::error_code ec;
+  const fs::path real = fs::canonical(p, ec);
+  if (ec) throw UsageError("--from: " + p.string() + ": a link to nothing (" + ec.message() + ")");
+  const fs::path inside = real.lexically_relative(root);
+  if (inside.empty() || *inside.begin() == "..")
+    throw UsageError("--from: " + p.string() + ": resolves to " + real.string() +
+                     ", outside the checkout; only the checkout's own files are imported");
+  const fs::file_status st = fs::status(real);
+  if (!fs::is_regular_file(st))
+    throw UsageError("--from: " + p.string() + ": is " +
+                     (fs::is_directory(st)                                 ? "a directory"
+                      : fs::is_fifo(st)                                    ? "a FIFO"
+                      : fs::is_character_file(st) || fs::is_block_file(st) ? "a device"
+                                                                           : "not a regular file") +
+                     ", not a regular file");
+  return true;
+}
+
+// The files to import: the spec's meshes (each checked before assimp reads it), then the images
+// they name (checked; one that is absent is listed in `missing`).
+std::vector<std::string> checkedSourceFiles(const WorldSpec& spec, const fs::path& root,
+                                            std::vector<std::string>& missing) {
+  for (size_t i = 0; i < spec.meshes.size(); ++i)
+    if (!checkoutFileOk(root, spec.meshes[i].file))
+      throw UsageError("--from " + root.string() + ": meshes[" + std::to_string(i) + "].file " + spec.meshes[i].file +
+                       " is not in the checkout (a partial clone, or another repository?)");
+  const std::vector<std::string> files = meshSourceFiles(spec, root.string(), missing);
+  for (const std::string& f : files) checkoutFileOk(root, f);
+  for (const std::string& f : missing) checkoutFileOk(root, f);  // something there that is no image
+  return files;
+}
+
+// Removes what a killed import of `name` left in `parent` (its staging and replaced copies, each
+// with msbench's marker); called with the import's lock held, so none is in use.
+void clearStaleImports(const fs::path& parent, const std::string& name) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(parent, ec)) {
+    const std::string f = e.path().filename().string();
+    const bool ours = f.rfind(".tmp-" + name + "-", 0) == 0 || f.rfind(name + ".replaced-", 0) == 0;
+    if (ours && e.is_directory() && isMsbenchOutput(e.path(), OutputKind::kWorldImport)) fs::remove_all(e.path(), ec);
+  }
+}
+
+// The import under its lock: the files checked and copied into a staging directory, the world
+// built from it, then the staging directory put in the target's place (replaceDirectory).
+size_t importLocked(WorldSpec spec, const fs::path& root, const fs::path& target, const std::vector<fs::path>& made) {
+  const std::string name = spec.name;
+  const OutputLock lock(target, "world import " + name);
+  clearStaleImports(target.parent_path(), name);
+  const fs::path staging = target.parent_path() / (".tmp-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(staging);
+  // Reading the meshes, copying and the check build write only into the staging directory: a
+  // signal there ends the import at once (assimp and the mesh cutting have no safe points).
+  std::optional<ExitOnInterrupt> watch(std::in_place, std::vector<fs::path>{staging, target.string() + ".lock"},
+                                       "world", made);
+  std::vector<std::string> missing;
+  const std::vector<std::string> files = checkedSourceFiles(spec, root, missing);
+  try {
+    fs::create_directories(staging);
+    writeOutputMarker(staging, OutputKind::kWorldImport);
+    nlohmann::json list = nlohmann::json::array();
+    for (const std::string& f : files) {
+      fs::create_directories((staging / f).parent_path());
+      copyInputFile(root / f, staging / f, throwIfInterrupted);
+      list.push_back({{"file", f}, {"bytes", fs::file_size(staging / f)}});
+    }
+    spec.source_dir = staging.string();
+    const GeneratedWorld g = generateWorld(spec);
+    const nlohmann::json record = {{"repository", spec.source->repository},
+                                   {"commit", spec.source->commit},
+                                   {"from", root.string()},
+                                   {"files", list},
+                                   {"absent_images", missing}};
+    writeFileAtomic(staging / "imported.json", record.dump(2) + "\n");
+    watch.reset();
+    throwIfInterrupted();
+    replaceDirectory(staging, target);
+    printMeshReports(g.meshes);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(staging, ec);
+    throw;
+  }
+  return files.size();
+}
+
 // msbench world import NAME --from CHECKOUT: copies the files a world's meshes need (and the
 // images they name) from a checkout of its source into the cache's sources/NAME/, after checking
-// that the world builds from them; nothing is written if it does not.
+// that the world builds from them. Staged beside the target and put in its place only when the
+// world builds (the old import whole until then, and after any failure); only an import msbench
+// wrote is replaced; only the checkout's regular files are copied (docs/worlds.md).
 int worldImport(int argc, char** argv) {
   ArgParser args("msbench world import",
                  "Copy a world's meshes and their images from a checkout of its source into the world cache.");
@@ -183,38 +291,29 @@ int worldImport(int argc, char** argv) {
   WorldSpec spec = generatedWorldSpec(name);
   if (spec.meshes.empty()) throw UsageError("world '" + name + "' imports nothing (its spec has no meshes)");
   if (!fs::is_directory(checkout)) throw UsageError("--from " + checkout + ": not a directory");
-  std::vector<std::string> missing;
-  const std::vector<std::string> files = meshSourceFiles(spec, checkout, missing);
-  // Staged beside the target, checked by building the world from it, then renamed in place.
+  const fs::path root = fs::canonical(checkout);
+  // The target: absent, empty or an import msbench wrote; anything else is the user's.
   const fs::path target = worldSourcesDir(name);
-  const fs::path staging = target.parent_path() / (".tmp-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(staging);
+  if (fs::exists(fs::symlink_status(target))) {
+    if (!fs::is_directory(fs::symlink_status(target)))
+      throw UsageError(target.string() + ": exists and is not a directory; refusing to replace it");
+    if (!isReplaceableImport(target))
+      throw UsageError(target.string() + ": holds files msbench did not import (no import marker or record); " +
+                       "refusing to replace it — move it away first");
+  }
+  // The cache's sources/ made for this import goes again if the import fails.
+  const fs::path sources = target.parent_path();
+  const bool made = !fs::exists(fs::symlink_status(sources));
+  fs::create_directories(sources);
+  size_t files = 0;
   try {
-    nlohmann::json list = nlohmann::json::array();
-    for (const std::string& f : files) {
-      fs::create_directories((staging / f).parent_path());
-      fs::copy_file(fs::path(checkout) / f, staging / f);
-      list.push_back({{"file", f}, {"bytes", fs::file_size(staging / f)}});
-    }
-    spec.source_dir = staging.string();
-    const GeneratedWorld g = generateWorld(spec);
-    const nlohmann::json record = {{"repository", spec.source->repository},
-                                   {"commit", spec.source->commit},
-                                   {"from", fs::absolute(checkout).string()},
-                                   {"files", list},
-                                   {"absent_images", missing}};
-    writeFileAtomic(staging / "imported.json", record.dump(2) + "\n");
-    throwIfInterrupted();
-    fs::remove_all(target);
-    fs::rename(staging, target);
-    printMeshReports(g.meshes);
+    files = importLocked(spec, root, target, made ? std::vector<fs::path>{sources} : std::vector<fs::path>{});
   } catch (...) {
     std::error_code ec;
-    fs::remove_all(staging, ec);
+    if (made) fs::remove(sources, ec);  // only if empty
     throw;
   }
-  std::printf("world %s: %zu files imported from %s -> %s\n", name.c_str(), files.size(), checkout.c_str(),
-              target.c_str());
+  std::printf("world %s: %zu files imported from %s -> %s\n", name.c_str(), files, checkout.c_str(), target.c_str());
   return kExitOk;
 }
 

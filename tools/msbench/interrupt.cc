@@ -1,6 +1,10 @@
 #include "tools/msbench/interrupt.h"
 
+#include <unistd.h>
+
+#include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -74,6 +78,28 @@ void throwIfInterrupted() {
   static long safe_points = 0;
   if (injection.signal && ++safe_points == injection.at) std::raise(injection.signal);
   if (g_signal) throw Interrupted(int(g_signal));
+}
+
+ExitOnInterrupt::ExitOnInterrupt(std::vector<std::filesystem::path> scratch, std::string who,
+                                 std::vector<std::filesystem::path> empty_dirs)
+    : watcher_([this, scratch = std::move(scratch), who = std::move(who), empty_dirs = std::move(empty_dirs)] {
+        while (!done_.load()) {
+          if (g_signal) {
+            const int sig = int(g_signal);
+            std::error_code ec;
+            for (const auto& p : scratch) std::filesystem::remove_all(p, ec);
+            for (const auto& p : empty_dirs) std::filesystem::remove(p, ec);  // only if empty
+            std::fprintf(stderr, "msbench %s: %s; stopped, nothing written\n", who.c_str(), describe(sig));
+            std::fflush(stderr);
+            ::_exit(128 + sig);
+          }
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+      }) {}
+
+ExitOnInterrupt::~ExitOnInterrupt() {
+  done_.store(true);
+  watcher_.join();
 }
 
 }  // namespace msb

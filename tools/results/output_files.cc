@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "core/common/config_check.h"
 #include "tools/results/input_files.h"
@@ -117,6 +119,8 @@ const char* kindName(OutputKind k) {
       return "map-replay";
     case OutputKind::kWorldShow:
       return "world-show";
+    case OutputKind::kWorldImport:
+      return "world-import";
   }
   return "?";
 }
@@ -135,6 +139,8 @@ const char* characteristicFile(OutputKind k) {
       return "map_stats.csv";
     case OutputKind::kWorldShow:
       return "views.png";
+    case OutputKind::kWorldImport:
+      return "imported.json";
   }
   return "";
 }
@@ -299,6 +305,71 @@ std::vector<std::string> entriesOf(const fs::path& dir) {
 }
 
 }  // namespace
+
+void writeOutputMarker(const fs::path& dir, OutputKind kind) { writeFileAtomic(dir / kMarker, markerText(kind)); }
+
+void copyInputFile(const fs::path& from, const fs::path& to, const std::function<void()>& poll) {
+  // The source as readInputFile opens it: without blocking, the opened file's type checked.
+  const int in = ::open(from.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (in < 0) throw InputFileError(from.string() + ": " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(in, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(in);
+    throw InputFileError(from.string() + ": not a regular file (a FIFO, device or directory is never copied)");
+  }
+  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (out < 0) {
+    const int err = errno;
+    ::close(in);
+    throw std::runtime_error(to.string() + ": cannot create the file: " + std::strerror(err));
+  }
+  // Each chunk read from the source (its errors name it), written whole to the copy (its errors
+  // name the copy: a full cache is the cache's failure, not the checkout's).
+  auto fail = [&](const fs::path& who, const char* step, int err) {
+    ::close(in), ::close(out), ::unlink(to.c_str());
+    throw std::runtime_error(who.string() + ": cannot " + step + ": " + std::strerror(err));
+  };
+  std::vector<char> buf(size_t(1) << 20);
+  for (;;) {
+    if (poll) poll();
+    const ssize_t n = ::read(in, buf.data(), buf.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail(from, "read it", errno);
+    if (n == 0) break;
+    for (ssize_t done = 0; done < n;) {
+      const ssize_t w = ::write(out, buf.data() + done, size_t(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) fail(to, "write it", w < 0 ? errno : EIO);
+      done += w;
+    }
+  }
+  ::close(in);
+  if (::close(out) != 0) {
+    const int err = errno;
+    ::unlink(to.c_str());
+    throw std::runtime_error(to.string() + ": cannot close it: " + std::strerror(err));
+  }
+}
+
+void replaceDirectory(const fs::path& staged, const fs::path& target) {
+  const fs::path aside = target.string() + ".replaced-" + std::to_string(::getpid());
+  std::error_code ec;
+  const bool had = existsNoFollow(target);
+  if (had) {
+    fs::rename(target, aside, ec);
+    if (ec) throw std::runtime_error(target.string() + ": cannot move the old copy aside: " + ec.message());
+  }
+  fs::rename(staged, target, ec);
+  if (ec) {
+    std::error_code back;
+    if (had) fs::rename(aside, target, back);
+    throw std::runtime_error(target.string() + ": cannot move the new copy in place: " + ec.message() +
+                             (had ? (back ? "; the old copy is at " + aside.string() : "; the old copy is kept") : ""));
+  }
+  if (had && (fs::remove_all(aside, ec), ec))
+    std::fprintf(stderr, "msbench: the replaced copy %s could not be removed whole (%s); remove it by hand\n",
+                 aside.c_str(), ec.message().c_str());
+}
 
 StagedOutputDir::StagedOutputDir(fs::path final_dir, bool overwrite, OutputKind kind)
     : overwrite_(overwrite), kind_(kind) {

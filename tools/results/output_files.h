@@ -40,13 +40,29 @@ struct NamedPath {
 void checkNoOverlap(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 
 /// The kinds of output directory msbench writes; --overwrite replaces only one of the same kind.
-enum class OutputKind { kRun, kReport, kFly, kVioEval, kMapReplay, kWorldShow };
+enum class OutputKind { kRun, kReport, kFly, kVioEval, kMapReplay, kWorldShow, kWorldImport };
 
 /// True if `dir` is a directory msbench wrote (it holds the marker file `.msbench-output`); with
 /// `kind`, only one of that kind (a marker written before kinds existed counts for the kind whose
 /// characteristic file the directory holds).
 bool isMsbenchOutput(const std::filesystem::path& dir);
 bool isMsbenchOutput(const std::filesystem::path& dir, OutputKind kind);
+
+/// Writes the marker file of `kind` into `dir` (an output directory msbench made itself).
+void writeOutputMarker(const std::filesystem::path& dir, OutputKind kind);
+
+/// Copies the regular file `from` (an input: opened without blocking, a FIFO, device or
+/// directory refused as InputFileError naming it) to the new file `to`, in chunks, calling
+/// `poll` between them (an interrupt check). A failed write names `to` and the reason
+/// (std::runtime_error, `to` removed).
+void copyInputFile(const std::filesystem::path& from, const std::filesystem::path& to,
+                   const std::function<void()>& poll);
+
+/// Puts the directory `staged` in place of `target` without a moment in which neither holds a
+/// whole copy: an existing `target` is renamed aside (`<target>.replaced-<pid>`), `staged` renamed
+/// in, then the old one removed (what cannot be removed is left there, named on stderr). If the
+/// second rename fails, the old `target` is put back. Throws std::runtime_error naming the step.
+void replaceDirectory(const std::filesystem::path& staged, const std::filesystem::path& target);
 
 /// The path msbench writes an output `path` at: absolute, with symlinks and `..` in its parent
 /// resolved as the filesystem resolves them (not lexically: `link/../d` is d beside the link's

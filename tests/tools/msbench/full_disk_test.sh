@@ -53,6 +53,20 @@ MSBENCH_CACHE_DIR="$D/fs/cache" "$M" world build urban >"$D/log" 2>&1; rc=$?
 [ $rc -ne 0 ] && grep -q "could not write the world cache" "$D/log" && grep -q "No space left on device" "$D/log" ||
   fail "world build: rc $rc: $(cat "$D/log")"
 [ -z "$(ls -A "$D/fs/cache")" ] || fail "world build left $(ls -A "$D/fs/cache")"
+# A world import into a full cache: the error names the cache's file (not the checkout's), and
+# neither a staging directory nor the sources folder is left.
+W=$D/worlds
+mkdir -p "$W/boxes" "$D/checkout/meshes"
+printf 'o box\nv 7 7 0\nv 9 7 0\nv 8 9 0\nv 8 8 2\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n' >"$D/checkout/meshes/box.obj"
+printf '# padding\n' >>"$D/checkout/meshes/box.obj"
+printf 'name: boxes\ndescription: box\nseed: 1\nground: {size_m: [40, 40]}\nstart: {position: [0, 0, 0], yaw_deg: 0}\nexploration_box: {min: [-15, -15, 0], max: [15, 15, 5]}\nsource: {repository: test/fixture, commit: 0000000}\nmeshes:\n  - {file: meshes/box.obj, name: box}\n' >"$W/boxes/spec.yaml"
+# The mesh made larger than the disk's room by comment lines (assimp skips them).
+for i in $(seq 4000); do printf '# %0100d\n' 0; done >>"$D/checkout/meshes/box.obj"
+mkdir -p "$D/fs/cache"
+MSBENCH_WORLDS_DIR=$W MSBENCH_CACHE_DIR="$D/fs/cache" "$M" world import boxes --from "$D/checkout" >"$D/log" 2>&1; rc=$?
+[ $rc -ne 0 ] && grep -q "$D/fs/cache" "$D/log" && grep -q "No space left on device" "$D/log" &&
+  ! grep -q "$D/checkout" "$D/log" || fail "world import: rc $rc: $(cat "$D/log")"
+[ -z "$(ls -A "$D/fs/cache")" ] || fail "world import left $(ls -A "$D/fs/cache")"
 rm -rf "$D/fs/filler" "$D/fs/cache" "$D/fs/golden.json"
 
 # A run with a video on a disk with room for the run's files but not the video: the run is
