@@ -140,8 +140,11 @@ int runRunCommand(int argc, char** argv) {
   if (args.has("video")) all_sets.push_back("video.enabled=true");
   ScenarioSpec spec = loadScenario(file, all_sets);
   loadComputeReplay(spec, file);
+  // No encoder: the encoder is named, and the flag or key that asked for it.
   if (spec.video.enabled && findFfmpeg().empty())
-    throw UsageError(file + ": video.enabled: the ffmpeg program is not installed (apt-get install ffmpeg)");
+    throw UsageError(std::string(args.has("video") ? "--video" : file + ": video.enabled") +
+                     ": the video encoder (the ffmpeg program) is not installed or not on PATH (apt-get install "
+                     "ffmpeg); the scenario itself is fine");
   if (spec.method.type == kPythonMethodType || spec.goals) execPythonRun(original_args);
   const std::string effective_yaml =
       effectiveScenarioYaml(runOwnComputeLog(spec));  // before the world fills in the start
@@ -262,6 +265,7 @@ int runVideoCommand(int argc, char** argv) {
   if (fs::exists(fs::symlink_status(file)) && !args.has("overwrite"))
     throw UsageError(file.string() + ": exists; --overwrite replaces it");
   const OutputLock lock(file, "RUN/video.mp4");
+  clearStaleVideoStaging(run);  // a killed replay's encoder directory (the lock is ours: none is in use)
   MissionWorld world = prepareMissionWorld((run / "config.yaml").string(), spec);
   const WorldTruth* truth = world.truth ? &*world.truth : nullptr;
   Mission mission = buildNamingFile((run / "config.yaml").string(), [&] { return Mission(spec, world.box, truth); });

@@ -39,6 +39,20 @@ std::string findFfmpeg() {
   return "";
 }
 
+void clearStaleVideoStaging(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() != 21 || name.rfind(".msbench-video-", 0) != 0 || !e.is_directory() || e.is_symlink()) continue;
+    bool ours = true;  // only the encoder's own files inside, none a link
+    for (const auto& f : fs::directory_iterator(e.path(), ec)) {
+      const std::string n = f.path().filename().string();
+      ours = ours && (n == "video.mp4" || n == "ffmpeg.log") && f.is_regular_file() && !f.is_symlink();
+    }
+    if (ours && !ec) fs::remove_all(e.path(), ec);
+  }
+}
+
 namespace {
 
 // An even number of pixels at least `lo` (the encoder's 4:2:0 chroma needs even sizes).

@@ -23,6 +23,11 @@ namespace msb {
 /// The `ffmpeg` program on PATH, or "" when it is not installed.
 std::string findFfmpeg();
 
+/// Removes from `dir` what a killed writer of a video there left: directories named
+/// `.msbench-video-XXXXXX` holding only the encoder's files (video.mp4, ffmpeg.log). Call it with
+/// the video's OutputLock held (so none is in use); anything else is left as it is.
+void clearStaleVideoStaging(const std::filesystem::path& dir);
+
 /// A run's video being written. The frames go to a private directory msbench makes beside `file`
 /// (mkdtemp: no fixed name in a user's directory, no link followed); finish() checks the encoder
 /// ended cleanly and that the MP4 is whole (its `moov` index present, one sample per frame sent);

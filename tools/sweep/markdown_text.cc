@@ -1,5 +1,7 @@
 #include "tools/sweep/markdown_text.h"
 
+#include <cstdio>
+
 namespace msb {
 
 std::string mdText(const std::string& in) {
@@ -43,6 +45,28 @@ std::string mdText(const std::string& in) {
       default:
         out += char(c);
     }
+  }
+  return out;
+}
+
+std::string csvField(const std::string& in) {
+  if (in.find_first_of(",\"\r\n") == std::string::npos && (in.empty() || in.front() != ' ')) return in;
+  std::string out = "\"";
+  for (const char c : in) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string terminalText(const std::string& in) {
+  std::string out;
+  for (const char ch : in) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c != 0x7F) {
+      out += ch;
+      continue;
+    }
+    char esc[8];
+    std::snprintf(esc, sizeof(esc), "\\x%02x", c);
+    out += esc;
   }
   return out;
 }

@@ -1,5 +1,6 @@
-// Text from files (names, ids, paths, messages) made inert for report.md and the page made from
-// it (docs/sweeps.md, "Opening a colleague's report").
+// Text from files (names, ids, paths, messages) made inert for every output the report writes:
+// report.md and the page made from it, its CSV files and its lines on the terminal (docs/sweeps.md,
+// "Opening a colleague's report").
 #pragma once
 
 #include <string>
@@ -11,5 +12,13 @@ namespace msb {
 /// (bidirectional controls, zero-width marks) and control characters removed. Ordinary names
 /// are unchanged.
 std::string mdText(const std::string& in);
+
+/// `in` as one CSV field (RFC 4180): quoted, its quotes doubled, when it holds a comma, a quote,
+/// a line break or a leading blank; unchanged otherwise (so ordinary names are as before).
+std::string csvField(const std::string& in);
+
+/// `in` for a terminal line: control characters (line breaks, escape sequences) written as
+/// `\xNN`, so a name can neither start a line of its own nor drive the terminal.
+std::string terminalText(const std::string& in);
 
 }  // namespace msb

@@ -28,6 +28,12 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+
+def plain(text):
+    """A name from a file for a figure's title: control characters (line breaks, escape sequences)
+    removed and `$` escaped, so a name can neither break the title nor start matplotlib's mathtext."""
+    return re.sub(r"[\x00-\x1f\x7f]", "", text).replace("$", r"\$")
+
 def read_coverage(path):
     """(times, areas) of a coverage.csv."""
     times, areas = [], []
@@ -87,7 +93,7 @@ def coverage_figures(out_dir, runs):
             ax.fill_between(grid, lo, hi, color=line.get_color(), alpha=0.2, linewidth=0)
         ax.set_xlabel("simulated time (s)")
         ax.set_ylabel("explored area A (m²)")
-        ax.set_title(f"{os.path.basename(world)}: coverage over time (mean, 95 % bootstrap band)")
+        ax.set_title(f"{plain(os.path.basename(world))}: coverage over time (mean, 95 % bootstrap band)")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         fig.tight_layout()
@@ -164,7 +170,7 @@ def ablation_level_figures(out_dir):
         ax.set_xticks(sorted(levels))
         ax.set_xticklabels([levels[i] for i in sorted(levels)])
         ax.set_ylabel("mean A / full method's mean A")
-        ax.set_title(f"{world}: each ablation against the full method, 95 % paired bootstrap CI")
+        ax.set_title(f"{plain(world)}: each ablation against the full method, 95 % paired bootstrap CI")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         fig.tight_layout()
@@ -186,7 +192,7 @@ def gallery(out_dir, runs):
         if k < len(pictures):
             run_id, path = pictures[k]
             ax.imshow(mpimg.imread(path))
-            ax.set_title(run_id, fontsize=9)
+            ax.set_title(plain(run_id), fontsize=9)
     fig.tight_layout()
     fig.savefig(os.path.join(out_dir, "gallery.png"), dpi=100)
     plt.close(fig)

@@ -16,6 +16,7 @@ import html
 import os
 import re
 import sys
+import urllib.parse
 
 import markdown
 
@@ -76,6 +77,13 @@ _ALLOWED_TAGS = {"h1", "h2", "h3", "h4", "p", "table", "thead", "tbody", "tr", "
 _TAG = re.compile(r"<(/?)([a-zA-Z][a-zA-Z0-9]*)((?:\s[^<>]*)?)>")
 
 
+def name_text(text):
+    """A name from a file (a run id, a world, a series) for one table cell: the characters
+    msbench's mdText removes for report.md (hidden characters and every control character, line
+    breaks included) removed, then HTML-escaped — the same rule as the names report.md shows."""
+    return html.escape(re.sub("[\t\n\r]", "", _HIDDEN.sub("", text)))
+
+
 def inert(text):
     """report.md made inert before Markdown: raw HTML shown as text (report.md holds none of its
     own), hidden characters removed."""
@@ -121,15 +129,17 @@ def figures_html(report_dir):
 
 def run_row(run, final_dir):
     """One run's row: id, world, series, status, claimed and verified A, earned score, pictures, video."""
-    run_dir = os.path.abspath(run["dir"])
-    rel = os.path.relpath(run_dir, final_dir)
+    run_dir = os.path.abspath(run["dir"] or "")
+    # The run's directory as a URL path: every character but letters, digits and "_.-~/" as %XX,
+    # so a control character or a quote in a run id stays out of the attribute.
+    rel = urllib.parse.quote(os.path.relpath(run_dir, final_dir))
     # The areas msbench read from the run's checked record (report_runs.csv); a run's own files
     # are never opened here, but for the pictures it links.
     claimed = float(run["area_m2"]) if run.get("area_m2") else None
     verified = float(run["verified_area_m2"]) if run.get("verified_area_m2") else None
     share = verified / claimed if claimed and verified is not None else None
     flagged = share is not None and share < VERIFIED_FLAG_SHARE
-    cells = [html.escape(_HIDDEN.sub("", run[k])) for k in ("id", "world", "series", "run_status")]
+    cells = [name_text(run[k] or "") for k in ("id", "world", "series", "run_status")]
     cells.append("" if claimed is None else f"{claimed:.0f}")
     cells.append("" if verified is None else f"{verified:.0f}")
     share_text = "" if share is None else f"{share:.2f}" + (" ⚑ claims more than verified" if flagged else "")
@@ -149,15 +159,19 @@ def run_row(run, final_dir):
 def runs_html(report_dir, final_dir):
     with open(os.path.join(report_dir, "report_runs.csv"), newline="", encoding="utf-8", errors="replace") as f:
         runs = list(csv.DictReader(f))
+    # Runs not yet run have no pictures: counted, not listed (a sweep of 100 000 pending runs).
+    pending = sum(1 for r in runs if r.get("status") == "pending")
+    runs = [r for r in runs if r.get("status") != "pending"]
     if not runs:
-        return ""
+        return f"<h2>Run pictures</h2>\n<p>{pending} runs not yet run.</p>\n" if pending else ""
     head = "".join(f"<th>{h}</th>" for h in ("run", "world", "series", "status", "A claimed (m²)",
                                               "verified A (m²)", "verified / claimed", "earned (m³)", "top-down",
                                               "video"))
     rows = "\n".join(run_row(r, final_dir) for r in runs)
     return ("<h2>Run pictures</h2>\n<p>Each run's top-down map and video where its directory has them "
             f"(<code>msbench video RUN</code> adds one); ⚑: verified area below {VERIFIED_FLAG_SHARE:.0%} of the "
-            "claimed (docs/metrics.md, \"Verified coverage\").</p>\n"
+            "claimed (docs/metrics.md, \"Verified coverage\")"
+            + (f"; {pending} runs not yet run are not listed" if pending else "") + ".</p>\n"
             f"<table><thead><tr>{head}</tr></thead><tbody>\n{rows}\n</tbody></table>")
 
 

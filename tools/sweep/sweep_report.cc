@@ -7,8 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/common/strict_number.h"
 #include "tools/config/method_table.h"
-#include "tools/config/strict_number.h"
 #include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
 #include "tools/sweep/coverage_csv.h"
@@ -186,6 +186,26 @@ void addFrontEndProfile(ReportRow& row, const nlohmann::json& m) {
 
 stats::Interval collisionRate(const ReportRow& row) { return stats::wilson(row.crashes, row.complete); }
 
+namespace {
+
+// Why runs/ID is not this sweep's run ("" if it is): a link, or a directory that resolves outside
+// the sweep's runs/ (a run of another sweep or scenario is never reported as this one's).
+std::string foreignRunDir(const fs::path& dir, const std::string& id) {
+  const fs::path rd = dir / "runs" / id;
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(rd, ec);
+  if (ec || !fs::exists(st)) return "";  // absent: the record's reading names it
+  if (fs::is_symlink(st))
+    return "runs/" + id + " is a link (to " + fs::read_symlink(rd, ec).string() +
+           "), not a run directory of this sweep; left out";
+  const fs::path real = fs::canonical(rd, ec), runs = fs::canonical(dir / "runs", ec);
+  if (ec || real.parent_path() != runs)
+    return "runs/" + id + " resolves to " + real.string() + ", outside this sweep's runs/; left out";
+  return "";
+}
+
+}  // namespace
+
 SweepResults loadSweepResults(const fs::path& dir) {
   const fs::path index = dir / "sweep.json";
   if (!fs::exists(index)) throw std::runtime_error(index.string() + ": not found (not a sweep directory?)");
@@ -215,8 +235,11 @@ SweepResults loadSweepResults(const fs::path& dir) {
     run.failure = rec.failure;
     const fs::path rd = dir / "runs" / run.id;
     if (run.status == "complete") {
-      // A complete run whose metrics.json is missing, truncated or incomplete is a failed run.
-      MissionRecordRead read = readMissionRecord(rd / "metrics.json");
+      // A complete run whose directory is not the sweep's own, or whose metrics.json is missing,
+      // truncated or incomplete, is a failed run.
+      const std::string foreign = foreignRunDir(dir, run.id);
+      MissionRecordRead read = foreign.empty() ? readMissionRecord(rd / "metrics.json") : MissionRecordRead{};
+      if (!foreign.empty()) read.problem = foreign;
       if (read.record) {
         try {
           run.coverage = readCoverageCsv(rd / "coverage.csv");
@@ -231,7 +254,8 @@ SweepResults loadSweepResults(const fs::path& dir) {
         run.status = "failed";
         run.failure.emplace();
         run.failure->problem = read.problem;
-        std::fprintf(stderr, "report: run %s counts as failed: %s\n", run.id.c_str(), read.problem.c_str());
+        std::fprintf(stderr, "report: run %s counts as failed: %s\n", terminalText(run.id).c_str(),
+                     terminalText(read.problem).c_str());
       }
     }
     r.runs.push_back(std::move(run));
@@ -655,9 +679,18 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
   o << "\n## Runs\n\n| run | status | A (m²) | " << (table_one ? "" : "earned (m³) | verified A (m²) | ")
     << "box share | time (s) | tracked (mean) | drift (m) | collision |\n"
     << "| --- | --- | --- | " << (table_one ? "" : "--- | --- | ") << "--- | --- | --- | --- | --- |\n";
+  // Runs not yet run: the first kListedPending by name, the rest counted (a sweep of 100 000
+  // pending runs reports in seconds; report_runs.csv lists every run).
+  constexpr int kListedPending = 20;
+  int pending_shown = 0, pending_more = 0;
   for (const ReportRun& r : results.runs) {
     const nlohmann::json& m = r.metrics;
     if (!m.is_object()) {
+      if (r.status == "pending" && pending_shown == kListedPending) {
+        ++pending_more;
+        continue;
+      }
+      pending_shown += r.status == "pending";
       o << "| " << mdText(r.id) << " | " << mdText(r.status) << " | — | — | — | — | — | — |"
         << (table_one ? "" : " — | — |") << "\n";
       continue;
@@ -688,6 +721,9 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
       << (m.contains("perception") ? fixed(number(m["perception"], "tracked_mean"), 0) : "—") << " | "
       << fixed(number(m, "final_drift_m"), 2) << " | " << mdText(hit) << " |\n";
   }
+  if (pending_more)
+    o << "| … and " << pending_more << " more pending | pending | — | — | — | — | — | — |"
+      << (table_one ? "" : " — | — |") << "\n";
   return o.str();
 }
 
@@ -697,7 +733,7 @@ std::string reportTableCsv(const SweepResults& results, const std::vector<Report
   const auto axis = [&](const char* n) {
     return std::find(results.axes.begin(), results.axes.end(), n) != results.axes.end();
   };
-  for (const auto& a : results.axes) o << a << ",";
+  for (const auto& a : results.axes) o << csvField(a) << ",";
   o << (axis("world") ? "world_name" : "world") << "," << (axis("method") ? "method_type" : "method")
     << ",runs,complete,failed,crashes,mean_area_m2,max_area_m2,paper_mean_area_m2,paper_max_area_m2,"
        "mean_box_share,t50_s,t50_runs,t90_s,t90_runs,area_per_100m,longest_no_gain_s,collisions_textureless,"
@@ -707,10 +743,10 @@ std::string reportTableCsv(const SweepResults& results, const std::vector<Report
        "mean_verified_area_m2,verified_area_ci_lo,verified_area_ci_hi,verified_share,falsely_free_volume_share,"
        "falsely_free_volume_ci_lo,falsely_free_volume_ci_hi,falsely_free_element_share\n";
   for (const ReportRow& r : rows) {
-    for (const auto& l : r.labels) o << l << ",";
+    for (const auto& l : r.labels) o << csvField(l) << ",";
     auto kind = [&](const std::string& k) { return r.collisions_by_kind.count(k) ? r.collisions_by_kind.at(k) : 0; };
-    o << r.world << "," << r.method << "," << r.runs << "," << r.complete << "," << r.failed << "," << r.crashes << ","
-      << csvNumber(r.area_m2, 1) << "," << (r.complete ? fixed(r.max_area_m2, 1) : "") << ","
+    o << csvField(r.world) << "," << csvField(r.method) << "," << r.runs << "," << r.complete << "," << r.failed << ","
+      << r.crashes << "," << csvNumber(r.area_m2, 1) << "," << (r.complete ? fixed(r.max_area_m2, 1) : "") << ","
       << (r.paper_mean_m2 ? fixed(*r.paper_mean_m2, 0) : "") << "," << (r.paper_max_m2 ? fixed(*r.paper_max_m2, 0) : "")
       << "," << csvNumber(r.box_share, 4) << "," << csvNumber(r.t50_s, 1) << "," << r.t50_s.count << ","
       << csvNumber(r.t90_s, 1) << "," << r.t90_s.count << "," << csvNumber(r.area_per_100m, 1) << ","
@@ -755,9 +791,9 @@ std::string reportRunsCsv(const SweepResults& results) {
       if (score && score->is_object() && score->contains("earned") && (*score)["earned"].is_number())
         earned = fixed((*score)["earned"].get<double>(), 1);
     }
-    o << r.id << "," << world << "," << series << "," << r.status << ","
-      << (r.metrics.is_object() ? r.metrics.value("status", std::string()) : "") << ","
-      << (results.dir / "runs" / r.id).string() << "," << claimed << "," << verified << "," << earned << "\n";
+    o << csvField(r.id) << "," << csvField(world) << "," << csvField(series) << "," << r.status << ","
+      << csvField(r.metrics.is_object() ? r.metrics.value("status", std::string()) : "") << ","
+      << csvField((results.dir / "runs" / r.id).string()) << "," << claimed << "," << verified << "," << earned << "\n";
   }
   return o.str();
 }

@@ -22,6 +22,7 @@
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
 #include "tools/results/run_record.h"
+#include "tools/sweep/markdown_text.h"
 
 namespace msb {
 
@@ -106,8 +107,8 @@ pid_t startRun(const SweepRun& run, const fs::path& out, const fs::path& log) {
 
 std::string csvRow(const SweepRun& r, const RunState& s, const std::vector<std::string>& axes) {
   std::ostringstream o;
-  o << r.id;
-  for (const auto& a : axes) o << "," << r.labels.at(a);
+  o << csvField(r.id);
+  for (const auto& a : axes) o << "," << csvField(r.labels.at(a));
   const auto& m = s.metrics;
   auto num = [&](const nlohmann::json& j) { return j.is_number() ? std::to_string(j.get<double>()) : std::string(); };
   o << "," << r.seed << "," << s.status << "," << (m.is_object() ? m.value("status", "") : "") << ","
