@@ -66,11 +66,15 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
   /// The authors' grid session (tmux_scripts/*_octomap_random_explorer of ctu-mrs/monospheres):
-  /// its planner's `unknown_is_occupied: False` (octomap_planner.yaml) and mrs_octomap_server's
-  /// map, pruned as it updates. Applied by `method.reference_code: published` before the keys a
-  /// scenario names (docs/baseline.md, "The published configuration").
+  /// mrs_octomap_planner's A* expands only cells the map knows as free (astar_planner.cpp,
+  /// getNeighborhood: `tree.search(key)` must exist and be free), and its `unknown_is_occupied:
+  /// False` (octomap_planner.yaml) only keeps unknown cells from inflating the clearance — here
+  /// unknown cells blocked with no clearance kept from them (unknown_clearance_m 0); and
+  /// mrs_octomap_server's map, pruned as it updates. Applied by `method.reference_code: published`
+  /// before the keys a scenario names (docs/baseline.md, "The published configuration").
   void applyPublishedSettings() {
-    planner.unknown_is_occupied = false;
+    planner.unknown_is_occupied = true;
+    planner.unknown_clearance_m = 0.0;
     map.prune = true;
   }
   /// The OctoMap leaf size: the authors' evaluation rule for OctoMap maps (BUG-11) scores the

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "core/baseline/grid_explorer.h"
 #include "core/baseline/grid_path_planner.h"
 
 namespace msb {
@@ -129,6 +130,30 @@ TEST(GridPathPlanner, UnknownClearanceZeroAllowsEveryKnownFreeCellAwayFromObstac
   planner2.rebuild(map);
   EXPECT_FALSE(planner2.traversable(Vec3(8.25, 3.75, 2.25)));
   EXPECT_TRUE(planner2.traversable(Vec3(8.25, 2.25, 2.25)));
+}
+
+// The published grid (mrs_octomap_planner's A*, astar_planner.cpp getNeighborhood) expands only
+// known free cells: an unknown cell is never entered, and it keeps no clearance (its
+// `unknown_is_occupied: False` decides only the distance field). Before issue 91 msbench's
+// published grid flew through unknown space.
+TEST(GridPathPlanner, ThePublishedGridNeverEntersAnUnknownCellAndKeepsNoClearanceFromOne) {
+  GridMap map(GridMapConfig{});
+  for (double z = 0.25; z < 4.0; z += 0.5)
+    for (double y = -3.75; y < 4.0; y += 0.5) map.insertScan(Vec3(0.25, y, z), {Vec3(14.1, y, z)});
+  GridExplorerConfig published;
+  published.applyPublishedSettings();
+  GridPathPlanner planner(published.planner, kBox, 0.5);
+  planner.rebuild(map);
+  // A known free cell beside unknown space: reached (no clearance from unknown).
+  const auto edge = planner.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 3.75, 2.25));
+  ASSERT_TRUE(edge);
+  EXPECT_TRUE(edge->reaches_goal);
+  // A goal in unknown space: the path ends in known cells, none of it unknown.
+  const auto off = planner.plan(Vec3(0.25, 0.25, 2.25), Vec3(8.25, 9.25, 2.25));
+  ASSERT_TRUE(off);
+  EXPECT_FALSE(off->reaches_goal);
+  for (const auto& p : off->points) EXPECT_GE(map.occupancy(p), 0) << p.transpose();
+  EXPECT_FALSE(planner.traversable(Vec3(8.25, 4.25, 2.25)));
 }
 
 TEST(GridPathPlanner, AnUnreachableGoalGivesTheClosestReachableCell) {

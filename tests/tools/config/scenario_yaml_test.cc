@@ -236,12 +236,16 @@ TEST(ScenarioYaml, ThePublishedConfigurationTakesTheAuthorsSettingsAndNamedKeysW
   write(d / "grid.yaml", "world: world.xml\nmethod: {type: grid_random, reference_code: published}\n");
   const ScenarioSpec g = loadScenario((d / "grid.yaml").string());
   const auto& gc = std::any_cast<const GridExplorerConfig&>(g.method.config);
-  EXPECT_FALSE(gc.planner.unknown_is_occupied);
+  // The authors' A*: known free cells only, no clearance from unknown ones (issue 91).
+  EXPECT_TRUE(gc.planner.unknown_is_occupied);
+  EXPECT_EQ(gc.planner.unknown_clearance_m, 0.0);
   EXPECT_TRUE(gc.map.prune);
   const ScenarioSpec gi = loadScenario((d / "grid.yaml").string(), {"method.reference_code=intended"});
   EXPECT_TRUE(std::any_cast<const GridExplorerConfig&>(gi.method.config).planner.unknown_is_occupied);
-  const ScenarioSpec gn = loadScenario((d / "grid.yaml").string(), {"method.planner.unknown_is_occupied=true"});
-  EXPECT_TRUE(std::any_cast<const GridExplorerConfig&>(gn.method.config).planner.unknown_is_occupied);
+  EXPECT_EQ(std::any_cast<const GridExplorerConfig&>(gi.method.config).planner.unknown_clearance_m, -1.0);
+  // A key named beside the profile wins over it (a config.yaml of an earlier run replays as flown).
+  const ScenarioSpec gn = loadScenario((d / "grid.yaml").string(), {"method.planner.unknown_is_occupied=false"});
+  EXPECT_FALSE(std::any_cast<const GridExplorerConfig&>(gn.method.config).planner.unknown_is_occupied);
   EXPECT_TRUE(std::any_cast<const GridExplorerConfig&>(gn.method.config).map.prune);
 }
 
