@@ -103,4 +103,19 @@ SweepRunRecord readSweepRun(const nlohmann::json& jr, const std::string& key,
   return r;
 }
 
+std::string foreignRunDir(const std::filesystem::path& dir, const std::string& id) {
+  namespace fs = std::filesystem;
+  const fs::path rd = dir / "runs" / id;
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(rd, ec);
+  if (ec || !fs::exists(st)) return "";  // absent: the record's reading names it
+  if (fs::is_symlink(st))
+    return "runs/" + id + " is a link (to " + fs::read_symlink(rd, ec).string() +
+           "), not a run directory of this sweep; left out";
+  const fs::path real = fs::canonical(rd, ec), runs = fs::canonical(dir / "runs", ec);
+  if (ec || real.parent_path() != runs)
+    return "runs/" + id + " resolves to " + real.string() + ", outside this sweep's runs/; left out";
+  return "";
+}
+
 }  // namespace msb

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
@@ -54,5 +55,10 @@ nlohmann::json sweepRunJson(const SweepRunRecord& r);
 /// `key_prefix` ("runs[3]") that is missing or has the wrong type.
 SweepRunRecord readSweepRun(const nlohmann::json& j, const std::string& key_prefix,
                             const std::function<std::runtime_error(const std::string&, const std::string&)>& bad);
+
+/// Why `dir`/runs/`id` is not the sweep's own run directory ("" if it is, or if nothing is there):
+/// a link, or a directory that resolves outside the sweep's runs/ — a run of another sweep or
+/// scenario is never reported as this one's.
+std::string foreignRunDir(const std::filesystem::path& dir, const std::string& id);
 
 }  // namespace msb

@@ -186,26 +186,6 @@ void addFrontEndProfile(ReportRow& row, const nlohmann::json& m) {
 
 stats::Interval collisionRate(const ReportRow& row) { return stats::wilson(row.crashes, row.complete); }
 
-namespace {
-
-// Why runs/ID is not this sweep's run ("" if it is): a link, or a directory that resolves outside
-// the sweep's runs/ (a run of another sweep or scenario is never reported as this one's).
-std::string foreignRunDir(const fs::path& dir, const std::string& id) {
-  const fs::path rd = dir / "runs" / id;
-  std::error_code ec;
-  const fs::file_status st = fs::symlink_status(rd, ec);
-  if (ec || !fs::exists(st)) return "";  // absent: the record's reading names it
-  if (fs::is_symlink(st))
-    return "runs/" + id + " is a link (to " + fs::read_symlink(rd, ec).string() +
-           "), not a run directory of this sweep; left out";
-  const fs::path real = fs::canonical(rd, ec), runs = fs::canonical(dir / "runs", ec);
-  if (ec || real.parent_path() != runs)
-    return "runs/" + id + " resolves to " + real.string() + ", outside this sweep's runs/; left out";
-  return "";
-}
-
-}  // namespace
-
 SweepResults loadSweepResults(const fs::path& dir) {
   const fs::path index = dir / "sweep.json";
   if (!fs::exists(index)) throw std::runtime_error(index.string() + ": not found (not a sweep directory?)");
