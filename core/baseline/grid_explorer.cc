@@ -5,13 +5,28 @@
 
 namespace msb {
 
-void GridExplorerConfig::validate(ConfigChecker& c) const { checkFields(*this, c); }
+void GridExplorerConfig::validate(ConfigChecker& c) const {
+  checkFields(*this, c);
+  // Leaves keyed into cells under half their size leave every other key plane empty: no two
+  // slabs of the planning tree would ever connect.
+  const double tree = planner.planning_tree_resolution_m;
+  c.require(tree == 0.0 || tree >= 0.5 * map.resolution_m, "planner.planning_tree_resolution_m",
+            "must be 0 (plan on the map's cells) or at least half the map's resolution (" +
+                std::to_string(map.resolution_m) + " m): finer, no key plane of the tree connects to the next");
+}
+
+namespace {
+// The planner's cell size: the planning tree's, or the map's.
+double plannerResolution(const GridExplorerConfig& c) {
+  return c.planner.planning_tree_resolution_m > 0 ? c.planner.planning_tree_resolution_m : c.map.resolution_m;
+}
+}  // namespace
 
 GridExplorer::GridExplorer(const GridExplorerConfig& config, const ExplorerContext& context)
     : config_(checkValid(config)),
       context_(context),
       map_(config.map),
-      planner_(config.planner, context.exploration_box, config.map.resolution_m),
+      planner_(config_.planner, context.exploration_box, plannerResolution(config_)),
       goal_rng_(context.seed, "baseline_goals"),
       takeoff_(context.start, config) {}
 
@@ -124,7 +139,11 @@ std::optional<PathCommand> GridExplorer::replan(const VehicleState& s) {
     path_sent_ = flying_given_ = true;
     return command(s, std::move(w));
   }
-  if (map_changed_) {
+  // The planning tree is built around the start at every plan (createPlanningTree); the
+  // map's cells only when the map changed.
+  if (planner_.usesPlanningTree()) {
+    planner_.rebuild(map_, s.reference.position_m);
+  } else if (map_changed_) {
     planner_.rebuild(map_);
     map_changed_ = false;
   }

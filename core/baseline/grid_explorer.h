@@ -70,12 +70,20 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
   /// getNeighborhood: `tree.search(key)` must exist and be free), and its `unknown_is_occupied:
   /// False` (octomap_planner.yaml) only keeps unknown cells from inflating the clearance — here
   /// unknown cells blocked with no clearance kept from them (unknown_clearance_m 0); and
-  /// mrs_octomap_server's map, pruned as it updates. Applied by `method.reference_code: published`
-  /// before the keys a scenario names (docs/baseline.md, "The published configuration").
+  /// mrs_octomap_server's map, pruned as it updates; and random_octomap_explorer.py's goal
+  /// heights, uniform over the box's whole band (`sample_free_point`: z uniform in
+  /// [z_min, z_max] of the safety area), no floor or ceiling margin; and the planner's 0.4 m
+  /// planning tree (octomap_planner.yaml `planning_tree/resolution`, not set by the sessions;
+  /// results/planning_tree/: it matters). Applied by
+  /// `method.reference_code: published` before the keys a scenario names (docs/baseline.md, "The
+  /// published configuration").
   void applyPublishedSettings() {
     planner.unknown_is_occupied = true;
     planner.unknown_clearance_m = 0.0;
     map.prune = true;
+    goal_min_altitude_m = 0.0;
+    goal_ceiling_margin_m = 0.0;
+    planner.planning_tree_resolution_m = 0.4;
   }
   /// The OctoMap leaf size: the authors' evaluation rule for OctoMap maps (BUG-11) scores the
   /// grid baseline's free cells beside msbench's squares (coverage.area_published_rule_m2).

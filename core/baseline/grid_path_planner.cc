@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
+#include <stdexcept>
 
 namespace msb {
 
@@ -45,11 +46,60 @@ long GridPathPlanner::blockedCells() const {
   return long(std::count_if(blocked_.begin(), blocked_.end(), [](uint8_t b) { return b & kBlocked; }));
 }
 
-void GridPathPlanner::rebuild(const GridMap& map) {
+void GridPathPlanner::rebuild(const GridMap& map, const std::optional<Vec3>& start) {
   std::fill(blocked_.begin(), blocked_.end(), 0);
+  if (usesPlanningTree()) {
+    if (!start) throw std::logic_error("GridPathPlanner: a planning tree is rebuilt around a start");
+    rebuildFromPlanningTree(map, *start);
+    return;
+  }
   blockAroundOccupied(map);
   // Optionally (the paper's rule), unknown space is not traversable either.
-  if (config_.unknown_is_occupied) blockUnknown(map);
+  if (config_.unknown_is_occupied) blockUnknown(knownCells(map));
+}
+
+void GridPathPlanner::rebuildFromPlanningTree(const GridMap& map, const Vec3& start) {
+  // createPlanningTree: a tree of the planning resolution with the mapping tree's thresholds;
+  // its origin cell set to log-odds 0 (at the default threshold: occupied) before every touch.
+  const octomap::OcTree& src = map.tree();
+  octomap::OcTree tree(res_);
+  tree.setOccupancyThres(src.getOccupancyThres());
+  const octomap::OcTreeKey origin = tree.coordToKey(0, 0, 0, tree.getTreeDepth());
+  const Vec3 lo = start - Vec3::Constant(kPlanningTreeSubmapM), hi = start + Vec3::Constant(kPlanningTreeSubmapM);
+  for (auto it = src.begin_leafs_bbx(octomap::point3d(float(lo.x()), float(lo.y()), float(lo.z())),
+                                     octomap::point3d(float(hi.x()), float(hi.y()), float(hi.z()))),
+            end = src.end_leafs_bbx();
+       it != end; ++it) {
+    tree.setNodeValue(origin, 0.0f);
+    // The leaf's centre keyed in the new tree, its node touched at the leaf's own depth.
+    const octomap::OcTreeKey key = tree.coordToKey(it.getX(), it.getY(), it.getZ());
+    octomap::OcTreeNode* node = tree.getRoot();
+    for (unsigned depth = 0; depth < it.getDepth(); ++depth) {
+      const unsigned pos = octomap::computeChildIdx(key, int(tree.getTreeDepth() - depth - 1));
+      if (!tree.nodeChildExists(node, pos)) tree.createNodeChild(node, pos);
+      node = tree.getNodeChild(node, pos);
+    }
+    node->setLogOdds(src.isNodeOccupied(*it) ? 1.0f : -1.0f);
+  }
+  tree.expand();
+  // Its leaves as cells: known, and occupied ones blocking their clearance.
+  std::vector<uint8_t> known(blocked_.size(), 0);
+  const std::vector<std::array<int, 4>> offsets = offsetsWithin(config_.clearance_m);
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    int i, j, k;
+    if (!cellOf(Vec3(it.getX(), it.getY(), it.getZ()), &i, &j, &k)) continue;
+    known[size_t(index(i, j, k))] = 1;
+    if (tree.isNodeOccupied(*it)) blockAroundCell(i, j, k, offsets);
+  }
+  if (config_.unknown_is_occupied) blockUnknown(known);
+}
+
+void GridPathPlanner::blockAroundCell(int ci, int cj, int ck, const std::vector<std::array<int, 4>>& offsets) {
+  for (const auto& o : offsets) {
+    const int i = ci + o[0], j = cj + o[1], k = ck + o[2];
+    if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_) continue;
+    blocked_[size_t(index(i, j, k))] |= uint8_t(o[3]);
+  }
 }
 
 std::vector<std::array<int, 4>> GridPathPlanner::offsetsWithin(double clearance_m) const {
@@ -83,12 +133,7 @@ void GridPathPlanner::blockAroundOccupied(const GridMap& map) {
         for (int c = 0; c < n; ++c) {
           const Vec3 cell = leaf.centre - Vec3::Constant(h) + res_ * Vec3(a + 0.5, b + 0.5, c + 0.5);
           const Vec3 q = (cell - origin_) / res_;
-          const int ci = int(std::floor(q.x())), cj = int(std::floor(q.y())), ck = int(std::floor(q.z()));
-          for (const auto& o : offsets) {
-            const int i = ci + o[0], j = cj + o[1], k = ck + o[2];
-            if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_) continue;
-            blocked_[size_t(index(i, j, k))] |= uint8_t(o[3]);
-          }
+          blockAroundCell(int(std::floor(q.x())), int(std::floor(q.y())), int(std::floor(q.z())), offsets);
         }
   }
 }
@@ -116,11 +161,10 @@ std::vector<uint8_t> GridPathPlanner::knownCells(const GridMap& map) const {
   return known;
 }
 
-void GridPathPlanner::blockUnknown(const GridMap& map) {
+void GridPathPlanner::blockUnknown(const std::vector<uint8_t>& known) {
   // Unknown cells are blocked, and those bordering known cells block their neighbourhood (the
   // clearance is kept from unknown space too; the nearest unknown cell to a known one always
   // borders known space).
-  const std::vector<uint8_t> known = knownCells(map);
   const std::vector<std::array<int, 4>> unknown_offsets =
       offsetsWithin(config_.unknown_clearance_m < 0 ? config_.clearance_m : config_.unknown_clearance_m);
   static constexpr int kFaces[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};

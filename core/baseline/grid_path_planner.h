@@ -33,6 +33,11 @@ struct GridPlannerConfig {
   double escape_radius_m = 2.0;       ///< from a blocked start, blocked cells this close are passable ...
   double escape_clearance_m = 0.75;   ///< ... unless this close to an occupied cell
   int max_expansions = 500000;        ///< A* node budget per search
+  /// > 0: plan on mrs_octomap_planner's planning tree of this leaf size instead of the map's
+  /// cells (astar_planner.cpp createPlanningTree, 428-466): the map's leaves within
+  /// kPlanningTreeSubmapM of the start, each keyed by its centre in a tree of this resolution at
+  /// its own depth, then expanded. A cell no leaf landed in is unknown. 0: the map's cells.
+  double planning_tree_resolution_m = 0.0;
 
   /// The keys, each once with the values it accepts (core/common/config_fields.h).
   template <class Self, class V>
@@ -43,11 +48,15 @@ struct GridPlannerConfig {
     v.key("escape_clearance_m", s.escape_clearance_m, Limits::nonNegative());
     v.key("unknown_clearance_m", s.unknown_clearance_m, Limits::range(-1.0, std::numeric_limits<double>::infinity()));
     v.key("max_expansions", s.max_expansions, Limits::range(1000, 100000000));
+    v.key("planning_tree_resolution_m", s.planning_tree_resolution_m, Limits::range(0.0, 10.0));
   }
 
   /// Records invalid fields.
   void validate(ConfigChecker& c) const;
 };
+
+/// The planning tree's reach from the start (mrs_octomap_planner `distance_transform/submap_distance`), m.
+inline constexpr double kPlanningTreeSubmapM = 20.0;
 
 /// A planned grid path.
 struct GridPath {
@@ -62,8 +71,11 @@ class GridPathPlanner {
   /// Throws ConfigError. The box is cut into cells of the map's resolution.
   GridPathPlanner(const GridPlannerConfig& config, const Aabb& box, double resolution_m);
 
-  /// Recomputes the blocked cells from the map.
-  void rebuild(const GridMap& map);
+  /// Recomputes the blocked cells from the map (with a planning tree: from its leaves within
+  /// kPlanningTreeSubmapM of `start`, which must then be given).
+  void rebuild(const GridMap& map, const std::optional<Vec3>& start = std::nullopt);
+  /// True if this planner plans on a planning tree (rebuilt for every start).
+  bool usesPlanningTree() const { return config_.planning_tree_resolution_m > 0; }
   /// Plans from start to goal (both clamped into the box); none if the start is outside
   /// the box by more than a cell.
   std::optional<GridPath> plan(const Vec3& start, const Vec3& goal) const;
@@ -91,8 +103,12 @@ class GridPathPlanner {
   // occupied cells' neighbourhoods, the cells the map knows, unknown space blocked.
   std::vector<std::array<int, 4>> offsetsWithin(double clearance_m) const;
   void blockAroundOccupied(const GridMap& map);
+  void blockAroundCell(int ci, int cj, int ck, const std::vector<std::array<int, 4>>& offsets);
   std::vector<uint8_t> knownCells(const GridMap& map) const;
-  void blockUnknown(const GridMap& map);
+  void blockUnknown(const std::vector<uint8_t>& known);
+  // The planning tree's cells: known and occupied flags per cell, from the map's leaves near
+  // the start (createPlanningTree's resampling), then blocked as the map's cells are.
+  void rebuildFromPlanningTree(const GridMap& map, const Vec3& start);
   // A* over cells from `start` towards `goal`: the reached cell closest to the goal (the goal
   // itself when reached), the parent of every reached cell, the expansions.
   struct Search {

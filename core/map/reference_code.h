@@ -30,8 +30,9 @@ struct ReferenceCodeConfig {
   /// visibility uses the same K (LNM getViewpointFrontierValue, CS getVisiblePoints): a frontier
   /// counts only inside the pinhole frustum. (DBOF's and OVDE's uses of K are not modelled yet.)
   bool pinhole_rays = false;
-  /// The 300 viewpoint samples take sphere number k of the whole map for k drawn below the count
-  /// of reachable spheres: the oldest spheres, reachable or not, whatever the search radius.
+  /// The 300 viewpoint samples take sphere number k of the whole map, k drawn over all of them
+  /// (LNM 1815-1823: `getReachableNodes` returns a mask over every sphere, so its length is the
+  /// map's sphere count): reachable or not, whatever the search radius.
   bool viewpoints_anywhere = false;
   /// A failed path search keeps its goal for another try while the mission has failed at most
   /// three searches in all; the published counter is never reset, so from the fourth failure on
@@ -77,6 +78,25 @@ struct ReferenceCodeConfig {
   /// farther out than its true image, so DBOF neither deletes nor protects it beyond about 55°
   /// from the axis.
   bool dbof_pinhole_projection = false;
+  /// Visited-viewpoint blocking blocks poses, as published (LNM isViewpointBlockedByExplorationGoals,
+  /// 1739-1778): a marker blocks every pose within 7 m and 60°. msbench's per-frontier limit
+  /// (`planner.viewpoints.frontier_view_limit`) is not used.
+  bool plain_pose_blocking = false;
+  /// With no goal the published vehicle hovers (LNM exploration_logic 1852-1943: no goal found,
+  /// nothing is sent): no bridge out of its part of the graph, no idle turn, no relaxed
+  /// viewpoint value. msbench's stall breakers are off.
+  bool hover_without_goal = false;
+  /// The published graph is the spheres' overlaps only (LNM findPathAstarInSubmap 853-983,
+  /// getReachableNodes 750-848 walk `smap.connections`): no gap or trail links between its parts.
+  bool graph_without_links = false;
+  /// The path sent is the A* route's raw sphere centres from the start sphere's centre, then the
+  /// goal (LNM find_headingpath_astar_smap_frame 230-365: `postproc_path` is never called):
+  /// no shortcutting, and the vehicle's own position is not the path's first point.
+  bool raw_sphere_paths = false;
+  /// The route's centre-to-centre segments are not checked against the obstacle points before
+  /// the path is sent (the published A* tests radii only, LNM 951-953): no route edge is blocked;
+  /// the stop (hardstop_drops_goal) is the only check.
+  bool route_edges_unchecked = false;
 
   /// Every switch on: the published code as far as msbench models it.
   static ReferenceCodeConfig published() {
@@ -85,8 +105,8 @@ struct ReferenceCodeConfig {
     return c;
   }
   /// The switches by name with their member, in documentation order.
-  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 14>& switches() {
-    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 14> kSwitches = {{
+  static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 19>& switches() {
+    static const std::array<std::pair<const char*, bool ReferenceCodeConfig::*>, 19> kSwitches = {{
         {"path_resend_8s", &ReferenceCodeConfig::path_resend_8s},
         {"safety_cost_inverted", &ReferenceCodeConfig::safety_cost_inverted},
         {"heading_check_signed", &ReferenceCodeConfig::heading_check_signed},
@@ -101,6 +121,11 @@ struct ReferenceCodeConfig {
         {"dbof_on_ovde_polyhedron", &ReferenceCodeConfig::dbof_on_ovde_polyhedron},
         {"ovde_parallax_frames", &ReferenceCodeConfig::ovde_parallax_frames},
         {"dbof_pinhole_projection", &ReferenceCodeConfig::dbof_pinhole_projection},
+        {"plain_pose_blocking", &ReferenceCodeConfig::plain_pose_blocking},
+        {"hover_without_goal", &ReferenceCodeConfig::hover_without_goal},
+        {"graph_without_links", &ReferenceCodeConfig::graph_without_links},
+        {"raw_sphere_paths", &ReferenceCodeConfig::raw_sphere_paths},
+        {"route_edges_unchecked", &ReferenceCodeConfig::route_edges_unchecked},
     }};
     return kSwitches;
   }

@@ -57,6 +57,7 @@ MonoSpheresConfig withSharedKeys(MonoSpheresConfig c, const FisheyeCamera& camer
   c.map.published_dbof_on_ovde_pf = rc.dbof_on_ovde_polyhedron;
   c.map.published_ovde_activation = rc.ovde_parallax_frames;
   c.map.published_dbof_pinhole = rc.dbof_pinhole_projection;
+  if (rc.plain_pose_blocking) c.planner.viewpoints.frontier_view_limit = 0;
   return c;
 }
 // The graph repair's parameters from the planner's keys.
@@ -179,10 +180,18 @@ bool MonoSpheresExplorer::segmentFree(const Vec3& a, const Vec3& b) const {
 }
 
 std::vector<Vec3> MonoSpheresExplorer::routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const {
+  // From the vehicle (not a waypoint) through the centres to the goal, shortcut; the published
+  // path is the raw centres, its first waypoint the start sphere's centre (raw_sphere_paths).
   std::vector<Vec3> pts = {from};
   for (uint64_t id : path.spheres) pts.push_back(map_.spheres().at(id).centre);
   if ((pts.back() - goal).norm() > 1e-6) pts.push_back(goal);
+  if (config_.reference_code.raw_sphere_paths) return pts;
   return shortcutPath(pts, [this](const Vec3& a, const Vec3& b) { return segmentFree(a, b); });
+}
+
+const SphereLinks* MonoSpheresExplorer::graphLinks(bool relink) {
+  if (config_.reference_code.graph_without_links) return nullptr;
+  return relink ? &repair_.relink() : &repair_.links();
 }
 
 void MonoSpheresExplorer::failGoal(double t_s, MonoSpheresCounter reason) {
@@ -204,7 +213,7 @@ std::optional<PathCommand> MonoSpheresExplorer::explore(const VehicleState& s) {
   auto start = containingSphere(map_, p, pc.start_max_outside_m, pc.safety.r_min_m);
   if (!start && goals_.goal()) start = repair_.transitStart(s.t_s, goals_.lastProgress());
   if (!start) return returnToFreeSpace(s);
-  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, repair_.passable(), &repair_.relink());
+  const SphereCostField field = sphereCostsFrom(map_, *start, pc.safety, repair_.passable(), graphLinks(true));
   std::vector<uint64_t>& reachable = reachable_;
   reachable.clear();
   reachable.reserve(field.cost.size());
@@ -252,8 +261,8 @@ void MonoSpheresExplorer::updateViewpoints(const VehicleState& s, const std::vec
   const auto& pc = config_.planner;
   const Aabb& box = context_.exploration_box;
   // Nothing above the usual value for a while: accept viewpoints that see a few frontiers.
-  const bool relaxed = !goals_.goal() && no_goal_since_s_ >= 0 && s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s &&
-                       viewpoints_.viewpoints().empty();
+  const bool relaxed = !config_.reference_code.hover_without_goal && !goals_.goal() && no_goal_since_s_ >= 0 &&
+                       s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s && viewpoints_.viewpoints().empty();
   if (relaxed) ++counters_[MonoSpheresCounter::kRelaxedSteps];
   viewpoints_.update(
       map_, reachable, s.T_W_B.translation(), yawOf(s.T_W_B.linear()), s.t_s, goals_.goal(),
@@ -291,6 +300,7 @@ void MonoSpheresExplorer::takeNewGoal(const VehicleState& s, const SphereCostFie
 std::optional<PathCommand> MonoSpheresExplorer::withoutGoal(const VehicleState& s, const SphereCostField& field,
                                                             const std::vector<uint64_t>& reachable) {
   const auto& pc = config_.planner;
+  if (config_.reference_code.hover_without_goal) return std::nullopt;  // the published vehicle hovers
   const Vec3 p = s.T_W_B.translation();
   const bool stuck_without_goals = s.t_s - no_goal_since_s_ >= pc.bridge_after_idle_s;
   if ((reachable.size() < size_t(pc.bridge_below_reachable) || stuck_without_goals) &&
@@ -331,10 +341,10 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   const Viewpoint& v = viewpoints_.viewpoints().at(goals_.goal());
   std::optional<SpherePath> spath;
   for (int attempt = 0; attempt < pc.max_route_repairs; ++attempt) {
-    spath = findSpherePath(map_, start, v.sphere, pc.safety, repair_.passable(), &repair_.links());
+    spath = findSpherePath(map_, start, v.sphere, pc.safety, repair_.passable(), graphLinks(false));
     if (!spath) break;
     bool clear = true;
-    for (size_t k = 1; k < spath->spheres.size() && clear; ++k) {
+    for (size_t k = 1; k < spath->spheres.size() && clear && !config_.reference_code.route_edges_unchecked; ++k) {
       const uint64_t a = spath->spheres[k - 1], b = spath->spheres[k];
       if (clearance_.segmentClear(map_.spheres().at(a).centre, map_.spheres().at(b).centre, p)) continue;
       repair_.blockEdge(a, b, s.t_s);
@@ -374,8 +384,10 @@ std::optional<PathCommand> MonoSpheresExplorer::followGoal(const VehicleState& s
   }
   goals_.noteUnblocked();
   if (!resendDue(s.t_s)) return std::nullopt;
+  // The published path's first heading is its first segment's, from the start sphere's centre.
+  const size_t first = config_.reference_code.raw_sphere_paths && route.size() >= 3 ? 1 : 0;
   if (pc.fff && route.size() >= 2) {
-    const Vec3 d = route[1] - route[0];
+    const Vec3 d = route[first + 1] - route[first];
     const double dir = std::atan2(d.y(), d.x());
     if (std::hypot(d.x(), d.y()) > 0.5 && std::abs(wrapAngle(dir - yaw)) > pc.align_before_route_deg * kDeg)
       return command(s, {{s.reference.position_m, dir}});  // face the route before flying it

@@ -298,9 +298,10 @@ class MonoSpheresExplorer : public Explorer {
                                          const std::vector<uint64_t>& reachable);       // bridge or turn
   std::optional<PathCommand> followGoal(const VehicleState& s, uint64_t start_sphere);  // route, carrot
   std::vector<Vec3> routeTo(const Vec3& from, const SpherePath& path, const Vec3& goal) const;
-  bool segmentFree(const Vec3& a, const Vec3& b) const;                 // inside the sphere union and clear
-  bool resendDue(double t_s) const;                                     // the route's path may be (re-)sent now
-  std::optional<PathCommand> publishedStep(const VehicleState& s);      // gate and stop, then explore
+  const SphereLinks* graphLinks(bool relink);                       // the repair's links (re-found), none if published
+  bool segmentFree(const Vec3& a, const Vec3& b) const;             // inside the sphere union and clear
+  bool resendDue(double t_s) const;                                 // the route's path may be (re-)sent now
+  std::optional<PathCommand> publishedStep(const VehicleState& s);  // gate and stop, then explore
   std::optional<PathCommand> publishedHardStop(const VehicleState& s);  // the published stop check
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
 

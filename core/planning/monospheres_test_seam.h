@@ -10,6 +10,8 @@ namespace msb {
 struct MonoSpheresTestSeam {
   /// The explorer's sphere map, to edit by hand.
   static SphereMap& map(MonoSpheresExplorer& explorer) { return explorer.map_; }
+  /// The configuration the explorer's parts were built with (the switches applied).
+  static const MonoSpheresConfig& config(const MonoSpheresExplorer& explorer) { return explorer.config_; }
 };
 
 }  // namespace msb

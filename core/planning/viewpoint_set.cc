@@ -156,11 +156,10 @@ int ViewpointSet::update(const SphereMap& map, const std::vector<uint64_t>& reac
   // New candidates at reachable sphere centres with a random yaw.
   int added = 0;
   if (reachable.empty()) return 0;
-  std::vector<uint64_t> oldest;  // the published code's index into the whole map (ids ascending)
+  std::vector<uint64_t> every;  // the published code's index into the whole map (ids ascending)
   if (config_.sample_anywhere)
-    for (const auto& [id, s] : map.spheres())
-      if (oldest.size() < reachable.size()) oldest.push_back(id);
-  const std::vector<uint64_t>& pool = config_.sample_anywhere ? oldest : reachable;
+    for (const auto& [id, s] : map.spheres()) every.push_back(id);
+  const std::vector<uint64_t>& pool = config_.sample_anywhere ? every : reachable;
   for (int k = 0; k < config_.candidates; ++k) {
     const uint64_t sphere = pool[rng_.uniformInt(pool.size())];
     const double yaw = rng_.uniform(-M_PI, M_PI);

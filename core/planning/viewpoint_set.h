@@ -45,8 +45,8 @@ struct ViewpointConfig {
   double blacklist_radius_m = 2.0;     ///< failed goals block new viewpoints this close ...
   double blacklist_duration_s = 60.0;  ///< ... for this long
   /// The published code's sampling (method.reference_code.viewpoints_anywhere; not a key of its
-  /// own): candidate k is the map's sphere number i, i drawn below the count of reachable
-  /// spheres — the oldest spheres, reachable or not.
+  /// own): candidate k is the map's sphere number i, i drawn over every sphere of the map,
+  /// reachable or not (still only while the vehicle has a start sphere).
   bool sample_anywhere = false;
   /// The published code's visibility (method.reference_code.pinhole_rays; not a key of its own):
   /// a frontier counts only where the pinhole K projects it inside the image. Off: the cone of

@@ -60,6 +60,25 @@ TEST(GridExplorer, GoalsStayInTheSquareAndTheBox) {
   }
 }
 
+TEST(GridExplorer, ThePublishedGoalsSpanTheBoxsWholeHeightBand) {
+  // random_octomap_explorer.py sample_free_point: z uniform over [z_min, z_max] of the safety
+  // area (urban 0…7 m). The intended band keeps 1 m above the floor and 0.5 m below the top.
+  for (const bool published : {false, true}) {
+    GridExplorerConfig c;
+    if (published) c.applyPublishedSettings();
+    GridExplorer e(c, context());
+    double lo = 1e9, hi = -1e9;
+    for (int k = 0; k < 4000; ++k) {
+      const double z = e.drawGoal(Vec3(0, 0, 2)).z();
+      lo = std::min(lo, z), hi = std::max(hi, z);
+    }
+    EXPECT_NEAR(lo, published ? 0.0 : 1.0, 0.02) << "published " << published;
+    EXPECT_NEAR(hi, published ? 7.0 : 6.5, 0.02) << "published " << published;
+    EXPECT_GE(lo, published ? 0.0 : 1.0);
+    EXPECT_LE(hi, published ? 7.0 : 6.5);
+  }
+}
+
 TEST(GridExplorer, TakesOffThenPlansAroundMappedObstacles) {
   GridExplorer e(traversableUnknown(), context());
   // A wall west of the start (the explorer's goals will be all around).

@@ -142,6 +142,7 @@ TEST(GridPathPlanner, ThePublishedGridNeverEntersAnUnknownCellAndKeepsNoClearanc
     for (double y = -3.75; y < 4.0; y += 0.5) map.insertScan(Vec3(0.25, y, z), {Vec3(14.1, y, z)});
   GridExplorerConfig published;
   published.applyPublishedSettings();
+  published.planner.planning_tree_resolution_m = 0.0;  // the map's cells: the known-cell rule alone
   GridPathPlanner planner(published.planner, kBox, 0.5);
   planner.rebuild(map);
   // A known free cell beside unknown space: reached (no clearance from unknown).
@@ -154,6 +155,57 @@ TEST(GridPathPlanner, ThePublishedGridNeverEntersAnUnknownCellAndKeepsNoClearanc
   EXPECT_FALSE(off->reaches_goal);
   for (const auto& p : off->points) EXPECT_GE(map.occupancy(p), 0) << p.transpose();
   EXPECT_FALSE(planner.traversable(Vec3(8.25, 4.25, 2.25)));
+}
+
+// mrs_octomap_planner's planning tree (astar_planner.cpp createPlanningTree): the 0.5 m map's
+// leaves keyed by their centres into a 0.4 m tree leave one key plane in five empty (centres
+// 0.25, 0.75, 1.25 m fall in 0.4 m cells 0, 1, 3: cell 2, x 0.8…1.2 m, holds none), and the A*
+// enters only nodes that exist. On an unpruned map of a free slab the published planner cannot
+// leave the first 0.8 m; on the map's own cells it crosses the slab (results/planning_tree/).
+TEST(GridPathPlanner, ThePlanningTreeLeavesEveryFifthKeyPlaneOfAnUnprunedMapEmpty) {
+  GridMap map(GridMapConfig{});
+  for (double z = 0.25; z < 4.0; z += 0.5)
+    for (double y = -3.75; y < 4.0; y += 0.5) map.insertScan(Vec3(0.25, y, z), {Vec3(14.1, y, z)});
+  GridExplorerConfig published;
+  published.applyPublishedSettings();
+  ASSERT_EQ(published.planner.planning_tree_resolution_m, 0.4);
+  const Vec3 start(0.25, 0.25, 2.25), goal(8.25, 0.25, 2.25);
+  GridPathPlanner tree(published.planner, kBox, 0.4);
+  tree.rebuild(map, start);
+  EXPECT_FALSE(tree.traversable(Vec3(1.0, 0.25, 2.25)));  // x 0.8…1.2: no leaf's centre
+  EXPECT_TRUE(tree.traversable(Vec3(1.4, 0.25, 2.25)));   // x 1.2…1.6: the leaf at 1.25
+  const auto confined = tree.plan(start, goal);
+  ASSERT_TRUE(confined);
+  EXPECT_FALSE(confined->reaches_goal);
+  for (const auto& p : confined->points) EXPECT_LT(p.x(), 0.8) << p.transpose();
+  // The same map on its own cells: across.
+  published.planner.planning_tree_resolution_m = 0.0;
+  GridPathPlanner cells(published.planner, kBox, 0.5);
+  cells.rebuild(map);
+  const auto across = cells.plan(start, goal);
+  ASSERT_TRUE(across);
+  EXPECT_TRUE(across->reaches_goal);
+}
+
+TEST(GridPathPlanner, ThePlanningTreeHoldsOnlyTheMapsLeavesNearTheStart) {
+  // createPlanningTree resamples the leaves within submap_distance (20 m) of the start: from
+  // 0.25 m the free cell at x 30 m is unknown to it, from 25 m it is known.
+  GridMap map(GridMapConfig{});
+  for (double x0 : {0.0, 8.0, 16.0, 24.0, 32.0})
+    map.insertScan(Vec3(x0 + 0.25, 0.25, 2.25), {Vec3(x0 + 9.1, 0.25, 2.25)});
+  GridPlannerConfig c;
+  c.unknown_is_occupied = true;
+  c.unknown_clearance_m = 0.0;
+  c.clearance_m = 0.0;
+  c.planning_tree_resolution_m = 0.5;  // the map's size: no key planes lost
+  const Aabb box{Vec3(-5, -5, 0), Vec3(45, 5, 5)};
+  GridPathPlanner tree(c, box, 0.5);
+  tree.rebuild(map, Vec3(0.25, 0.25, 2.25));
+  EXPECT_TRUE(tree.traversable(Vec3(15.25, 0.25, 2.25)));
+  EXPECT_FALSE(tree.traversable(Vec3(30.25, 0.25, 2.25)));
+  tree.rebuild(map, Vec3(25.25, 0.25, 2.25));
+  EXPECT_TRUE(tree.traversable(Vec3(30.25, 0.25, 2.25)));
+  EXPECT_FALSE(tree.traversable(Vec3(2.25, 0.25, 2.25)));
 }
 
 TEST(GridPathPlanner, AnUnreachableGoalGivesTheClosestReachableCell) {

@@ -318,7 +318,7 @@ TEST(MonoSpheresExplorer, AVehicleInsideAClearanceBacksAwayInsteadOfHolding) {
 // Two parts of the graph: a chain along +x around the vehicle, and beyond a gap of `gap` m a
 // second chain with frontiers at its far end.
 struct TwoParts : Fixture {
-  explicit TwoParts(double gap) {
+  explicit TwoParts(double gap, const MonoSpheresConfig& c = Fixture::config(true)) : Fixture(c) {
     SphereMap& m = MonoSpheresTestSeam::map(explorer);
     for (double x : {0.0, 4.0}) SphereMapTestSeam::addSphere(m, {x, 0, 2}, 3.0);
     x0 = 4.0 + 3.0 + gap + 3.0;
@@ -502,6 +502,141 @@ TEST(MonoSpheresExplorer, ThePublishedStopDropsTheGoalAndRestartsTheResendTimer)
     ASSERT_FALSE(sent.empty());
     EXPECT_GE(sent.front(), 1.2 + 8.0 - 1e-9);
   }
+}
+
+TEST(MonoSpheresExplorer, ThePublishedBlockingBlocksPosesNotFrontiers) {
+  // method.reference_code.plain_pose_blocking (LNM isViewpointBlockedByExplorationGoals): the
+  // viewpoint set is built without the per-frontier view limit, whatever the key says.
+  for (const bool published : {false, true}) {
+    MonoSpheresConfig c;
+    c.planner.viewpoints.frontier_view_limit = 2;
+    c.reference_code.plain_pose_blocking = published;
+    Fixture f(c);
+    EXPECT_EQ(MonoSpheresTestSeam::config(f.explorer).planner.viewpoints.frontier_view_limit, published ? 0 : 2);
+  }
+}
+
+TEST(MonoSpheresExplorer, ThePublishedVehicleHoversWithoutAGoal) {
+  // method.reference_code.hover_without_goal (LNM exploration_logic: no goal, nothing sent): the
+  // pocket of BridgesOutOfASmallPocketWithoutGoals gives neither a bridge nor an idle turn, and
+  // after bridge_after_idle_s without a goal the viewpoint value is not relaxed.
+  for (const bool published : {false, true}) {
+    MonoSpheresConfig c;
+    c.reference_code.hover_without_goal = published;
+    Fixture f(c);
+    SphereMap& m = MonoSpheresTestSeam::map(f.explorer);
+    SphereMapTestSeam::addSphere(m, {0, 0, 2}, 2.0);
+    SphereMapTestSeam::addSphere(m, {0, 10, 2}, 2.0);
+    SphereMapTestSeam::addObstacle(m, {0, 5, 2}, 3.0);  // no bridge: an idle turn, intended
+    f.skipTakeoff();
+    int sent = 0;
+    for (double t = 1.0; t < 1.0 + c.planner.bridge_after_idle_s + 5.0; t += 1.0)
+      sent += bool(f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, t)));
+    EXPECT_EQ(sent == 0, published) << "published " << published;
+    EXPECT_EQ(f.counter("idle_turns") == 0.0, published);
+    EXPECT_EQ(f.counter("relaxed_steps") == 0.0, published);
+    EXPECT_EQ(f.counter("bridges"), 0.0);
+  }
+}
+
+TEST(MonoSpheresExplorer, ThePublishedGraphHasNoLinksAcrossAGap) {
+  // method.reference_code.graph_without_links (LNM A* over smap.connections only): the 3 m gap
+  // that PartsOfTheGraphAreLinkedAcrossANarrowGap links stays a gap; the frontiers beyond it
+  // are out of reach.
+  for (const bool published : {false, true}) {
+    MonoSpheresConfig c;
+    c.reference_code.graph_without_links = published;
+    TwoParts f(3.0, c);
+    f.addFrontiers();
+    ASSERT_GE(f.frontiers, 10);
+    f.skipTakeoff();
+    f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+    EXPECT_EQ(f.counter("links"), published ? 0.0 : 1.0);
+    EXPECT_EQ(f.explorer.goal() != 0, !published) << "published " << published;
+  }
+}
+
+TEST(MonoSpheresExplorer, ThePublishedPathIsTheRawSphereCentresFromTheStartSpheres) {
+  // method.reference_code.raw_sphere_paths (LNM find_headingpath_astar_smap_frame, postproc_path
+  // never called): from inside the corridor's first sphere, off its centre, the published path
+  // begins at that centre and passes every centre of the route; the intended one starts at the
+  // vehicle and is shortcut along the corridor's axis.
+  for (const bool published : {false, true}) {
+    MonoSpheresConfig c;
+    c.reference_code.raw_sphere_paths = published;
+    Fixture f(c);
+    f.corridorWithFrontiers();
+    f.skipTakeoff();
+    const Vec3 p(0.5, 0.8, 2);
+    const auto cmd = f.explorer.plan(Fixture::at(p, 0.0, 1.0));
+    ASSERT_TRUE(cmd);
+    ASSERT_NE(f.explorer.goal(), 0u);
+    const std::vector<Waypoint>& w = cmd->waypoints;
+    ASSERT_GE(w.size(), 2u);
+    int centres = 0;
+    for (const Waypoint& x : w)
+      for (double cx : {0.0, 4.0, 8.0}) centres += x.position_m.isApprox(Vec3(cx, 0, 2));
+    if (published) {
+      EXPECT_TRUE(w[0].position_m.isApprox(Vec3(0, 0, 2))) << w[0].position_m.transpose();
+      EXPECT_EQ(centres, 3);
+    } else {
+      EXPECT_LE(centres, 1);
+    }
+  }
+}
+
+TEST(MonoSpheresExplorer, ANeckHoldsAPublishedVehicleAndNotAnIntendedOne) {
+  // A point 0.5 m beside the corridor's first edge, 3 m ahead, no way round: a neck. The
+  // intended method blocks the edge and fails the goal as unreachable. The published code
+  // (route_edges_unchecked with its stop, hardstop_drops_goal, and the 8 s re-send) sends the
+  // route, stops at it, drops the goal without failing it, and sends the same route 8 s later:
+  // the vehicle stays where it is, stopped again and again, and no goal ever fails.
+  for (const bool published : {false, true}) {
+    MonoSpheresConfig c;
+    c.reference_code.route_edges_unchecked = published;
+    c.reference_code.hardstop_drops_goal = published;
+    c.reference_code.path_resend_8s = published;
+    Fixture f(c);
+    f.corridorWithFrontiers();
+    SphereMapTestSeam::addObstacle(MonoSpheresTestSeam::map(f.explorer), {3, 0.5, 2}, 3.0);
+    f.skipTakeoff();
+    int routes = 0;
+    for (double t = 1.0; t < 26.0; t += 0.2) {
+      const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, t, false));
+      routes += cmd && cmd->waypoints.size() > 1;
+    }
+    if (published) {
+      EXPECT_EQ(f.counter("edges_blocked"), 0.0);
+      EXPECT_EQ(f.counter("goals_failed"), 0.0);
+      EXPECT_GE(f.counter("hard_stops"), 3.0);
+      EXPECT_GE(routes, 3);
+    } else {
+      EXPECT_GE(f.counter("edges_blocked"), 1.0);
+      EXPECT_GE(f.counter("goals_failed_unreachable"), 1.0);
+      EXPECT_EQ(f.counter("hard_stops"), 0.0);
+    }
+  }
+}
+
+TEST(MonoSpheresExplorer, ThePublishedRouteEdgesAreNotChecked) {
+  // method.reference_code.route_edges_unchecked: the scene of
+  // AnEdgeTooCloseToAnObstacleIsBlockedAndTheRouteGoesAround, published: no edge is blocked and
+  // the path sent runs past the point, closer than the intended clearance (with the published
+  // stop in place of msbench's blocked-route hold, as `published` pairs them).
+  MonoSpheresConfig c;
+  c.reference_code.route_edges_unchecked = true;
+  c.reference_code.hardstop_drops_goal = true;
+  Fixture f(c);
+  f.corridorWithFrontiers();
+  SphereMap& m = MonoSpheresTestSeam::map(f.explorer);
+  const Vec3 obstacle(2, 0, 2);
+  SphereMapTestSeam::addObstacle(m, obstacle, 2.0);
+  SphereMapTestSeam::addSphere(m, {2, 3.6, 2}, 2.5);
+  f.skipTakeoff();
+  const auto cmd = f.explorer.plan(Fixture::at(Vec3(0, 0, 2), 0.0, 1.0));
+  ASSERT_TRUE(cmd);
+  EXPECT_EQ(f.counter("edges_blocked"), 0.0);
+  EXPECT_LT(distanceToPath(Vec3(0, 0, 2), cmd->waypoints, obstacle), 1.0);
 }
 
 }  // namespace

@@ -247,23 +247,29 @@ TEST(ViewpointSet, RelaxedValueAcceptsFewFrontiers) {
   for (const auto& [id, v] : vs.viewpoints()) EXPECT_GE(v.value, 2);
 }
 
-TEST(ViewpointSet, ThePublishedSamplingTakesTheOldestSpheresReachableOrNot) {
-  // method.reference_code.viewpoints_anywhere (LNM tryAddingGoalsNearby: an index drawn below
-  // the count of reachable nodes, used on the whole map): with one reachable sphere (the newest,
-  // facing the frontiers) every candidate lands on the oldest sphere, far from the frontiers.
-  Scene s;
-  SphereMap& map = s.map;
-  const uint64_t oldest = s.sphere;  // at the origin, 3 m: the only one before the far one
-  const uint64_t far = SphereMapTestSeam::addSphere(map, {-40, 0, 2}, 3.0);
-  ASSERT_LT(oldest, far);
+TEST(ViewpointSet, ThePublishedSamplingDrawsOverEverySphereReachableOrNot) {
+  // method.reference_code.viewpoints_anywhere (LNM tryAddingGoalsNearby 1815-1823: an index
+  // drawn below the length of getReachableNodes' mask, which covers every sphere of the map):
+  // with one reachable sphere far from the frontiers, the published samples still land on the
+  // newest sphere, the only one that sees them. Neither the intended draw (the reachable sphere
+  // only) nor a draw below the count of reachable spheres (the oldest sphere only) finds a view.
+  SphereMap map{SphereMapConfig{}, FisheyeCamera(FisheyeCameraConfig{}), 1};
+  const uint64_t oldest = SphereMapTestSeam::addSphere(map, {-40, 0, 2}, 3.0);
+  const uint64_t reachable = SphereMapTestSeam::addSphere(map, {-80, 0, 2}, 3.0);
+  const uint64_t newest = SphereMapTestSeam::addSphere(map, {0, 0, 2}, 3.0);
+  ASSERT_LT(oldest, reachable);
+  ASSERT_LT(reachable, newest);
+  int frontiers = 0;
+  for (double y = -4; y <= 4; y += 1.6)
+    for (double z = -1; z <= 5; z += 1.6) frontiers += bool(SphereMapTestSeam::tryAddFrontier(map, {4.5, y, z}));
+  ASSERT_GE(frontiers, 10);
   for (const bool anywhere : {false, true}) {
     ViewpointConfig c;
     c.sample_anywhere = anywhere;
     ViewpointSet vs(c, 3);
-    // Only the far sphere is reachable: its candidates see nothing (beyond 10 m), the oldest's do.
-    vs.update(map, {far}, {100, 100, 2}, 0.0, 0.0, 0, nullptr);
+    vs.update(map, {reachable}, {100, 100, 2}, 0.0, 0.0, 0, nullptr);
     EXPECT_EQ(vs.viewpoints().empty(), !anywhere) << "anywhere " << anywhere;
-    for (const auto& [id, v] : vs.viewpoints()) EXPECT_EQ(v.sphere, oldest);
+    for (const auto& [id, v] : vs.viewpoints()) EXPECT_EQ(v.sphere, newest);
   }
 }
 

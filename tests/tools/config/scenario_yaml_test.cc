@@ -156,6 +156,9 @@ TEST(ScenarioYaml, ErrorsNameFileAndKey) {
   expectError("world: world.xml\nmethod: {type: monospheres, goal_square_m: 30}\n",
               {"method.goal_square_m", "unknown key"});
   expectError("world: world.xml\nmethod: {type: grid_random, map: {resolution_m: -1}}\n", {"method.map.resolution_m"});
+  // A planning tree finer than half the map's leaves connects nothing (issue 91).
+  expectError("world: world.xml\nmethod: {type: grid_random, planner: {planning_tree_resolution_m: 0.2}}\n",
+              {"bad.yaml", "method.planner.planning_tree_resolution_m", "at least half the map's resolution"});
   expectError("base: base.yaml\nmethod: {type: magic}\n",
               {"method.type", "unknown method 'magic'", "monospheres", "grid_random"});
   expectError("base: base.yaml\nmethod: {planner: {viewpoints: {min_value: 0}}}\n",
