@@ -1,6 +1,7 @@
 #include "tools/loop/mission.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/common/wall_time.h"
@@ -57,11 +58,23 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
   machine_factor_ = setup.compute.machine_factor;
   loop_ = std::make_unique<ClosedLoop>(missionFlight(spec), setup);
   // A box with nothing above the ground has nothing to explore.
-  for (const GroundPlane& g : loop_->sim().groundPlanes())
+  // A box with nothing above the ground, or beside the ground's extent, has nothing to explore.
+  for (const GroundPlane& g : loop_->sim().groundPlanes()) {
     if (box.max.z() <= g.centre.z())
       throw ConfigError("exploration_box", "its top z = " + std::to_string(box.max.z()) +
                                                " m is not above the ground plane " + g.name +
                                                " (z = " + std::to_string(g.centre.z()) + " m)");
+    const Vec2 lo = g.centre.head<2>() - g.half_size, hi = g.centre.head<2>() + g.half_size;
+    if ((g.half_size.array() > 0).all() &&
+        ((box.max.head<2>().array() <= lo.array()).any() || (box.min.head<2>().array() >= hi.array()).any())) {
+      char why[320];
+      std::snprintf(why, sizeof(why),
+                    "x in [%g, %g], y in [%g, %g] lies outside the world (its ground %s spans x in [%g, %g], "
+                    "y in [%g, %g])",
+                    box.min.x(), box.max.x(), box.min.y(), box.max.y(), g.name.c_str(), lo.x(), hi.x(), lo.y(), hi.y());
+      throw ConfigError("exploration_box", why);
+    }
+  }
   if (truth_) {
     audit_.emplace(*truth_, loop_->camera());
     VerifiedCoverageConfig v;

@@ -370,4 +370,15 @@ TEST(InputClasses, VideoLeftoversEncodersAndSignedZeros) {
   t.expectRefused("run '" + kScenario + "' --seed -0 --quiet --out " + t.p("out"), {"'-0' carries a minus sign"});
 }
 
+TEST(InputClasses, ABoxBesideTheWorldOrASpawnInAnObjectIsRefusedBeforeAnythingIsWritten) {
+  // Issue 91's inputs: a box with no part of its footprint over the ground (before, the run
+  // started and failed 2 s in, exit 1, its record written), a spawn inside an object.
+  const Dir t("boxes");
+  t.expectRefused("run '" + kScenario + "' --quiet --out " + t.p("out") +
+                      " --set 'exploration_box.min=[1000, 1000, 0]' --set 'exploration_box.max=[1010, 1010, 5]'",
+                  {"exploration_box", "lies outside the world"});
+  t.expectRefused("run '" + kScenario + "' --quiet --out " + t.p("out") + " --set 'start.position=[-2, 20, 2]'",
+                  {"start.position", "inside geom 'wall_north_4'"});
+}
+
 }  // namespace
