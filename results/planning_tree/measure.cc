@@ -30,7 +30,8 @@ namespace {
 struct Box {
   double x0, y0, x1, y1, z1;
 };
-const std::array<Box, 4> kBlocks = {{{-20, -20, -10, -10, 6}, {10, -20, 20, -10, 6}, {-20, 10, -10, 20, 6}, {10, 10, 20, 20, 6}}};
+const std::array<Box, 4> kBlocks = {
+    {{-20, -20, -10, -10, 6}, {10, -20, 20, -10, 6}, {-20, 10, -10, 20, 6}, {10, 10, 20, 20, 6}}};
 
 bool insideBlock(const point3d& p) {
   for (const Box& b : kBlocks)
@@ -149,13 +150,14 @@ void report(bool prune) {
   int empty_map = 0, planes_map = 0;
   emptyPlanes(map, &empty_map, &planes_map);
   const point3d start(24, 0, 2.5);
-  std::printf("%s map: %zu free leaves (%zu of them pruned, above 0.5 m)\n", prune ? "pruned" : "unpruned",
-              free_leaves, big);
+  std::printf("%s map: %zu free leaves (%zu of them pruned, above 0.5 m)\n", prune ? "pruned" : "unpruned", free_leaves,
+              big);
   std::printf("  x key planes with no node, |x| <= 28 m, z 1-4 m: 0.5 m map %d of %d; 0.4 m planning tree %d of %d\n",
               empty_map, planes_map, empty, planes);
-  std::printf("  free volume reachable from (24, 0, 2.5) through known free neighbours, z 1-7 m: "
-              "0.5 m map %.0f m^3; 0.4 m planning tree %.0f m^3\n",
-              reachable(map, start), reachable(plan, start));
+  std::printf(
+      "  free volume reachable from (24, 0, 2.5) through known free neighbours, z 1-7 m: "
+      "0.5 m map %.0f m^3; 0.4 m planning tree %.0f m^3\n",
+      reachable(map, start), reachable(plan, start));
 }
 
 }  // namespace
