@@ -23,9 +23,12 @@ TrajectoryTracker::TrajectoryTracker(const TrajectoryTrackerConfig& config, cons
     : config_(checkValid(config)) {
   ref_.position_m = start_m;
   ref_.yaw_rad = wrapAngle(yaw_rad);
+  heading_unwrapped_ = ref_.yaw_rad;
+  if (config_.generator == "mrs") mrs_.emplace(config_.mrs);
 }
 
 void TrajectoryTracker::setPath(const std::vector<Waypoint>& waypoints) {
+  if (mrs_) return generate(waypoints);
   points_ = {ref_.position_m};
   headings_ = {std::nullopt};
   for (const auto& w : waypoints) {
@@ -84,6 +87,10 @@ double TrajectoryTracker::speedLimit(double s, double end_dist) const {
 }
 
 const TrajectoryReference& TrajectoryTracker::update(double dt) {
+  if (mrs_) {
+    followSamples(dt);
+    return ref_;
+  }
   if (points_.empty()) points_ = {ref_.position_m}, headings_ = {std::nullopt}, cumulative_ = {0.0};
   advanceProjection();
   const Carrot carrot = desiredVelocity();
@@ -190,6 +197,47 @@ double TrajectoryTracker::steerHeading(double dt) {
   ref_.yaw_rate_radps = rate;
   ref_.yaw_rad = wrapAngle(ref_.yaw_rad + rate * dt);
   return yaw_err;
+}
+
+void TrajectoryTracker::generate(const std::vector<Waypoint>& waypoints) {
+  // From the tracker's current command, as the generator takes it (prepareInitialCondition).
+  MrsInitialState init;
+  init.reference = ref_;
+  init.reference.yaw_rad = heading_unwrapped_;
+  init.jerk_mps3 = jerk_;
+  init.yaw_accel_radps2 = yaw_accel_;
+  init.moving = !finished_;
+  generated_ = mrs_->generate(init, waypoints);
+  sample_t_s_ = 0.0;
+  finished_ = false;
+}
+
+void TrajectoryTracker::followSamples(double dt) {
+  // The reference between the two samples around the trajectory's time; the last one held at rest.
+  const auto& s = generated_.samples;
+  if (s.empty()) return;
+  sample_t_s_ += dt;
+  const double pos = sample_t_s_ / generated_.dt_s;
+  const size_t i = size_t(std::floor(pos));
+  if (i + 1 >= s.size()) {
+    const MrsSample& e = s.back();
+    ref_.position_m = e.position_m;
+    ref_.velocity_mps = ref_.accel_mps2 = jerk_ = Vec3::Zero();
+    heading_unwrapped_ = e.heading_rad;
+    ref_.yaw_rate_radps = yaw_accel_ = 0.0;
+    finished_ = true;
+  } else {
+    const double f = pos - double(i);
+    const MrsSample &a = s[i], &b = s[i + 1];
+    ref_.position_m = a.position_m + f * (b.position_m - a.position_m);
+    ref_.velocity_mps = a.velocity_mps + f * (b.velocity_mps - a.velocity_mps);
+    ref_.accel_mps2 = a.accel_mps2 + f * (b.accel_mps2 - a.accel_mps2);
+    jerk_ = a.jerk_mps3 + f * (b.jerk_mps3 - a.jerk_mps3);
+    heading_unwrapped_ = a.heading_rad + f * (b.heading_rad - a.heading_rad);
+    ref_.yaw_rate_radps = a.heading_rate_radps + f * (b.heading_rate_radps - a.heading_rate_radps);
+    yaw_accel_ = a.heading_accel_radps2 + f * (b.heading_accel_radps2 - a.heading_accel_radps2);
+  }
+  ref_.yaw_rad = wrapAngle(heading_unwrapped_);
 }
 
 }  // namespace msb

@@ -11,6 +11,7 @@
 
 #include "core/common/config_fields.h"
 #include "core/common/messages.h"
+#include "sim/physics/mrs_trajectory_generator.h"
 
 namespace msb {
 
@@ -47,6 +48,10 @@ struct TrajectoryTrackerConfig {
   double yaw_gain_per_s = 2.0;          ///< heading error to yaw rate
   double heading_min_speed_mps = 0.5;   ///< below this speed the heading is held
   double arrive_tolerance_m = 0.05;     ///< path is finished within this distance at rest
+  /// Who turns a path into the reference: "msbench" (the pursuit above) or "mrs" (the authors'
+  /// MRS trajectory generator, sampled, the reference following its samples).
+  std::string generator = "msbench";
+  MrsGeneratorConfig mrs;  ///< the MRS generator's constraint set and deviation limit (generator "mrs")
 
   /// The keys, each once with the values it accepts (heading_min_speed_mps and arrive_tolerance_m are fixed: no keys).
   template <class Self, class V>
@@ -57,6 +62,8 @@ struct TrajectoryTrackerConfig {
     v.key("lookahead_per_speed_s", s.lookahead_per_speed_s, Limits::nonNegative());
     v.key("velocity_gain_per_s", s.velocity_gain_per_s, Limits::positive());
     v.key("yaw_gain_per_s", s.yaw_gain_per_s, Limits::positive());
+    v.key("generator", s.generator, Choices{"msbench", "mrs"});
+    v.group("mrs", s.mrs);
   }
 
   /// Records invalid fields.
@@ -77,8 +84,10 @@ class TrajectoryTracker {
   const TrajectoryReference& reference() const { return ref_; }
   /// True when the last waypoint is reached at rest with its heading (or no path given).
   bool finished() const { return finished_; }
-  /// Number of waypoints of the current path already passed.
+  /// Number of waypoints of the current path already passed (generator "msbench").
   size_t waypointsPassed() const { return segment_; }
+  /// The last trajectory the MRS generator made (generator "mrs"; empty samples before the first).
+  const MrsTrajectory& generated() const { return generated_; }
 
  private:
   // Speed that can still brake for every upcoming corner and for the end (`end_dist` is the
@@ -96,6 +105,9 @@ class TrajectoryTracker {
   Carrot desiredVelocity() const;
   void integrateTowards(const Vec3& v_des, double dt);
   double steerHeading(double dt);
+  // Generator "mrs": the samples from the current state; following them.
+  void generate(const std::vector<Waypoint>& waypoints);
+  void followSamples(double dt);
 
   TrajectoryTrackerConfig config_;
   TrajectoryReference ref_;
@@ -106,6 +118,12 @@ class TrajectoryTracker {
   size_t segment_ = 0;   // index of the segment holding the projection
   double s_proj_ = 0.0;  // arc length of the reference's projection on the path
   bool finished_ = true;
+  std::optional<MrsTrajectoryGenerator> mrs_;  // generator "mrs"
+  MrsTrajectory generated_;
+  double sample_t_s_ = 0.0;   // time along generated_
+  Vec3 jerk_ = Vec3::Zero();  // the reference's jerk and heading acceleration (the generator's start)
+  double yaw_accel_ = 0.0;
+  double heading_unwrapped_ = 0.0;
 };
 
 }  // namespace msb

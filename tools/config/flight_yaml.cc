@@ -75,6 +75,8 @@ void trajectoryKeys(Keys r, FlightSpec& s) {
       } catch (const ConfigError& e) {
         throw ConfigError(k.keyName("limits"), e.issues().front().reason);
       }
+      // The MRS generator's constraint set of the same name (its keys under `mrs` override it).
+      if (const auto c = MrsConstraints::preset(n.Scalar())) t.mrs.constraints = *c;
     } else {
       auto w = k.sub("limits");
       fieldKeys(w, t.limits);

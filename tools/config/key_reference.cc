@@ -30,7 +30,9 @@ const OutsideKey kOutsideKeys[] = {
     {"start.yaw_deg", "a number (default: the world's start)"},
     {"exploration_box.min", "[x, y, z] in m (default: the world's box)"},
     {"exploration_box.max", "[x, y, z] in m, at least 2.5 x 2.5 x 1 m above min"},
-    {"trajectory.limits", "a speed-set name (slow, medium, fast, ...) or a map of its keys"},
+    {"trajectory.limits",
+     "a speed-set name (medium, fast) or a map of its keys; a name also sets trajectory.mrs.constraints "
+     "to the MRS constraint set of that name (slow, medium, fast)"},
     {"trajectory.waypoints", "a list of [x, y, z] or {position, heading_deg} (msbench fly only)"},
     {"conditions.preset", "a conditions preset name (docs/conditions.md)"},
     {"frontend.preset", "a front-end preset name (docs/robustness.md)"},

@@ -281,12 +281,27 @@ void writeTiming(MapWriter t, const ComputeTiming& timing) {
   if (!timing.replay.empty()) t.field("replay", timing.replay);
 }
 
+// True if the method runs as the authors' code (`method.reference_code: published`, by name or
+// as a map with `published: true`).
+bool runsPublished(const YAML::Node& method) {
+  const YAML::Node rc = method["reference_code"];
+  if (!rc) return false;
+  if (rc.IsScalar()) return rc.Scalar() == "published";
+  return rc.IsMap() && rc["published"] && rc["published"].as<bool>(false);
+}
+
 void readScenario(MapReader& r, const fs::path& dir, ScenarioSpec& s) {
   r.read("name", s.name);
   r.read("suite", s.suite);
   s.start_from_world = !r.has("start");
   readFlightKeys(r, dir, s.flight);
-  if (r.has("method")) s.method = readMethod(r.sub("method"));
+  if (r.has("method")) {
+    // A published method flies its paths through the authors' MRS trajectory generator unless
+    // the scenario names the generator (docs/deviations.md, "Paths as the MRS generator flies them").
+    const bool names_generator = r.has("trajectory") && r.raw("trajectory")["generator"];
+    if (runsPublished(r.raw("method")) && !names_generator) s.flight.trajectory.generator = "mrs";
+    s.method = readMethod(r.sub("method"));
+  }
   if (r.has("exploration_box")) {
     MapReader b = r.sub("exploration_box");
     Aabb box;

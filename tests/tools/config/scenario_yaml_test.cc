@@ -252,6 +252,42 @@ TEST(ScenarioYaml, ThePublishedConfigurationTakesTheAuthorsSettingsAndNamedKeysW
   EXPECT_TRUE(std::any_cast<const GridExplorerConfig&>(gn.method.config).map.prune);
 }
 
+// `published` flies its paths through the MRS trajectory generator (issue 91): by name, as a map
+// with `published: true`, for the grid too; a scenario that names the generator keeps it; the
+// intended method and switch-by-switch runs keep msbench's tracker; a speed-set name also picks
+// the MRS constraint set of that name; config.yaml names the generator, so a run replays as flown.
+TEST(ScenarioYaml, PublishedFliesTheMrsGeneratorUnlessTheScenarioNamesOne) {
+  const fs::path d = tempDir();
+  write(d / "base.yaml", kBase);
+  write(d / "published.yaml", "base: base.yaml\nmethod: {reference_code: published}\n");
+  const ScenarioSpec p = loadScenario((d / "published.yaml").string(), {"trajectory.limits=fast"});
+  EXPECT_EQ(p.flight.trajectory.generator, "mrs");
+  EXPECT_DOUBLE_EQ(p.flight.trajectory.mrs.constraints.vertical_speed_mps, 4.0);  // MRS `fast`
+  EXPECT_DOUBLE_EQ(p.flight.trajectory.mrs.constraints.horizontal_jerk_mps3, 60.0);
+  EXPECT_EQ(loadScenario((d / "base.yaml").string()).flight.trajectory.generator, "msbench");
+  EXPECT_EQ(loadScenario((d / "base.yaml").string(), {"method.reference_code.raw_sphere_paths=true"})
+                .flight.trajectory.generator,
+            "msbench");
+  EXPECT_EQ(
+      loadScenario((d / "base.yaml").string(), {"method.reference_code.published=true"}).flight.trajectory.generator,
+      "mrs");
+  const ScenarioSpec named = loadScenario((d / "published.yaml").string(), {"trajectory.generator=msbench"});
+  EXPECT_EQ(named.flight.trajectory.generator, "msbench");
+  write(d / "grid.yaml", "world: world.xml\nmethod: {type: grid_random, reference_code: published}\n");
+  EXPECT_EQ(loadScenario((d / "grid.yaml").string()).flight.trajectory.generator, "mrs");
+  // The effective configuration names the generator and its constraint set.
+  write(d / "effective.yaml", effectiveScenarioYaml(p));
+  const ScenarioSpec back = loadScenario((d / "effective.yaml").string());
+  EXPECT_EQ(back.flight.trajectory.generator, "mrs");
+  EXPECT_EQ(effectiveScenarioYaml(back), effectiveScenarioYaml(p));
+  // A constraint of the set named beside the speed set wins; an unknown generator is refused.
+  EXPECT_DOUBLE_EQ(loadScenario((d / "published.yaml").string(),
+                                {"trajectory.limits=fast", "trajectory.mrs.constraints.heading_accel_radps2=8"})
+                       .flight.trajectory.mrs.constraints.heading_accel_radps2,
+                   8.0);
+  EXPECT_THROW(loadScenario((d / "base.yaml").string(), {"trajectory.generator=ros"}), FileConfigError);
+}
+
 // The message of the FileConfigError loading `path` throws ("" and a test failure if none).
 std::string loadError(const fs::path& path) {
   try {
