@@ -305,10 +305,11 @@ std::vector<Wp> split(const std::vector<Wp>& w, const std::vector<bool>& bad, bo
 }  // namespace
 
 MrsTrajectory MrsTrajectoryGenerator::generate(const MrsInitialState& init, const std::vector<Waypoint>& path) const {
-  std::vector<Wp> w = preprocess(generatorWaypoints(init, path), config_.min_waypoint_distance_m);
+  std::vector<Wp> original = preprocess(generatorWaypoints(init, path), config_.min_waypoint_distance_m);
+  if (original.size() < 2) original.push_back(original.back());  // a path of nothing: hold where the tracker is
+  std::vector<Wp> w = original;
   MrsTrajectory out;
   out.dt_s = config_.sampling_dt_s;
-  if (w.size() < 2) w.push_back(w.back());  // a path of nothing: hold where the tracker is
   const bool check_first = !init.moving;
   auto baca = [&] {
     const auto b = bacaTimes(w, config_.constraints);
@@ -326,8 +327,7 @@ MrsTrajectory MrsTrajectoryGenerator::generate(const MrsInitialState& init, cons
     s = optimised(w, init, config_, *this, baca());
   }
   if (!s) {
-    w = preprocess(generatorWaypoints(init, path), config_.min_waypoint_distance_m);
-    if (w.size() < 2) w.push_back(w.back());
+    w = original;
     s = fallbackSamples(w, bacaTimes(w, config_.constraints), config_.sampling_dt_s);
     out.fallback = true;
   }
