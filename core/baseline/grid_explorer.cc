@@ -16,6 +16,9 @@ void GridExplorerConfig::validate(ConfigChecker& c) const {
 }
 
 namespace {
+// `replanning_counter_ >= 2` (octomap_planner.cpp timerMain, 935): the planner gives up.
+constexpr int kReferenceFailuresBeforeIdle = 2;
+
 // The planner's cell size: the planning tree's, or the map's.
 double plannerResolution(const GridExplorerConfig& c) {
   return c.planner.planning_tree_resolution_m > 0 ? c.planner.planning_tree_resolution_m : c.map.resolution_m;
@@ -91,7 +94,7 @@ bool GridExplorer::checkGoal(const VehicleState& s) {
   if (goal_ && (*goal_ - p).norm() <= config_.reach_distance_m) {
     ++counters_[GridCounter::kGoalsReached];
     need_goal = true;
-  } else if (goal_ && path_sent_ && s.path_finished) {
+  } else if (goal_ && (idle_ || (path_sent_ && s.path_finished))) {
     ++counters_[GridCounter::kGoalsIdle];  // arrived at the closest reachable cell, or nowhere to go
     need_goal = true;
   } else if (goal_ && s.t_s - goal_since_s_ >= config_.goal_timeout_s) {
@@ -123,6 +126,8 @@ void GridExplorer::setGoal(double t_s, std::optional<Vec3> goal, std::vector<Vec
   goal_since_s_ = t_s;
   path_sent_ = false;
   replan_now_ = true;
+  failures_ = 0;
+  idle_ = false;
   if (goal_) ++counters_[GridCounter::kGoalsChosen];
 }
 
@@ -130,7 +135,7 @@ std::optional<PathCommand> GridExplorer::replan(const VehicleState& s) {
   // Re-plan every replan period (or at once after a new goal or a stop); a chooser's path is
   // sent once and flown as given.
   if (!replan_now_ && s.t_s - last_plan_s_ < config_.replan_period_s - 1e-9) return std::nullopt;
-  if (flying_given_) return std::nullopt;
+  if (flying_given_ || idle_) return std::nullopt;  // idle: nothing until a new goal
   replan_now_ = false;
   last_plan_s_ = s.t_s;
   if (!given_path_.empty()) {
@@ -147,15 +152,45 @@ std::optional<PathCommand> GridExplorer::replan(const VehicleState& s) {
     planner_.rebuild(map_);
     map_changed_ = false;
   }
-  const std::optional<GridPath> path = planner_.plan(s.reference.position_m, *goal_);
-  if (!path || path->points.size() < 2) {
-    ++counters_[GridCounter::kPathsFailed];
-    path_sent_ = true;  // nothing to fly: idle, a new goal at the next goal check
-    return command(s, {{s.reference.position_m, std::nullopt}});
-  }
+  const bool moving = path_sent_ && !s.path_finished;
+  const int budget = expansionBudget(moving);
+  const std::optional<GridPath> path = planner_.plan(s.reference.position_m, *goal_, budget);
+  if (path && budget >= 0 && path->expansions >= budget && !path->reaches_goal)
+    ++counters_[GridCounter::kPathsOverBudget];
+  const bool too_short = config_.reference_failures && path && path->points.size() >= 2 &&
+                         (path->points.back() - path->points.front()).norm() < config_.min_path_length_m;
+  if (!path || path->points.size() < 2 || too_short) return planFailed(s);
+  failures_ = 0;
   if (!path->reaches_goal) ++counters_[GridCounter::kPathsToClosestCell];
   path_sent_ = true;
   return command(s, pathWaypoints(path->points));
+}
+
+int GridExplorer::expansionBudget(bool moving) const {
+  // The reference's clock (findPath) runs from before the planning tree is built; a hovering
+  // vehicle's plan gets timeout + 1.5^failures (timerMain, 944-951). -1: no budget.
+  const double timeout = config_.planner.time_budget_s;
+  if (timeout <= 0) return -1;
+  const double t = moving ? timeout : timeout + std::pow(1.5, double(failures_));
+  const double left = t - planner_.treeWork().seconds();
+  if (left <= 0) return 0;
+  return int(std::min(1e9, std::floor(left / kGridBudgetCosts.per_expansion_s)));
+}
+
+std::optional<PathCommand> GridExplorer::planFailed(const VehicleState& s) {
+  ++counters_[GridCounter::kPathsFailed];
+  if (!config_.reference_failures) {
+    path_sent_ = true;  // nothing to fly: idle, a new goal at the next goal check
+    return command(s, {{s.reference.position_m, std::nullopt}});
+  }
+  // The reference sends nothing: the last trajectory goes on; it tries again at once, and
+  // after two failures in a row it is idle until a new goal comes.
+  if (++failures_ >= kReferenceFailuresBeforeIdle) {
+    idle_ = true;
+  } else {
+    replan_now_ = true;
+  }
+  return std::nullopt;
 }
 
 std::vector<FreeSpaceElement> GridExplorer::freeSpace() const { return freeLeaves(map_); }

@@ -46,6 +46,14 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
   double goal_ceiling_margin_m = 0.5;  ///< ... and to this far below the box top
   double replan_period_s = 1.0;        ///< path re-planned this often (reference code: 1 s; paper: 0.2 s)
   double reach_distance_m = 1.0;       ///< a goal this close counts as reached
+  /// mrs_octomap_planner's failures (octomap_planner.cpp timerMain, STATE_PLANNING, 916-1090 at
+  /// 4c95e24): a path ending within min_path_length_m of its start fails too; a failure sends
+  /// nothing (the last trajectory goes on) and the next planning step tries again; two failures
+  /// in a row make the planner idle (a new goal at the next goal check); a path found or a new
+  /// goal resets the count. false: msbench's rule (a failure stops the vehicle and asks for a
+  /// new goal at the next goal check).
+  bool reference_failures = false;
+  double min_path_length_m = 0.2;  ///< with reference_failures: the reference's `min_path_length`
 
   /// The keys, each once with the values it accepts (core/common/config_fields.h).
   template <class Self, class V>
@@ -59,6 +67,8 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
     v.key("goal_ceiling_margin_m", s.goal_ceiling_margin_m, Limits::nonNegative());
     v.key("replan_period_s", s.replan_period_s, Limits::positive());
     v.key("reach_distance_m", s.reach_distance_m, Limits::positive());
+    v.key("reference_failures", s.reference_failures);
+    v.key("min_path_length_m", s.min_path_length_m, Limits::nonNegative());
     PathCheckConfig::fields(s, v);
     TakeoffConfig::fields(s, v);
   }
@@ -74,7 +84,9 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
   /// heights, uniform over the box's whole band (`sample_free_point`: z uniform in
   /// [z_min, z_max] of the safety area), no floor or ceiling margin; and the planner's 0.4 m
   /// planning tree (octomap_planner.yaml `planning_tree/resolution`, not set by the sessions;
-  /// results/planning_tree/: it matters). Applied by
+  /// results/planning_tree/: it matters); and the planner's one-second budget, its A* rules
+  /// and its failure rules (`timeout_threshold: 1.0` of the sessions' octomap_planner.yaml;
+  /// results/grid_budget/). Applied by
   /// `method.reference_code: published` before the keys a scenario names (docs/baseline.md, "The
   /// published configuration").
   void applyPublishedSettings() {
@@ -84,6 +96,9 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
     goal_min_altitude_m = 0.0;
     goal_ceiling_margin_m = 0.0;
     planner.planning_tree_resolution_m = 0.4;
+    planner.time_budget_s = 1.0;
+    planner.reference_search = true;
+    reference_failures = true;
   }
   /// The OctoMap leaf size: the authors' evaluation rule for OctoMap maps (BUG-11) scores the
   /// grid baseline's free cells beside msbench's squares (coverage.area_published_rule_m2).
@@ -113,6 +128,7 @@ enum class GridCounter {
   kPathsSent,
   kPathsToClosestCell,
   kPathsFailed,
+  kPathsOverBudget,  // the search stopped by the time budget
   kBlockedStops,
   kMapPoints,
   kLeaves,       // the octree's leaves when asked (set by counters())
@@ -121,8 +137,8 @@ enum class GridCounter {
 };
 /// The JSON names of GridCounter, in its order.
 inline constexpr std::array<const char*, size_t(GridCounter::kCount)> kGridCounterNames = {
-    "goals_chosen", "goals_reached", "goals_timed_out", "goals_idle", "paths_sent",   "paths_to_closest_cell",
-    "paths_failed", "blocked_stops", "map_points",      "leaves",     "map_memory_mb"};
+    "goals_chosen", "goals_reached",     "goals_timed_out", "goals_idle", "paths_sent", "paths_to_closest_cell",
+    "paths_failed", "paths_over_budget", "blocked_stops",   "map_points", "leaves",     "map_memory_mb"};
 
 /// The grid explorer.
 class GridExplorer : public Explorer {
@@ -153,6 +169,8 @@ class GridExplorer : public Explorer {
   std::optional<PathCommand> replan(const VehicleState& s);
   PathCommand command(const VehicleState& s, std::vector<Waypoint> w);
   bool pathBlocked(const Vec3& from) const;
+  int expansionBudget(bool moving) const;
+  std::optional<PathCommand> planFailed(const VehicleState& s);
 
   // Configuration (fixed for the explorer's life) ...
   const GridExplorerConfig config_;
@@ -169,6 +187,8 @@ class GridExplorer : public Explorer {
   bool flying_given_ = false;     // that path was sent
   bool path_sent_ = false, replan_now_ = false;
   double goal_since_s_ = 0, last_goal_check_s_ = -1e9, last_plan_s_ = -1e9;
+  int failures_ = 0;   // failed plans in a row (reference_failures) ...
+  bool idle_ = false;  // ... and the planner idle after too many of them
   std::vector<Vec3> last_path_;
   Counters<GridCounter> counters_{kGridCounterNames};
 };

@@ -25,6 +25,12 @@ GridPathPlanner::GridPathPlanner(const GridPlannerConfig& config, const Aabb& bo
   nz_ = std::max(1, int(n.z()));
   if (double(nx_) * ny_ * nz_ > 4e8) throw ConfigError("exploration_box", "too large for the grid planner");
   blocked_.assign(size_t(nx_) * ny_ * nz_, 0);
+  setWindow({0, 0, 0}, {nx_, ny_, nz_});
+}
+
+void GridPathPlanner::setWindow(const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+  win_lo_ = lo;
+  win_hi_ = hi;
 }
 
 bool GridPathPlanner::cellOf(const Vec3& p, int* i, int* j, int* k) const {
@@ -39,7 +45,7 @@ Vec3 GridPathPlanner::centre(int i, int j, int k) const { return origin_ + res_ 
 
 bool GridPathPlanner::traversable(const Vec3& p) const {
   int i, j, k;
-  return cellOf(p, &i, &j, &k) && !(blocked_[size_t(index(i, j, k))] & kBlocked);
+  return cellOf(p, &i, &j, &k) && inWindow(i, j, k) && !(blocked_[size_t(index(i, j, k))] & kBlocked);
 }
 
 long GridPathPlanner::blockedCells() const {
@@ -48,6 +54,8 @@ long GridPathPlanner::blockedCells() const {
 
 void GridPathPlanner::rebuild(const GridMap& map, const std::optional<Vec3>& start) {
   std::fill(blocked_.begin(), blocked_.end(), 0);
+  setWindow({0, 0, 0}, {nx_, ny_, nz_});
+  tree_work_ = {};
   if (usesPlanningTree()) {
     if (!start) throw std::logic_error("GridPathPlanner: a planning tree is rebuilt around a start");
     rebuildFromPlanningTree(map, *start);
@@ -80,18 +88,38 @@ void GridPathPlanner::rebuildFromPlanningTree(const GridMap& map, const Vec3& st
       node = tree.getNodeChild(node, pos);
     }
     node->setLogOdds(src.isNodeOccupied(*it) ? 1.0f : -1.0f);
+    ++tree_work_.leaves;
   }
   tree.expand();
+  // The distance field spans the tree's metric box, the origin's cell included.
+  double x0, y0, z0, x1, y1, z1;
+  tree.getMetricMin(x0, y0, z0);
+  tree.getMetricMax(x1, y1, z1);
+  tree_work_.edt_cells = (x1 - x0) * (y1 - y0) * (z1 - z0) / (res_ * res_ * res_);
   // Its leaves as cells: known, and occupied ones blocking their clearance.
   std::vector<uint8_t> known(blocked_.size(), 0);
   const std::vector<std::array<int, 4>> offsets = offsetsWithin(config_.clearance_m);
+  std::array<int, 3> klo{nx_, ny_, nz_}, khi{0, 0, 0};
   for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    ++tree_work_.cells;
     int i, j, k;
     if (!cellOf(Vec3(it.getX(), it.getY(), it.getZ()), &i, &j, &k)) continue;
     known[size_t(index(i, j, k))] = 1;
+    klo = {std::min(klo[0], i), std::min(klo[1], j), std::min(klo[2], k)};
+    khi = {std::max(khi[0], i + 1), std::max(khi[1], j + 1), std::max(khi[2], k + 1)};
     if (tree.isNodeOccupied(*it)) blockAroundCell(i, j, k, offsets);
   }
-  if (config_.unknown_is_occupied) blockUnknown(known);
+  if (!config_.unknown_is_occupied) return;
+  // Unknown cells blocked: nothing outside the known cells' extent can be passed, so the
+  // search keeps to it (and blockUnknown to the cells bordering it).
+  // The window is that extent and the unknown cells around it (a start there may step in).
+  if (klo[0] >= khi[0]) {  // no known cell: nothing to plan through
+    setWindow({0, 0, 0}, {0, 0, 0});
+    return;
+  }
+  setWindow({std::max(0, klo[0] - 1), std::max(0, klo[1] - 1), std::max(0, klo[2] - 1)},
+            {std::min(nx_, khi[0] + 1), std::min(ny_, khi[1] + 1), std::min(nz_, khi[2] + 1)});
+  blockUnknown(known);
 }
 
 void GridPathPlanner::blockAroundCell(int ci, int cj, int ck, const std::vector<std::array<int, 4>>& offsets) {
@@ -170,9 +198,12 @@ void GridPathPlanner::blockUnknown(const std::vector<uint8_t>& known) {
   static constexpr int kFaces[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   auto inside = [&](int a, int b, int c) { return a >= 0 && b >= 0 && c >= 0 && a < nx_ && b < ny_ && c < nz_; };
   std::vector<uint8_t> dilated = blocked_;
-  for (int k = 0; k < nz_; ++k)
-    for (int j = 0; j < ny_; ++j)
-      for (int i = 0; i < nx_; ++i) {
+  // The window and the unknown cells bordering it (beyond them no cell borders a known one).
+  const int i0 = std::max(0, win_lo_[0] - 1), j0 = std::max(0, win_lo_[1] - 1), k0 = std::max(0, win_lo_[2] - 1);
+  const int i1 = std::min(nx_, win_hi_[0] + 1), j1 = std::min(ny_, win_hi_[1] + 1), k1 = std::min(nz_, win_hi_[2] + 1);
+  for (int k = k0; k < k1; ++k)
+    for (int j = j0; j < j1; ++j)
+      for (int i = i0; i < i1; ++i) {
         if (known[size_t(index(i, j, k))]) continue;
         dilated[size_t(index(i, j, k))] |= kBlocked | kHard;  // unknown itself
         bool border = false;
@@ -195,9 +226,14 @@ bool GridPathPlanner::passable(int i, int j, int k, const Passability& p) const 
   return p.start_blocked && !(b & kHard) && (centre(i, j, k) - p.start_c).squaredNorm() <= p.escape2;
 }
 
-GridPathPlanner::Search GridPathPlanner::search(int64_t start, int64_t goal, const Passability& p) const {
-  // A* over cells; g in metres, parent per cell; ties by the lower cell index.
-  const size_t n = blocked_.size();
+GridPathPlanner::Search GridPathPlanner::search(int64_t start, int64_t goal, const Passability& p,
+                                                int max_expansions) const {
+  // A* over the window's cells; g in metres, parent per cell; ties by the lower cell index.
+  const size_t n = size_t(win_hi_[0] - win_lo_[0]) * size_t(win_hi_[1] - win_lo_[1]) * size_t(win_hi_[2] - win_lo_[2]);
+  auto cellIjk = [&](int64_t c) {
+    return std::array<int, 3>{int(c % nx_), int((c / nx_) % ny_), int(c / (int64_t(nx_) * ny_))};
+  };
+  auto local = [&](int64_t c) { return size_t(windowIndexOf(c)); };
   const Vec3 start_c = centre(start), goal_c = centre(goal);
   std::vector<float> g(n, std::numeric_limits<float>::infinity());
   Search s;
@@ -205,42 +241,52 @@ GridPathPlanner::Search GridPathPlanner::search(int64_t start, int64_t goal, con
   std::vector<uint8_t> closed(n, 0);
   using Entry = std::pair<double, int64_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
-  g[size_t(start)] = 0;
-  open.push({(goal_c - start_c).norm(), start});
+  g[local(start)] = 0;
+  const double h0 = (goal_c - start_c).norm();
+  open.push({h0, start});
   s.best = start;
-  double best_d = (goal_c - start_c).norm();
-  while (!open.empty() && s.expansions < config_.max_expansions) {
+  // The best cells so far: msbench's (expanded, closest to the goal) and the reference's
+  // (reached: lowest f, ties by the lower h, later ones winning; closest to the goal).
+  double best_d = h0, ref_f = h0, ref_f_h = h0, ref_h = h0;
+  int64_t ref_f_cell = start, ref_h_cell = start;
+  const bool reference = config_.reference_search;
+  while (!open.empty() && s.expansions < max_expansions) {
     const auto [f, cur] = open.top();
     open.pop();
-    if (closed[size_t(cur)]) continue;
-    closed[size_t(cur)] = 1;
+    if (closed[local(cur)]) continue;
+    closed[local(cur)] = 1;
     ++s.expansions;
-    const int ci = int(cur % nx_), cj = int((cur / nx_) % ny_), ck = int(cur / (int64_t(nx_) * ny_));
+    const auto [ci, cj, ck] = cellIjk(cur);
     const double d_goal = (centre(ci, cj, ck) - goal_c).norm();
     if (d_goal < best_d - 1e-12) best_d = d_goal, s.best = cur;
     if (cur == goal) break;
+    const double g_cur = g[local(cur)];
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           if (!dx && !dy && !dz) continue;
           const int i = ci + dx, j = cj + dy, k = ck + dz;
-          if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_ || !passable(i, j, k, p)) continue;
-          const int64_t nb = index(i, j, k);
-          if (closed[size_t(nb)]) continue;
-          const double ng = g[size_t(cur)] + res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
-          if (ng >= g[size_t(nb)]) continue;
-          g[size_t(nb)] = float(ng);
-          s.parent[size_t(nb)] = cur;
-          open.push({ng + (centre(i, j, k) - goal_c).norm(), nb});
+          if (!inWindow(i, j, k) || !passable(i, j, k, p)) continue;
+          const size_t nb = size_t(windowIndex(i, j, k));
+          if (closed[nb]) continue;
+          const double ng = g_cur + res_ * std::sqrt(double(dx * dx + dy * dy + dz * dz));
+          if (ng >= g[nb] || (reference && std::isfinite(g[nb]))) continue;  // the reference never re-opens
+          g[nb] = float(ng);
+          s.parent[nb] = cur;
+          const double h = (centre(i, j, k) - goal_c).norm();
+          open.push({ng + h, index(i, j, k)});
+          if (ng + h < ref_f || (ng + h == ref_f && h <= ref_f_h))
+            ref_f = ng + h, ref_f_h = h, ref_f_cell = index(i, j, k);
+          if (h <= ref_h) ref_h = h, ref_h_cell = index(i, j, k);
         }
   }
+  if (reference && s.best != goal) s.best = ref_f_cell != start ? ref_f_cell : ref_h_cell;
   return s;
 }
 
 bool GridPathPlanner::segmentClear(const Vec3& a, const Vec3& b, const Passability& p) const {
   auto cellPassable = [&](const Eigen::Vector3i& c) {
-    return c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() < nx_ && c.y() < ny_ && c.z() < nz_ &&
-           passable(c.x(), c.y(), c.z(), p);
+    return inWindow(c.x(), c.y(), c.z()) && passable(c.x(), c.y(), c.z(), p);
   };
   const Vec3 p0 = (a - origin_) / res_, d = (b - a) / res_;
   Eigen::Vector3i c = p0.array().floor().cast<int>();
@@ -276,7 +322,7 @@ bool GridPathPlanner::segmentClear(const Vec3& a, const Vec3& b, const Passabili
   return false;
 }
 
-std::optional<GridPath> GridPathPlanner::plan(const Vec3& start_in, const Vec3& goal_in) const {
+std::optional<GridPath> GridPathPlanner::plan(const Vec3& start_in, const Vec3& goal_in, int max_expansions) const {
   // Start and goal cells (clamped into the box; a start far outside cannot be planned from).
   auto clampCell = [&](const Vec3& p, int* i, int* j, int* k) {
     const Vec3 q = (p - origin_) / res_;
@@ -296,14 +342,20 @@ std::optional<GridPath> GridPathPlanner::plan(const Vec3& start_in, const Vec3& 
   pass.start_blocked = blocked_[size_t(start)] & kBlocked;
   pass.start_c = centre(si, sj, sk);
   pass.escape2 = config_.escape_radius_m * config_.escape_radius_m;
-  const Search s = search(start, goal, pass);
+  // A start outside the window (no known cell near it) cannot move.
+  GridPath out;
+  if (!inWindow(si, sj, sk)) {
+    out.points.push_back(start_in);
+    return out;
+  }
+  const int budget = max_expansions >= 0 ? std::min(max_expansions, config_.max_expansions) : config_.max_expansions;
+  const Search s = search(start, goal, pass, budget);
 
   // Cells from the start to the goal (or the reached cell closest to it).
-  GridPath out;
   out.reaches_goal = s.best == goal;
   out.expansions = s.expansions;
   std::vector<Vec3> cells;
-  for (int64_t c = s.best; c >= 0; c = s.parent[size_t(c)]) cells.push_back(centre(c));
+  for (int64_t c = s.best; c >= 0; c = s.parent[size_t(windowIndexOf(c))]) cells.push_back(centre(c));
   std::reverse(cells.begin(), cells.end());
   cells.front() = start_in;
   if (out.reaches_goal && cells.size() > 1 && traversable(goal_in)) cells.back() = goal_in;

@@ -38,6 +38,18 @@ struct GridPlannerConfig {
   /// kPlanningTreeSubmapM of the start, each keyed by its centre in a tree of this resolution at
   /// its own depth, then expanded. A cell no leaf landed in is unknown. 0: the map's cells.
   double planning_tree_resolution_m = 0.0;
+  /// > 0: mrs_octomap_planner's `timeout_threshold` (astar_planner.cpp findPath, 95-190): the
+  /// clock starts before the planning tree is built, and the search stops when this much time
+  /// has passed, ending at its best node so far. The time is modelled, never measured: the
+  /// planning tree's work and each expansion cost what they cost liboctomap and dynamicEDT3D on
+  /// msbench's reference machine (kGridBudgetCosts, results/grid_budget/). 0: no time budget.
+  double time_budget_s = 0.0;
+  /// The reference's A* rules (astar_planner.cpp findPath, 150-260): a cell's cost is fixed when
+  /// it is first reached (no re-opening), and a search that does not reach the goal ends at the
+  /// lowest-f cell reached, or, when that is the start, at the reached cell closest to the goal
+  /// (reached: generated, not only expanded). false: msbench's A* (cells re-opened when a
+  /// cheaper way is found; the expanded cell closest to the goal).
+  bool reference_search = false;
 
   /// The keys, each once with the values it accepts (core/common/config_fields.h).
   template <class Self, class V>
@@ -49,6 +61,8 @@ struct GridPlannerConfig {
     v.key("unknown_clearance_m", s.unknown_clearance_m, Limits::range(-1.0, std::numeric_limits<double>::infinity()));
     v.key("max_expansions", s.max_expansions, Limits::range(1000, 100000000));
     v.key("planning_tree_resolution_m", s.planning_tree_resolution_m, Limits::range(0.0, 10.0));
+    v.key("time_budget_s", s.time_budget_s, Limits::range(0.0, 60.0));
+    v.key("reference_search", s.reference_search);
   }
 
   /// Records invalid fields.
@@ -57,6 +71,29 @@ struct GridPlannerConfig {
 
 /// The planning tree's reach from the start (mrs_octomap_planner `distance_transform/submap_distance`), m.
 inline constexpr double kPlanningTreeSubmapM = 20.0;
+
+/// What mrs_octomap_planner's work costs on msbench's reference machine (the 2-core VM of
+/// docs/compute.md), measured with liboctomap and Debian's dynamicEDT3D doing the reference's
+/// steps (results/grid_budget/measure.cc, output.txt): the time budget charges these.
+struct GridBudgetCosts {
+  double per_leaf_s = 0.25e-6;  ///< a map leaf keyed into the planning tree (both walks)
+  double per_cell_s = 1.2e-6;  ///< a cell of the expanded tree: expanded, in the distance field, set in the binary tree
+  double per_edt_cell_s = 2e-9;     ///< a cell of the distance field's box (the tree's extent, map origin included)
+  double per_expansion_s = 4.5e-6;  ///< an A* expansion (26 `search` calls, hash sets, heap)
+};
+/// The costs the time budget charges.
+inline constexpr GridBudgetCosts kGridBudgetCosts{};
+
+/// The planning tree's work at its last rebuild (the time budget charges it).
+struct PlanningTreeWork {
+  long leaves = 0;         ///< map leaves keyed into it
+  long cells = 0;          ///< its cells after expansion
+  double edt_cells = 0.0;  ///< cells of the distance field's box
+  /// Its modelled time on the reference machine, s.
+  double seconds(const GridBudgetCosts& c = kGridBudgetCosts) const {
+    return c.per_leaf_s * double(leaves) + c.per_cell_s * double(cells) + c.per_edt_cell_s * edt_cells;
+  }
+};
 
 /// A planned grid path.
 struct GridPath {
@@ -77,8 +114,10 @@ class GridPathPlanner {
   /// True if this planner plans on a planning tree (rebuilt for every start).
   bool usesPlanningTree() const { return config_.planning_tree_resolution_m > 0; }
   /// Plans from start to goal (both clamped into the box); none if the start is outside
-  /// the box by more than a cell.
-  std::optional<GridPath> plan(const Vec3& start, const Vec3& goal) const;
+  /// the box by more than a cell. `max_expansions` >= 0 caps this search below the config's.
+  std::optional<GridPath> plan(const Vec3& start, const Vec3& goal, int max_expansions = -1) const;
+  /// The planning tree's work at the last rebuild (zero without a planning tree).
+  const PlanningTreeWork& treeWork() const { return tree_work_; }
   /// True if the cell containing p is inside the box and not blocked.
   bool traversable(const Vec3& p) const;
   /// Number of blocked cells (for counters).
@@ -111,12 +150,24 @@ class GridPathPlanner {
   void rebuildFromPlanningTree(const GridMap& map, const Vec3& start);
   // A* over cells from `start` towards `goal`: the reached cell closest to the goal (the goal
   // itself when reached), the parent of every reached cell, the expansions.
+  // Cells are indexed within the search window (the whole box, or the planning tree's extent).
   struct Search {
     int64_t best = -1;
     int expansions = 0;
-    std::vector<int64_t> parent;
+    std::vector<int64_t> parent;  // by window index, global cell indices
   };
-  Search search(int64_t start, int64_t goal, const Passability& p) const;
+  Search search(int64_t start, int64_t goal, const Passability& p, int max_expansions) const;
+  int64_t windowIndex(int i, int j, int k) const {
+    return (int64_t(k - win_lo_[2]) * (win_hi_[1] - win_lo_[1]) + (j - win_lo_[1])) * (win_hi_[0] - win_lo_[0]) +
+           (i - win_lo_[0]);
+  }
+  int64_t windowIndexOf(int64_t cell) const {
+    return windowIndex(int(cell % nx_), int((cell / nx_) % ny_), int(cell / (int64_t(nx_) * ny_)));
+  }
+  bool inWindow(int i, int j, int k) const {
+    return i >= win_lo_[0] && j >= win_lo_[1] && k >= win_lo_[2] && i < win_hi_[0] && j < win_hi_[1] && k < win_hi_[2];
+  }
+  void setWindow(const std::array<int, 3>& lo, const std::array<int, 3>& hi);
   // True if every cell the segment a–b passes through is passable (3D DDA; at an edge or a
   // corner the cells beside it count too).
   bool segmentClear(const Vec3& a, const Vec3& b, const Passability& p) const;
@@ -128,6 +179,10 @@ class GridPathPlanner {
   int nx_ = 0, ny_ = 0, nz_ = 0;
   static constexpr uint8_t kBlocked = 1, kHard = 2;  // cell flags
   std::vector<uint8_t> blocked_;
+  // Cells outside [win_lo_, win_hi_) are blocked: the whole box, or, with a planning tree whose
+  // unknown cells are blocked, the extent of its known cells (nothing outside can be passed).
+  std::array<int, 3> win_lo_{0, 0, 0}, win_hi_{0, 0, 0};
+  PlanningTreeWork tree_work_;
 };
 
 }  // namespace msb

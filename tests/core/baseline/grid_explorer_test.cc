@@ -144,6 +144,57 @@ void takeOff(GridExplorer& e) {
   EXPECT_FALSE(e.plan(at(Vec3(4, 0, 2), 0.6, true)));
 }
 
+// mrs_octomap_planner's failure rule (timerMain): a failed plan sends nothing and is tried again
+// at once; after two in a row the planner is idle until the explorer's next goal. msbench's
+// rule stops the vehicle and asks for a new goal at the next goal check. Here every plan fails
+// (nothing is known: the published grid plans through known cells only).
+TEST(GridExplorer, ThePublishedPlannerTriesTwiceSendingNothingThenWaitsForANewGoal) {
+  GridExplorerConfig published;
+  published.applyPublishedSettings();
+  published.planner.planning_tree_resolution_m = 0.0;
+  ASSERT_TRUE(published.reference_failures);
+  GridExplorer ref(published, context());
+  takeOff(ref);
+  EXPECT_FALSE(ref.plan(at(Vec3(4, 0, 2), 1.0, true)));  // a goal; the plan fails: nothing sent
+  EXPECT_EQ(ref.counters().at("paths_failed"), 1.0);
+  EXPECT_FALSE(ref.plan(at(Vec3(4, 0, 2), 1.2, true)));  // tried again at once: fails, idle
+  EXPECT_FALSE(ref.plan(at(Vec3(4, 0, 2), 1.4, true)));  // idle: no plan
+  EXPECT_EQ(ref.counters().at("paths_failed"), 2.0);
+  EXPECT_EQ(ref.counters().at("goals_idle"), 0.0);
+  EXPECT_FALSE(ref.plan(at(Vec3(4, 0, 2), 2.0, true)));  // the next goal check: a new goal
+  EXPECT_EQ(ref.counters().at("goals_idle"), 1.0);
+  EXPECT_EQ(ref.counters().at("paths_failed"), 3.0);
+
+  published.reference_failures = false;
+  GridExplorer ours(published, context());
+  takeOff(ours);
+  const auto stop = ours.plan(at(Vec3(4, 0, 2), 1.0, true));  // fails: the vehicle is stopped
+  ASSERT_TRUE(stop);
+  EXPECT_EQ(stop->waypoints.size(), 1u);
+  EXPECT_FALSE(ours.plan(at(Vec3(4, 0, 2), 1.2, true)));
+  EXPECT_FALSE(ours.plan(at(Vec3(4, 0, 2), 1.4, true)));
+  EXPECT_EQ(ours.counters().at("paths_failed"), 1.0);
+}
+
+// The time budget (the reference's 1 s `timeout_threshold`): a hovering vehicle's plan gets
+// timeout + 1.5^failures, a moving one's the timeout alone; the A* expansions it can pay for
+// are the budget less the planning tree's work over the cost of one (kGridBudgetCosts).
+TEST(GridExplorer, TheTimeBudgetStopsAMovingVehiclesSearchAndNotAHoveringOnes) {
+  GridExplorerConfig published;
+  published.applyPublishedSettings();
+  published.planner.planning_tree_resolution_m = 0.0;
+  published.planner.time_budget_s = 2 * kGridBudgetCosts.per_expansion_s;  // two expansions
+  GridExplorer e(published, context());
+  GridMap& map = GridExplorerTestSeam::map(e);
+  for (double z = 0.25; z < 4.0; z += 0.5)
+    for (double y = -9.75; y < 10.0; y += 0.5) map.insertScan(Vec3(-8.25, y, z), {Vec3(6.9, y, z)});
+  takeOff(e);
+  ASSERT_TRUE(e.plan(at(Vec3(4, 0, 2), 1.0, true)));  // hovering: 1 s and more
+  EXPECT_EQ(e.counters().at("paths_over_budget"), 0.0);
+  e.plan(at(Vec3(4, 0, 2), 2.0, false));  // moving: two expansions
+  EXPECT_EQ(e.counters().at("paths_over_budget"), 1.0);
+}
+
 TEST(GridExplorer, AGoalChoosersGoalsPathsAndNoGoalReplaceTheDraw) {
   GridExplorer e(traversableUnknown(), context());
   std::vector<GoalRequest> asked;

@@ -208,6 +208,56 @@ TEST(GridPathPlanner, ThePlanningTreeHoldsOnlyTheMapsLeavesNearTheStart) {
   EXPECT_FALSE(tree.traversable(Vec3(2.25, 0.25, 2.25)));
 }
 
+// mrs_octomap_planner's search (findPath): when its time runs out it flies to its best node so
+// far — the lowest-f node reached, or the reached node closest to the goal when that is the
+// start (reached: generated, not only expanded). With one expansion msbench's search has only
+// its start; the reference's steps to the neighbour towards the goal.
+TEST(GridPathPlanner, TheReferenceSearchStepsToItsBestReachedCellWhenTheBudgetEnds) {
+  GridMap map(GridMapConfig{});
+  for (double z = 0.25; z < 4.0; z += 0.5)
+    for (double y = -3.75; y < 4.0; y += 0.5) map.insertScan(Vec3(0.25, y, z), {Vec3(11.1, y, z)});
+  GridPlannerConfig c;
+  c.unknown_clearance_m = 0.0;
+  const Vec3 start(0.25, 0.25, 2.25), goal(8.25, 0.25, 2.25);
+  GridPathPlanner ours(c, kBox, 0.5);
+  ours.rebuild(map);
+  c.reference_search = true;
+  GridPathPlanner reference(c, kBox, 0.5);
+  reference.rebuild(map);
+  EXPECT_EQ(ours.plan(start, goal, 1)->points.size(), 1u);
+  const auto step = reference.plan(start, goal, 1);
+  ASSERT_EQ(step->points.size(), 2u);
+  EXPECT_FALSE(step->reaches_goal);
+  EXPECT_TRUE(step->points.back().isApprox(Vec3(0.75, 0.25, 2.25))) << step->points.back().transpose();
+  // Without a budget both reach the goal.
+  EXPECT_TRUE(ours.plan(start, goal)->reaches_goal);
+  EXPECT_TRUE(reference.plan(start, goal)->reaches_goal);
+  EXPECT_EQ(reference.plan(start, goal, 0)->points.size(), 1u);  // no expansion: nowhere to go
+}
+
+// The planning tree's work, which the time budget charges: its distance field spans the tree's
+// box, and the tree always holds the map origin's cell, so far from the origin the field is
+// large (the cave grid's session spawns 113 m from it).
+TEST(GridPathPlanner, ThePlanningTreesDistanceFieldSpansFromTheMapOrigin) {
+  GridMap map(GridMapConfig{});
+  for (double x0 : {0.0, 40.0}) map.insertScan(Vec3(x0 + 0.25, 0.25, 2.25), {Vec3(x0 + 6.1, 0.25, 2.25)});
+  GridExplorerConfig published;
+  published.applyPublishedSettings();
+  const Aabb box{Vec3(-5, -5, 0), Vec3(50, 5, 5)};
+  GridPathPlanner tree(published.planner, box, 0.4);
+  EXPECT_EQ(tree.treeWork().seconds(), 0.0);
+  tree.rebuild(map, Vec3(0.25, 0.25, 2.25));
+  const PlanningTreeWork near = tree.treeWork();
+  EXPECT_GT(near.leaves, 0);
+  EXPECT_GE(near.cells, near.leaves);
+  tree.rebuild(map, Vec3(40.25, 0.25, 2.25));
+  const PlanningTreeWork far = tree.treeWork();
+  // The far tree's box reaches back from x 46 m to the origin's cell (x, y and z from 0).
+  EXPECT_GE(far.edt_cells, (46.0 / 0.4) * (2.0 / 0.4));
+  EXPECT_GT(far.edt_cells, 5 * near.edt_cells);
+  EXPECT_GT(far.seconds(), near.seconds());
+}
+
 TEST(GridPathPlanner, AnUnreachableGoalGivesTheClosestReachableCell) {
   const GridMap map = wallMap();
   GridPathPlanner planner(traversableUnknown(), kBox, 0.5);
