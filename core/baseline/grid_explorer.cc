@@ -160,7 +160,7 @@ std::optional<PathCommand> GridExplorer::replan(const VehicleState& s) {
   const bool too_short = config_.reference_failures && path && path->points.size() >= 2 &&
                          (path->points.back() - path->points.front()).norm() < config_.min_path_length_m;
   if (!path || path->points.size() < 2 || too_short) return planFailed(s);
-  failures_ = 0;
+  if (path->reaches_goal || !config_.reference_failures) failures_ = 0;  // the reference: a complete path only
   if (!path->reaches_goal) ++counters_[GridCounter::kPathsToClosestCell];
   path_sent_ = true;
   return command(s, pathWaypoints(path->points));

@@ -49,9 +49,9 @@ struct GridExplorerConfig : TakeoffConfig, PathCheckConfig {  // take-off and pa
   /// mrs_octomap_planner's failures (octomap_planner.cpp timerMain, STATE_PLANNING, 916-1090 at
   /// 4c95e24): a path ending within min_path_length_m of its start fails too; a failure sends
   /// nothing (the last trajectory goes on) and the next planning step tries again; two failures
-  /// in a row make the planner idle (a new goal at the next goal check); a path found or a new
-  /// goal resets the count. false: msbench's rule (a failure stops the vehicle and asks for a
-  /// new goal at the next goal check).
+  /// in a row make the planner idle (a new goal at the next goal check); a path to the goal or
+  /// a new goal resets the count (a path to the best node short of it does not). false: msbench's rule (a failure stops
+  /// the vehicle and asks for a new goal at the next goal check).
   bool reference_failures = false;
   double min_path_length_m = 0.2;  ///< with reference_failures: the reference's `min_path_length`
 

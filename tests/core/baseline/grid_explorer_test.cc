@@ -176,6 +176,33 @@ TEST(GridExplorer, ThePublishedPlannerTriesTwiceSendingNothingThenWaitsForANewGo
   EXPECT_EQ(ours.counters().at("paths_failed"), 1.0);
 }
 
+// Only a complete path resets the reference's failure count: failure, a path short of the goal,
+// failure, and the planner is idle (with every path resetting it, it would try a third time).
+TEST(GridExplorer, APathShortOfTheGoalDoesNotResetThePublishedFailureCount) {
+  GridExplorerConfig published;
+  published.applyPublishedSettings();
+  published.planner.planning_tree_resolution_m = 0.0;
+  GridExplorer e(published, context());
+  GridMap& map = GridExplorerTestSeam::map(e);
+  for (double z = 0.25; z < 4.0; z += 0.5)
+    for (double y = -3.75; y < 4.0; y += 0.5) map.insertScan(Vec3(-8.25, y, z), {Vec3(6.9, y, z)});
+  bool given = false;  // one goal, in unknown space beyond the known slab
+  e.setGoalChooser([&](const GoalRequest&) -> std::optional<std::vector<Vec3>> {
+    if (given) return std::nullopt;
+    given = true;
+    return std::vector<Vec3>{Vec3(4, 15, 2)};
+  });
+  takeOff(e);
+  const Vec3 unknown(4, 0, 6), known(4, 0, 2);
+  EXPECT_FALSE(e.plan(at(unknown, 1.0, true)));  // failure 1: tried again at once
+  const auto partial = e.plan(at(known, 1.2, true));
+  ASSERT_TRUE(partial);  // a path to the known cell closest to the goal
+  EXPECT_EQ(e.counters().at("paths_to_closest_cell"), 1.0);
+  EXPECT_FALSE(e.plan(at(unknown, 2.2, false)));  // failure 2: idle
+  EXPECT_FALSE(e.plan(at(unknown, 2.4, false)));  // idle: no third try
+  EXPECT_EQ(e.counters().at("paths_failed"), 2.0);
+}
+
 // The time budget (the reference's 1 s `timeout_threshold`): a hovering vehicle's plan gets
 // timeout + 1.5^failures, a moving one's the timeout alone; the A* expansions it can pay for
 // are the budget less the planning tree's work over the cost of one (kGridBudgetCosts).
