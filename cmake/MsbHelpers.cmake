@@ -34,7 +34,7 @@ function(msb_add_test name)
 endfunction()
 
 # msb_add_method_folders(): every folder beside the calling CMakeLists.txt that has a
-# CMakeLists.txt of its own (a method's folder: core/baseline/<method>/, core/planning/<method>/),
+# CMakeLists.txt of its own (a method's folder: core/methods/<type>/),
 # found by a CONFIGURE_DEPENDS glob, so adding or removing a method needs no edit outside its
 # folder and the next build re-runs CMake itself.
 macro(msb_add_method_folders)
@@ -48,7 +48,7 @@ macro(msb_add_method_folders)
 endmacro()
 
 # msb_add_method(<name> SOURCES ... DEPS ...): the library of an exploration method kept in a
-# folder of its own (core/baseline/<method>/, core/planning/<method>/); it is linked into the method table
+# folder of its own (core/methods/<type>/); it is linked into the method table
 # (tools/config) through the global property MSB_METHOD_LIBRARIES.
 function(msb_add_method name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})

@@ -1,4 +1,4 @@
-"""hover_turn in Python: the twin of msbench's example method (core/baseline/hover_turn), and a
+"""hover_turn in Python: the twin of msbench's example method (core/methods/hover_turn), and a
 template for a Python exploration method (docs/python.md).
 
 It takes off, turns on the spot in steps of `turn_step_deg` (one full turn), then descends to

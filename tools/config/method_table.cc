@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "core/explorer/method_registry.h"
+#include "core/methods/monospheres/map/sphere_map.h"
 
 namespace msb {
 
@@ -152,18 +153,7 @@ MethodEntry registeredEntry(const MethodRegistration& reg) {
     ConfigChecker checker("method.");
     reg.validate(config, checker);
     if (!checker.issues().empty()) throw ConfigError(checker.issues());
-    MethodChoice choice;
-    choice.type = reg.info.type;
-    choice.config = config;
-    const MethodFacts facts = reg.facts(config);
-    choice.switches = facts.switches;
-    choice.reference_code = facts.reference_code;
-    choice.octree_resolution_m = facts.octree_resolution_m;
-    choice.takes_goal_chooser = static_cast<bool>(reg.attach_goal_chooser);
-    choice.make = [&reg, config](const FisheyeCamera& camera, const ExplorerContext& context) {
-      return reg.make(config, camera, context);
-    };
-    return choice;
+    return registeredMethodChoice(reg, std::move(config));
   };
   e.write = [&reg](const std::any& config, MapWriter& w) {
     std::any c = config;
@@ -181,9 +171,8 @@ const std::vector<MethodEntry>& methodTable() {
   // Every method registered from its own folder (core/explorer/method_registry.h), the paper's
   // first in Table I's order, then `python`, then the others by type; the registrations outlive
   // the table, which points into them.
-  static const std::vector<MethodRegistration> registered = [] {
-    std::vector<MethodRegistration> r = registeredMethods();
-    std::stable_sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.info.listed < b.info.listed; });
+  static const std::vector<MethodRegistration>& registered = []() -> const std::vector<MethodRegistration>& {
+    const std::vector<MethodRegistration>& r = methodRegistrations();
     for (const auto& reg : r)
       if (reg.info.type == kPythonMethodType)
         throw MethodRegistryError("method type '" + reg.info.type + "' is registered in " + reg.source_file +
@@ -213,7 +202,7 @@ const MethodEntry* findMethod(const std::string& type) {
 }
 
 MethodChoice readMethod(MapReader m) {
-  std::string type = kMonoSpheresType;
+  std::string type = kDefaultMethodType;
   m.read("type", type);
   std::string names;
   for (const auto& e : methodTable()) {

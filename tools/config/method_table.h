@@ -21,6 +21,8 @@
 
 namespace msb {
 
+struct SphereMapConfig;  // MonoSpheres' mapper settings (core/methods/monospheres/map/sphere_map.h)
+
 /// One registered method.
 struct MethodEntry {
   const char* type;                                     ///< `method.type`

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/map/sphere_map.h"
+#include "core/methods/monospheres/map/sphere_map.h"
 #include "tools/config/yaml_writer.h"
 #include "tools/loop/scenario_spec.h"
 

@@ -1,8 +1,9 @@
 // The exploration method of a mission as the loop sees it: a type name, a validated config and
-// a factory. MethodChoice is built from a method's config struct by methodChoice<Explorer>(),
-// which is generic. The methods register themselves from their folders
-// (core/explorer/method_registry.h); the one method named here is MonoSpheres, the paper's
-// method, as the default of a scenario (monospheresMethod() below).
+// a factory. The methods register themselves from their folders (core/methods/<type>/,
+// core/explorer/method_registry.h); a MethodChoice is made from a registration and a config
+// (registeredMethodChoice), or from an explorer type and its config by methodChoice<Explorer>()
+// (generic, for code that builds a method without the registry). The default method of a
+// scenario is a name looked up like any other (kDefaultMethodType, defaultMethod()).
 #pragma once
 
 #include <any>
@@ -12,12 +13,12 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "core/camera/fisheye_camera.h"
 #include "core/common/config_fields.h"
 #include "core/explorer/explorer.h"
 #include "core/explorer/method_registry.h"
-#include "core/planning/monospheres_explorer.h"
 
 namespace msb {
 
@@ -118,12 +119,23 @@ struct PythonMethodConfig {
   }
 };
 
-/// The `method.type` of MonoSpheres (the default method).
-inline constexpr char kMonoSpheresType[] = "monospheres";
+/// The `method.type` of a scenario that names none: the paper's method.
+inline constexpr char kDefaultMethodType[] = "monospheres";
 
-/// MonoSpheres with `config` (the default method of a scenario).
-inline MethodChoice monospheresMethod(const MonoSpheresConfig& config = {}) {
-  return methodChoice<MonoSpheresExplorer>(kMonoSpheresType, config);
-}
+/// Every method registered from its folder (registeredMethods()), the paper's first in Table I's
+/// order, then the others by type; read once, and kept for the program's life (a MethodChoice's
+/// factory points into it). Throws MethodRegistryError as registeredMethods() does.
+const std::vector<MethodRegistration>& methodRegistrations();
+
+/// The registration of `type`, or null.
+const MethodRegistration* findRegistration(const std::string& type);
+
+/// The MethodChoice of registration `reg` (one of methodRegistrations()) with `config`, a config
+/// of its type that the caller has validated.
+MethodChoice registeredMethodChoice(const MethodRegistration& reg, std::any config);
+
+/// The default method (kDefaultMethodType) with its defaults. Throws std::logic_error when the
+/// program was linked without it (a build defect, not an input).
+MethodChoice defaultMethod();
 
 }  // namespace msb

@@ -84,7 +84,7 @@ struct ScenarioSpec {
   FlightSpec flight = missionFlightDefaults();  ///< world, seed, duration, start, vehicle, sensors
   bool start_from_world = true;                 ///< take start pose from the generated world unless `start` is given
   std::optional<Aabb> exploration_box;          ///< overrides the world's box
-  MethodChoice method = monospheresMethod();    ///< the exploration method and its config
+  MethodChoice method = defaultMethod();        ///< the exploration method and its config
   /// A goal chooser written in Python for the method (grid_random or monospheres), named by the
   /// scenario's `goals` section (entry, path, params); runs through the Python module.
   std::optional<PythonMethodConfig> goals;

@@ -1,7 +1,7 @@
 // msbench bench-map: the mapper's time per update over a perception log.
 #include <cstdio>
 
-#include "core/map/sphere_map.h"
+#include "core/methods/monospheres/map/sphere_map.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/map_replay.h"

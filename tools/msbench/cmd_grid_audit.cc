@@ -15,9 +15,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/baseline/grid_explorer.h"
 #include "core/common/clock.h"
 #include "core/geometry/world_truth.h"
+#include "core/methods/grid_random/grid_explorer.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/world_registry.h"
 #include "tools/msbench/cli_args.h"

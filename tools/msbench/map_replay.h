@@ -11,7 +11,7 @@
 #include "core/eval/map_accuracy.h"
 #include "core/eval/map_safety.h"
 #include "core/geometry/world_truth.h"
-#include "core/map/sphere_map.h"
+#include "core/methods/monospheres/map/sphere_map.h"
 #include "tools/results/perception_log.h"
 
 namespace msb {

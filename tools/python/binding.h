@@ -18,9 +18,9 @@
 #include <yaml-cpp/yaml.h>
 #include <nlohmann/json.hpp>
 
-#include "core/baseline/grid_map.h"
 #include "core/common/messages.h"
 #include "core/explorer/explorer.h"
+#include "core/grid/grid_map.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/loop/closed_loop.h"
 #include "tools/loop/records.h"

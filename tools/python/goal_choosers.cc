@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "core/baseline/grid_explorer.h"
-#include "core/planning/goal_choice.h"
+#include "core/methods/grid_random/grid_explorer.h"
+#include "core/methods/monospheres/planner/goal_choice.h"
 #include "tools/config/method_table.h"
 
 namespace msb {

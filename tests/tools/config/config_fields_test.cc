@@ -10,9 +10,9 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "core/baseline/grid_explorer.h"
-#include "core/map/sphere_map.h"
-#include "core/planning/monospheres_explorer.h"
+#include "core/methods/grid_random/grid_explorer.h"
+#include "core/methods/monospheres/map/sphere_map.h"
+#include "core/methods/monospheres/planner/monospheres_explorer.h"
 #include "tools/config/scenario_yaml.h"
 
 namespace msb {
@@ -108,7 +108,10 @@ TEST(ConfigFields, TheMethodSectionsWriteEveryField) {
   // The planner: its section plus fff (under method.switches), its take-off and path-check keys
   // counted as one base each; viewpoints plus vpb (a switch); safety plus r_min_m, which is
   // method.map.r_min_m; each plus the published-code switch it takes from method.reference_code.
-  EXPECT_EQ(keysAt(m, "method.planner") + 1 - 2 - 2 + 2, fieldCount<MonoSpheresPlannerConfig>());
+  // Its goal-choice, graph-repair and clearance parts are written flat beside its own keys.
+  EXPECT_EQ(keysAt(m, "method.planner") + 1 - 2 - 2 + 2,
+            fieldCount<MonoSpheresPlannerConfig>() - 3 + fieldCount<GoalChoiceConfig>() +
+                fieldCount<GraphRepairConfig>() + fieldCount<ClearanceConfig>());
   EXPECT_EQ(keysAt(m, "method.planner.viewpoints") + 1 + 2 /* viewpoints_anywhere, pinhole_rays */,
             fieldCount<ViewpointConfig>());
   EXPECT_EQ(keysAt(m, "method.planner.safety") + 1 + 1, fieldCount<SafetyCostConfig>());

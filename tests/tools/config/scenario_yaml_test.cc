@@ -1,8 +1,9 @@
 // Scenario files: base chains, --set overrides, switches, and one error per class naming the
 // file and the key.
 #include "tools/config/scenario_yaml.h"
-#include "core/baseline/grid_explorer.h"
 #include "core/common/config_check.h"
+#include "core/methods/grid_random/grid_explorer.h"
+#include "core/methods/monospheres/planner/monospheres_explorer.h"
 #include "tools/config/flight_yaml.h"
 #include "tools/config/method_table.h"
 #include "tools/config/yaml_reader.h"
@@ -79,10 +80,10 @@ TEST(ScenarioYaml, BaseChainOverridesAndSwitches) {
   EXPECT_DOUBLE_EQ(s.flight.duration_s, 30.0);
   EXPECT_EQ(s.flight.world_path, (d / "world.xml").lexically_normal().string());  // relative to base.yaml
   EXPECT_TRUE(s.flight.perception.enabled);
-  EXPECT_DOUBLE_EQ(mono(s).planner.local_radius_m, 12.0);  // from the base
-  EXPECT_EQ(mono(s).planner.viewpoints.min_value, 5);      // merged map by map
+  EXPECT_DOUBLE_EQ(mono(s).planner.goals.local_radius_m, 12.0);  // from the base
+  EXPECT_EQ(mono(s).planner.viewpoints.min_value, 5);            // merged map by map
   EXPECT_EQ(mono(s).planner.viewpoints.candidates, 50);
-  EXPECT_FALSE(mono(s).planner.fff);
+  EXPECT_FALSE(mono(s).planner.goals.fff);
   EXPECT_TRUE(mono(s).planner.viewpoints.vpb);
   EXPECT_FALSE(s.method.switches.at("fff"));
   EXPECT_TRUE(s.start_from_world);
@@ -98,7 +99,7 @@ TEST(ScenarioYaml, BaseChainOverridesAndSwitches) {
   write(d / "plain.yaml", "world: world.xml\n");
   const ScenarioSpec p = loadScenario((d / "plain.yaml").string());
   EXPECT_DOUBLE_EQ(p.flight.duration_s, 1200.0);
-  EXPECT_TRUE(mono(p).map.ovde && mono(p).map.dbof && mono(p).planner.fff);
+  EXPECT_TRUE(mono(p).map.ovde && mono(p).map.dbof && mono(p).planner.goals.fff);
 }
 
 TEST(ScenarioYaml, TheMethodTableHoldsTheChosenMethodsKeysOnly) {
@@ -224,8 +225,8 @@ TEST(ScenarioYaml, ThePublishedConfigurationTakesTheAuthorsSettingsAndNamedKeysW
   write(d / "published.yaml", "base: base.yaml\nmethod: {reference_code: published}\n");
   const ScenarioSpec p = loadScenario((d / "published.yaml").string());
   EXPECT_DOUBLE_EQ(mono(p).map.r_min_m, 1.6);
-  EXPECT_DOUBLE_EQ(mono(p).planner.fff_turn_rate_rad_per_m, 0.314159);
-  EXPECT_DOUBLE_EQ(mono(p).planner.local_radius_m, 12.0);  // the base's key still applies
+  EXPECT_DOUBLE_EQ(mono(p).planner.goals.fff_turn_rate_rad_per_m, 0.314159);
+  EXPECT_DOUBLE_EQ(mono(p).planner.goals.local_radius_m, 12.0);  // the base's key still applies
   const ScenarioSpec named = loadScenario((d / "published.yaml").string(), {"method.map.r_min_m=1.4"});
   EXPECT_DOUBLE_EQ(mono(named).map.r_min_m, 1.4);
   EXPECT_DOUBLE_EQ(mono(loadScenario((d / "base.yaml").string())).map.r_min_m, 1.4);

@@ -241,7 +241,7 @@ TEST(ScenarioSpec, ADefaultScenarioIsAValidMissionOnceItNamesAWorld) {
   EXPECT_NO_THROW(checkValid(spec));
   EXPECT_EQ(spec.flight.duration_s, 1200.0);
   EXPECT_TRUE(spec.flight.perception.enabled);
-  EXPECT_EQ(spec.method.type, kMonoSpheresType);
+  EXPECT_EQ(spec.method.type, kDefaultMethodType);
 }
 
 TEST(ClosedLoop, SeamsRefuseImpossibleCombinations) {

@@ -3,19 +3,46 @@
 
 #include <gtest/gtest.h>
 
+#include "core/methods/monospheres/planner/monospheres_explorer.h"
+
 namespace msb {
 namespace {
 
+// MonoSpheres with `c`, made from its registration as a scenario's method is.
+MethodChoice monospheres(const MonoSpheresConfig& c) {
+  const MethodRegistration* reg = findRegistration("monospheres");
+  if (!reg) throw std::logic_error("monospheres is not registered");
+  return registeredMethodChoice(*reg, c);
+}
+
 TEST(MethodLabel, NamesTheTypeTheSwitchesOffAndThePublishedDefectsOn) {
   MonoSpheresConfig c;
-  EXPECT_EQ(methodLabel(monospheresMethod(c)), "monospheres");
+  EXPECT_EQ(methodLabel(monospheres(c)), "monospheres");
   c.map.ovde = false;
-  c.planner.fff = false;
-  EXPECT_EQ(methodLabel(monospheresMethod(c)), "monospheres -fff -ovde");
+  c.planner.goals.fff = false;
+  EXPECT_EQ(methodLabel(monospheres(c)), "monospheres -fff -ovde");
   c.reference_code.path_resend_8s = true;
-  EXPECT_EQ(methodLabel(monospheresMethod(c)), "monospheres -fff -ovde +path_resend_8s");
+  EXPECT_EQ(methodLabel(monospheres(c)), "monospheres -fff -ovde +path_resend_8s");
   c.reference_code = ReferenceCodeConfig::published();
-  EXPECT_EQ(methodLabel(monospheresMethod(c)), "monospheres -fff -ovde +published");
+  EXPECT_EQ(methodLabel(monospheres(c)), "monospheres -fff -ovde +published");
+}
+
+}  // namespace
+}  // namespace msb
+
+namespace msb {
+namespace {
+
+TEST(Methods, TheDefaultMethodIsANameLookedUpInTheRegistry) {
+  const MethodChoice m = defaultMethod();
+  EXPECT_EQ(m.type, kDefaultMethodType);
+  EXPECT_NE(std::any_cast<MonoSpheresConfig>(&m.config), nullptr);
+  EXPECT_TRUE(m.takes_goal_chooser);
+  EXPECT_EQ(findRegistration("no_such_method"), nullptr);
+  ASSERT_NE(findRegistration("grid_random"), nullptr);
+  EXPECT_EQ(registeredMethodChoice(*findRegistration("grid_random"), findRegistration("grid_random")->default_config())
+                .octree_resolution_m,
+            0.5);
 }
 
 }  // namespace
