@@ -10,6 +10,7 @@ packages=(
   libopencv-features2d-dev libopencv-calib3d-dev libopencv-imgcodecs-dev
   libcgal-dev libeigen3-dev libyaml-cpp-dev libgtest-dev liboctomap-dev nlohmann-json3-dev
   libnlopt-dev  # the MRS trajectory generator's LD_LBFGS time allocation (sim/physics)
+  libssl-dev  # HMAC-SHA256 seals of run records under an evaluator's key (docs/integrity.md)
   libassimp-dev libstb-dev  # imported world meshes and their images (docs/worlds.md, "Imported meshes")
   python3-matplotlib python3-markdown  # `msbench report` figures and report.html (tools/sweep/report_*.py)
   ffmpeg  # `msbench run --video` encodes video.mp4 with the ffmpeg program (docs/video.md)

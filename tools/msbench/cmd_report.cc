@@ -104,8 +104,11 @@ int runReportCommand(int argc, char** argv) {
   args.positional("DIR", "sweep directory (from msbench sweep)")
       .option("out", "", "report directory (default DIR/report; an earlier report there is replaced)")
       .option("suite", "",
-              "published runs whose settings the runs must share (e.g. results/table1; default: the suite the runs "
-              "name); others are set aside")
+              "published runs whose settings the runs must share (e.g. results/table1; default: msbench's own "
+              "settings, never one a run names); others are set aside")
+      .option("key", "",
+              "the evaluator's key file: rank only records sealed under it (docs/integrity.md); default: seals "
+              "are not verified")
       .flag("no-figures", "write the Markdown and CSV files only");
   if (!args.parse(argc, argv)) return kExitOk;
   const fs::path dir = args.get("DIR");
@@ -113,13 +116,18 @@ int runReportCommand(int argc, char** argv) {
   SweepResults results;
   try {
     results = loadSweepResults(dir);
-    // The suite given, else the one the runs were made for (their scenario's `suite:`).
-    const std::string suite = args.get("suite").empty() ? suiteNamedByRuns(results) : args.get("suite");
+    // The suite given on the command line, never one the runs name for themselves.
+    const std::string suite = args.get("suite");
     if (!suite.empty() && !fs::is_directory(suite))
-      throw std::runtime_error("the suite " + suite + " is not a directory from here (" +
-                               (args.get("suite").empty() ? "named by the runs" : "--suite") +
-                               "): run from the repository, or give --suite PATH");
+      throw std::runtime_error("--suite " + suite + ": not a directory from here: run from the repository");
     applyRankRules(results);  // every report: only sealed, confined runs are ranked
+    if (!args.get("key").empty()) {
+      const SealSummary seals = applySealRules(results, readEvaluatorKey(args.get("key")));
+      std::fprintf(
+          stderr, "report: evaluator key %s: %d runs sealed under it, %d not (listed, not ranked)%s\n",
+          seals.key_id.c_str(), seals.evaluated, seals.not_evaluated,
+          seals.tampered ? (", " + std::to_string(seals.tampered) + " tampered (counted as failed)").c_str() : "");
+    }
     if (!suite.empty())
       applySuite(results, suite);
     else  // the default suite: msbench's own settings, where some run flies them

@@ -25,6 +25,7 @@
 #include "tools/results/output_files.h"
 #include "tools/results/perception_log.h"
 #include "tools/results/provenance.h"
+#include "tools/results/record_seal.h"
 #include "tools/results/run_record.h"
 #include "tools/results/run_video.h"
 
@@ -146,6 +147,10 @@ int runRunCommand(int argc, char** argv) {
                      ": the video encoder (the ffmpeg program) is not installed or not on PATH (apt-get install "
                      "ffmpeg); the scenario itself is fine");
   if (spec.method.type == kPythonMethodType || spec.goals) execPythonRun(original_args);
+  // A key file named but unusable: the run goes on, self-sealed, and says so first.
+  if (const SealingKey& key = processSealingKey(); !key.problem.empty())
+    std::fprintf(stderr, "msbench run: the record will be self-sealed (not ranked as evaluated): %s\n",
+                 key.problem.c_str());
   const std::string effective_yaml =
       effectiveScenarioYaml(runOwnComputeLog(spec));  // before the world fills in the start
   MissionWorld world = prepareMissionWorld(file, spec);
@@ -222,6 +227,8 @@ int runRunCommand(int argc, char** argv) {
   out.commit();
 
   printRunSummary(spec, r, metrics, out.finalDir());
+  if (const SealingKey& key = processSealingKey(); key.key)
+    std::printf("run %s: record sealed under evaluator key %s\n", spec.name.c_str(), key.key->id.c_str());
   return kExitOk;
 }
 

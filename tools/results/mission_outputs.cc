@@ -12,6 +12,7 @@
 #include "tools/results/flight_records.h"
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
+#include "tools/results/record_seal.h"
 #include "tools/results/run_record.h"
 #include "tools/results/topdown.h"
 
@@ -140,6 +141,16 @@ nlohmann::json wallPerSimSecondJson(const FlightResult& f, const StageTimes& s) 
 
 }  // namespace
 
+nlohmann::json recordedCounters(const std::map<std::string, double>& counters) {
+  // Name order (the map's), the first kMaxRecordedCounters whose names fit; a long name is cut.
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, value] : counters) {
+    if (out.size() == kMaxRecordedCounters) break;
+    out[name.substr(0, kMaxCounterNameBytes)] = std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+  }
+  return out;
+}
+
 nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, const WorldTruth* truth) {
   const FlightResult& f = r.flight;
   nlohmann::json j;
@@ -186,7 +197,8 @@ nlohmann::json missionMetrics(const ScenarioSpec& spec, const MissionResult& r, 
                         {"p99", percentile(r.map_update_ms, 0.99)},
                         {"max", percentile(r.map_update_ms, 1.0)}};
   j["peak_rss_mb"] = peakRssMb();
-  j["counters"] = r.counters;
+  j["counters"] = recordedCounters(r.counters);
+  if (r.counters.size() > kMaxRecordedCounters) j["counters_dropped"] = r.counters.size() - kMaxRecordedCounters;
   j["versions"] = versionInfo();
   j["machine"] = machineFingerprint(f.gl_description);
   j["trajectory_hash"] = hexHash(f.trajectory_hash);
@@ -279,7 +291,12 @@ nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const Scena
   // What finishes after the run's files (its video: on a full disk, they go first) adds its keys
   // before the record is sealed.
   if (extra) metrics.update(extra());
-  metrics["record_digest"] = recordDigest(metrics, coverage_csv);  // the seal report and regress check
+  // The seals: keyed by the evaluator's key when the process has one (docs/integrity.md), and the
+  // unkeyed digest every reader checks for edits.
+  metrics["record_format"] = kRecordFormat;
+  const SealingKey& key = processSealingKey();
+  metrics["record_seal"] = key.key ? recordSeal(*key.key, metrics, coverage_csv) : std::string(kSelfSealedValue);
+  metrics["record_digest"] = recordDigest(metrics, coverage_csv);
   writeFileAtomic(dir / "metrics.json", metrics.dump(2) + "\n");
   return metrics;
 }
@@ -293,6 +310,7 @@ nlohmann::json writeErroredMissionOutputs(const std::filesystem::path& dir, cons
     r.flight.status = status;
     m = writeMissionOutputs(dir, spec, r, truth);
     m.erase("record_digest");  // an error record is no result: nothing to seal
+    m.erase("record_seal");
     m["error"] = what;
     if (error_tick < 0) error_tick = r.flight.ticks;
   } catch (const std::exception& again) {

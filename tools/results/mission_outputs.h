@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +15,15 @@
 #include "tools/results/output_files.h"
 
 namespace msb {
+
+/// Most counters a record keeps of a method's (the method writes them: a record must not carry
+/// what it saw, e.g. a map as thousands of counters), and the longest name kept.
+inline constexpr size_t kMaxRecordedCounters = 64;
+inline constexpr size_t kMaxCounterNameBytes = 64;
+
+/// metrics.json `counters`: the first kMaxRecordedCounters of `counters` in name order, names cut
+/// to kMaxCounterNameBytes, non-finite values as null (`counters_dropped` says how many were left).
+nlohmann::json recordedCounters(const std::map<std::string, double>& counters);
 
 /// metrics.json content. `truth` (generated worlds, may be null) names the collided object and
 /// its kind (textured, textureless, thin, ground).

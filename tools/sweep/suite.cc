@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/common/input_file.h"
 #include "tools/config/scenario_yaml.h"
 
 namespace msb {
@@ -148,8 +149,12 @@ void applyRankRules(SweepResults& results) {
     const std::string confinement = m.contains("method_confinement") && m["method_confinement"].is_string()
                                         ? m["method_confinement"].get<std::string>()
                                         : "";
-    if (!confinement.empty() && !m.contains("record_digest"))
+    // Which seals the record must carry is decided by the build that wrote it (its version).
+    const bool keyed_build = !writtenBeforeKeyedSeals(m);
+    if ((keyed_build || !confinement.empty()) && !m.contains("record_digest"))
       run.unranked = "unsealed: its record has no record_digest, which every build that records confinement writes";
+    else if (keyed_build && !m.contains("record_seal"))
+      run.unranked = "unsealed: its record has no record_seal, which every build since record_format 2 writes";
     else if (confinement.find("unconfined") != std::string::npos || confinement.find("in-process") != std::string::npos)
       run.unranked = "unconfined: its method ran " + confinement;
     if (run.unranked.empty()) continue;
@@ -158,18 +163,70 @@ void applyRankRules(SweepResults& results) {
   }
 }
 
-std::string suiteNamedByRuns(const SweepResults& results) {
-  std::set<std::string> named;
-  for (const ReportRun& r : results.runs) {
-    if (!r.record) continue;
-    const auto it = r.metrics.find("suite");
-    named.insert(it != r.metrics.end() && it->is_string() ? it->get<std::string>() : "");
+namespace {
+
+// Why a record not sealed under the evaluator's key is not ranked as evaluated.
+std::string notEvaluatedReason(SealCheck check, const nlohmann::json& m) {
+  switch (check) {
+    case SealCheck::kSelfSealed:
+      return "self-sealed: written without the evaluator's key";
+    case SealCheck::kPreSeal:
+      return "pre-seal: written by msbench " +
+             (m.contains("versions") && m["versions"].is_object() ? m["versions"].value("msbench", std::string("?"))
+                                                                  : std::string("?")) +
+             ", before keyed seals";
+    case SealCheck::kOtherKey:
+      return "sealed under another evaluator key (" + sealKeyId(m) + ")";
+    default:
+      return "";
   }
-  named.erase("");
-  if (named.size() > 1)
-    throw std::runtime_error("the runs name " + std::to_string(named.size()) + " suites (" + *named.begin() + ", " +
-                             *std::next(named.begin()) + ", ...): give --suite");
-  return named.empty() ? "" : *named.begin();
+}
+
+}  // namespace
+
+SealSummary applySealRules(SweepResults& results, const EvaluatorKey& key) {
+  SealSummary sum;
+  sum.key_id = key.id;
+  std::set<std::string> other_ids;
+  for (ReportRun& run : results.runs) {
+    if (run.status != "complete" || !run.record) continue;
+    const fs::path csv = results.dir / "runs" / run.id / "coverage.csv";
+    std::string text;
+    try {
+      text = readInputFile(csv);
+    } catch (const InputFileError&) {
+      // loadSweepResults read it a moment ago: a vanished file is a changed record.
+    }
+    const SealCheck check = checkRecordSeal(key, run.metrics, text);
+    if (check == SealCheck::kEvaluated) {
+      ++sum.evaluated;
+      continue;
+    }
+    if (check == SealCheck::kTampered) {
+      // Sealed under this key and changed since, or re-sealed by someone without it: not a result.
+      ++sum.tampered;
+      run.status = "failed";
+      run.failure.emplace();
+      run.failure->problem =
+          "key 'record_seal': the record or its coverage.csv changed after msbench sealed them "
+          "under evaluator key " +
+          key.id + " (tampered or re-sealed): the run is not counted";
+      run.record.reset();
+      continue;
+    }
+    if (check == SealCheck::kOtherKey) other_ids.insert(sealKeyId(run.metrics));
+    ++sum.not_evaluated;
+    run.unranked = notEvaluatedReason(check, run.metrics);
+    run.status = "unranked";
+    run.record.reset();
+  }
+  // Keyed records, none under this key: the evaluator gave the wrong key file.
+  if (sum.evaluated == 0 && sum.tampered == 0 && !other_ids.empty())
+    throw std::runtime_error("--key " + key.file + ": its key " + key.id + " sealed none of these runs; " +
+                             std::to_string(other_ids.size()) + " other key(s) did (" + *other_ids.begin() +
+                             (other_ids.size() > 1 ? ", ..." : "") + "): the wrong key file?");
+  results.sealed_under = key.id;
+  return sum;
 }
 
 }  // namespace msb

@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "tools/results/record_seal.h"
 #include "tools/sweep/sweep_report.h"
 
 namespace msb {
@@ -48,8 +49,21 @@ std::set<std::string> worldsOf(const SweepResults& results);
 /// under --suite).
 void applyRetunedRule(SweepResults& results, const SettingsByWorld& own);
 
-/// The suite the complete runs name (metrics.json `suite`, from the scenario's `suite:` key):
-/// "" if none names one; throws std::runtime_error if they name different suites.
-std::string suiteNamedByRuns(const SweepResults& results);
+/// What applySealRules found.
+struct SealSummary {
+  std::string key_id;
+  int evaluated = 0;      ///< ranked: sealed under the key, unchanged
+  int not_evaluated = 0;  ///< self-sealed, pre-seal or another key's: listed, not ranked
+  int tampered = 0;       ///< sealed under the key and changed since: counted as failed
+};
+
+/// The rule of a report under the evaluator's key (`msbench report --key`, docs/integrity.md):
+/// a complete run is ranked only if its record is sealed under `key` and unchanged since. A
+/// self-sealed record, one written before keyed seals (writtenBeforeKeyedSeals) and one sealed
+/// under another key are set aside as "unranked" with the reason; a record whose seal names this
+/// key but does not match (edited, or re-sealed by a forger) is a failed run: it counts as one
+/// (score 0, A 0), never as a result. Throws std::runtime_error naming the key file when records
+/// here carry keyed seals and none is under `key` (the wrong key).
+SealSummary applySealRules(SweepResults& results, const EvaluatorKey& key);
 
 }  // namespace msb

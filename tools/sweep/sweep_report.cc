@@ -280,7 +280,14 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
     }
     ReportRow& row = *it;
     ++row.runs;
-    if (run.status == "failed") ++row.failed;
+    if (run.status == "failed") {
+      // A failed run counts in the means with nothing explored and nothing earned: abstaining on a
+      // bad seed must not raise a row.
+      ++row.failed;
+      add(row.area_m2, 0.0);
+      add(row.earned_m3, 0.0);
+      row.area_seeds.push_back(run.seed);
+    }
     if (!run.record) continue;
     const nlohmann::json& m = run.metrics;
     ++row.complete;
@@ -321,6 +328,9 @@ std::vector<ReportRow> reportRows(const SweepResults& results) {
       ++row.collisions_by_kind[kind];
     }
   }
+  // Records from before the earned score carry none: a row's failed zeros alone are no score.
+  for (ReportRow& row : rows)
+    if (row.earned_m3.count == row.failed) row.earned_m3 = MeanOf{};
   return rows;
 }
 
@@ -612,6 +622,12 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
     << (results.suite.empty() ? "" : ", " + std::to_string(off_suite) + " off the suite " + mdText(results.suite))
     << (unranked ? ", " + std::to_string(unranked) + " not ranked" : "")
     << ". A = explored 2.5 m columns (m², unbounded, VIO frame, as the paper's Table I).\n\n";
+  // Whose seals were checked: the evaluator's key, or none (a researcher's own report).
+  o << (results.sealed_under.empty()
+            ? std::string("Seals: not verified under an evaluator key (`msbench report --key FILE` ranks only "
+                          "records sealed under it; docs/integrity.md).\n\n")
+            : "Seals: verified under evaluator key " + results.sealed_under +
+                  "; only records sealed under it and unchanged are ranked (docs/integrity.md).\n\n");
   // Runs not ranked (unsealed, unconfined): set aside, said first.
   if (unranked > 0) {
     o << "## Not ranked\n\nThese runs completed, but only sealed records of methods that ran confined or "
@@ -632,7 +648,8 @@ std::string reportMarkdown(const SweepResults& results, const std::vector<Report
   }
   // Failed runs first: a table with a hole in it must say so before anything else.
   if (failed > 0) {
-    o << "## Failed runs\n\nThese runs have no result; the rows below average the others. Re-running the same "
+    o << "## Failed runs\n\nThese runs have no result; each counts in its row with A = 0 and score 0 (a method "
+         "that fails is never better off than one that flies; docs/metrics.md). Re-running the same "
          "`msbench sweep` command redoes them.\n\n| run | ended by | last progress | fatal signal report | log |\n"
          "| --- | --- | --- | --- | --- |\n";
     for (const ReportRun& r : results.runs) {

@@ -40,7 +40,8 @@ struct SweepResults {
   std::filesystem::path dir;
   std::vector<std::string> axes;
   std::vector<ReportRun> runs;
-  std::string suite;  ///< the suite the runs were checked against (applySuite), "" for none
+  std::string suite;         ///< the suite the runs were checked against (applySuite), "" for none
+  std::string sealed_under;  ///< the evaluator key id the runs were verified under (applySealRules), "" for none
 };
 
 /// A mean over the runs where a quantity exists, how many runs that is, and their values (in run

@@ -195,6 +195,11 @@ def test_a_confined_method_opens_no_socket_and_runs_nothing_from_memory(tmp_path
         self.found['netlink'] = tries(lambda: socket.socket(socket.AF_NETLINK, socket.SOCK_RAW).close())
         self.found['memfd'] = tries(lambda: os.close(os.memfd_create('x')))
         self.found['socketpair'] = tries(lambda: [x.close() for x in socket.socketpair()])
+        # io_uring makes sockets and opens files without socket() or open(): io_uring_setup(8, p).
+        import ctypes
+        libc = ctypes.CDLL(None, use_errno=True)
+        params = ctypes.create_string_buffer(120)
+        self.found['io_uring'] = 1.0 if libc.syscall(425, 8, params) >= 0 else 0.0
         # A program it wrote, run through the dynamic loader (Landlock's execute right does not
         # see it: the loader is the program), and a program of the installation.
         import shutil
@@ -207,8 +212,40 @@ def test_a_confined_method_opens_no_socket_and_runs_nothing_from_memory(tmp_path
     assert r.returncode == 0, r.stderr
     m = metrics(out)
     assert m["counters"] == {"udp": 0.0, "unix": 0.0, "netlink": 0.0, "memfd": 0.0, "socketpair": 1.0, "ld.so": 0.0,
-                             "exec": 0.0}, m["counters"]
-    assert "no sockets, memfd or exec" in m["method_confinement"], m["method_confinement"]
+                             "exec": 0.0, "io_uring": 0.0}, m["counters"]
+    assert "no sockets, memfd, exec or io_uring, native system calls only" in m["method_confinement"], \
+        m["method_confinement"]
+
+
+I386_SOCKET = r"""
+long msb_i386_socket(void) {
+  long ret;  /* socket(AF_INET, SOCK_DGRAM, 0) through the i386 ABI: number 359 */
+  __asm__ volatile("int $0x80" : "=a"(ret) : "a"(359L), "b"(2L), "c"(2L), "d"(0L) : "memory");
+  return ret;
+}
+"""
+
+
+@pytest.mark.skipif(os.uname().machine != "x86_64", reason="the i386 ABI exists on x86-64 only")
+def test_a_system_call_through_another_abi_ends_the_method(tmp_path):
+    # A library the method ships makes its calls through i386's `int 0x80`, which the filter's
+    # native numbers do not see: before, it opened a UDP socket (and could connect pathname
+    # sockets, exec programs). Now any call from another ABI kills the method's process.
+    init = textwrap.indent(textwrap.dedent("""
+        import ctypes
+        shipped = ctypes.CDLL(os.path.join(os.path.dirname(__file__), "libi386.so"))
+        shipped.msb_i386_socket.restype = ctypes.c_long
+        self.found['i386_socket'] = 1.0 if shipped.msb_i386_socket() >= 0 else 0.0
+    """), " " * 8)
+    file = scenario(tmp_path, init=init)
+    (tmp_path / "i386.c").write_text(I386_SOCKET)
+    subprocess.run(["cc", "-shared", "-fPIC", "-O1", "-o", str(tmp_path / "method" / "libi386.so"),
+                    str(tmp_path / "i386.c")], check=True)
+    out = tmp_path / "run"
+    r = run(file, out)
+    m = metrics(out)
+    assert m["status"] == "method_exited", (m["status"], m.get("counters"), r.stderr[-2000:])
+    assert "SIGSYS" in m.get("error", "") + r.stderr, (m.get("error"), r.stderr[-2000:])
 
 
 def test_a_confined_method_spawns_within_its_task_limit_and_the_run_goes_on(tmp_path):

@@ -16,6 +16,7 @@
 
 #include "tests/tools/cli_helpers.h"
 #include "tools/config/scenario_yaml.h"
+#include "tools/results/record_seal.h"
 #include "tools/results/run_record.h"
 #include "tools/sweep/findings.h"
 #include "tools/sweep/regression.h"
@@ -120,17 +121,82 @@ TEST(SweepReport, ASuiteRefusesRunsDrawnWithDifferentWorldSalts) {
   EXPECT_THROW(applySuite(s, d / "suite"), std::runtime_error);  // one salted, one not
 }
 
-TEST(SweepReport, TheSuiteIsTheOneTheRunsRecord) {
+// Abstention does not pay (issue 93): a method that exits when a seed goes badly keeps the run in
+// its row at A = 0 and score 0; before, the failed run left the mean and raised the row.
+TEST(SweepReport, AFailedRunCountsInItsRowAsNothingExploredAndNothingEarned) {
   SweepResults s;
-  s.runs = {madeRun("urban-mine-s1", "urban", "mine", 800, "completed"),
-            madeRun("cave-mine-s1", "cave", "mine", 500, "completed")};
-  EXPECT_EQ(suiteNamedByRuns(s), "");  // runs made for no suite
-  s.runs[0].metrics["suite"] = "results/table1";
-  EXPECT_EQ(suiteNamedByRuns(s), "results/table1");
-  s.runs[1].metrics["suite"] = "results/table1";
-  EXPECT_EQ(suiteNamedByRuns(s), "results/table1");
-  s.runs[1].metrics["suite"] = "results/other";
-  EXPECT_THROW(suiteNamedByRuns(s), std::runtime_error);  // two suites: the report asks for --suite
+  s.axes = {"world", "method"};
+  s.runs = {madeRun("urban-honest-s1", "urban", "honest", 500, "completed"),
+            madeRun("urban-honest-s2", "urban", "honest", 500, "completed"),
+            madeRun("urban-honest-s3", "urban", "honest", 300, "completed"),
+            madeRun("urban-quitter-s1", "urban", "quitter", 500, "completed"),
+            madeRun("urban-quitter-s2", "urban", "quitter", 500, "completed"),
+            madeRun("urban-quitter-s3", "urban", "quitter", 300, "completed")};
+  for (ReportRun& r : s.runs) r.metrics["score"] = {{"earned", 10 * r.record->area_m2}};
+  for (ReportRun& r : s.runs) r.record = missionRecordOf(r.metrics, r.id).record;
+  // The quitter's bad seed: its method exited, so the run failed.
+  s.runs[5].status = "failed";
+  s.runs[5].record.reset();
+  s.runs[5].failure.emplace();
+  s.runs[5].seed = 3;
+  const std::vector<ReportRow> rows = reportRows(s);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].area_m2.count, 3);
+  EXPECT_NEAR(rows[1].area_m2.mean, 1000.0 / 3, 1e-9);
+  EXPECT_LT(rows[1].area_m2.mean, rows[0].area_m2.mean);
+  EXPECT_NEAR(rows[1].earned_m3.mean, 10000.0 / 3, 1e-9);
+  EXPECT_EQ(rows[1].failed, 1);
+  EXPECT_NE(reportMarkdown(s, rows).find("counts in its row with A = 0 and score 0"), std::string::npos);
+}
+
+// Under the evaluator's key (`report --key`, docs/integrity.md): only records sealed under it
+// are ranked; self-sealed, pre-seal and other keys' records are listed; a forged re-seal (the
+// public digest recomputed) counts as a failed run; a key that sealed nothing here is refused.
+TEST(SweepReport, UnderTheEvaluatorsKeyOnlyItsSealedRecordsAreRanked) {
+  const fs::path d = msb_test::tempDir("msb_report_", "keyed");
+  std::ofstream(d / "evaluator.key") << "the evaluator's key: 32 bytes ok";
+  std::ofstream(d / "submitter.key") << "a submitter's own key, 32 bytes.";
+  const EvaluatorKey key = readEvaluatorKey(d / "evaluator.key");
+  const EvaluatorKey theirs = readEvaluatorKey(d / "submitter.key");
+  SweepResults s;
+  s.dir = d / "sweep";
+  s.axes = {"world", "method"};
+  const std::string csv = "t_s,area_m2\n0,0\n";
+  auto made = [&](const std::string& id, double area, const EvaluatorKey* with) {
+    ReportRun r = madeRun(id, "urban", id.substr(6, id.size() - 9), area, "completed");
+    r.metrics["versions"] = {{"msbench", "0.2.0"}};
+    r.metrics["record_format"] = kRecordFormat;
+    r.metrics["record_seal"] = with ? recordSeal(*with, r.metrics, csv) : std::string(kSelfSealedValue);
+    fs::create_directories(s.dir / "runs" / id);
+    std::ofstream(s.dir / "runs" / id / "coverage.csv") << csv;
+    return r;
+  };
+  s.runs = {made("urban-ms-s1", 500, &key), made("urban-self-s1", 900, nullptr), made("urban-theirs-s1", 900, &theirs),
+            made("urban-forged-s1", 500, &key), madeRun("urban-old-s1", "urban", "old", 400, "completed")};
+  s.runs[3].metrics["coverage"]["area_m2"] = 9000.0;  // raised after sealing
+  SweepResults wrong = s;
+  const SealSummary sum = applySealRules(s, key);
+  EXPECT_EQ(sum.evaluated, 1);
+  EXPECT_EQ(sum.not_evaluated, 3);
+  EXPECT_EQ(sum.tampered, 1);
+  EXPECT_EQ(s.runs[0].status, "complete");
+  EXPECT_NE(s.runs[1].unranked.find("self-sealed"), std::string::npos) << s.runs[1].unranked;
+  EXPECT_NE(s.runs[2].unranked.find("another evaluator key (" + theirs.id + ")"), std::string::npos);
+  EXPECT_EQ(s.runs[3].status, "failed");
+  EXPECT_NE(s.runs[3].failure->problem.find("tampered or re-sealed"), std::string::npos);
+  EXPECT_NE(s.runs[4].unranked.find("pre-seal"), std::string::npos) << s.runs[4].unranked;
+  const std::vector<ReportRow> rows = reportRows(s);
+  for (const ReportRow& r : rows) EXPECT_LT(r.area_m2.mean, 1000.0) << rowName(r);
+  const std::string md = reportMarkdown(s, rows);
+  EXPECT_NE(md.find("verified under evaluator key " + key.id), std::string::npos) << md;
+  // The submitter's key on the evaluator's runs: nothing sealed under it but keyed seals here.
+  wrong.runs = {wrong.runs[0]};
+  try {
+    applySealRules(wrong, theirs);
+    ADD_FAILURE() << "a key that sealed nothing was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find((d / "submitter.key").string()), std::string::npos) << e.what();
+  }
 }
 
 TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
@@ -153,7 +219,9 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   EXPECT_EQ(full.runs, 3);
   EXPECT_EQ(full.complete, 2);
   EXPECT_EQ(full.failed, 1);
-  EXPECT_DOUBLE_EQ(full.area_m2.mean, 700.0);
+  // The failed run counts with A = 0 (issue 93: abstention must not raise a row).
+  EXPECT_EQ(full.area_m2.count, 3);
+  EXPECT_DOUBLE_EQ(full.area_m2.mean, 1400.0 / 3);
   EXPECT_DOUBLE_EQ(full.max_area_m2, 800.0);
   EXPECT_EQ(full.crashes, 1);
   EXPECT_EQ(full.collisions_by_kind.at("textureless"), 1);
@@ -170,9 +238,9 @@ TEST(SweepReport, RowsGroupRunsAndCarryThePapersFigures) {
   EXPECT_EQ(rows[1].collisions_by_kind.at("thin"), 1);
   // The Markdown names every row and the failed run; the CSV has a line per row.
   const std::string md = reportMarkdown(s, rows);
-  // Two runs (600, 800): the bootstrap means are 600, 700, 800 with probabilities 1/4, 1/2, 1/4.
   // (No earned column: these runs recorded no earned score.)
-  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 700 {600, 800} | 800 | 4919 | 6081 | 1/2 [0.09, 0.91] | "
+  // The failed run's A = 0 is in the mean and its interval.
+  EXPECT_NE(md.find("| urban | full | monospheres | 2 of 3 | 467 [0, 800] | 800 | 4919 | 6081 | 1/2 [0.09, 0.91] | "
                     "2/6 (p = 1.00) |"),
             std::string::npos)
       << md;
@@ -463,6 +531,65 @@ TEST(SweepReport, ReportAndRegressOnARealSweep) {
   editMetrics(out / "runs" / "full-s1", [](nlohmann::json&) {});
 }
 
+// The evaluator's key end to end (docs/integrity.md): a sweep run with $MSBENCH_EVALUATOR_KEY_FILE
+// seals its records under it; `report --key` ranks them, counts a forged re-seal as failed and
+// refuses another key or a missing key file (exit 2, the file named); a key file that cannot be
+// read leaves the run self-sealed and says so (exit 0); a suite a run names for itself is not
+// adopted by the report (before: the report set the honest runs aside against it).
+TEST(SweepReport, TheEvaluatorsKeySealsASweepAndTheReportVerifiesIt) {
+  const fs::path d = msb_test::tempDir("msb_report_", "evaluator_key");
+  std::ofstream(d / "evaluator.key") << "the evaluator's key: 32 bytes ok\n";
+  std::ofstream(d / "other.key") << "somebody else's key, 32 bytes ok\n";
+  const std::string scenario = std::string(MSB_SOURCE_DIR) + "/scenarios/missions/test_world_short.yaml";
+  std::ofstream(d / "sweep.yaml") << "scenario: " << scenario
+                                  << "\nset: {duration_s: 2, suite: " << (d / "mine").string() << "}\nseeds: 2\n";
+  const fs::path out = d / "out";
+  setenv(kEvaluatorKeyFileVariable, (d / "evaluator.key").c_str(), 1);
+  const int swept = run("sweep '" + (d / "sweep.yaml").string() + "' --out '" + out.string() + "' --jobs 2", d / "log");
+  unsetenv(kEvaluatorKeyFileVariable);
+  ASSERT_EQ(swept, 0) << readText(d / "log");
+  const std::string id = readEvaluatorKey(d / "evaluator.key").id;
+  const auto m = nlohmann::json::parse(readText(out / "runs" / "s1" / "metrics.json"));
+  EXPECT_EQ(m["record_format"], kRecordFormat);
+  EXPECT_EQ(m["record_seal"].get<std::string>().rfind("hmac-sha256:" + id + ":", 0), 0u) << m.dump();
+  EXPECT_EQ(readText(out / "runs" / "s1" / "metrics.json").find("32 bytes ok"), std::string::npos);
+  // Verified: both ranked; the run-named suite (a directory that does not exist) is not adopted.
+  ASSERT_EQ(
+      run("report '" + out.string() + "' --no-figures --key '" + (d / "evaluator.key").string() + "'", d / "log_key"),
+      0)
+      << readText(d / "log_key");
+  EXPECT_NE(readText(d / "log_key").find("2 runs sealed under it, 0 not"), std::string::npos)
+      << readText(d / "log_key");
+  EXPECT_NE(readText(out / "report" / "report.md").find("2 runs: 2 complete"), std::string::npos);
+  // Another key, a missing key file: exit 2, the file named.
+  EXPECT_EQ(run("report '" + out.string() + "' --no-figures --key '" + (d / "other.key").string() + "'", d / "log_o"),
+            2);
+  EXPECT_NE(readText(d / "log_o").find((d / "other.key").string()), std::string::npos) << readText(d / "log_o");
+  EXPECT_NE(readText(d / "log_o").find("sealed none of these runs"), std::string::npos) << readText(d / "log_o");
+  EXPECT_EQ(run("report '" + out.string() + "' --no-figures --key '" + (d / "none.key").string() + "'", d / "log_n"),
+            2);
+  EXPECT_NE(readText(d / "log_n").find((d / "none.key").string() + ": file not found"), std::string::npos)
+      << readText(d / "log_n");
+  // A forger raises a score and recomputes the public digest: the report without a key takes it,
+  // the evaluator's report counts the run as failed.
+  editMetrics(out / "runs" / "s2", [](nlohmann::json& j) { j["coverage"]["area_m2"] = 5000.0; });
+  ASSERT_EQ(run("report '" + out.string() + "' --no-figures", d / "log_plain"), 0) << readText(d / "log_plain");
+  EXPECT_NE(readText(out / "report" / "report.md").find("not verified under an evaluator key"), std::string::npos);
+  ASSERT_EQ(run("report '" + out.string() + "' --no-figures --key '" + (d / "evaluator.key").string() + "'",
+                d / "log_forged"),
+            0);
+  EXPECT_NE(readText(d / "log_forged").find("1 tampered"), std::string::npos) << readText(d / "log_forged");
+  EXPECT_NE(readText(out / "report" / "report.md").find("tampered or re-sealed"), std::string::npos);
+  // An unreadable key file at run time: the run goes on self-sealed and says so.
+  setenv(kEvaluatorKeyFileVariable, (d / "none.key").c_str(), 1);
+  const int self =
+      run("run '" + scenario + "' --duration 1 --quiet --out '" + (d / "self").string() + "'", d / "log_s");
+  unsetenv(kEvaluatorKeyFileVariable);
+  EXPECT_EQ(self, 0) << readText(d / "log_s");
+  EXPECT_NE(readText(d / "log_s").find("self-sealed"), std::string::npos) << readText(d / "log_s");
+  EXPECT_EQ(nlohmann::json::parse(readText(d / "self" / "metrics.json"))["record_seal"], kSelfSealedValue);
+}
+
 }  // namespace
 }  // namespace msb
 
@@ -700,7 +827,12 @@ TEST(SweepReport, OnlySealedConfinedRunsAreRanked) {
   chooser.metrics["method_confinement"] = "in-process goal chooser (unconfined)";
   chooser.metrics["record_digest"] = "x";
   ReportRun old = madeRun("urban-old-s1", "urban", "old", 400, "completed");  // before the seal: as before
-  s.runs = {honest, unsealed, chooser, old};
+  // A record of a build that writes keyed seals, with its record_seal deleted: unsealed, whatever
+  // else it lacks (pre-seal is decided by the build's version).
+  ReportRun stripped = madeRun("urban-stripped-s1", "urban", "stripped", 9000, "completed");
+  stripped.metrics["versions"] = {{"msbench", "0.2.0"}};
+  stripped.metrics["record_digest"] = "x";
+  s.runs = {honest, unsealed, chooser, old, stripped};
   applyRankRules(s);
   EXPECT_EQ(s.runs[0].status, "complete");
   EXPECT_EQ(s.runs[1].status, "unranked");
@@ -708,6 +840,8 @@ TEST(SweepReport, OnlySealedConfinedRunsAreRanked) {
   EXPECT_EQ(s.runs[2].status, "unranked");
   EXPECT_NE(s.runs[2].unranked.find("unconfined"), std::string::npos);
   EXPECT_EQ(s.runs[3].status, "complete");
+  EXPECT_EQ(s.runs[4].status, "unranked");
+  EXPECT_NE(s.runs[4].unranked.find("no record_seal"), std::string::npos) << s.runs[4].unranked;
   const std::vector<ReportRow> rows = reportRows(s);
   for (const ReportRow& r : rows) EXPECT_LT(r.area_m2.mean, 1000.0) << rowName(r);
   const std::string md = reportMarkdown(s, rows);

@@ -118,11 +118,12 @@ def _allow(libc, ruleset, path, rights, excluded):
 
 # seccomp (include/uapi/linux/seccomp.h, filter.h, audit.h): what Landlock does not cover.
 _PR_SET_SECCOMP, _SECCOMP_MODE_FILTER = 22, 2
-_SECCOMP_RET_ALLOW, _SECCOMP_RET_ERRNO = 0x7FFF0000, 0x00050000
+_SECCOMP_RET_ALLOW, _SECCOMP_RET_ERRNO, _SECCOMP_RET_KILL_PROCESS = 0x7FFF0000, 0x00050000, 0x80000000
 _BPF_LD_W_ABS, _BPF_JEQ_K, _BPF_JGE_K, _BPF_RET_K = 0x20, 0x15, 0x35, 0x06
-# Per architecture: its audit number and the calls denied (socket, memfd_create, execve, execveat).
-_DENIED_CALLS = {0xC000003E: (41, 319, 59, 322),   # x86-64
-                 0xC00000B7: (198, 279, 221, 281)}  # arm64
+# Per architecture: its audit number and the calls denied (socket, memfd_create, execve, execveat,
+# io_uring_setup, io_uring_enter, io_uring_register: io_uring makes sockets without socket()).
+_DENIED_CALLS = {0xC000003E: (41, 319, 59, 322, 425, 426, 427),   # x86-64
+                 0xC00000B7: (198, 279, 221, 281, 425, 426, 427)}  # arm64
 
 
 class _SockFilter(ctypes.Structure):
@@ -136,19 +137,23 @@ class _SockFprog(ctypes.Structure):
 def deny_calls(libc):
     """A seccomp filter: socket() (UDP, pathname and every other socket; socketpair() stays, for
     multiprocessing), memfd_create() (code run from memory), execve() and execveat() (no program
-    runs: not one the method wrote, through `ld.so ./copy` or from memory) fail with EPERM. Needs
-    no_new_privs (set with the Landlock rules). Returns "" or why not."""
+    runs: not one the method wrote, through `ld.so ./copy` or from memory) and io_uring (sockets
+    and files without the calls above) fail with EPERM; a call through another ABI — i386's
+    `int 0x80`, x32 (bit 30 of the number) — kills the process (the checks above see the native
+    numbers only). Needs no_new_privs (set with the Landlock rules). Returns "" or why not."""
     prog = [_SockFilter(_BPF_LD_W_ABS, 0, 0, 4)]  # the architecture
     for arch, numbers in _DENIED_CALLS.items():
+        # A block of n + 7: arch?, load nr, x32?, n denied numbers, allow, deny, kill, reload arch.
         n = len(numbers)
-        prog += [_SockFilter(_BPF_JEQ_K, 0, n + 4, arch),  # not this one: skip its n + 4
+        prog += [_SockFilter(_BPF_JEQ_K, 0, n + 5, arch),  # not this one: to the next block
                  _SockFilter(_BPF_LD_W_ABS, 0, 0, 0),  # the call's number
-                 _SockFilter(_BPF_JGE_K, n + 1, 0, 0x40000000)]  # x32 calls (bit 30): none is needed
+                 _SockFilter(_BPF_JGE_K, n + 2, 0, 0x40000000)]  # an x32 call: kill
         prog += [_SockFilter(_BPF_JEQ_K, n - i, 0, nr) for i, nr in enumerate(numbers)]
         prog += [_SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ALLOW),
-                 _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ERRNO | 1)]  # EPERM
+                 _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ERRNO | 1),  # EPERM
+                 _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_KILL_PROCESS)]
         prog += [_SockFilter(_BPF_LD_W_ABS, 0, 0, 4)]  # reload the architecture for the next
-    prog[-1] = _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_ALLOW)  # another architecture: as it is
+    prog[-1] = _SockFilter(_BPF_RET_K, 0, 0, _SECCOMP_RET_KILL_PROCESS)  # another ABI (i386): kill
     array = (_SockFilter * len(prog))(*prog)
     fprog = _SockFprog(len(prog), array)
     if libc.prctl(_PR_SET_SECCOMP, _SECCOMP_MODE_FILTER, ctypes.byref(fprog), 0, 0) != 0:

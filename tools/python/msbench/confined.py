@@ -330,7 +330,7 @@ def _confinement(worker):
             f", {worker.memory_limit_mib:g} MiB" +
             (f", runs as {ready['user']}" if ready.get("user") else "") +
             (", own PID namespace" if not namespace else f", no PID namespace ({namespace})") +
-            (", no sockets, memfd or exec" if not ready.get("no_seccomp") else f", sockets allowed ({ready['no_seccomp']})"))
+            (", no sockets, memfd, exec or io_uring, native system calls only" if not ready.get("no_seccomp") else f", sockets allowed ({ready['no_seccomp']})"))
 
 
 class _ChooserProxy:
