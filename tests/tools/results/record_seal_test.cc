@@ -4,6 +4,7 @@
 #include "tools/results/record_seal.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -22,6 +23,15 @@ fs::path keyFile(const std::string& name, const std::string& bytes) {
   fs::create_directories(d);
   std::ofstream(d / name, std::ios::binary) << bytes;
   return d / name;
+}
+
+// A FIFO where the key file should be: refused at once, never waited on.
+fs::path fifo() {
+  const fs::path p = fs::path(::testing::TempDir()) / "msb_record_seal" / "fifo";
+  fs::create_directories(p.parent_path());
+  fs::remove(p);
+  EXPECT_EQ(mkfifo(p.c_str(), 0600), 0);
+  return p;
 }
 
 nlohmann::json record() {
@@ -48,6 +58,9 @@ TEST(RecordSeal, AKeyFileIsReadWithItsIdAndBadOnesAreNamed) {
   EXPECT_NE(readEvaluatorKey(keyFile("k2", "another key of 32 bytes, say....")).id, key.id);
   for (const auto& [file, why] : {std::pair<fs::path, std::string>{keyFile("short", "too short"), "holds 9 bytes"},
                                   {keyFile("long", std::string(5000, 'k')), "more than the limit"},
+                                  {keyFile("empty", ""), "holds 0 bytes"},
+                                  {fs::path(::testing::TempDir()) / "msb_record_seal", "a directory"},
+                                  {fifo(), "a FIFO"},
                                   {fs::path(::testing::TempDir()) / "msb_record_seal/none", "file not found"}}) {
     try {
       readEvaluatorKey(file);
