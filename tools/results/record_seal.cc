@@ -87,7 +87,9 @@ std::string sealKeyId(const nlohmann::json& metrics) {
   const std::string prefix = "hmac-sha256:";
   if (seal.rfind(prefix, 0) != 0 || seal.size() != prefix.size() + 16 + 1 + 64 || seal[prefix.size() + 16] != ':')
     return "";
-  return seal.substr(prefix.size(), 16);
+  // Hex digits only: the id is shown in messages and reports, and the record is a stranger's file.
+  const std::string id = seal.substr(prefix.size(), 16);
+  return id.find_first_not_of("0123456789abcdef") == std::string::npos ? id : "";
 }
 
 bool writtenBeforeKeyedSeals(const nlohmann::json& metrics) {

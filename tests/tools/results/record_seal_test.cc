@@ -98,6 +98,11 @@ TEST(RecordSeal, OnlyTheEvaluatorsKeyVerifiesAndEveryOtherRecordIsToldApart) {
   nlohmann::json made_up = m;
   made_up["record_seal"] = "hmac-sha256:" + key.id + ":" + std::string(64, '0');
   EXPECT_EQ(checkRecordSeal(key, made_up, csv), SealCheck::kTampered);
+  // A key id that is not hex (terminal escapes, markup) is no keyed seal.
+  nlohmann::json hostile = m;
+  hostile["record_seal"] = "hmac-sha256:\x1b[2J<b>x|y</b>!!" + std::string(1, ':') + std::string(64, '0');
+  EXPECT_EQ(sealKeyId(hostile), "");
+  EXPECT_EQ(checkRecordSeal(key, hostile, csv), SealCheck::kSelfSealed);
 }
 
 TEST(RecordSeal, PreSealIsDecidedByTheBuildThatWroteTheRecordNotByMissingKeys) {
