@@ -69,6 +69,12 @@ struct Choices {
   std::string outside() const { return "none_of_these"; }
 };
 
+/// A key whose value is a YAML map that msbench passes through as its one-line text, unread (a
+/// Python factory's keyword arguments, which the factory validates). A map is required.
+struct MapText {
+  std::string text = "{}";  ///< the map in YAML flow style
+};
+
 /// The key-table visitor that validates: each number against its Limits (message "must be
 /// LIMITS (got V)"), each word against its Choices, each group by its own validate().
 class FieldCheck {
@@ -86,6 +92,7 @@ class FieldCheck {
   }
   void key(const char*, bool) {}
   void key(const char*, const std::string&) {}
+  void key(const char*, const MapText&) {}
   void key(const char* name, const std::string& v, const Choices& c);
   template <class Sub>
   void group(const char* name, const Sub& sub) {

@@ -60,7 +60,7 @@ class Explorer {
  public:
   Explorer() = default;
   /// Not copyable: a method's parts may refer to its own map (a copy would point into the
-  /// original); a new explorer from the method table is the reset (docs/architecture.md §3).
+  /// original); a new explorer from the method registry is the reset (docs/architecture.md §3).
   Explorer(const Explorer&) = delete;
   Explorer& operator=(const Explorer&) = delete;
   virtual ~Explorer() = default;

@@ -31,10 +31,31 @@ class TopLevelKeys final : public KeyVisitor {
   void key(const char* n, bool&) override { names.push_back(n); }
   void key(const char* n, std::string&) override { names.push_back(n); }
   void key(const char* n, std::string&, const Choices&) override { names.push_back(n); }
+  void key(const char* n, MapText&) override { names.push_back(n); }
   void group(const char* n, const std::function<void(KeyVisitor&)>&) override { names.push_back(n); }
   void moved(const char* n, const char*) override { names.push_back(n); }
   void preset(const char* n, const PresetKey&) override { names.push_back(n); }
 };
+
+// True if `name` is letters, digits and '_', and not empty.
+bool wellFormedName(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+// What is wrong with the hooks a method offers ("" = nothing): a malformed name, one name twice.
+std::string hookProblem(const MethodInfo& info) {
+  for (size_t i = 0; i < info.hooks.size(); ++i) {
+    const std::string& name = info.hooks[i].name;
+    if (!wellFormedName(name) || !info.hooks[i].hook)
+      return "method '" + info.type + "' offers a hook named '" + name +
+             "': a hook needs a name of letters, digits and '_' and a function";
+    for (size_t j = 0; j < i; ++j)
+      if (info.hooks[j].name == name) return "method '" + info.type + "' offers the hook '" + name + "' twice";
+  }
+  return "";
+}
 
 // The keys every `method:` section has besides the method's own.
 constexpr const char* kSharedMethodKeys[] = {"type"};
@@ -43,12 +64,13 @@ constexpr const char* kSharedMethodKeys[] = {"type"};
 void addMethodRegistration(MethodRegistration r) noexcept {
   try {
     const std::string& type = r.info.type;
-    const bool well_formed = !type.empty() && std::all_of(type.begin(), type.end(), [](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-    });
-    if (!well_formed) {
+    if (!wellFormedName(type)) {
       problems().push_back(r.source_file + ": method type '" + type +
                            "' must be letters, digits and '_' (and not empty)");
+      return;
+    }
+    if (const std::string why = hookProblem(r.info); !why.empty()) {
+      problems().push_back(r.source_file + ": " + why);
       return;
     }
     // A key of the method's that is a key every method: section has (`method.type`).

@@ -7,6 +7,9 @@
 // adds it to the methods msbench knows — `method.type: hover_turn` in a scenario, its keys read,
 // written and validated through its config's key table (core/common/config_fields.h), its
 // explorer built by the loop, `msbench methods` listing it — with no edit outside the folder.
+// A registration is the one descriptor of a method: the run's choice is made from it and a
+// config (registeredMethodChoice, tools/engine/methods.h), and what a method offers beyond the
+// Explorer interface it names as hooks (MethodInfo::hooks), which this registry never names.
 // This header depends on core/common alone (the camera is only declared): a method's folder
 // stays free of the YAML layer, which visits the table through the virtual KeyVisitor.
 #pragma once
@@ -46,6 +49,7 @@ class KeyVisitor {
   virtual void key(const char* name, bool& v) = 0;
   virtual void key(const char* name, std::string& v) = 0;
   virtual void key(const char* name, std::string& v, const Choices& c) = 0;
+  virtual void key(const char* name, MapText& v) = 0;
   /// A nested group: `body` visits its keys with the visitor of the group.
   virtual void group(const char* name, const std::function<void(KeyVisitor&)>& body) = 0;
   virtual void moved(const char* name, const char* where) = 0;
@@ -100,6 +104,29 @@ struct PaperRow {
 /// MethodInfo::listed of every method that is not one of the paper's.
 inline constexpr int kListedAfterThePaper = 100;
 
+/// An optional capability of a method's explorer beyond the Explorer interface, offered under a
+/// name its users know (the Python goal-only helper looks for "goal_chooser" and
+/// "viewpoint_chooser", docs/python.md): called on an explorer the method made, with an argument
+/// of the type the hook takes, in a std::any (std::bad_any_cast for any other type).
+using ExplorerHook = std::function<void(Explorer& explorer, const std::any& argument)>;
+
+/// A hook and the name it is offered under (MethodInfo::hooks).
+struct NamedHook {
+  std::string name;   ///< letters, digits and '_'
+  ExplorerHook hook;  ///< what it does
+};
+
+/// The ExplorerHook that calls `setter`, a one-argument member function of ExplorerT, with the
+/// argument. Throws std::logic_error on an explorer that is not an ExplorerT.
+template <class ExplorerT, class Arg>
+ExplorerHook hookOf(void (ExplorerT::*setter)(Arg)) {
+  return [setter](Explorer& x, const std::any& a) {
+    auto* own = dynamic_cast<ExplorerT*>(&x);
+    if (!own) throw std::logic_error("a method's hook was called on another method's explorer");
+    (own->*setter)(std::any_cast<const std::decay_t<Arg>&>(a));
+  };
+}
+
 /// What a method says about itself when it registers.
 struct MethodInfo {
   std::string type;                            ///< `method.type` (letters, digits and '_', not empty)
@@ -109,13 +136,14 @@ struct MethodInfo {
   /// Where `msbench methods` lists it: the paper's methods first (0, 1, 2 in Table I's order),
   /// every other method after them (the default), by type.
   int listed = kListedAfterThePaper;
-};
+  std::vector<NamedHook> hooks = {};  ///< the capabilities it offers (names unique), none by default
 
-/// The outside goal choosers a method may take (the goal-only helper, docs/python.md), each as
-/// the chooser type the method's setter takes: `goals` for a setGoalChooser(GoalChooser),
-/// `viewpoints` for a setViewpointChooser(ViewpointChooser).
-struct GoalChoosers {
-  std::any goals, viewpoints;
+  /// The hook offered as `name`, or null.
+  const ExplorerHook* hook(const std::string& name) const {
+    for (const auto& h : hooks)
+      if (h.name == name) return &h.hook;
+    return nullptr;
+  }
 };
 
 /// What the run's record says of a method's config (from the config's own functions, if it has
@@ -148,9 +176,6 @@ struct MethodRegistration {
   std::function<std::unique_ptr<Explorer>(const std::any& config, const FisheyeCamera& camera,
                                           const ExplorerContext& context)>
       make;
-  /// Gives `explorer` (one `make` built) the chooser of `choosers` that fits it; null: the method
-  /// takes no outside goal chooser (set when the explorer has setGoalChooser or setViewpointChooser).
-  std::function<void(Explorer& explorer, const GoalChoosers& choosers)> attach_goal_chooser;
 };
 
 /// A registration that cannot be used: two methods under one type name, an empty or malformed
@@ -172,14 +197,6 @@ void addMethodRegistration(MethodRegistration r) noexcept;
 /// The proof that a method registered (keep it as a namespace-scope constant of the method).
 struct MethodRegistrar {
   std::string type;
-};
-
-/// The argument type of a one-argument member function (a chooser setter's chooser type).
-template <class F>
-struct SetterArgument;
-template <class C, class A>
-struct SetterArgument<void (C::*)(A)> {
-  using type = std::decay_t<A>;
 };
 
 /// A method's keys beyond its config's table (a preset, a section of switches): visits them and
@@ -213,18 +230,6 @@ MethodRegistrar registerMethod(MethodInfo info, MethodKeysFn<Config> keys = null
     else
       return std::make_unique<ExplorerT>(c, context);
   };
-  // An outside goal chooser for the explorers that take one (a compile-time check on the
-  // explorer type). `x` is an explorer this registration made, so the cast is exact.
-  if constexpr (requires { &ExplorerT::setGoalChooser; })
-    r.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
-      using Chooser = typename SetterArgument<decltype(&ExplorerT::setGoalChooser)>::type;
-      static_cast<ExplorerT&>(x).setGoalChooser(std::any_cast<const Chooser&>(c.goals));
-    };
-  if constexpr (requires { &ExplorerT::setViewpointChooser; })
-    r.attach_goal_chooser = [](Explorer& x, const GoalChoosers& c) {
-      using Chooser = typename SetterArgument<decltype(&ExplorerT::setViewpointChooser)>::type;
-      static_cast<ExplorerT&>(x).setViewpointChooser(std::any_cast<const Chooser&>(c.viewpoints));
-    };
   addMethodRegistration(std::move(r));
   return {info.type};
 }

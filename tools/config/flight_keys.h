@@ -6,7 +6,7 @@
 
 #include "tools/config/yaml_reader.h"
 #include "tools/config/yaml_writer.h"
-#include "tools/loop/flight_spec.h"
+#include "tools/engine/flight_spec.h"
 
 namespace msb {
 

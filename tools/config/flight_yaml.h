@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "tools/loop/flight_spec.h"
+#include "tools/engine/flight_spec.h"
 
 namespace msb {
 

@@ -103,11 +103,11 @@ std::vector<KeyRow> keyReference() {
   addLeaves(scenario, "", "scenario", *log, rows);
   for (const OutsideKey& o : kOutsideKeys) rows.push_back({"scenario", o.key, "", o.accepts, "", false});
   // Each method's section.
-  for (const MethodEntry& e : methodTable()) {
+  for (const MethodRegistration& reg : methodRegistrations()) {
     auto mlog = std::make_shared<MapWriter::KeyLog>();
-    YAML::Node method = YAML::Load(methodDefaultsYaml(e.type, mlog))["method"];
+    YAML::Node method = YAML::Load(methodDefaultsYaml(reg.info.type, mlog))["method"];
     method.remove("type");
-    addLeaves(method, "method.", std::string("method.type: ") + e.type, *mlog, rows);
+    addLeaves(method, "method.", "method.type: " + reg.info.type, *mlog, rows);
   }
   return rows;
 }

@@ -11,66 +11,11 @@
 
 #include "core/explorer/method_registry.h"
 #include "core/methods/monospheres/map/sphere_map.h"
+#include "tools/engine/methods.h"
 
 namespace msb {
 
 namespace {
-
-// Validates a method's config with its keys named under `method.` (before methodChoice()
-// validates it again without the prefix).
-template <class Config>
-void validateMethod(const Config& c) {
-  ConfigChecker checker("method.");
-  c.validate(checker);
-  if (!checker.issues().empty()) throw ConfigError(checker.issues());
-}
-
-// A Python method's keys: entry and path, and `params`, a map passed through to its factory
-// (which validates it) — read as YAML text, written back as the same map.
-template <class Keys>
-void pythonMethodKeys(Keys& m, PythonMethodConfig& c) {
-  fieldKeys(m, c);
-  if constexpr (Keys::kReading) {
-    if (m.has("params")) c.params_yaml = m.flowMap("params", "the method's own keys");
-  } else {
-    m.node()["params"] = YAML::Load(c.params_yaml);
-  }
-}
-
-// The explorer slot of a Python method: the C++ binary cannot build one (the Python module does).
-class PythonMethodStub final : public Explorer {
- public:
-  PythonMethodStub(const PythonMethodConfig&, const ExplorerContext&) {
-    throw ConfigError("method.type",
-                      "'python' methods run through the Python module: msbench run hands them to "
-                      "/usr/bin/python3 -m msbench (docs/python.md)");
-  }
-  void observe(const SlamPointsFrame&) override {}
-  std::optional<PathCommand> plan(const VehicleState&) override { return std::nullopt; }
-  ExplorerSnapshot snapshot() const override { return {}; }
-  std::map<std::string, double> counters() const override { return {}; }
-};
-
-// `python`: the door for methods written in Python, not a method of its own — its keys name
-// the method (entry, path, params) and the binary hands its runs to the Python module. It stays
-// here, the one entry not registered from a method's folder.
-MethodEntry pythonEntry() {
-  MethodEntry e;
-  e.type = kPythonMethodType;
-  e.summary = "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)";
-  e.read = [](MapReader& m) {
-    PythonMethodConfig c;
-    pythonMethodKeys(m, c);
-    m.finish();
-    validateMethod(c);
-    return methodChoice<PythonMethodStub>(kPythonMethodType, c);
-  };
-  e.write = [](const std::any& config, MapWriter& w) {
-    PythonMethodConfig c = std::any_cast<const PythonMethodConfig&>(config);
-    pythonMethodKeys(w, c);
-  };
-  return e;
-}
 
 // A registered method's key table over a MapReader or MapWriter (through the virtual visitor).
 template <class Keys>
@@ -87,6 +32,7 @@ class YamlKeyVisitor final : public KeyVisitor {
   void key(const char* n, bool& v) override { f_.key(n, v); }
   void key(const char* n, std::string& v) override { f_.key(n, v); }
   void key(const char* n, std::string& v, const Choices& c) override { f_.key(n, v, c); }
+  void key(const char* n, MapText& v) override { f_.key(n, v); }
   void group(const char* n, const std::function<void(KeyVisitor&)>& body) override {
     if (!k_.has(n)) return;
     auto sub = k_.sub(n);
@@ -136,81 +82,33 @@ class YamlKeyVisitor final : public KeyVisitor {
   FieldKeys<Keys> f_;
 };
 
-// The method-table entry of a method that registered itself from its folder: its keys through
-// its config's table, validated with their `method.` names, its explorer from the registration.
-MethodEntry registeredEntry(const MethodRegistration& reg) {
-  MethodEntry e;
-  e.type = reg.info.type.c_str();
-  e.summary = reg.info.summary.c_str();
-  e.progress_counters = reg.info.progress_counters;
-  e.paper_rows = reg.info.paper_rows;
-  e.attach_goal_chooser = reg.attach_goal_chooser;
-  e.read = [&reg](MapReader& m) {
-    std::any config = reg.default_config();
-    YamlKeyVisitor<MapReader> v(m);
-    reg.keys(config, v);
-    m.finish();
-    ConfigChecker checker("method.");
-    reg.validate(config, checker);
-    if (!checker.issues().empty()) throw ConfigError(checker.issues());
-    return registeredMethodChoice(reg, std::move(config));
-  };
-  e.write = [&reg](const std::any& config, MapWriter& w) {
-    std::any c = config;
-    YamlKeyVisitor<MapWriter> v(w);
-    reg.keys(c, v);
-  };
-  return e;
+// Reads the keys of `reg` under `method:` (except `type`) and finishes: its config, validated
+// with its keys named under `method.`.
+MethodChoice readRegistered(const MethodRegistration& reg, MapReader& m) {
+  std::any config = reg.default_config();
+  YamlKeyVisitor<MapReader> v(m);
+  reg.keys(config, v);
+  m.finish();
+  ConfigChecker checker("method.");
+  reg.validate(config, checker);
+  if (!checker.issues().empty()) throw ConfigError(checker.issues());
+  return registeredMethodChoice(reg, std::move(config));
 }
 
 }  // namespace
 
 void readSphereMapKeys(MapReader& r, SphereMapConfig& c) { fieldKeys(r, c); }
 
-const std::vector<MethodEntry>& methodTable() {
-  // Every method registered from its own folder (core/explorer/method_registry.h), the paper's
-  // first in Table I's order, then `python`, then the others by type; the registrations outlive
-  // the table, which points into them.
-  static const std::vector<MethodRegistration>& registered = []() -> const std::vector<MethodRegistration>& {
-    const std::vector<MethodRegistration>& r = methodRegistrations();
-    for (const auto& reg : r)
-      if (reg.info.type == kPythonMethodType)
-        throw MethodRegistryError("method type '" + reg.info.type + "' is registered in " + reg.source_file +
-                                  ", but it names methods written in Python (tools/config/method_table.cc); rename it");
-    return r;
-  }();
-  static const std::vector<MethodEntry> all = [] {
-    std::vector<MethodEntry> t;
-    bool python_listed = false;
-    for (const auto& reg : registered) {
-      if (!python_listed && reg.info.listed >= kListedAfterThePaper) {
-        t.push_back(pythonEntry());
-        python_listed = true;
-      }
-      t.push_back(registeredEntry(reg));
-    }
-    if (!python_listed) t.push_back(pythonEntry());
-    return t;
-  }();
-  return all;
-}
-
-const MethodEntry* findMethod(const std::string& type) {
-  for (const auto& e : methodTable())
-    if (type == e.type) return &e;
-  return nullptr;
-}
-
 MethodChoice readMethod(MapReader m) {
   std::string type = kDefaultMethodType;
   m.read("type", type);
   std::string names;
-  for (const auto& e : methodTable()) {
-    if (type == e.type) return e.read(m);
-    names += (names.empty() ? "" : ", ") + std::string(e.type);
-  }
   std::set<std::string> types;
-  for (const auto& e : methodTable()) types.insert(e.type);
+  for (const MethodRegistration& reg : methodRegistrations()) {
+    if (type == reg.info.type) return readRegistered(reg, m);
+    names += (names.empty() ? "" : ", ") + reg.info.type;
+    types.insert(reg.info.type);
+  }
   const std::string near = closestName(type, types);
   throw ConfigError(m.keyName("type"), "unknown method '" + type + "'" +
                                            (near.empty() ? "" : " (did you mean '" + near + "'?)") +
@@ -218,28 +116,33 @@ MethodChoice readMethod(MapReader m) {
 }
 
 void writeMethod(MapWriter& w, const MethodChoice& method) {
-  const MethodEntry* e = findMethod(method.type);
-  if (!e) throw std::logic_error("writeMethod: method '" + method.type + "' is not in the method table");
+  const MethodRegistration* reg = findRegistration(method.type);
+  if (!reg) throw std::logic_error("writeMethod: method '" + method.type + "' is not registered");
   w.field("type", method.type);
-  e->write(method.config, w);
+  std::any c = method.config;
+  YamlKeyVisitor<MapWriter> v(w);
+  reg->keys(c, v);
 }
 
 std::string methodDefaultsYaml(const std::string& type, std::shared_ptr<MapWriter::KeyLog> log) {
-  // A `method:` section that names only the type: every other key takes its default.
-  struct MethodSection {
-    MethodChoice choice;
-    void validate(ConfigChecker&) const {}
-  };
-  YAML::Node tree(YAML::NodeType::Map);
-  tree["method"]["type"] = type;
-  if (type == kPythonMethodType) tree["method"]["entry"] = "package.module:factory";  // required: a placeholder
-  const MethodSection section = parseConfigNode<MethodSection>("--type", tree, [](MapReader& r, MethodSection& s) {
-    s.choice = readMethod(r.sub("method"));
-    r.finish();
-  });
+  // An unknown type is refused as a scenario's `method.type` would be (naming the known ones).
+  const MethodRegistration* reg = findRegistration(type);
+  if (!reg) {
+    YAML::Node tree(YAML::NodeType::Map);
+    tree["method"]["type"] = type;
+    struct MethodSection {
+      void validate(ConfigChecker&) const {}
+    };
+    parseConfigNode<MethodSection>("--type", tree, [](MapReader& r, MethodSection&) { readMethod(r.sub("method")); });
+    throw std::logic_error("methodDefaultsYaml: '" + type + "' read as a method but not registered");
+  }
+  // Every key with its default (a key a method requires, such as python's entry, shows empty).
   MapWriter w{YAML::Node(YAML::NodeType::Map), std::move(log)};
   MapWriter m = w.sub("method");
-  writeMethod(m, section.choice);
+  m.field("type", type);
+  std::any config = reg->default_config();
+  YamlKeyVisitor<MapWriter> v(m);
+  reg->keys(config, v);
   return yamlText(w.node());
 }
 

@@ -1,46 +1,22 @@
-// The method table: one entry per exploration method — its `method.type` name (written only
-// there), a one-line summary, the reader and writer of its keys under `method:` (one keys
-// function serves both; strict: keys of another method are unknown keys), the factory (through
-// methodChoice<Explorer>() of tools/loop/methods.h) and the Table I rows it answers to. How a
-// method's free space is drawn and scored comes from its free-space geometry, not its name.
-// Every method registers itself from its own folder (core/explorer/method_registry.h;
-// docs/architecture.md, "How to add an exploration method"); only `python`, the door for methods
-// written in Python, is listed here.
+// The `method:` section of a scenario, read and written through the one registry of methods
+// (core/explorer/method_registry.h): the type, then the keys of the type's registration (strict:
+// keys of another method are unknown keys), validated with their `method.` names; the run's
+// choice is made from the registration (registeredMethodChoice, tools/engine/methods.h). Every
+// method registers itself from its own folder (docs/architecture.md, "How to add an exploration
+// method"), `python` (methods written in Python) included; nothing here names a method.
 #pragma once
 
-#include <any>
-#include <functional>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "core/explorer/method_registry.h"
 #include "tools/config/yaml_reader.h"
 #include "tools/config/yaml_writer.h"
-#include "tools/loop/methods.h"
+#include "tools/engine/methods.h"
 
 namespace msb {
 
 struct SphereMapConfig;  // MonoSpheres' mapper settings (core/methods/monospheres/map/sphere_map.h)
-
-/// One registered method.
-struct MethodEntry {
-  const char* type;                                     ///< `method.type`
-  const char* summary;                                  ///< for help texts and errors
-  std::function<MethodChoice(MapReader& method)> read;  ///< reads the keys under `method:` (except `type`) and finishes
-  std::function<void(const std::any& config, MapWriter& method)> write;  ///< writes every key of its config
-  std::vector<PaperRow> paper_rows;            ///< the Table I rows it answers to (none: not in the paper)
-  std::vector<std::string> progress_counters;  ///< the counters the progress line shows, in order
-  /// Gives `explorer` (one this entry made) the chooser of `choosers` that fits it; null: the
-  /// method takes no outside goal chooser.
-  std::function<void(Explorer& explorer, const GoalChoosers& choosers)> attach_goal_chooser;
-};
-
-/// All methods, in the order they are listed.
-const std::vector<MethodEntry>& methodTable();
-
-/// The method table's entry of `type`, or null.
-const MethodEntry* findMethod(const std::string& type);
 
 /// Reads `method:` (type and the type's keys); an unknown type names the known ones.
 MethodChoice readMethod(MapReader method);

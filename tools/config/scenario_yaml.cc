@@ -230,7 +230,7 @@ PythonMethodConfig readGoals(MapReader g) {
   PythonMethodConfig c;
   if (!g.read("entry", c.entry)) throw ConfigError(g.keyName("entry"), "is required (\"module:chooser\")");
   g.read("path", c.path);
-  if (g.has("params")) c.params_yaml = g.flowMap("params", "the chooser factory's keyword arguments");
+  g.read("params", c.params);
   g.finish();
   return c;
 }
@@ -410,7 +410,7 @@ std::string effectiveScenarioYaml(const ScenarioSpec& spec, std::shared_ptr<MapW
     MapWriter g = w.sub("goals");
     g.field("entry", spec.goals->entry);
     g.field("path", spec.goals->path);
-    g.node()["params"] = YAML::Load(spec.goals->params_yaml);
+    g.field("params", spec.goals->params);
   }
   return yamlText(w.node());
 }

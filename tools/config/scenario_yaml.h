@@ -11,7 +11,7 @@
 
 #include "core/methods/monospheres/map/sphere_map.h"
 #include "tools/config/yaml_writer.h"
-#include "tools/loop/scenario_spec.h"
+#include "tools/engine/scenario_spec.h"
 
 namespace msb {
 

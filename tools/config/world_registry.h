@@ -8,8 +8,8 @@
 
 #include "core/geometry/world_truth.h"
 #include "sim/world/world_cache.h"
-#include "tools/loop/flight_spec.h"
-#include "tools/loop/scenario_spec.h"
+#include "tools/engine/flight_spec.h"
+#include "tools/engine/scenario_spec.h"
 
 namespace msb {
 

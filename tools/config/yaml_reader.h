@@ -15,6 +15,7 @@
 
 #include "core/common/config_check.h"
 #include "core/common/strict_number.h"
+#include "core/common/config_fields.h"
 #include "core/common/types.h"
 
 namespace msb {
@@ -79,15 +80,6 @@ class MapReader {
     return MapReader(node_[key], keyName(key) + ".");
   }
 
-  /// The map under `key` as one-line YAML text (e.g. a Python factory's keyword arguments),
-  /// marked read; ConfigError "expected a map of `what`" if it is not a map.
-  std::string flowMap(const std::string& key, const std::string& what) {
-    const YAML::Node n = raw(key);
-    if (!n.IsMap()) throw ConfigError(keyName(key), "expected a map of " + what);
-    YAML::Emitter e;
-    e << YAML::Flow << n;
-    return e.c_str();
-  }
   // The raw node of `key` (marked used).
   YAML::Node raw(const std::string& key) {
     used_.insert(key);
@@ -171,6 +163,13 @@ class MapReader {
   void convert(const YAML::Node& n, const std::string& key, std::string& out) const {
     if (!n.IsScalar()) typeError(n, key, "a string");
     out = n.Scalar();
+  }
+  // A map kept as its one-line text (MapText).
+  void convert(const YAML::Node& n, const std::string& key, MapText& out) const {
+    if (!n.IsMap()) typeError(n, key, "a map");
+    YAML::Emitter e;
+    e << YAML::Flow << n;
+    out.text = e.c_str();
   }
   // A list of exactly N numbers, each through the strict reader.
   template <size_t N, class Out>

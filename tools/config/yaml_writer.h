@@ -14,6 +14,7 @@
 #include <string>
 #include <type_traits>
 
+#include "core/common/config_fields.h"
 #include "core/common/types.h"
 
 namespace msb {
@@ -77,6 +78,7 @@ class MapWriter {
   static YAML::Node encode(uint64_t v) { return YAML::Node(std::to_string(v)); }
   static YAML::Node encode(bool v) { return YAML::Node(v ? "true" : "false"); }
   static YAML::Node encode(const std::string& v) { return YAML::Node(v); }
+  static YAML::Node encode(const MapText& v) { return YAML::Load(v.text); }
   static YAML::Node encode(const Vec2& v) { return numbers(v.data(), 2); }
   static YAML::Node encode(const Vec3& v) { return numbers(v.data(), 3); }
   template <size_t N>

@@ -8,7 +8,7 @@
 #include "core/geometry/world_truth.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/world_registry.h"
-#include "tools/loop/mission.h"
+#include "tools/engine/mission.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"

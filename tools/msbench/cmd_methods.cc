@@ -21,8 +21,9 @@ std::string indented(const std::string& text, const std::string& pad) {
   return out;
 }
 
-void printMethod(const MethodEntry& e, bool keys) {
-  std::printf("%s: %s\n", e.type, e.summary);
+void printMethod(const MethodRegistration& reg, bool keys) {
+  const MethodInfo& e = reg.info;
+  std::printf("%s: %s\n", e.type.c_str(), e.summary.c_str());
   if (!e.paper_rows.empty()) {
     std::string rows;
     for (const PaperRow& r : e.paper_rows)
@@ -30,7 +31,7 @@ void printMethod(const MethodEntry& e, bool keys) {
               (*r.switched_off ? std::string(" no ") + r.switched_off : "");
     std::printf("  Table I rows: %s\n", rows.c_str());
   }
-  if (e.attach_goal_chooser) std::printf("  takes a goal chooser written in Python (a scenario's goals: section)\n");
+  if (takesGoalChooser(registeredMethodChoice(reg, reg.default_config()))) std::printf("  takes a goal chooser written in Python (a scenario's goals: section)\n");
   if (keys) std::printf("  keys and defaults:\n%s", indented(methodDefaultsYaml(e.type), "    ").c_str());
 }
 
@@ -45,12 +46,12 @@ int runMethodsCommand(int argc, char** argv) {
   if (!args.parse(argc, argv)) return kExitOk;
   const std::string type = args.get("type");
   if (!type.empty()) {
-    const MethodEntry* e = findMethod(type);
+    const MethodRegistration* e = findRegistration(type);
     if (!e) methodDefaultsYaml(type);  // throws, naming the known types
     if (e) printMethod(*e, true);
     return kExitOk;
   }
-  for (const MethodEntry& e : methodTable()) printMethod(e, args.has("keys"));
+  for (const MethodRegistration& reg : methodRegistrations()) printMethod(reg, args.has("keys"));
   return kExitOk;
 }
 

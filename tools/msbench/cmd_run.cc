@@ -13,7 +13,7 @@
 #include "tools/config/method_table.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/world_registry.h"
-#include "tools/loop/mission.h"
+#include "tools/engine/mission.h"
 #include "tools/msbench/cli_args.h"
 #include "tools/msbench/commands.h"
 #include "tools/msbench/crash_handler.h"
@@ -41,8 +41,8 @@ void printProgress(const std::string& name, const std::string& method, double du
                    double area, const std::map<std::string, double>& c) {
   const double rtf = sim_s / std::max(wall_s, 1e-9);
   std::string counters;
-  if (const MethodEntry* entry = findMethod(method))
-    for (const std::string& k : entry->progress_counters)
+  if (const MethodRegistration* entry = findRegistration(method))
+    for (const std::string& k : entry->info.progress_counters)
       if (const auto it = c.find(k); it != c.end())
         counters += ", " + k + " " + std::to_string(static_cast<long>(it->second));
   std::fprintf(stderr, "run %s: t = %.0f / %.0f s, RTF %.2f, A = %.0f m²%s, ETA %.0f s\n", name.c_str(), sim_s,
@@ -185,7 +185,8 @@ int runRunCommand(int argc, char** argv) {
                                        spec.name + " (" + methodLabel(spec.method) + ")", spec.flight.duration_s, box,
                                        truth ? &*truth : nullptr, mission.loop().camera().width(),
                                        mission.loop().camera().height());
-    if (const MethodEntry* e = findMethod(spec.method.type)) video->setCaptionCounters(e->progress_counters);
+    if (const MethodRegistration* e = findRegistration(spec.method.type))
+      video->setCaptionCounters(e->info.progress_counters);
   }
   MissionResult r;
   double video_s = 0;

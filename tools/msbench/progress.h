@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/common/wall_time.h"
-#include "tools/loop/closed_loop.h"
+#include "tools/engine/closed_loop.h"
 
 namespace msb {
 

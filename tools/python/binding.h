@@ -15,16 +15,16 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
 #include <nlohmann/json.hpp>
 
 #include "core/common/messages.h"
 #include "core/explorer/explorer.h"
 #include "core/grid/grid_map.h"
 #include "tools/config/scenario_yaml.h"
-#include "tools/loop/closed_loop.h"
-#include "tools/loop/records.h"
-#include "tools/loop/scenario_spec.h"
+#include "tools/config/yaml_json.h"
+#include "tools/engine/closed_loop.h"
+#include "tools/engine/records.h"
+#include "tools/engine/scenario_spec.h"
 #include "tools/results/compute_log.h"
 
 namespace py = pybind11;
@@ -37,9 +37,9 @@ namespace binding {
 // ---- conversions ----------------------------------------------------------------------------
 
 /// A YAML scalar as the Python value it reads as (bool, int, float, None or str).
-py::object scalarToPython(const YAML::Node& n);
-/// A YAML node as nested Python dicts, lists and scalars.
-py::object yamlToPython(const YAML::Node& n);
+/// A YAML text as nested Python dicts, lists and scalars (each scalar as yamlAsJson reads it,
+/// tools/config/yaml_json.h).
+py::object yamlToPython(const std::string& yaml_text);
 /// A JSON value as the Python object json.loads makes of it.
 py::object jsonToPython(const nlohmann::json& j);
 /// A pose as a 4×4 array.
@@ -75,7 +75,7 @@ struct PyScenario {
     s.effective_yaml = effectiveScenarioYaml(runOwnComputeLog(s.spec));
     return s;
   }
-  py::object effective() const { return yamlToPython(YAML::Load(effective_yaml)); }
+  py::object effective() const { return yamlToPython(effective_yaml); }
 };
 
 /// A path argument: str or os.PathLike, as a string.
@@ -210,7 +210,7 @@ struct ViewpointRequestView {
 };
 
 /// Gives the scenario's explorer its goals from `goals` (the goal-only helper), through the
-/// method table's goal-chooser hook; throws py::value_error when the method takes none.
+/// method registration's goal-chooser hooks; throws py::value_error when the method takes none.
 void attachGoalChooser(Explorer& explorer, const std::string& method_type, py::object goals,
                        const std::string& scenario_file);
 

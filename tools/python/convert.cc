@@ -6,42 +6,28 @@
 namespace msb {
 namespace binding {
 
-// A YAML scalar as the Python value it reads as: null, bool, int, float, else str.
-py::object scalarToPython(const YAML::Node& n) {
-  const std::string& s = n.Scalar();
-  if (n.Tag() == "!") return py::str(s);  // quoted: a string whatever it looks like
-  if (s == "~" || s == "null" || s.empty()) return py::none();
-  if (s == "true") return py::bool_(true);
-  if (s == "false") return py::bool_(false);
-  size_t used = 0;
-  try {
-    const long long i = std::stoll(s, &used);
-    if (used == s.size()) return py::int_(i);
-  } catch (const std::exception&) {
-  }
-  try {
-    const double d = std::stod(s, &used);
-    if (used == s.size()) return py::float_(d);
-  } catch (const std::exception&) {
-  }
-  return py::str(s);
-}
-
-// A YAML tree as nested dicts and lists.
-py::object yamlToPython(const YAML::Node& n) {
-  if (n.IsMap()) {
+namespace {
+// A JSON tree (of yamlAsJson) as nested dicts, lists and scalars, in its key order.
+py::object plainToPython(const nlohmann::ordered_json& j) {
+  if (j.is_object()) {
     py::dict d;
-    for (const auto& kv : n) d[py::str(kv.first.Scalar())] = yamlToPython(kv.second);
+    for (const auto& [k, v] : j.items()) d[py::str(k)] = plainToPython(v);
     return d;
   }
-  if (n.IsSequence()) {
+  if (j.is_array()) {
     py::list l;
-    for (const auto& e : n) l.append(yamlToPython(e));
+    for (const auto& e : j) l.append(plainToPython(e));
     return l;
   }
-  if (n.IsScalar()) return scalarToPython(n);
+  if (j.is_boolean()) return py::bool_(j.get<bool>());
+  if (j.is_number_integer()) return py::int_(j.get<long long>());
+  if (j.is_number_float()) return py::float_(j.get<double>());
+  if (j.is_string()) return py::str(j.get<std::string>());
   return py::none();
 }
+}  // namespace
+
+py::object yamlToPython(const std::string& yaml_text) { return plainToPython(yamlAsJson(yaml_text)); }
 
 py::object jsonToPython(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 

@@ -118,20 +118,23 @@ GoalChooser pythonGoalChooser(std::shared_ptr<py::object> fn) {
 
 void attachGoalChooser(Explorer& explorer, const std::string& method_type, py::object goals,
                        const std::string& scenario_file) {
-  // The method table says which methods take a chooser and how (no method is named here).
-  const MethodEntry* entry = findMethod(method_type);
-  if (!entry || !entry->attach_goal_chooser) {
+  // The method's registration says which goal-chooser hooks it offers (no method is named here).
+  const MethodRegistration* reg = findRegistration(method_type);
+  const ExplorerHook* goal_hook = reg ? reg->info.hook("goal_chooser") : nullptr;
+  const ExplorerHook* viewpoint_hook = reg ? reg->info.hook("viewpoint_chooser") : nullptr;
+  if (!goal_hook && !viewpoint_hook) {
     std::string takers;
-    for (const MethodEntry& e : methodTable())
-      if (e.attach_goal_chooser) takers += (takers.empty() ? "" : ", ") + std::string(e.type);
+    for (const MethodRegistration& r : methodRegistrations())
+      if (takesGoalChooser(registeredMethodChoice(r, r.default_config())))
+        takers += (takers.empty() ? "" : ", ") + r.info.type;
     throw py::value_error(scenario_file + ": goals= needs a scenario whose method.type takes a goal chooser (" +
                           takers + "; got '" + method_type + "')");
   }
   // A chooser in its own process (a scenario's `goals`): its CPU time is charged like the method's.
   addOwnProcessClock(explorer, goals);
   auto fn = std::make_shared<py::object>(std::move(goals));
-  entry->attach_goal_chooser(explorer,
-                             GoalChoosers{std::any(pythonGoalChooser(fn)), std::any(pythonViewpointChooser(fn))});
+  if (goal_hook) (*goal_hook)(explorer, std::any(pythonGoalChooser(fn)));
+  if (viewpoint_hook) (*viewpoint_hook)(explorer, std::any(pythonViewpointChooser(fn)));
 }
 
 }  // namespace binding

@@ -14,8 +14,8 @@
 #include "core/geometry/world_truth.h"
 #include "tools/config/method_table.h"
 #include "tools/config/world_registry.h"
-#include "tools/loop/mission.h"
-#include "tools/loop/records.h"
+#include "tools/engine/mission.h"
+#include "tools/engine/records.h"
 #include "tools/results/mission_outputs.h"
 #include "tools/results/output_files.h"
 #include "tools/results/provenance.h"
@@ -86,7 +86,7 @@ class PyMission {
       scenario_.spec.method.goal_chooser = g.entry;  // metrics.json names it; config.yaml replays it
       const py::module_ methods = py::module_::import("msbench.methods");
       py::object chooser =
-          methods.attr("chooser_of")(g.entry, g.path, yamlToPython(YAML::Load(g.params_yaml)), scenario_.file);
+          methods.attr("chooser_of")(g.entry, g.path, yamlToPython(g.params.text), scenario_.file);
       // The module's file, found without importing it: the chooser runs in its own process only.
       const py::object file =
           methods.attr("module_file")(g.entry, methods.attr("method_dir")(g.path, scenario_.file, "goals"));
@@ -99,7 +99,7 @@ class PyMission {
     if (method.is_none() && scenario_.spec.method.type == kPythonMethodType) {
       const auto& c = std::any_cast<const PythonMethodConfig&>(scenario_.spec.method.config);
       const py::module_ methods = py::module_::import("msbench.methods");
-      method = methods.attr("factory_of")(c.entry, c.path, yamlToPython(YAML::Load(c.params_yaml)), scenario_.file,
+      method = methods.attr("factory_of")(c.entry, c.path, yamlToPython(c.params.text), scenario_.file,
                                           c.call_budget_s, c.memory_limit_mib);
       // The module's file, found without importing it: the method runs in its own process only.
       const py::object file =
@@ -263,7 +263,8 @@ class PyMission {
                                         scenario_.spec.flight.duration_s, world_->box,
                                         world_->truth ? &*world_->truth : nullptr, mission_->loop().camera().width(),
                                         mission_->loop().camera().height());
-    if (const MethodEntry* e = findMethod(scenario_.spec.method.type)) video_->setCaptionCounters(e->progress_counters);
+    if (const MethodRegistration* e = findRegistration(scenario_.spec.method.type))
+      video_->setCaptionCounters(e->info.progress_counters);
     video_ticks_ = video_->periodTicks(mission_->physicsHz());
   }
 

@@ -1,6 +1,6 @@
 // The Python module `msbench._msbench` (docs/python.md): the loop library and the configuration
 // layer the command line uses, bound with pybind11 — no second loop, no second configuration
-// path. Scenario.load is loadScenario; Mission is the tools/loop Mission; write() writes the files
+// path. Scenario.load is loadScenario; Mission is the tools/engine Mission; write() writes the files
 // `msbench run` writes (tools/results). The GIL is released while C++ steps the loop; Ctrl-C is
 // checked between simulated seconds. Each bound area is its own file (binding.h).
 #include "tools/config/world_registry.h"

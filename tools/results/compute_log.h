@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tools/loop/mission.h"
+#include "tools/engine/mission.h"
 
 namespace msb {
 

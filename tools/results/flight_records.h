@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/common/messages.h"
-#include "tools/loop/closed_loop.h"
+#include "tools/engine/closed_loop.h"
 #include "tools/results/output_files.h"
 
 namespace msb {

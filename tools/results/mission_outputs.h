@@ -11,7 +11,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/geometry/world_truth.h"
-#include "tools/loop/mission.h"
+#include "tools/engine/mission.h"
 #include "tools/results/output_files.h"
 
 namespace msb {

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tools/loop/records.h"
+#include "tools/engine/records.h"
 
 namespace msb {
 

@@ -15,7 +15,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/common/messages.h"
-#include "tools/loop/mission.h"
+#include "tools/engine/mission.h"
 #include "tools/results/topdown.h"
 
 namespace msb {

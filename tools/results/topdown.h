@@ -12,7 +12,7 @@
 #include "core/eval/column_coverage.h"
 #include "core/explorer/snapshot.h"
 #include "core/geometry/world_truth.h"
-#include "tools/loop/closed_loop.h"
+#include "tools/engine/closed_loop.h"
 
 namespace msb {
 

@@ -17,8 +17,8 @@
 #include "core/camera/fisheye_camera.h"
 #include "core/geometry/world_truth.h"
 #include "core/perception/feature_tracker.h"
-#include "tools/loop/closed_loop.h"
-#include "tools/loop/flight_spec.h"
+#include "tools/engine/closed_loop.h"
+#include "tools/engine/flight_spec.h"
 
 namespace msb {
 

@@ -294,7 +294,7 @@ void evaluateCollisionsLate(const Finding& f, const SweepResults& results, const
   rateVerdict(out, early, crashes, 0, paper_crashes, "early", "collision");
 }
 
-// The paper's figures of a ratio or order finding, from the method table.
+// The paper's figures of a ratio or order finding, from the method registry.
 std::string paperFigures(const Finding& f) {
   const bool ratio = f.check == FindingCheck::kRatioAtLeast || f.check == FindingCheck::kRatioAtMost;
   if (!ratio && f.check != FindingCheck::kOrder) return "";

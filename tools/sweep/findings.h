@@ -4,7 +4,7 @@
 // of the threshold), fails (on the other side), undecided (it straddles; with the seeds per row
 // that would decide it at the observed spread), or "n/a" when the sweep lacks the rows. Counts
 // of events are rates with Wilson intervals, compared with the paper's count by Fisher's exact
-// test. The paper's figures come from the method table (one source). A new finding is one entry
+// test. The paper's figures come from the method registry (one source). A new finding is one entry
 // of findingsTable().
 #pragma once
 
@@ -48,7 +48,7 @@ struct FindingResult {
   const Finding* finding = nullptr;
   std::string status;                       ///< "holds", "fails", "undecided" or "n/a" (rows missing)
   std::string measured;                     ///< the numbers behind the verdict, intervals included
-  std::string paper;                        ///< the paper's figures for it (from the method table) and its words
+  std::string paper;                        ///< the paper's figures for it (from the method registry) and its words
   std::optional<stats::Estimate> estimate;  ///< the ratio, or the rate of events, with its interval
   std::optional<double> p_value;            ///< Fisher's exact test against the paper's count
   std::optional<int> seeds_to_decide;       ///< undecided ratios: seeds per row that would decide

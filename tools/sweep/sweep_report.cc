@@ -110,16 +110,16 @@ std::string reportMethodName(const nlohmann::json& m) {
 }
 
 const PaperRow* paperRow(const std::string& world, const std::string& method, const nlohmann::json& switches) {
-  // The rows come from the method table: a run answers to the row of its world and of the one
+  // The rows come from the method's registration: a run answers to the row of its world and of the one
   // switch it turns off (none: the full method).
   std::vector<std::string> off;
   if (switches.is_object())
     for (const auto& [k, v] : switches.items())
       if (v.is_boolean() && !v.get<bool>()) off.push_back(k);
-  const MethodEntry* entry = findMethod(method);
+  const MethodRegistration* entry = findRegistration(method);
   if (!entry || off.size() > 1) return nullptr;
   const std::string switched_off = off.empty() ? "" : off[0];
-  for (const PaperRow& row : entry->paper_rows)
+  for (const PaperRow& row : entry->info.paper_rows)
     if (world == row.world && switched_off == row.switched_off) return &row;
   return nullptr;
 }

@@ -1,6 +1,6 @@
 // The grid baseline's registration (the paper's Grid-Based rows): method.type grid_random, its
 // keys — `reference_code: published` (the authors' grid session's settings) and its table — the
-// counters its progress line shows, its Table I rows and its goal chooser hook (setGoalChooser).
+// counters its progress line shows, its Table I rows and its goal chooser hook (setGoalChooser, offered as "goal_chooser").
 #include "core/explorer/method_registry.h"
 #include "core/methods/grid_random/grid_explorer.h"
 
@@ -31,7 +31,8 @@ const MethodRegistrar kGridMethod = registerMethod<GridExplorer, GridExplorerCon
       {"cave", "", 3171, 3375, 3, 0},
       {"rooftops", "", 1360, 1556, 3},
       {"sparse", "", 2108, 2168, 3}},
-     /*listed=*/1},
+     /*listed=*/1,
+     {{"goal_chooser", hookOf(&GridExplorer::setGoalChooser)}}},
     gridKeys);
 
 }  // namespace msb

@@ -47,6 +47,7 @@ class Recorder final : public KeyVisitor {
   void key(const char* n, std::array<double, 4>&, const Limits& l) override { seen[n] = l.text(); }
   void key(const char* n, bool&) override { seen[n] = "flag"; }
   void key(const char* n, std::string&) override { seen[n] = "text"; }
+  void key(const char* n, MapText&) override { seen[n] = "map"; }
   void key(const char* n, std::string& v, const Choices& c) override {
     seen[n] = c.text(), v = std::string("b");
   }  // (not = "b": GCC 12 -Wrestrict)
@@ -98,7 +99,13 @@ void tunedKeys(TunedConfig& c, KeyVisitor& v) {
   TunedConfig::fields(c, table);
 }
 const MethodRegistrar kTuned = registerMethod<TunedExplorer, TunedConfig>(
-    {"zz_tuned", "a tuned test method", {}, {{"urban", "", 100, 200, 3, 1}}, /*listed=*/5}, tunedKeys);
+    {"zz_tuned",
+     "a tuned test method",
+     {},
+     {{"urban", "", 100, 200, 3, 1}},
+     /*listed=*/5,
+     {{"tuned_chooser", hookOf(&TunedExplorer::setGoalChooser)}}},
+    tunedKeys);
 
 const MethodRegistration* registered(const std::string& type) {
   static const std::vector<MethodRegistration> all = registeredMethods();
@@ -128,14 +135,20 @@ TEST(MethodRegistry, ARegistrationCarriesKeysRowsPlaceFactsAndChooser) {
   EXPECT_EQ(c.gain, 3.5);  // the table's key, visited after the preset's 9, wins
   EXPECT_EQ(r->facts(config).switches, (std::map<std::string, bool>{{"fast", true}}));
   EXPECT_EQ(r->facts(config).octree_resolution_m, 0.0);
-  // The chooser reaches the explorer as its own type.
-  ASSERT_TRUE(r->attach_goal_chooser);
+  // The hook reaches the explorer with its own argument type; another type or another
+  // method's explorer is refused.
+  const ExplorerHook* hook = r->info.hook("tuned_chooser");
+  ASSERT_NE(hook, nullptr);
   TunedExplorer x(c, ExplorerContext{});
   EXPECT_EQ(x.counters()["chosen"], -1);
-  r->attach_goal_chooser(x, GoalChoosers{std::any(TunedChooser([](int v) { return v + 1; })), {}});
+  (*hook)(x, std::any(TunedChooser([](int v) { return v + 1; })));
   EXPECT_EQ(x.counters()["chosen"], 21);
-  // A method without a setter takes no chooser.
-  EXPECT_FALSE(probe()->attach_goal_chooser);
+  EXPECT_THROW((*hook)(x, std::any(3)), std::bad_any_cast);
+  ProbeExplorer other(ProbeConfig{}, ExplorerContext{});
+  EXPECT_THROW((*hook)(other, std::any(TunedChooser{})), std::logic_error);
+  // A method that offers nothing has no hook.
+  EXPECT_EQ(probe()->info.hook("tuned_chooser"), nullptr);
+  EXPECT_TRUE(probe()->info.hooks.empty());
 }
 
 TEST(MethodRegistry, AStaticRegistrarAddsTheMethodBeforeMain) {

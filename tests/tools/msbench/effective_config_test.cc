@@ -1,4 +1,4 @@
-// The effective configuration (config.yaml of every run): every method in the method table
+// The effective configuration (config.yaml of every run): every method in the method registry
 // writes all its keys, defaults included, and `msbench run OUT/config.yaml` reproduces the
 // run's determinism hash. The example method hover_turn flies its take-off, turn and descent.
 #include <gtest/gtest.h>
@@ -39,10 +39,11 @@ fs::path writeScenario(const fs::path& dir, const std::string& type, double dura
 nlohmann::json metrics(const fs::path& out) { return nlohmann::json::parse(readText(out / "metrics.json")); }
 
 TEST(EffectiveConfig, RunningAConfigYamlReproducesTheRunForEveryMethod) {
-  for (const msb::MethodEntry& method : msb::methodTable()) {
+  for (const msb::MethodRegistration& reg : msb::methodRegistrations()) {
+    const msb::MethodInfo& method = reg.info;
     SCOPED_TRACE(method.type);
 #ifndef MSB_HAS_PYTHON_MODULE
-    if (std::string(method.type) == "python") continue;  // the module is not built (no pybind11)
+    if (method.type == "python") continue;  // the module is not built (no pybind11)
 #endif
     const fs::path d = msb_test::tempDir("msb_effective_", method.type);
     const fs::path scenario = writeScenario(d, method.type, 12.0);
@@ -53,7 +54,7 @@ TEST(EffectiveConfig, RunningAConfigYamlReproducesTheRunForEveryMethod) {
     EXPECT_NE(config.find("slam_points:"), std::string::npos);
     EXPECT_NE(config.find("physics_hz:"), std::string::npos);
     EXPECT_NE(config.find("metric_rate_hz:"), std::string::npos);
-    EXPECT_NE(config.find("type: " + std::string(method.type)), std::string::npos);
+    EXPECT_NE(config.find("type: " + method.type), std::string::npos);
     ASSERT_EQ(
         run("run '" + (d / "a" / "config.yaml").string() + "' --quiet --out '" + (d / "b").string() + "'", d / "log_b"),
         0)

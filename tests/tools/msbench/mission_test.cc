@@ -15,7 +15,7 @@
 #include "tests/tools/cli_helpers.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/world_registry.h"
-#include "tools/loop/mission.h"
+#include "tools/engine/mission.h"
 #include "tools/results/perception_log.h"
 
 namespace {

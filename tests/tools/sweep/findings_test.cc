@@ -62,7 +62,7 @@ TEST(Findings, RatioAtLeastHoldsAtTwiceTheGridFailsBelowAndIsUndecidedAcross) {
                  joined({twoRuns("cave", "monospheres", "", 5000), twoRuns("cave", "grid_random", "", 2000)}));
   EXPECT_EQ(r.status, "holds");
   EXPECT_EQ(r.measured.rfind("5050 / 2020 = 2.50 [", 0), 0u) << r.measured;
-  EXPECT_EQ(r.paper, "7627 / 3171 = 2.41 (3 and 3 runs)");  // from the method table
+  EXPECT_EQ(r.paper, "7627 / 3171 = 2.41 (3 and 3 runs)");  // from the method registry
   r = check("ms_vs_grid_cave",
             joined({twoRuns("cave", "monospheres", "", 3000), twoRuns("cave", "grid_random", "", 2000)}));
   EXPECT_EQ(r.status, "fails");

@@ -76,7 +76,7 @@ def run(argv):
 
 
 def method_label(r):
-    """The method as msbench run's summary names it (methodLabel in tools/loop/methods.h): its type,
+    """The method as msbench run's summary names it (methodLabel in tools/engine/methods.h): its type,
     each ablation switch that is off, the published code's defects that are on."""
     label = r.get("method", "?") + "".join(f" -{k}" for k, v in sorted(r.get("switches", {}).items()) if v is False)
     on = [k for k, v in sorted(r.get("reference_code", {}).items()) if v is True]

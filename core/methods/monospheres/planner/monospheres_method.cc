@@ -1,7 +1,7 @@
 // MonoSpheres' registration (the paper's method): method.type monospheres, its keys — the
 // published code's switches (`reference_code`), the paper's four ablation switches, the mapper's
 // and the planner's tables — the counters its progress line shows, its Table I rows, and its
-// viewpoint chooser hook (setViewpointChooser, found by registerMethod).
+// viewpoint chooser hook (setViewpointChooser, offered as "viewpoint_chooser").
 #include "core/explorer/method_registry.h"
 #include "core/methods/monospheres/planner/monospheres_explorer.h"
 
@@ -44,7 +44,8 @@ const MethodRegistrar kMonoSpheresMethod = registerMethod<MonoSpheresExplorer, M
       {"urban", "dbof", 2308, 3081, 3},
       {"urban", "ovde", 747, 862, 3},
       {"urban", "vpb", 3697, 4175, 3}},
-     /*listed=*/0},
+     /*listed=*/0,
+     {{"viewpoint_chooser", hookOf(&MonoSpheresExplorer::setViewpointChooser)}}},
     monoSpheresKeys);
 
 }  // namespace msb

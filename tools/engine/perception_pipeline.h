@@ -5,7 +5,7 @@
 // a second thread (perception.threads = 2) run the work while the loop renders. One rule for
 // every depth: on a camera tick the loop uses what is due, launches the frame's job, and uses
 // what is due again (with depth 0, the job it just launched). Results never depend on threads.
-// "Change when the map updates" is this file and its test (tests/tools/loop/closed_loop_test.cc).
+// "Change when the map updates" is this file and its test (tests/tools/engine/closed_loop_test.cc).
 #pragma once
 
 #include <chrono>
@@ -20,9 +20,9 @@
 #include "core/explorer/explorer.h"
 #include "core/perception/feature_tracker.h"
 #include "core/perception/slam_points.h"
-#include "tools/loop/compute_clock.h"
-#include "tools/loop/job_worker.h"
-#include "tools/loop/records.h"
+#include "tools/engine/compute_clock.h"
+#include "tools/engine/job_worker.h"
+#include "tools/engine/records.h"
 
 namespace msb {
 
@@ -52,7 +52,7 @@ struct PerceptionJob {
   std::exception_ptr error;  ///< what the job threw (rethrown when used)
 };
 
-/// How the method's calls are charged (tools/loop/compute_clock.h).
+/// How the method's calls are charged (tools/engine/compute_clock.h).
 struct ComputeSetup {
   ComputeTiming timing;             ///< the scenario's `timing` section
   std::vector<ComputeCall> replay;  ///< charged: the latencies to replay (empty: measure)
@@ -109,7 +109,7 @@ class PerceptionPipeline {
 
  private:
   void run(PerceptionJob& j);
-  // The explorer's calls that start on the job's tick (tools/loop/compute_clock.h).
+  // The explorer's calls that start on the job's tick (tools/engine/compute_clock.h).
   void runMethodCalls(PerceptionJob& j);
   // Runs a method's call `call` ("plan()") of the job's tick: what it throws names the call.
   void namedCall(const char* call, int64_t tick, const std::function<void()>& f) const;

@@ -1,4 +1,4 @@
-#include "tools/loop/job_worker.h"
+#include "tools/engine/job_worker.h"
 
 namespace msb {
 

@@ -1,4 +1,4 @@
-#include "tools/loop/closed_loop.h"
+#include "tools/engine/closed_loop.h"
 
 #include <cmath>
 

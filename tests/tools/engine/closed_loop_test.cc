@@ -9,8 +9,8 @@
 
 #include "core/geometry/world_truth.h"
 #include "tools/config/world_registry.h"
-#include "tools/loop/closed_loop.h"
-#include "tools/loop/mission.h"
+#include "tools/engine/closed_loop.h"
+#include "tools/engine/mission.h"
 
 namespace msb {
 namespace {
@@ -19,7 +19,7 @@ namespace {
 const BuiltWorld& urban() {
   static const BuiltWorld world =
       buildWorld(loadWorldSpec(std::string(MSB_SOURCE_DIR) + "/worlds/urban_town/spec.yaml"),
-                 std::string(::testing::TempDir()) + "/msb_loop_cache");
+                 std::string(::testing::TempDir()) + "/msb_engine_cache");
   return world;
 }
 
@@ -181,7 +181,7 @@ TEST(ClosedLoop, ThePipelinedLoopIsTheSameOnOneThreadOnTwoAndUnderLoad) {
   EXPECT_NE(runMission(sequential, box, &truth).run_hash, ra.run_hash);
 }
 
-// One rule for every latency (tools/loop/perception_pipeline.h): the results a tick uses are
+// One rule for every latency (tools/engine/perception_pipeline.h): the results a tick uses are
 // those of the frame `latency` frames back (latency 0: its own), the map updates only with
 // them, on camera ticks.
 TEST(ClosedLoop, EachLatencyUsesTheFrameThatManyFramesBack) {

@@ -1,4 +1,4 @@
-#include "tools/loop/methods.h"
+#include "tools/engine/methods.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -27,7 +27,7 @@ MethodChoice registeredMethodChoice(const MethodRegistration& reg, std::any conf
   choice.switches = facts.switches;
   choice.reference_code = facts.reference_code;
   choice.octree_resolution_m = facts.octree_resolution_m;
-  choice.takes_goal_chooser = static_cast<bool>(reg.attach_goal_chooser);
+  for (const NamedHook& h : reg.info.hooks) choice.hooks.push_back(h.name);
   choice.make = [&reg, config](const FisheyeCamera& camera, const ExplorerContext& context) {
     return reg.make(config, camera, context);
   };

@@ -1,4 +1,4 @@
-#include "tools/loop/flight_spec.h"
+#include "tools/engine/flight_spec.h"
 
 #include <filesystem>
 

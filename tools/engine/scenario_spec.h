@@ -10,9 +10,10 @@
 
 #include "core/common/aabb.h"
 #include "core/common/config_fields.h"
-#include "tools/loop/compute_clock.h"
-#include "tools/loop/flight_spec.h"
-#include "tools/loop/methods.h"
+#include "tools/engine/compute_clock.h"
+#include "tools/engine/flight_spec.h"
+#include "core/methods/python/python_method.h"
+#include "tools/engine/methods.h"
 
 namespace msb {
 

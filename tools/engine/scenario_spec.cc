@@ -1,4 +1,4 @@
-#include "tools/loop/scenario_spec.h"
+#include "tools/engine/scenario_spec.h"
 
 #include <algorithm>
 
@@ -44,7 +44,7 @@ void ScenarioSpec::validate(ConfigChecker& c) const {
   if (goals) {
     c.nested("goals", *goals);
     c.require(
-        method.takes_goal_chooser, "goals",
+        takesGoalChooser(method), "goals",
         "method.type '" + method.type + "' takes no goal chooser (its explorer has no goal or viewpoint chooser hook)");
   }
 }

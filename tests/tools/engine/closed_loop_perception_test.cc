@@ -8,7 +8,7 @@
 #include "core/common/rng.h"
 #include "core/eval/slam_point_truth.h"
 #include "tools/config/world_registry.h"
-#include "tools/loop/closed_loop.h"
+#include "tools/engine/closed_loop.h"
 
 namespace msb {
 namespace {

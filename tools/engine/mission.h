@@ -20,8 +20,8 @@
 #include "core/eval/map_accuracy.h"
 #include "core/eval/mission_coverage.h"
 #include "core/explorer/explorer.h"
-#include "tools/loop/closed_loop.h"
-#include "tools/loop/scenario_spec.h"
+#include "tools/engine/closed_loop.h"
+#include "tools/engine/scenario_spec.h"
 
 namespace msb {
 

@@ -1,4 +1,4 @@
-#include "tools/loop/records.h"
+#include "tools/engine/records.h"
 
 #include "core/common/rng.h"
 

@@ -18,7 +18,7 @@
 #include "core/eval/verified_coverage.h"
 #include "tools/config/scenario_yaml.h"
 #include "tools/config/world_registry.h"
-#include "tools/loop/mission.h"
+#include "tools/engine/mission.h"
 
 namespace msb {
 namespace {

@@ -1,5 +1,5 @@
-// How runs name their method (summary line, video caption): methodLabel() of tools/loop/methods.h.
-#include "tools/loop/methods.h"
+// How runs name their method (summary line, video caption): methodLabel() of tools/engine/methods.h.
+#include "tools/engine/methods.h"
 
 #include <gtest/gtest.h>
 
@@ -37,12 +37,16 @@ TEST(Methods, TheDefaultMethodIsANameLookedUpInTheRegistry) {
   const MethodChoice m = defaultMethod();
   EXPECT_EQ(m.type, kDefaultMethodType);
   EXPECT_NE(std::any_cast<MonoSpheresConfig>(&m.config), nullptr);
-  EXPECT_TRUE(m.takes_goal_chooser);
+  EXPECT_TRUE(takesGoalChooser(m));
+  EXPECT_EQ(m.hooks, std::vector<std::string>{"viewpoint_chooser"});
   EXPECT_EQ(findRegistration("no_such_method"), nullptr);
   ASSERT_NE(findRegistration("grid_random"), nullptr);
   EXPECT_EQ(registeredMethodChoice(*findRegistration("grid_random"), findRegistration("grid_random")->default_config())
                 .octree_resolution_m,
             0.5);
+  // Methods written in Python are a registration like the others; they offer no hook.
+  ASSERT_NE(findRegistration("python"), nullptr);
+  EXPECT_FALSE(takesGoalChooser(registeredMethodChoice(*findRegistration("python"), findRegistration("python")->default_config())));
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "tools/loop/mission.h"
+#include "tools/engine/mission.h"
 
 #include <cmath>
 #include <cstdio>

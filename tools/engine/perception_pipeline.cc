@@ -1,4 +1,4 @@
-#include "tools/loop/perception_pipeline.h"
+#include "tools/engine/perception_pipeline.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "tools/loop/compute_clock.h"
+#include "tools/engine/compute_clock.h"
 
 #include <time.h>
 

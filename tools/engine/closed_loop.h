@@ -5,7 +5,7 @@
 //   tracking loss) → map update → planning → trajectory + controller → records →
 //   physics step 2 (actuators, integration) → IMU
 //
-// Perception is one pipeline (tools/loop/perception_pipeline.h) for every
+// Perception is one pipeline (tools/engine/perception_pipeline.h) for every
 // perception.latency_frames = k: what a frame's tick computes from its image — tracks, SLAM
 // points, the map update and the plan due on that tick, from the state snapshotted then — is
 // used k frames later: render → use what is due → start frame n's perception → use what is due
@@ -45,9 +45,9 @@
 #include "sim/render/frame_renderer.h"
 #include "sim/sensors/imu_model.h"
 #include "sim/sensors/vio_drift.h"
-#include "tools/loop/flight_spec.h"
-#include "tools/loop/perception_pipeline.h"
-#include "tools/loop/records.h"
+#include "tools/engine/flight_spec.h"
+#include "tools/engine/perception_pipeline.h"
+#include "tools/engine/records.h"
 
 namespace msb {
 

@@ -1,4 +1,4 @@
-// Compute in the loop (tools/loop/compute_clock.h): the method's computer serves the calls in the
+// Compute in the loop (tools/engine/compute_clock.h): the method's computer serves the calls in the
 // order they were asked for, a call's latency delays the next and the output of a planning step;
 // a charged run replays bit for bit from its latency log; `modelled` is deterministic on one
 // thread or two; `free` is the loop as it was.
@@ -9,8 +9,8 @@
 
 #include "core/geometry/world_truth.h"
 #include "tools/config/world_registry.h"
-#include "tools/loop/compute_clock.h"
-#include "tools/loop/mission.h"
+#include "tools/engine/compute_clock.h"
+#include "tools/engine/mission.h"
 
 namespace msb {
 namespace {
