@@ -3,6 +3,7 @@
 //   template <class Self, class V> static void fields(Self& s, V& v) {
 //     v.key("max_range_m", s.max_range_m, Limits::positive());  // a number and its range
 //     v.key("insertion", s.insertion, Choices{"standard", "confidence_weighted"});
+//     v.key("compute", s.compute);                               // a mode (core/common/word_enum.h)
 //     v.key("enabled", s.enabled);                               // a flag
 //     v.group("planner", s.planner);                             // a nested config (its own table)
 //     v.moved("r_min_m", "method.map.r_min_m");                  // not a key here: refused, naming where
@@ -22,6 +23,7 @@
 
 #include "core/common/config_check.h"
 #include "core/common/types.h"
+#include "core/common/word_enum.h"
 
 namespace msb {
 
@@ -61,6 +63,12 @@ struct Limits {
 struct Choices {
   std::vector<std::string> words;
   Choices(std::initializer_list<std::string> w) : words(w) {}
+  explicit Choices(std::vector<std::string> w) : words(std::move(w)) {}
+  /// The words of a mode key's enum (core/common/word_enum.h).
+  template <WordEnum E>
+  static Choices of() {
+    return Choices(wordsList<E>());
+  }
   /// True if `word` is one of them.
   bool holds(const std::string& word) const;
   /// "a, b or c".
@@ -93,6 +101,8 @@ class FieldCheck {
   void key(const char*, bool) {}
   void key(const char*, const std::string&) {}
   void key(const char*, const MapText&) {}
+  template <WordEnum E>
+  void key(const char*, E) {}  // a mode key holds one of its words by its type
   void key(const char* name, const std::string& v, const Choices& c);
   template <class Sub>
   void group(const char* name, const Sub& sub) {

@@ -1,6 +1,6 @@
 // Determinism hashes of a run (docs/architecture.md, "Determinism"): FNV-1a over the final map and
-// the coverage record (the trajectory's hash is the loop's: tools/engine/records.h). Same scenario + seed + build on the
-// same machine ⇒ the same hashes.
+// the coverage record (the trajectory's hash is the loop's: tools/engine/records.h). Same scenario + seed + build on
+// the same machine ⇒ the same hashes.
 #pragma once
 
 #include <cstdint>

@@ -39,9 +39,8 @@ class TopLevelKeys final : public KeyVisitor {
 
 // True if `name` is letters, digits and '_', and not empty.
 bool wellFormedName(const std::string& name) {
-  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-  });
+  return !name.empty() && std::all_of(name.begin(), name.end(),
+                                      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 // What is wrong with the hooks a method offers ("" = nothing): a malformed name, one name twice.

@@ -110,6 +110,17 @@ inline constexpr int kListedAfterThePaper = 100;
 /// of the type the hook takes, in a std::any (std::bad_any_cast for any other type).
 using ExplorerHook = std::function<void(Explorer& explorer, const std::any& argument)>;
 
+/// The ExplorerHook that calls `fn`, a const one-argument member function of ExplorerT (a hook
+/// that reports, such as one that writes the method's map into a string the caller gives).
+template <class ExplorerT, class Arg>
+ExplorerHook hookOf(void (ExplorerT::*fn)(Arg) const) {
+  return [fn](Explorer& x, const std::any& a) {
+    auto* own = dynamic_cast<ExplorerT*>(&x);
+    if (!own) throw std::logic_error("a method's hook was called on another method's explorer");
+    (own->*fn)(std::any_cast<const std::decay_t<Arg>&>(a));
+  };
+}
+
 /// A hook and the name it is offered under (MethodInfo::hooks).
 struct NamedHook {
   std::string name;   ///< letters, digits and '_'

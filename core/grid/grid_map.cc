@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace msb {
 
@@ -154,6 +155,12 @@ bool GridMap::occupiedWithin(const Vec3& p, double r) const {
     if (q.norm() <= r) return true;
   }
   return false;
+}
+
+std::string GridMap::binary() const {
+  std::ostringstream out;
+  tree_->writeBinaryConst(out);
+  return out.str();
 }
 
 std::vector<GridLeaf> GridMap::leaves(bool occupied) const {

@@ -122,6 +122,9 @@ class GridMap {
   bool occupiedWithin(const Vec3& p, double r) const;
   /// Free / occupied leaves (iteration order of the octree: deterministic).
   std::vector<GridLeaf> leaves(bool occupied) const;
+  /// The octree as liboctomap's binary format (.bt: free/occupied, the tree as it is, unpruned
+  /// and unchanged).
+  std::string binary() const;
   /// The octree (read-only).
   const octomap::OcTree& tree() const { return *tree_; }
   /// The configuration.

@@ -29,6 +29,9 @@ class FieldKeys {
     // The rule's texts are made only for a writer that keeps a log (`msbench keys`).
     if constexpr (sizeof...(Rule) == 1 && !Keys::kReading)
       if (k_.keepsLog()) k_.noteRule(name, {rule.text()..., refused<T>(rule...)});
+    // A mode key's rule is its words.
+    if constexpr (WordEnum<T> && !Keys::kReading)
+      if (k_.keepsLog()) k_.noteRule(name, {Choices::of<T>().text(), Choices::of<T>().outside()});
   }
   /// A nested group: its own table under its key (read if present, written always; unknown keys
   /// refused), or the reader given by custom().

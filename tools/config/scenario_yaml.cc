@@ -271,7 +271,7 @@ void readTiming(MapReader t, const fs::path& dir, ComputeTiming& timing) {
 
 void writeTiming(MapWriter t, const ComputeTiming& timing) {
   ComputeTiming keys = timing;
-  if (timing.compute == "modelled" || t.keepsLog()) {
+  if (timing.compute == ComputeMode::kModelled || t.keepsLog()) {
     fieldKeys(t, keys);  // compute, compute_model and each stage's base_s, with their rules
     if (!timing.map.per.empty()) stageModelKeys(t.sub("map"), keys.map);
     if (!timing.plan.per.empty()) stageModelKeys(t.sub("plan"), keys.plan);

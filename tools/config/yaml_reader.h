@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "core/common/config_check.h"
-#include "core/common/strict_number.h"
 #include "core/common/config_fields.h"
+#include "core/common/strict_number.h"
 #include "core/common/types.h"
 
 namespace msb {
@@ -163,6 +163,13 @@ class MapReader {
   void convert(const YAML::Node& n, const std::string& key, std::string& out) const {
     if (!n.IsScalar()) typeError(n, key, "a string");
     out = n.Scalar();
+  }
+  // A mode key: one of its enum's words (core/common/word_enum.h).
+  template <WordEnum E>
+  void convert(const YAML::Node& n, const std::string& key, E& out) const {
+    if (!n.IsScalar()) typeError(n, key, "a word");
+    if (!parseWord(n.Scalar(), out))
+      throw ConfigError(keyName(key), "must be " + Choices::of<E>().text() + " (got '" + n.Scalar() + "')");
   }
   // A map kept as its one-line text (MapText).
   void convert(const YAML::Node& n, const std::string& key, MapText& out) const {

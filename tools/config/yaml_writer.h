@@ -79,6 +79,10 @@ class MapWriter {
   static YAML::Node encode(bool v) { return YAML::Node(v ? "true" : "false"); }
   static YAML::Node encode(const std::string& v) { return YAML::Node(v); }
   static YAML::Node encode(const MapText& v) { return YAML::Load(v.text); }
+  template <WordEnum E>
+  static YAML::Node encode(E v) {
+    return YAML::Node(std::string(wordOf(v)));
+  }
   static YAML::Node encode(const Vec2& v) { return numbers(v.data(), 2); }
   static YAML::Node encode(const Vec3& v) { return numbers(v.data(), 3); }
   template <size_t N>

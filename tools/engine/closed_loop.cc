@@ -16,7 +16,7 @@ namespace {
 // The renderer named by camera_stream.renderer (none when the stream is off).
 std::unique_ptr<FrameRenderer> makeRenderer(const FlightSpec& spec, const FisheyeCamera& camera, QuadrotorSim& sim) {
   if (!spec.camera_stream.enabled) return nullptr;
-  if (spec.camera_stream.renderer == "blank") return std::make_unique<NullRenderer>(camera);
+  if (spec.camera_stream.renderer == RendererKind::kBlank) return std::make_unique<NullRenderer>(camera);
   return std::make_unique<FisheyeRenderer>(spec.render, camera, sim.model());
 }
 
@@ -24,7 +24,7 @@ std::unique_ptr<FrameRenderer> makeRenderer(const FlightSpec& spec, const Fishey
 std::unique_ptr<FeatureSource> makeFeatureSource(const FlightSpec& spec, const FisheyeCamera& camera,
                                                  const WorldTruth* truth) {
   if (!spec.perception.enabled) return nullptr;
-  if (spec.perception.source == "oracle") {
+  if (spec.perception.source == FeatureSourceKind::kOracle) {
     if (!truth)
       throw ConfigError("perception.source",
                         "'oracle' needs a generated world (its ground truth); this world has none");
@@ -263,7 +263,8 @@ void ClosedLoop::recordTick() {
   if (traj_schedule_->due(record_.tick)) {
     const auto& ref = trajectory_.reference();
     result_.trajectory.push_back({gt_.t_s, gt_.T_W_B.translation(), Quat(gt_.T_W_B.linear()), gt_.v_W_mps,
-                                  est_.T_W_B.translation(), yawOf(est_.T_W_B.linear()), ref.position_m, ref.yaw_rad});
+                                  est_.T_W_B.translation(), yawOf(est_.T_W_B.linear()), ref.position_m, ref.yaw_rad,
+                                  Quat(est_.T_W_B.linear())});
     result_.final_drift_m = (est_.T_W_B.translation() - gt_.T_W_B.translation()).norm();
   }
   result_.distance_flown_m += (gt_.T_W_B.translation() - last_position_).norm();

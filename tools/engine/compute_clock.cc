@@ -60,13 +60,14 @@ double StageCostModel::seconds(const std::map<std::string, double>& counters) co
 
 void ComputeTiming::validate(ConfigChecker& c) const {
   checkFields(*this, c);
-  c.require(compute_model == "none" || compute == "modelled", "compute_model",
+  c.require(compute_model == ComputeModel::kNone || compute == ComputeMode::kModelled, "compute_model",
             "names a cost model, which only compute: modelled uses");
-  c.require(replay.empty() || compute == "charged", "replay", "replays charged latencies (compute: charged)");
+  c.require(replay.empty() || compute == ComputeMode::kCharged, "replay",
+            "replays charged latencies (compute: charged)");
 }
 
 void ComputeTiming::applyProfile() {
-  if (compute_model != "reference_python") return;
+  if (compute_model != ComputeModel::kReferencePython) return;
   // The authors' Python stack (docs/compute.md, "The reference profile", how each was fitted).
   map = StageCostModel{0.114, {{"obstacle_points", 5.4e-6}, {"spheres", 6.9e-7}}};
   plan = StageCostModel{0.011, {{"frontiers", 1.44e-5}, {"spheres", 1.53e-5}}};
@@ -180,7 +181,7 @@ ComputeLog parseComputeLog(const std::string& text, int64_t max_latency_ticks) {
 
 void checkModelTerms(const ComputeTiming& timing, const std::map<std::string, double>& counters,
                      const std::string& method) {
-  if (timing.compute != "modelled") return;
+  if (timing.compute != ComputeMode::kModelled) return;
   for (const auto* stage : {&timing.map, &timing.plan})
     for (const auto& [term, coef] : stage->per)
       for (const std::string& f : termFactors(term))

@@ -8,11 +8,13 @@
 // Every latency is logged; a charged run replays bit for bit from its log (`timing.replay`).
 #pragma once
 
+#include <array>
 #include <climits>
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/common/config_fields.h"
@@ -39,13 +41,29 @@ struct StageCostModel {
   bool operator==(const StageCostModel&) const = default;
 };
 
+/// How a method's computation takes simulated time (`timing.compute`, docs/compute.md).
+enum class ComputeMode { kFree, kCharged, kModelled };
+/// The words of ComputeMode (core/common/word_enum.h).
+constexpr auto wordsOf(ComputeMode) {
+  return std::array{std::pair{ComputeMode::kFree, "free"}, std::pair{ComputeMode::kCharged, "charged"},
+                    std::pair{ComputeMode::kModelled, "modelled"}};
+}
+
+/// The profile of coefficients a modelled cost starts from (`timing.compute_model`).
+enum class ComputeModel { kNone, kReferencePython };
+/// The words of ComputeModel.
+constexpr auto wordsOf(ComputeModel) {
+  return std::array{std::pair{ComputeModel::kNone, "none"},
+                    std::pair{ComputeModel::kReferencePython, "reference_python"}};
+}
+
 /// The `timing` section of a scenario: how a method's computation is charged. A suite-fixed
 /// setting (it decides what a score means).
 struct ComputeTiming {
-  std::string compute = "free";  ///< free | charged | modelled
+  ComputeMode compute = ComputeMode::kFree;
   /// modelled: a profile of coefficients taken before the model's own keys (none, or
   /// reference_python: the authors' Python stack, docs/compute.md).
-  std::string compute_model = "none";
+  ComputeModel compute_model = ComputeModel::kNone;
   StageCostModel map;   ///< modelled: a map update's cost
   StageCostModel plan;  ///< modelled: a planning step's cost
   /// charged: the latency log of an earlier run to replay instead of measuring (absolute after
@@ -55,8 +73,8 @@ struct ComputeTiming {
   /// The keys, each once with the values it accepts (core/common/config_fields.h).
   template <class Self, class V>
   static void fields(Self& s, V& v) {
-    v.key("compute", s.compute, Choices{"free", "charged", "modelled"});
-    v.key("compute_model", s.compute_model, Choices{"none", "reference_python"});
+    v.key("compute", s.compute);
+    v.key("compute_model", s.compute_model);
     v.group("map", s.map);
     v.group("plan", s.plan);
   }
@@ -64,7 +82,7 @@ struct ComputeTiming {
   void validate(ConfigChecker& c) const;
   /// Takes the coefficients of the profile named by compute_model (before named keys).
   void applyProfile();
-  bool free() const { return compute == "free"; }
+  bool free() const { return compute == ComputeMode::kFree; }
   bool operator==(const ComputeTiming&) const = default;
 };
 

@@ -24,10 +24,11 @@ void FlightSpec::validate(ConfigChecker& c) const {
   c.require(camera_stream.rate_hz <= physics.physics_hz, "camera_stream.rate_hz", "must not exceed physics.physics_hz");
   if (frontend.drift_scale != 1.0)  // the scaled drift model must itself be valid
     c.nested("vio_drift (scaled by frontend.drift_scale)", scaledDrift(vio_drift, frontend.drift_scale));
-  c.require(frontend.mistrack_share == 0.0 || perception.source == "klt", "frontend.mistrack_share",
+  c.require(frontend.mistrack_share == 0.0 || perception.source == FeatureSourceKind::kKlt, "frontend.mistrack_share",
             "mis-tracks are the KLT tracker's: the oracle source has pixel_noise_px instead");
   c.require(!perception.enabled || camera_stream.enabled, "perception.enabled", "needs camera_stream.enabled");
-  c.require(!perception.enabled || perception.source != "klt" || camera_stream.renderer != "blank",
+  c.require(!perception.enabled || perception.source != FeatureSourceKind::kKlt ||
+                camera_stream.renderer != RendererKind::kBlank,
             "camera_stream.renderer",
             "'blank' draws no images: the klt tracker needs the fisheye renderer "
             "(or perception.source: oracle)");

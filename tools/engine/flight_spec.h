@@ -3,8 +3,10 @@
 // validation; YAML is converted in tools/msbench/yaml_config.cc only.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/camera/fisheye_camera.h"
@@ -23,12 +25,32 @@
 
 namespace msb {
 
+/// What renders the camera's frames (`camera_stream.renderer`).
+enum class RendererKind {
+  kFisheye,  ///< the OSMesa cube-map fisheye renderer
+  kBlank,    ///< uniform grey frames, no GL (tests; a named shortcut, never the default)
+};
+/// The words of RendererKind (core/common/word_enum.h).
+constexpr auto wordsOf(RendererKind) {
+  return std::array{std::pair{RendererKind::kFisheye, "fisheye"}, std::pair{RendererKind::kBlank, "blank"}};
+}
+
+/// Where the features of a frame come from (`perception.source`).
+enum class FeatureSourceKind {
+  kKlt,     ///< the KLT tracker on the rendered image
+  kOracle,  ///< ground-truth features (a named shortcut, never the default)
+};
+/// The words of FeatureSourceKind.
+constexpr auto wordsOf(FeatureSourceKind) {
+  return std::array{std::pair{FeatureSourceKind::kKlt, "klt"}, std::pair{FeatureSourceKind::kOracle, "oracle"}};
+}
+
 /// Camera stream settings of a flight.
 struct CameraStreamConfig {
-  bool enabled = true;               ///< render fisheye frames at all
-  std::string renderer = "fisheye";  ///< fisheye (OSMesa cube map) | blank (uniform grey frames, no GL: tests)
-  double rate_hz = 15.0;             ///< render rate (first tick at or after each period)
-  int save_every_n = 15;             ///< write every N-th rendered frame as PNG (0 = none)
+  bool enabled = true;                             ///< render fisheye frames at all
+  RendererKind renderer = RendererKind::kFisheye;  ///< the OSMesa fisheye renderer, or blank frames
+  double rate_hz = 15.0;                           ///< render rate (first tick at or after each period)
+  int save_every_n = 15;                           ///< write every N-th rendered frame as PNG (0 = none)
 
   /// The keys, each once with the values it accepts (core/common/config_fields.h).
   template <class Self, class V>
@@ -36,7 +58,7 @@ struct CameraStreamConfig {
     v.key("enabled", s.enabled);
     v.key("rate_hz", s.rate_hz, Limits::range(0.1, 500.0));
     v.key("save_every_n", s.save_every_n, Limits::nonNegative());
-    v.key("renderer", s.renderer, Choices{"fisheye", "blank"});
+    v.key("renderer", s.renderer);
   }
 
   /// Records invalid fields.
@@ -45,11 +67,11 @@ struct CameraStreamConfig {
 
 /// Perception in the loop: tracker + SLAM points on every rendered frame, tracking loss.
 struct PerceptionConfig {
-  bool enabled = false;        ///< run the tracker and triangulation (vio-eval, missions)
-  std::string source = "klt";  ///< klt (tracker on the rendered image) | oracle (ground truth)
-  OracleFeatureConfig oracle;  ///< settings of the oracle source
-  int lost_min_tracks = 15;    ///< fewer features tracked from the previous frame than this ...
-  double lost_after_s = 2.0;   ///< ... for this long ends the run as vio_lost
+  bool enabled = false;                                ///< run the tracker and triangulation (vio-eval, missions)
+  FeatureSourceKind source = FeatureSourceKind::kKlt;  ///< the tracker, or ground truth
+  OracleFeatureConfig oracle;                          ///< settings of the oracle source
+  int lost_min_tracks = 15;                            ///< fewer features tracked from the previous frame than this ...
+  double lost_after_s = 2.0;                           ///< ... for this long ends the run as vio_lost
   /// Camera frames between an image and the use of what was computed from it (tracks, SLAM
   /// points, the map update and the plan of that frame's tick): 0 = the same tick (sequential
   /// loop); k ≥ 1 = k frames later (pipelined loop; docs/performance.md, "Two cores").
@@ -63,7 +85,7 @@ struct PerceptionConfig {
   template <class Self, class V>
   static void fields(Self& s, V& v) {
     v.key("enabled", s.enabled);
-    v.key("source", s.source, Choices{"klt", "oracle"});
+    v.key("source", s.source);
     v.group("oracle", s.oracle);
     v.key("lost_min_tracks", s.lost_min_tracks, Limits::range(0, 10000));
     v.key("lost_after_s", s.lost_after_s, Limits::positive());

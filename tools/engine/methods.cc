@@ -27,7 +27,7 @@ MethodChoice registeredMethodChoice(const MethodRegistration& reg, std::any conf
   choice.switches = facts.switches;
   choice.reference_code = facts.reference_code;
   choice.octree_resolution_m = facts.octree_resolution_m;
-  for (const NamedHook& h : reg.info.hooks) choice.hooks.push_back(h.name);
+  choice.hooks = reg.info.hooks;
   choice.make = [&reg, config](const FisheyeCamera& camera, const ExplorerContext& context) {
     return reg.make(config, camera, context);
   };

@@ -32,8 +32,8 @@ struct MethodChoice {
   /// > 0: the method's free space is OctoMap cells of this leaf size, which the authors'
   /// evaluation rule (BUG-11) also scores (coverage.area_published_rule_m2); 0: not applicable.
   double octree_resolution_m = 0.0;
-  /// The names of the hooks its explorer offers (MethodInfo::hooks), e.g. "goal_chooser".
-  std::vector<std::string> hooks;
+  /// The hooks its explorer offers (MethodInfo::hooks), e.g. "goal_chooser".
+  std::vector<NamedHook> hooks;
   /// Creates the explorer for a mission.
   std::function<std::unique_ptr<Explorer>(const FisheyeCamera&, const ExplorerContext&)> make;
   /// Why the method that flew cannot be rebuilt from the scenario ("" = it can): an in-process
@@ -69,9 +69,21 @@ inline constexpr const char* kGoalChooserHooks[] = {"goal_chooser", "viewpoint_c
 /// True if `m`'s explorer takes an outside goal chooser (offers one of kGoalChooserHooks).
 inline bool takesGoalChooser(const MethodChoice& m) {
   for (const char* h : kGoalChooserHooks)
-    for (const std::string& offered : m.hooks)
-      if (offered == h) return true;
+    for (const NamedHook& offered : m.hooks)
+      if (offered.name == h) return true;
   return false;
+}
+
+/// The hook through which the loop asks a method for its map as an OctoMap binary (`.bt`, as
+/// liboctomap's writeBinary writes it): argument a std::string* the method fills. A run writes it
+/// as map.bt (docs/interop.md).
+inline constexpr char kOctomapBinaryHook[] = "octomap_binary";
+
+/// The hook of `m` named `name`, or null.
+inline const ExplorerHook* findHook(const MethodChoice& m, const std::string& name) {
+  for (const NamedHook& h : m.hooks)
+    if (h.name == name) return &h.hook;
+  return nullptr;
 }
 
 /// The `method.type` of a scenario that names none: the paper's method.

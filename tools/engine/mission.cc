@@ -52,7 +52,7 @@ Mission::Mission(const ScenarioSpec& spec, const Aabb& box, const WorldTruth* tr
   setup.compute.timing = spec_.timing;
   setup.compute.replay = spec_.compute_replay.calls;
   checkModelTerms(spec_.timing, explorer_->workCounters(), spec_.method.type);
-  if (spec_.timing.compute == "charged")
+  if (spec_.timing.compute == ComputeMode::kCharged)
     setup.compute.machine_factor =
         spec_.timing.replay.empty() ? measureMachineFactor() : spec_.compute_replay.header.machine_factor;
   machine_factor_ = setup.compute.machine_factor;
@@ -149,6 +149,8 @@ MissionResult Mission::finish() {
     r.time_outside_box_s = coverage_.timeOutsideBoxS();
   }
   r.final_map = explorer_->snapshot();
+  if (const ExplorerHook* bt = findHook(spec_.method, kOctomapBinaryHook))
+    (*bt)(*explorer_, std::any(&r.octomap_binary));
   r.counters = explorer_->counters();
   r.stages = stages_;
   r.stage_timeline = stage_timeline_;

@@ -54,7 +54,10 @@ struct MissionResult {
   double box_free_m3 = 0;                   ///< the box's truly free volume (the earned score's ceiling)
   double time_outside_box_s = 0;            ///< seconds the camera spent outside the box (+ margin)
   ExplorerSnapshot final_map;               ///< the map at the end
-  std::map<std::string, double> counters;   ///< the method's counters at the end
+  /// The map at the end as an OctoMap binary (.bt), from a method that offers kOctomapBinaryHook
+  /// ("" otherwise).
+  std::string octomap_binary;
+  std::map<std::string, double> counters;  ///< the method's counters at the end
   StageTimes stages;
   std::vector<std::pair<double, StageTimes>> stage_timeline;  ///< cumulative, every 10 simulated s
   std::vector<double> map_update_ms;                          ///< wall time of every map update (recorded only)

@@ -70,7 +70,7 @@ void PerceptionPipeline::runMethodCalls(PerceptionJob& j) {
   // all of them, map update first, on the frame's tick).
   if (j.map_due) clock_.ask(ComputeCall::Stage::kMap, j.tick);
   if (j.plan_due) clock_.ask(ComputeCall::Stage::kPlan, j.tick);
-  const bool charged = stages_.compute.timing.compute == "charged";
+  const bool charged = stages_.compute.timing.compute == ComputeMode::kCharged;
   while (std::optional<ComputeCall> call = clock_.next(j.tick)) {
     const auto t0 = WallClock::now();
     const double cpu0 = charged ? threadCpuSeconds() + stages_.explorer->helperCpuSeconds() : 0.0;
@@ -96,7 +96,7 @@ void PerceptionPipeline::runMethodCalls(PerceptionJob& j) {
 int64_t PerceptionPipeline::latencyTicks(ComputeCall& call, double cpu_s) {
   const ComputeSetup& c = stages_.compute;
   const auto ticks = [&](double s) { return int64_t(std::ceil(s * double(c.physics_hz) - 1e-9)); };
-  if (c.timing.compute == "modelled") {
+  if (c.timing.compute == ComputeMode::kModelled) {
     const StageCostModel& m = call.stage == ComputeCall::Stage::kMap ? c.timing.map : c.timing.plan;
     try {
       return std::max<int64_t>(0, ticks(m.seconds(stages_.explorer->workCounters())));
@@ -104,7 +104,7 @@ int64_t PerceptionPipeline::latencyTicks(ComputeCall& call, double cpu_s) {
       throw ConfigError(std::string("timing.") + stageName(call.stage) + ".per", e.what());
     }
   }
-  if (c.timing.compute != "charged") return 0;
+  if (c.timing.compute != ComputeMode::kCharged) return 0;
   if (c.timing.replay.empty()) {
     call.cpu_ns = int64_t(std::llround(cpu_s * 1e9));
     return std::max<int64_t>(0, ticks(cpu_s * c.machine_factor));

@@ -22,6 +22,9 @@ struct TrajectoryRow {
   double est_yaw_rad;   ///< VIO estimate
   Vec3 ref_position_m;  ///< trajectory reference (estimate frame)
   double ref_yaw_rad;
+  /// VIO estimate: the full orientation (est_yaw_rad is its yaw). Not in hashTrajectory, which
+  /// predates it: it is a function of the same estimate the hash covers.
+  Quat est_orientation = Quat::Identity();
 };
 
 /// Hash of trajectory rows (time, estimate, true pose and velocity).

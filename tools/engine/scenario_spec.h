@@ -10,9 +10,9 @@
 
 #include "core/common/aabb.h"
 #include "core/common/config_fields.h"
+#include "core/methods/python/python_method.h"
 #include "tools/engine/compute_clock.h"
 #include "tools/engine/flight_spec.h"
-#include "core/methods/python/python_method.h"
 #include "tools/engine/methods.h"
 
 namespace msb {

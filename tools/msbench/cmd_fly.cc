@@ -87,7 +87,8 @@ int runFlyCommand(int argc, char** argv) {
   FlightSpec spec = loadFlightSpec(file);
   const std::optional<BuiltWorld> built = resolveFlightWorld(file, spec);
   std::optional<WorldTruth> truth;  // for the oracle feature source
-  if (built && spec.perception.enabled && spec.perception.source == "oracle") truth.emplace(built->generated.shapes);
+  if (built && spec.perception.enabled && spec.perception.source == FeatureSourceKind::kOracle)
+    truth.emplace(built->generated.shapes);
   // The loop (world model, renderer) before any output exists: a bad world writes nothing.
   LoopSetup setup;
   setup.truth = truth ? &*truth : nullptr;

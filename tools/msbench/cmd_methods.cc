@@ -31,7 +31,8 @@ void printMethod(const MethodRegistration& reg, bool keys) {
               (*r.switched_off ? std::string(" no ") + r.switched_off : "");
     std::printf("  Table I rows: %s\n", rows.c_str());
   }
-  if (takesGoalChooser(registeredMethodChoice(reg, reg.default_config()))) std::printf("  takes a goal chooser written in Python (a scenario's goals: section)\n");
+  if (takesGoalChooser(registeredMethodChoice(reg, reg.default_config())))
+    std::printf("  takes a goal chooser written in Python (a scenario's goals: section)\n");
   if (keys) std::printf("  keys and defaults:\n%s", indented(methodDefaultsYaml(e.type), "    ").c_str());
 }
 

@@ -6,6 +6,8 @@ namespace msb {
 
 /// `msbench run SCENARIO.yaml --out DIR`: one closed-loop exploration mission.
 int runRunCommand(int argc, char** argv);
+/// `msbench export RUN --out DIR`: a run's trajectories (TUM) and map (.bt) for the field's tools.
+int runExportCommand(int argc, char** argv);
 /// `msbench methods [--type T] [--keys]`: the registered methods and their keys.
 int runMethodsCommand(int argc, char** argv);
 /// msbench keys: every configuration key with its default and accepted values (docs/keys.md).

@@ -28,6 +28,7 @@ struct Command {
 
 constexpr Command kCommands[] = {
     {"run", msb::runRunCommand, "run one exploration mission from a scenario; write results"},
+    {"export", msb::runExportCommand, "a run's trajectories as TUM files and its OctoMap as .bt (docs/interop.md)"},
     {"video", msb::runVideoCommand, "add video.mp4 to a finished run (replays it; the hash must match)"},
     {"methods", msb::runMethodsCommand, "the registered exploration methods, their Table I rows and keys"},
     {"keys", msb::runKeysCommand, "every configuration key, its default and the values it accepts"},

@@ -85,8 +85,7 @@ class PyMission {
       const PythonMethodConfig& g = *scenario_.spec.goals;
       scenario_.spec.method.goal_chooser = g.entry;  // metrics.json names it; config.yaml replays it
       const py::module_ methods = py::module_::import("msbench.methods");
-      py::object chooser =
-          methods.attr("chooser_of")(g.entry, g.path, yamlToPython(g.params.text), scenario_.file);
+      py::object chooser = methods.attr("chooser_of")(g.entry, g.path, yamlToPython(g.params.text), scenario_.file);
       // The module's file, found without importing it: the chooser runs in its own process only.
       const py::object file =
           methods.attr("module_file")(g.entry, methods.attr("method_dir")(g.path, scenario_.file, "goals"));
@@ -99,8 +98,8 @@ class PyMission {
     if (method.is_none() && scenario_.spec.method.type == kPythonMethodType) {
       const auto& c = std::any_cast<const PythonMethodConfig&>(scenario_.spec.method.config);
       const py::module_ methods = py::module_::import("msbench.methods");
-      method = methods.attr("factory_of")(c.entry, c.path, yamlToPython(c.params.text), scenario_.file,
-                                          c.call_budget_s, c.memory_limit_mib);
+      method = methods.attr("factory_of")(c.entry, c.path, yamlToPython(c.params.text), scenario_.file, c.call_budget_s,
+                                          c.memory_limit_mib);
       // The module's file, found without importing it: the method runs in its own process only.
       const py::object file =
           methods.attr("module_file")(c.entry, methods.attr("method_dir")(c.path, scenario_.file, "method"));

@@ -56,10 +56,10 @@ double quantile(const std::vector<double>& sorted, double q) {
 }  // namespace
 
 nlohmann::json computeTimingJson(const ScenarioSpec& spec, const MissionResult& r) {
-  nlohmann::json j = {{"compute", spec.timing.compute}};
+  nlohmann::json j = {{"compute", wordOf(spec.timing.compute)}};
   if (spec.timing.free()) return j;
-  if (spec.timing.compute_model != "none") j["compute_model"] = spec.timing.compute_model;
-  if (spec.timing.compute == "charged") {
+  if (spec.timing.compute_model != ComputeModel::kNone) j["compute_model"] = wordOf(spec.timing.compute_model);
+  if (spec.timing.compute == ComputeMode::kCharged) {
     j["machine_factor"] = r.compute_machine_factor;
     j["replayed"] = !spec.timing.replay.empty();
   }
@@ -84,7 +84,7 @@ nlohmann::json computeTimingJson(const ScenarioSpec& spec, const MissionResult& 
                         {"busy_s", sum},
                         {"rate_hz", r.flight.sim_time_s > 0 ? double(lat.size()) / r.flight.sim_time_s : 0.0},
                         {"wait_mean_s", lat.empty() ? 0.0 : wait_s / double(lat.size())}};
-    if (spec.timing.compute == "charged") {
+    if (spec.timing.compute == ComputeMode::kCharged) {
       std::sort(cpu.begin(), cpu.end());
       s["cpu_median_s"] = quantile(cpu, 0.5);
       s["cpu_p95_s"] = quantile(cpu, 0.95);

@@ -22,7 +22,7 @@ void loadComputeReplay(ScenarioSpec& spec, const std::string& label);
 /// `spec` as its run's config.yaml records it: a charged run replays from the log written beside
 /// that file (timing.replay: compute_latency.csv).
 inline ScenarioSpec runOwnComputeLog(ScenarioSpec spec) {
-  if (spec.timing.compute == "charged") spec.timing.replay = kComputeLogFile;
+  if (spec.timing.compute == ComputeMode::kCharged) spec.timing.replay = kComputeLogFile;
   return spec;
 }
 

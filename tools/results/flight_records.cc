@@ -14,15 +14,19 @@ std::string encodePng(const CameraFrame& frame) {
 }
 
 std::string trajectoryCsv(const std::vector<TrajectoryRow>& rows) {
-  std::string s = "t,x,y,z,qw,qx,qy,qz,vx,vy,vz,est_x,est_y,est_z,est_yaw,ref_x,ref_y,ref_z,ref_yaw\n";
+  // est_qw..est_qz (the VIO's full orientation) last: the columns before them keep their places.
+  std::string s =
+      "t,x,y,z,qw,qx,qy,qz,vx,vy,vz,est_x,est_y,est_z,est_yaw,ref_x,ref_y,ref_z,ref_yaw,est_qw,est_qx,est_qy,est_qz\n";
   char line[768];
   for (const auto& r : rows) {
     std::snprintf(line, sizeof(line),
-                  "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+                  "%.3f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
+                  "%.9g,%.9g,%.9g,%.9g\n",
                   r.t_s, r.position_m.x(), r.position_m.y(), r.position_m.z(), r.orientation.w(), r.orientation.x(),
                   r.orientation.y(), r.orientation.z(), r.velocity_mps.x(), r.velocity_mps.y(), r.velocity_mps.z(),
                   r.est_position_m.x(), r.est_position_m.y(), r.est_position_m.z(), r.est_yaw_rad, r.ref_position_m.x(),
-                  r.ref_position_m.y(), r.ref_position_m.z(), r.ref_yaw_rad);
+                  r.ref_position_m.y(), r.ref_position_m.z(), r.ref_yaw_rad, r.est_orientation.w(),
+                  r.est_orientation.x(), r.est_orientation.y(), r.est_orientation.z());
     s += line;
   }
   return s;

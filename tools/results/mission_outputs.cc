@@ -282,11 +282,13 @@ nlohmann::json writeMissionOutputs(const std::filesystem::path& dir, const Scena
   writeFileAtomic(dir / "trajectory.csv", trajectoryCsv(r.flight.trajectory));
   writeFileAtomic(dir / "timing.csv", timingCsv(r));
   if (spec.mission.write_map_ply) writeFileAtomic(dir / "map.ply", mapPly(r.final_map));
+  // A method whose map is an OctoMap (its "octomap_binary" hook) leaves it as liboctomap's .bt.
+  if (!r.octomap_binary.empty()) writeFileAtomic(dir / "map.bt", r.octomap_binary);
   writeTopdown(dir / "topdown.png", r, truth);
   if (!spec.timing.free())
     writeFileAtomic(
         dir / kComputeLogFile,
-        computeLogText(r.flight.compute_calls, {msbGitRevision(), spec.timing.compute, r.compute_machine_factor,
+        computeLogText(r.flight.compute_calls, {msbGitRevision(), wordOf(spec.timing.compute), r.compute_machine_factor,
                                                 spec.flight.seed, spec.replay_settings_hash}));
   // What finishes after the run's files (its video: on a full disk, they go first) adds its keys
   // before the record is sealed.

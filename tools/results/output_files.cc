@@ -121,6 +121,8 @@ const char* kindName(OutputKind k) {
       return "world-show";
     case OutputKind::kWorldImport:
       return "world-import";
+    case OutputKind::kExport:
+      return "export";
   }
   return "?";
 }
@@ -141,6 +143,8 @@ const char* characteristicFile(OutputKind k) {
       return "views.png";
     case OutputKind::kWorldImport:
       return "imported.json";
+    case OutputKind::kExport:
+      return "export.json";
   }
   return "";
 }

@@ -154,6 +154,8 @@ class GridExplorer : public Explorer {
 
   /// The map (tests, tools).
   const GridMap& map() const { return map_; }
+  /// Writes the map as an OctoMap binary into *out (the "octomap_binary" hook).
+  void octomapBinary(std::string* out) const { *out = map_.binary(); }
   /// The current goal, if any.
   const std::optional<Vec3>& goal() const { return goal_; }
   /// Draws a goal for a vehicle at p (advances the goal stream; tests).

@@ -1,6 +1,8 @@
 // The grid baseline's registration (the paper's Grid-Based rows): method.type grid_random, its
 // keys — `reference_code: published` (the authors' grid session's settings) and its table — the
-// counters its progress line shows, its Table I rows and its goal chooser hook (setGoalChooser, offered as "goal_chooser").
+// counters its progress line shows, its Table I rows and its hooks: the goal chooser (setGoalChooser, "goal_chooser")
+// and its OctoMap as .bt
+// ("octomap_binary").
 #include "core/explorer/method_registry.h"
 #include "core/methods/grid_random/grid_explorer.h"
 
@@ -32,7 +34,8 @@ const MethodRegistrar kGridMethod = registerMethod<GridExplorer, GridExplorerCon
       {"rooftops", "", 1360, 1556, 3},
       {"sparse", "", 2108, 2168, 3}},
      /*listed=*/1,
-     {{"goal_chooser", hookOf(&GridExplorer::setGoalChooser)}}},
+     {{"goal_chooser", hookOf(&GridExplorer::setGoalChooser)},
+      {"octomap_binary", hookOf(&GridExplorer::octomapBinary)}}},
     gridKeys);
 
 }  // namespace msb

@@ -32,7 +32,10 @@ class PythonMethodSlot final : public Explorer {
 /// Registered before main() (the library is linked whole: docs/architecture.md); listed right
 /// after the paper's three methods.
 const MethodRegistrar kPythonMethod = registerMethod<PythonMethodSlot, PythonMethodConfig>(
-    {"python", "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)",
-     {}, {}, /*listed=*/3});
+    {"python",
+     "a method written in Python (method.entry: \"package.module:factory\"; docs/python.md)",
+     {},
+     {},
+     /*listed=*/3});
 
 }  // namespace msb

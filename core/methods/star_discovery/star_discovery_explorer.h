@@ -148,6 +148,8 @@ class StarDiscoveryExplorer : public Explorer {
   void observe(const SlamPointsFrame& frame) override;
   std::optional<PathCommand> plan(const VehicleState& vehicle) override;
   ExplorerSnapshot snapshot() const override;
+  /// Writes the map as an OctoMap binary into *out (the "octomap_binary" hook).
+  void octomapBinary(std::string* out) const { *out = map_.binary(); }
   std::vector<FreeSpaceElement> freeSpace() const override;
   std::map<std::string, double> counters() const override;
 

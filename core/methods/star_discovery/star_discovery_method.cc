@@ -1,5 +1,6 @@
 // Star discovery's registration (von Stumberg et al., the related work's monocular explorer):
-// method.type star_discovery, its table and the counters its progress line shows.
+// method.type star_discovery, its table, the counters its progress line shows and its hook
+// (its OctoMap as .bt, "octomap_binary").
 #include "core/explorer/method_registry.h"
 #include "core/methods/star_discovery/star_discovery_explorer.h"
 
@@ -11,6 +12,7 @@ const MethodRegistrar kStarDiscoveryMethod = registerMethod<StarDiscoveryExplore
      "star discovery (von Stumberg et al.): look-around, star flights, interesting cells",
      {"leaves", "stars", "interesting_cells", "goals_reached"},
      {},
-     /*listed=*/2});
+     /*listed=*/2,
+     {{"octomap_binary", hookOf(&StarDiscoveryExplorer::octomapBinary)}}});
 
 }  // namespace msb

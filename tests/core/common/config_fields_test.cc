@@ -2,10 +2,28 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <utility>
 
 namespace msb {
 namespace {
+
+enum class Shade { kLight, kDark };
+constexpr auto wordsOf(Shade) { return std::array{std::pair{Shade::kLight, "light"}, std::pair{Shade::kDark, "dark"}}; }
+
+TEST(WordEnum, AModeKeysWordsParseAndNameTheirValues) {
+  static_assert(WordEnum<Shade>);
+  static_assert(!WordEnum<int>);
+  EXPECT_STREQ(wordOf(Shade::kDark), "dark");
+  Shade s = Shade::kLight;
+  EXPECT_TRUE(parseWord("dark", s));
+  EXPECT_EQ(s, Shade::kDark);
+  EXPECT_FALSE(parseWord("Dark", s));  // words are exact
+  EXPECT_FALSE(parseWord("", s));
+  EXPECT_EQ(s, Shade::kDark);  // unchanged by a word that is none
+  EXPECT_EQ(Choices::of<Shade>().text(), "light or dark");
+}
 
 TEST(Limits, HoldsAndNamesEachKindOfInterval) {
   EXPECT_TRUE(Limits::positive().holds(1e-9));

@@ -98,14 +98,14 @@ void tunedKeys(TunedConfig& c, KeyVisitor& v) {
   ForwardKeys table(v);
   TunedConfig::fields(c, table);
 }
-const MethodRegistrar kTuned = registerMethod<TunedExplorer, TunedConfig>(
-    {"zz_tuned",
-     "a tuned test method",
-     {},
-     {{"urban", "", 100, 200, 3, 1}},
-     /*listed=*/5,
-     {{"tuned_chooser", hookOf(&TunedExplorer::setGoalChooser)}}},
-    tunedKeys);
+const MethodRegistrar kTuned =
+    registerMethod<TunedExplorer, TunedConfig>({"zz_tuned",
+                                                "a tuned test method",
+                                                {},
+                                                {{"urban", "", 100, 200, 3, 1}},
+                                                /*listed=*/5,
+                                                {{"tuned_chooser", hookOf(&TunedExplorer::setGoalChooser)}}},
+                                               tunedKeys);
 
 const MethodRegistration* registered(const std::string& type) {
   static const std::vector<MethodRegistration> all = registeredMethods();

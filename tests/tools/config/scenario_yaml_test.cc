@@ -385,8 +385,7 @@ TEST(ScenarioYaml, TheEffectiveConfigurationReadsBackToItself) {
     write(d / "named.yaml",
           "world: urban\nconditions: {preset: dusk}\nfrontend: {preset: real_flight, drift_scale: 3}\n"
           "method: {type: " +
-              method.type +
-              (method.type == "python" ? ", entry: \"m:f\", params: {a: 1, b: [x, 2]}" : "") + "}\n");
+              method.type + (method.type == "python" ? ", entry: \"m:f\", params: {a: 1, b: [x, 2]}" : "") + "}\n");
     const ScenarioSpec s = loadScenario((d / "named.yaml").string(), {"camera.mount_pitch_down_deg=7.5", "seed=4"});
     const std::string text = effectiveScenarioYaml(s);
     EXPECT_EQ(text.find("start:"), std::string::npos) << "the world's start applies";

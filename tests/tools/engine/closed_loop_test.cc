@@ -33,10 +33,10 @@ FlightSpec oracleFlight() {
   s.duration_s = 12.0;
   s.hold_after_s = 0.5;
   s.waypoints = {{c + Vec3(0, 0, 2.5), M_PI}, {c + Vec3(-6, 0, 2.5), M_PI}};
-  s.camera_stream.renderer = "blank";
+  s.camera_stream.renderer = RendererKind::kBlank;
   s.camera_stream.save_every_n = 0;
   s.perception.enabled = true;
-  s.perception.source = "oracle";
+  s.perception.source = FeatureSourceKind::kOracle;
   return s;
 }
 
@@ -247,13 +247,12 @@ TEST(ScenarioSpec, ADefaultScenarioIsAValidMissionOnceItNamesAWorld) {
 TEST(ClosedLoop, SeamsRefuseImpossibleCombinations) {
   // The KLT tracker needs images.
   FlightSpec klt_on_null = oracleFlight();
-  klt_on_null.perception.source = "klt";
+  klt_on_null.perception.source = FeatureSourceKind::kKlt;
   EXPECT_THROW(ClosedLoop(klt_on_null, LoopSetup{}), ConfigError);
   // The oracle needs ground truth.
   EXPECT_THROW(ClosedLoop(oracleFlight(), LoopSetup{}), ConfigError);
-  FlightSpec bad = oracleFlight();
-  bad.perception.source = "lidar";
-  EXPECT_THROW(ClosedLoop(bad, LoopSetup{}), ConfigError);
+  // (A source that is neither is not a value the type holds: the YAML reader refuses its word,
+  // KeyReference.EveryKeyRefusesAValueOutsideWhatItAccepts.)
 }
 
 }  // namespace

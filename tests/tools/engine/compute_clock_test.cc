@@ -66,7 +66,7 @@ TEST(ComputeTiming, TheCostModelAddsItsTermsAndRefusesBadCoefficients) {
   EXPECT_DOUBLE_EQ(m.seconds({{"a", 2}, {"b", 4}}), 0.1 + 1.0 + 2.0);
   EXPECT_THROW(m.seconds({{"a", 2}}), std::runtime_error);
   ComputeTiming t;
-  t.compute = "modelled";
+  t.compute = ComputeMode::kModelled;
   t.map.per["spheres"] = -1e-6;
   EXPECT_THROW(checkValid(t), ConfigError);
   t.map.per["spheres"] = std::nan("");
@@ -75,8 +75,8 @@ TEST(ComputeTiming, TheCostModelAddsItsTermsAndRefusesBadCoefficients) {
   EXPECT_THROW(checkValid(t), ConfigError);
   // A cost model's words only mean something when the model is used.
   ComputeTiming charged;
-  charged.compute = "charged";
-  charged.compute_model = "reference_python";
+  charged.compute = ComputeMode::kCharged;
+  charged.compute_model = ComputeModel::kReferencePython;
   EXPECT_THROW(checkValid(charged), ConfigError);
 }
 
@@ -166,8 +166,8 @@ ScenarioSpec oracleMission(double duration_s) {
   spec.flight.start_position_m = urban().generated.start.translation() + Vec3(0, 0, 0.05);
   spec.flight.start_yaw_rad = yawOf(urban().generated.start.linear());
   spec.flight.duration_s = duration_s;
-  spec.flight.camera_stream.renderer = "blank";
-  spec.flight.perception.source = "oracle";
+  spec.flight.camera_stream.renderer = RendererKind::kBlank;
+  spec.flight.perception.source = FeatureSourceKind::kOracle;
   spec.flight.perception.oracle.textureless_landmarks = true;
   spec.mission.progress = false;
   return spec;
@@ -204,7 +204,7 @@ TEST(ComputeInTheLoop, APlanningStepOf04SRunsAt25HzAndItsPathLands04SLater) {
   ScenarioSpec spec = oracleMission(6.0);
   spec.flight.perception.latency_frames = 0;  // the path's delay is the compute alone
   spec.flight.perception.threads = 1;
-  spec.timing.compute = "modelled";
+  spec.timing.compute = ComputeMode::kModelled;
   spec.timing.plan.per = {{"unit", 0.4}};  // every planning step: 0.4 s
   std::vector<int64_t> planned;
   Mission m(spec, urban().generated.exploration_box, &truth, std::make_unique<StepMethod>(&planned));
@@ -254,7 +254,7 @@ TEST(ComputeInTheLoop, APathNotYetInEffectIsNotFinished) {
   ScenarioSpec spec = oracleMission(1.0);
   spec.flight.perception.latency_frames = 3;  // the path lands 3 frames after its plan ...
   spec.flight.perception.threads = 1;
-  spec.timing.compute = "modelled";
+  spec.timing.compute = ComputeMode::kModelled;
   spec.timing.plan.base_s = 0.004;  // ... and 4 ms later: after the next plan's state (3 frames on)
   auto method = std::make_unique<OnePathMethod>();
   OnePathMethod* m = method.get();
@@ -268,7 +268,7 @@ TEST(ComputeInTheLoop, APathNotYetInEffectIsNotFinished) {
 TEST(ComputeInTheLoop, AChargedRunReplaysBitForBitFromItsLog) {
   const WorldTruth truth(urban().generated.shapes);
   ScenarioSpec spec = oracleMission(4.0);
-  spec.timing.compute = "charged";
+  spec.timing.compute = ComputeMode::kCharged;
   std::vector<int64_t> planned;
   Mission a(spec, urban().generated.exploration_box, &truth, std::make_unique<StepMethod>(&planned, 0.03));
   while (a.running()) a.step();
@@ -306,8 +306,8 @@ TEST(ComputeInTheLoop, ModelledMonoSpheresIsDeterministicOnOneThreadOrTwo) {
     ScenarioSpec s = oracleMission(20.0);
     s.flight.perception.latency_frames = 1;
     s.flight.perception.threads = threads;
-    s.timing.compute = "modelled";
-    s.timing.compute_model = "reference_python";
+    s.timing.compute = ComputeMode::kModelled;
+    s.timing.compute_model = ComputeModel::kReferencePython;
     s.timing.applyProfile();
     return s;
   };
@@ -328,7 +328,7 @@ TEST(ComputeInTheLoop, ModelledMonoSpheresIsDeterministicOnOneThreadOrTwo) {
 TEST(ComputeInTheLoop, AModelTermTheMethodHasNoCounterForIsRefusedBeforeTheRun) {
   const WorldTruth truth(urban().generated.shapes);
   ScenarioSpec spec = oracleMission(1.0);
-  spec.timing.compute = "modelled";
+  spec.timing.compute = ComputeMode::kModelled;
   spec.timing.map.per = {{"frontiers", 1e-3}};
   std::vector<int64_t> planned;
   try {

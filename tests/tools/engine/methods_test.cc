@@ -38,7 +38,8 @@ TEST(Methods, TheDefaultMethodIsANameLookedUpInTheRegistry) {
   EXPECT_EQ(m.type, kDefaultMethodType);
   EXPECT_NE(std::any_cast<MonoSpheresConfig>(&m.config), nullptr);
   EXPECT_TRUE(takesGoalChooser(m));
-  EXPECT_EQ(m.hooks, std::vector<std::string>{"viewpoint_chooser"});
+  ASSERT_EQ(m.hooks.size(), 1u);
+  EXPECT_EQ(m.hooks[0].name, "viewpoint_chooser");
   EXPECT_EQ(findRegistration("no_such_method"), nullptr);
   ASSERT_NE(findRegistration("grid_random"), nullptr);
   EXPECT_EQ(registeredMethodChoice(*findRegistration("grid_random"), findRegistration("grid_random")->default_config())
@@ -46,7 +47,8 @@ TEST(Methods, TheDefaultMethodIsANameLookedUpInTheRegistry) {
             0.5);
   // Methods written in Python are a registration like the others; they offer no hook.
   ASSERT_NE(findRegistration("python"), nullptr);
-  EXPECT_FALSE(takesGoalChooser(registeredMethodChoice(*findRegistration("python"), findRegistration("python")->default_config())));
+  EXPECT_FALSE(takesGoalChooser(
+      registeredMethodChoice(*findRegistration("python"), findRegistration("python")->default_config())));
 }
 
 }  // namespace

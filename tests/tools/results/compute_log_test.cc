@@ -21,7 +21,7 @@ std::string replayError(const std::string& file, uint64_t seed = 3, const std::s
   ScenarioSpec spec;
   spec.flight.seed = seed;
   spec.replay_settings_hash = scenario;
-  spec.timing.compute = "charged";
+  spec.timing.compute = ComputeMode::kCharged;
   spec.timing.replay = file;
   try {
     loadComputeReplay(spec, "s.yaml");
