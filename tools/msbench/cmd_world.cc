@@ -12,6 +12,7 @@
 #include "core/common/rng.h"
 #include "core/common/strict_number.h"
 #include "core/common/wall_time.h"
+#include "core/geometry/shape_mesh.h"
 #include "sim/physics/mjcf_files.h"
 #include "sim/physics/quadrotor_sim.h"
 #include "sim/render/fisheye_renderer.h"
@@ -21,6 +22,7 @@
 #include "tools/msbench/interrupt.h"
 #include "tools/results/input_files.h"
 #include "tools/results/output_files.h"
+#include "tools/results/ply_files.h"
 
 namespace msb {
 
@@ -446,6 +448,67 @@ int worldShow(int argc, char** argv) {
   return kExitOk;
 }
 
+// msbench world export NAME: the public world's truth as a mesh and a sampled cloud. A held-out
+// world is never exported: no option reaches the evaluator's salt (the world is the spec's).
+int worldExport(int argc, char** argv) {
+  ArgParser args("msbench world export",
+                 "The ground truth of a public world (its spec, never a held-out draw) as a triangle\n"
+                 "mesh (truth_mesh.ply) and a point cloud sampled on it (truth_points.ply, coloured\n"
+                 "and with a `kind` property by obstacle kind), world frame (ROS map), metres.");
+  args.positional("NAME", "world name")
+      .option("out", "", "output directory", true)
+      .option("seed", "", "placement seed (default: the spec's)")
+      .option("density", "4", "cloud points per square metre of surface")
+      .flag("overwrite", "replace an existing output directory");
+  if (!args.parse(argc - 1, argv + 1)) return kExitOk;
+  const double density = args.getDoubleIn("density", 1e-3, 1e3);
+  const ResolvedWorld r = resolveWorld(args.get("NAME"), seedArg(args));
+  const BuiltWorld& w = requireGenerated(r, args.get("NAME"));
+  const GeneratedWorld& g = w.generated;
+  // The mesh: every shape, half-spaces over the top-down map's extent.
+  const auto [lo, hi] = topDownExtent(g);
+  TriangleMesh mesh;
+  for (size_t i = 0; i < g.shapes.size(); ++i) appendShapeMesh(g.shapes[i], int(i), lo, hi, mesh);
+  RngStream rng(0, "world_export_points");
+  std::vector<SurfacePoint> samples = sampleSurface(mesh, density, rng);
+  if (samples.size() > 50'000'000)
+    throw UsageError("--density " + args.get("density") + ": " + std::to_string(samples.size()) +
+                     " points; choose a lower density");
+  // The cloud is the world's boundary: a point buried in another solid (a wall's foot in the
+  // ground, overlapping parts) is dropped; the mesh keeps every solid whole.
+  const WorldTruth truth(g.shapes);
+  const size_t sampled = samples.size();
+  std::erase_if(samples, [&](const SurfacePoint& p) { return truth.distance(p.position, 1.0) < -0.01; });
+  PlyCloud cloud;
+  cloud.comments = {"msbench world " + g.name + " ground truth, frame_id map (the world frame), units m",
+                    "kind 0 textured, 1 textureless, 2 thin, 3 ground"};
+  for (const SurfacePoint& p : samples) {
+    const ObstacleKind kind = g.shapes[p.shape].kind;
+    cloud.xyz.push_back(p.position);
+    cloud.kind.push_back(uint8_t(kind));
+    const cv::Vec3b c = kindColour(kind);  // the top-down map's colours (BGR there)
+    cloud.rgb.push_back({c[2], c[1], c[0]});
+  }
+  nlohmann::ordered_json j = {{"world", g.name},
+                              {"frame", "map (the world frame), REP-103 axes, metres"},
+                              {"shapes", g.shapes.size()},
+                              {"triangles", mesh.triangles.size()},
+                              {"points", samples.size()},
+                              {"points_buried_dropped", sampled - samples.size()},
+                              {"points_per_m2", density},
+                              {"ground_extent_xy_m", {lo.x(), lo.y(), hi.x(), hi.y()}},
+                              {"round_segments", kRoundSegments}};
+  StagedOutputDir out(args.get("out"), args.has("overwrite"), OutputKind::kWorldExport);
+  writeFileAtomic(out.staging() / "truth_mesh.ply",
+                  binaryPlyMesh(mesh.vertices, mesh.triangles, {cloud.comments.front()}));
+  writeFileAtomic(out.staging() / "truth_points.ply", binaryPly(cloud));
+  writeFileAtomic(out.staging() / "world_export.json", j.dump(2) + "\n");
+  out.commit();
+  std::printf("world %s: %zu shapes, %zu triangles, %zu points (%g per m2) -> %s\n", g.name.c_str(), g.shapes.size(),
+              mesh.triangles.size(), samples.size(), density, out.finalDir().c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 int runWorldCommand(int argc, char** argv) {
@@ -453,10 +516,11 @@ int runWorldCommand(int argc, char** argv) {
   if (sub.empty() || sub == "--help" || sub == "-h") {
     std::printf(
         "usage: msbench world list | build NAME [--seed S] | show NAME --out DIR [--seed S] |\n"
-        "       import NAME --from CHECKOUT\n\n"
+        "       import NAME --from CHECKOUT | export NAME --out DIR [--density D]\n\n"
         "  list    worlds under %s\n  build   generate into the cache (%s)\n"
         "  show    top-down map and fisheye views from the start pose\n"
-        "  import  copy a world's meshes from a checkout of its source into the cache\n",
+        "  import  copy a world's meshes from a checkout of its source into the cache\n"
+        "  export  the world's truth as a mesh and a point cloud (PLY, world frame)\n",
         worldsDir().c_str(), worldCacheDir().c_str());
     return sub.empty() ? kExitUsage : kExitOk;
   }
@@ -464,7 +528,8 @@ int runWorldCommand(int argc, char** argv) {
   if (sub == "build") return worldBuild(argc, argv);
   if (sub == "show") return worldShow(argc, argv);
   if (sub == "import") return worldImport(argc, argv);
-  throw UsageError("unknown world sub-command '" + sub + "' (list, build, show, import)");
+  if (sub == "export") return worldExport(argc, argv);
+  throw UsageError("unknown world sub-command '" + sub + "' (list, build, show, import, export)");
 }
 
 }  // namespace msb

@@ -43,7 +43,7 @@ constexpr Command kCommands[] = {
     {"render-probe", msb::runRenderProbeCommand, "render one fisheye frame from a pose"},
     {"bench-loop", msb::runBenchLoopCommand, "closed-loop cost per stage (per simulated s and per frame)"},
     {"bench-sim", msb::runBenchSimCommand, "physics steps/s and fisheye frame cost"},
-    {"world", msb::runWorldCommand, "list, build (into the cache) and show the worlds"},
+    {"world", msb::runWorldCommand, "list, build (into the cache), show, import and export the worlds"},
 };
 
 void printUsage() {

@@ -233,7 +233,8 @@ std::string timingCsv(const MissionResult& r) {
 
 std::string mapPly(const ExplorerSnapshot& snap) {
   std::ostringstream ply;
-  ply << "ply\nformat ascii 1.0\ncomment msbench map (VIO frame); kind 0 free-space sphere (radius), "
+  ply << "ply\nformat ascii 1.0\ncomment msbench map (VIO frame, ROS frame_id odom); kind 0 free-space sphere "
+         "(radius), "
          "1 obstacle point, 2 frontier\nelement vertex "
       << snap.free_space.size() + snap.obstacles.size() + snap.frontiers.size()
       << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\n"

@@ -123,6 +123,8 @@ const char* kindName(OutputKind k) {
       return "world-import";
     case OutputKind::kExport:
       return "export";
+    case OutputKind::kWorldExport:
+      return "world-export";
   }
   return "?";
 }
@@ -145,6 +147,8 @@ const char* characteristicFile(OutputKind k) {
       return "imported.json";
     case OutputKind::kExport:
       return "export.json";
+    case OutputKind::kWorldExport:
+      return "world_export.json";
   }
   return "";
 }

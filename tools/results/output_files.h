@@ -40,7 +40,7 @@ struct NamedPath {
 void checkNoOverlap(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 
 /// The kinds of output directory msbench writes; --overwrite replaces only one of the same kind.
-enum class OutputKind { kRun, kReport, kFly, kVioEval, kMapReplay, kWorldShow, kWorldImport, kExport };
+enum class OutputKind { kRun, kReport, kFly, kVioEval, kMapReplay, kWorldShow, kWorldImport, kExport, kWorldExport };
 
 /// True if `dir` is a directory msbench wrote (it holds the marker file `.msbench-output`); with
 /// `kind`, only one of that kind (a marker written before kinds existed counts for the kind whose

@@ -38,6 +38,22 @@ std::string tumLine(const std::vector<std::string>& c, size_t p, size_t q) {
          c[q] + "\n";
 }
 
+// A cell numericCells() has checked.
+double number(const std::string& cell) {
+  double v = 0;
+  std::string why;
+  parseNumber(cell, &v, &why);
+  return v;
+}
+
+// The pose of cells p (position) and q (quaternion, w first) of a row.
+Pose poseOf(const std::vector<std::string>& c, size_t p, size_t q) {
+  Pose T = Pose::Identity();
+  T.translation() = Vec3(number(c[p]), number(c[p + 1]), number(c[p + 2]));
+  T.linear() = Quat(number(c[q]), number(c[q + 1]), number(c[q + 2]), number(c[q + 3])).normalized().toRotationMatrix();
+  return T;
+}
+
 }  // namespace
 
 TumTrajectories tumFromTrajectoryCsv(const std::string& csv, const std::string& where) {
@@ -59,6 +75,7 @@ TumTrajectories tumFromTrajectoryCsv(const std::string& csv, const std::string& 
     const auto c = numericCells(line, cells, where + ": line " + std::to_string(line_no));
     out.truth += tumLine(c, 1, 4);                             // x y z, qw qx qy qz
     if (with_orientation) out.estimate += tumLine(c, 11, 19);  // est_x.., est_qw..
+    if (with_orientation) out.T_true_est_final = poseOf(c, 1, 4) * poseOf(c, 11, 19).inverse();
     ++out.rows;
   }
   if (out.rows == 0) throw InputFileError(where + ": no rows");

@@ -3,7 +3,10 @@
 // run's trajectory.csv with each number copied as written there (docs/interop.md).
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include "core/common/types.h"
 
 namespace msb {
 
@@ -12,6 +15,9 @@ struct TumTrajectories {
   std::string truth;     ///< the true body pose in the world frame (ROS `map`)
   std::string estimate;  ///< the VIO's body pose in its own drifting frame (ROS `odom`); "" if the file has no est_q*
   int rows = 0;          ///< poses in each
+  /// The estimate → truth correction at the last row (T_true_est = T_W_B · T_V_B⁻¹: ROS's
+  /// map → odom at the end of the run); none without the VIO's full orientation.
+  std::optional<Pose> T_true_est_final;
 };
 
 /// The TUM texts of `csv`, a trajectory.csv (`where` names it in errors). A file written before
